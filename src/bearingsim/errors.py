@@ -1,0 +1,77 @@
+"""Project exceptions.
+
+Every error raised on bad input is a :class:`BearingsimError` whose message is one line naming
+the offending field, its value and the valid range, so the CLI can print it unchanged.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+
+class BearingsimError(ValueError):
+    """Base class of every error bearingsim raises on bad input or an impossible request."""
+
+
+class ConfigError(BearingsimError):
+    """A configuration, catalogue or input file is malformed or has invalid values."""
+
+
+class SolverError(BearingsimError):
+    """A solver found no solution (no equilibrium, divergence, ...)."""
+
+
+def _fmt(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return repr(value)
+
+
+def check_positive(name: str, value: Any, unit: str = "") -> float:
+    """Return ``float(value)`` if finite and > 0, else raise a one-line :class:`ConfigError`."""
+    return check_range(name, value, lo=0.0, lo_open=True, unit=unit)
+
+
+def check_range(
+    name: str,
+    value: Any,
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> float:
+    """Validate a finite real number against an interval and return it as ``float``.
+
+    Parameters
+    ----------
+    name : str
+        Field name shown in the message.
+    value : Any
+        Value to check.
+    lo, hi : float or None
+        Interval bounds (``None`` = unbounded).
+    lo_open, hi_open : bool
+        Whether the bound itself is excluded.
+    unit : str
+        Unit appended to the range in the message.
+    """
+    u = f" {unit}" if unit else ""
+    lb = "(" if (lo_open or lo is None) else "["
+    rb = ")" if (hi_open or hi is None) else "]"
+    rng = f"{lb}{'-inf' if lo is None else _fmt(float(lo))}, {'inf' if hi is None else _fmt(float(hi))}{rb}{u}"
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}") from None
+    if not math.isfinite(x):
+        raise ConfigError(f"{name} = {_fmt(value)} is not finite; valid range {rng}")
+    bad = (
+        (lo is not None and (x < lo or (lo_open and x == lo)))
+        or (hi is not None and (x > hi or (hi_open and x == hi)))
+    )
+    if bad:
+        raise ConfigError(f"{name} = {_fmt(x)}{u} is out of range; valid range {rng}")
+    return x

@@ -1,0 +1,277 @@
+"""Bearing geometry as validated, frozen data, and the kinematic (characteristic) frequencies.
+
+Conventions (used by every model): SI units; the outer ring is fixed and the inner ring rotates;
+element azimuths ``psi`` are measured from the +y axis towards +x (seed VSM fig. 1); the
+diametral clearance ``P_d`` is the total free play across a diameter (negative = preload).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .errors import ConfigError, check_positive, check_range
+from .materials import Material
+
+
+def _set(obj: object, name: str, value: object) -> None:
+    object.__setattr__(obj, name, value)
+
+
+def _check_common(b: BallBearing | RollerBearing) -> None:
+    if not isinstance(b.id, str) or not b.id.strip():
+        raise ConfigError(f"id = {b.id!r} is invalid; valid: a non-empty string")
+    if isinstance(b.n_elements, bool) or not isinstance(b.n_elements, int | float):
+        raise ConfigError(f"n_elements = {b.n_elements!r} is not an integer; valid range [3, inf)")
+    if float(b.n_elements) != int(b.n_elements) or b.n_elements < 3:
+        raise ConfigError(f"n_elements = {b.n_elements!r} is out of range; valid range [3, inf) integer")
+    _set(b, "n_elements", int(b.n_elements))
+    _set(b, "element_diameter", check_positive("element_diameter_m", b.element_diameter, "m"))
+    _set(b, "pitch_diameter", check_positive("pitch_diameter_m", b.pitch_diameter, "m"))
+    d, D = b.element_diameter, b.pitch_diameter
+    if d >= D:
+        raise ConfigError(
+            f"element_diameter_m = {d:.6g} m must be smaller than pitch_diameter_m = {D:.6g} m; "
+            f"valid range (0, {D:.6g}) m"
+        )
+    # neighbouring elements must not overlap on the pitch circle
+    d_max = D * math.sin(math.pi / b.n_elements)
+    if d >= d_max:
+        raise ConfigError(
+            f"element_diameter_m = {d:.6g} m is too large for n_elements = {b.n_elements} on "
+            f"pitch_diameter_m = {D:.6g} m (elements overlap); valid range (0, {d_max:.6g}) m"
+        )
+    _set(
+        b,
+        "contact_angle",
+        check_range("contact_angle_rad", b.contact_angle, 0.0, math.pi / 2, hi_open=True, unit="rad"),
+    )
+    _set(
+        b,
+        "diametral_clearance",
+        check_range("diametral_clearance_m", b.diametral_clearance, -0.5 * d, 0.5 * d, unit="m"),
+    )
+    if not isinstance(b.material, Material):
+        raise ConfigError(f"material = {b.material!r} is not a Material")
+    for name in ("bore", "outer_diameter", "width"):
+        v = getattr(b, name)
+        if v is not None:
+            _set(b, name, check_positive(f"{name}_m", v, "m"))
+
+
+@dataclass(frozen=True)
+class BallBearing:
+    """Deep-groove or angular-contact ball bearing.
+
+    Parameters
+    ----------
+    id : str
+        Catalogue identifier.
+    n_elements : int
+        Number of balls Z [-], >= 3.
+    element_diameter : float
+        Ball diameter d [m].
+    pitch_diameter : float
+        Pitch diameter D (d_m) [m].
+    contact_angle : float
+        Nominal contact angle alpha [rad]; 0 for a deep-groove bearing.
+    diametral_clearance : float
+        Diametral clearance P_d [m]; negative for preload.
+    inner_groove_radius, outer_groove_radius : float
+        Groove curvature radii R_i, R_o [m]; conformities ``f = R/d`` must exceed 0.5.
+    material : Material
+        Material of rings and balls.
+    source : str
+        Where the data come from.
+    bore, outer_diameter, width : float or None
+        Envelope dimensions [m] (informative).
+    """
+
+    id: str
+    n_elements: int
+    element_diameter: float
+    pitch_diameter: float
+    inner_groove_radius: float
+    outer_groove_radius: float
+    contact_angle: float = 0.0
+    diametral_clearance: float = 0.0
+    material: Material = field(default_factory=Material)
+    source: str = ""
+    bore: float | None = None
+    outer_diameter: float | None = None
+    width: float | None = None
+
+    kind = "ball"
+
+    def __post_init__(self) -> None:
+        _check_common(self)
+        d = self.element_diameter
+        for name in ("inner_groove_radius", "outer_groove_radius"):
+            v = check_positive(f"{name}_m", getattr(self, name), "m")
+            if v <= 0.5 * d:
+                raise ConfigError(
+                    f"{name}_m = {v:.6g} m gives conformity {v / d:.4f} <= 0.5; valid range "
+                    f"({0.5 * d:.6g}, inf) m (conformity R/d > 0.5)"
+                )
+            _set(self, name, v)
+
+    @property
+    def inner_conformity(self) -> float:
+        """f_i = R_i / d [-]."""
+        return self.inner_groove_radius / self.element_diameter
+
+    @property
+    def outer_conformity(self) -> float:
+        """f_o = R_o / d [-]."""
+        return self.outer_groove_radius / self.element_diameter
+
+    @property
+    def inner_raceway_radius(self) -> float:
+        """Radius of the inner groove bottom, ``(D - d)/2`` [m] (seed VSM table 1: r_i)."""
+        return 0.5 * (self.pitch_diameter - self.element_diameter)
+
+    @property
+    def outer_raceway_radius(self) -> float:
+        """Radius of the outer groove bottom, ``(D + d)/2`` [m] (seed VSM table 1: r_o)."""
+        return 0.5 * (self.pitch_diameter + self.element_diameter)
+
+
+@dataclass(frozen=True)
+class RollerBearing:
+    """Cylindrical roller bearing.
+
+    Parameters
+    ----------
+    id : str
+        Catalogue identifier.
+    n_elements : int
+        Number of rollers Z [-], >= 3.
+    element_diameter : float
+        Roller diameter D_c = 2 r_c [m].
+    pitch_diameter : float
+        Pitch diameter D_p [m].
+    roller_length : float
+        Effective contact length l [m].
+    contact_angle : float
+        Contact angle [rad]; 0 for a cylindrical roller bearing.
+    diametral_clearance : float
+        Diametral clearance [m] (twice the radial gap ``c``); negative for preload.
+    inner_raceway_diameter, outer_raceway_diameter : float or None
+        Raceway diameters [m] when the source gives them (default ``D_p -/+ D_c``).
+    material : Material
+        Material of rings and rollers.
+    source : str
+        Where the data come from.
+    """
+
+    id: str
+    n_elements: int
+    element_diameter: float
+    pitch_diameter: float
+    roller_length: float
+    contact_angle: float = 0.0
+    diametral_clearance: float = 0.0
+    material: Material = field(default_factory=Material)
+    source: str = ""
+    inner_raceway_diameter: float | None = None
+    outer_raceway_diameter: float | None = None
+    bore: float | None = None
+    outer_diameter: float | None = None
+    width: float | None = None
+
+    kind = "cylindrical_roller"
+
+    def __post_init__(self) -> None:
+        _check_common(self)
+        _set(self, "roller_length", check_positive("roller_length_m", self.roller_length, "m"))
+        for name in ("inner_raceway_diameter", "outer_raceway_diameter"):
+            v = getattr(self, name)
+            if v is not None:
+                _set(self, name, check_positive(f"{name}_m", v, "m"))
+        if self.inner_raceway_diameter is None:
+            _set(self, "inner_raceway_diameter", self.pitch_diameter - self.element_diameter)
+        if self.outer_raceway_diameter is None:
+            _set(self, "outer_raceway_diameter", self.pitch_diameter + self.element_diameter)
+        if self.inner_raceway_diameter >= self.outer_raceway_diameter:
+            raise ConfigError(
+                f"inner_raceway_diameter_m = {self.inner_raceway_diameter:.6g} m must be smaller "
+                f"than outer_raceway_diameter_m = {self.outer_raceway_diameter:.6g} m"
+            )
+
+    @property
+    def inner_raceway_radius(self) -> float:
+        """Inner raceway radius r_i [m]."""
+        return 0.5 * self.inner_raceway_diameter
+
+    @property
+    def outer_raceway_radius(self) -> float:
+        """Outer raceway radius r_o [m]."""
+        return 0.5 * self.outer_raceway_diameter
+
+
+Bearing = BallBearing | RollerBearing
+
+
+@dataclass(frozen=True)
+class KinematicFrequencies:
+    """Characteristic frequencies for a fixed outer ring and rotating inner ring.
+
+    All frequencies in [Hz]; orders are per shaft revolution [-].
+    """
+
+    shaft_hz: float
+    ftf_hz: float
+    bpfo_hz: float
+    bpfi_hz: float
+    bsf_hz: float
+
+    def _order(self, f: float) -> float:
+        return f / self.shaft_hz
+
+    @property
+    def ftf_order(self) -> float:
+        return self._order(self.ftf_hz)
+
+    @property
+    def bpfo_order(self) -> float:
+        return self._order(self.bpfo_hz)
+
+    @property
+    def bpfi_order(self) -> float:
+        return self._order(self.bpfi_hz)
+
+    @property
+    def bsf_order(self) -> float:
+        return self._order(self.bsf_hz)
+
+    def as_dict(self) -> dict[str, float]:
+        """Keys ``ftf_hz, bpfo_hz, bpfi_hz, bsf_hz`` and the four ``*_order`` [Hz], [-]."""
+        out = {k: getattr(self, k) for k in ("ftf_hz", "bpfo_hz", "bpfi_hz", "bsf_hz")}
+        for k in ("ftf", "bpfo", "bpfi", "bsf"):
+            out[f"{k}_order"] = getattr(self, f"{k}_order")
+        return out
+
+
+def characteristic_frequencies(bearing: Bearing, shaft_hz: float) -> KinematicFrequencies:
+    """Cage, ball-pass and ball-spin frequencies (SPEC §0.2; seed VSM eqs (20)–(21)).
+
+    With ``g = d cos(alpha) / D``: ``FTF = f_s/2 (1 - g)``, ``BPFO = Z f_s/2 (1 - g)``,
+    ``BPFI = Z f_s/2 (1 + g)``, ``BSF = D/(2d) f_s (1 - g^2)`` (Harris & Kotzalas 2007, ch. 8).
+
+    Parameters
+    ----------
+    bearing : BallBearing or RollerBearing
+        Geometry.
+    shaft_hz : float
+        Inner-ring (shaft) rotation frequency f_s [Hz], > 0.
+    """
+    fs = check_positive("shaft_hz", shaft_hz, "Hz")
+    d, D, Z = bearing.element_diameter, bearing.pitch_diameter, bearing.n_elements
+    g = d * math.cos(bearing.contact_angle) / D
+    return KinematicFrequencies(
+        shaft_hz=fs,
+        ftf_hz=0.5 * fs * (1.0 - g),
+        bpfo_hz=0.5 * Z * fs * (1.0 - g),
+        bpfi_hz=0.5 * Z * fs * (1.0 + g),
+        bsf_hz=D / (2.0 * d) * fs * (1.0 - g * g),
+    )
