@@ -476,3 +476,41 @@ def material_of(bearing: BallBearing | RollerBearing) -> Material:
 def _check_solver() -> None:  # pragma: no cover - guard for import-time misuse
     if not callable(brentq):
         raise SolverError("scipy brentq unavailable")
+
+
+def line_subsurface_stresses(contact: LineContact, nu: float, index: int = 0) -> SubsurfaceStresses:
+    """Stresses on the depth axis under the centre of a line contact (plane strain; McEwen 1949,
+    Johnson 1985 eq. (4.75)): ``sigma_z = -p0/sqrt(1+s^2)``,
+    ``sigma_x = -p0 [(1+2 s^2)/sqrt(1+s^2) - 2 s]``, ``sigma_y = nu (sigma_x + sigma_z)``,
+    ``s = z/b``. The orthogonal shear ``tau_xz`` peaks at ``0.25 p0`` at depth ``0.5 b``
+    (Johnson 1985, §4.2).
+
+    Parameters
+    ----------
+    contact : LineContact
+        From :func:`line_contact`.
+    nu : float
+        Poisson's ratio [-].
+    index : int
+        Which load (flat index).
+    """
+    p0 = float(np.ravel(contact.p_max)[index])
+    b = float(np.ravel(contact.b)[index])
+    s = np.linspace(3.0 / 4000, 3.0, 4000)
+    r = np.sqrt(1.0 + s * s)
+    sz = -1.0 / r
+    sx = -((1.0 + 2.0 * s * s) / r - 2.0 * s)
+    sy = nu * (sx + sz)
+    st = np.vstack([sx, sy, sz])
+    tau = 0.5 * (st.max(0) - st.min(0))
+    i = int(np.argmax(tau))
+    return SubsurfaceStresses(
+        depth=s * b,
+        sigma_x=sx * p0,
+        sigma_y=sy * p0,
+        sigma_z=sz * p0,
+        tau_max=float(tau[i] * p0),
+        tau_max_depth=float(s[i] * b),
+        tau_orth=0.25 * p0,
+        tau_orth_depth=0.5 * b,
+    )

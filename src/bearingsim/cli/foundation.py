@@ -1,0 +1,168 @@
+"""Foundation commands: bearings, info, contact, load."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import click
+import numpy as np
+
+from ..catalog import list_bearings
+from ..errors import ConfigError, check_range
+from ..geometry import BallBearing, Bearing, characteristic_frequencies
+from ..hertz import (
+    EllipticMethod,
+    Race,
+    ball_contact,
+    combined_stiffness,
+    line_subsurface_stresses,
+    roller_contact,
+    subsurface_stresses,
+)
+from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
+from .common import bearing_options, bearing_summary, cli, emit_json, json_option
+
+
+@cli.command("bearings")
+@json_option
+def bearings_cmd(as_json: bool) -> None:
+    """List the catalogue bearings with their sources."""
+    items = [bearing_summary(b) for b in list_bearings()]
+    if as_json:
+        emit_json({"bearings": items})
+        return
+    for b in items:
+        click.echo(
+            f"{b['id']:<16} {b['type']:<18} Z={b['n_elements']:<3} d={b['element_diameter_m'] * 1e3:.3f} mm"
+            f"  D={b['pitch_diameter_m'] * 1e3:.3f} mm  ({b['source'][:70]})"
+        )
+
+
+@cli.command("info")
+@bearing_options()
+@click.option("--rpm", type=float, required=True, help="Shaft (inner-ring) speed [r/min].")
+@json_option
+def info_cmd(bearing: Bearing, rpm: float, as_json: bool) -> None:
+    """Kinematic frequencies of BEARING at --rpm (outer ring fixed)."""
+    rpm = check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
+    kin = characteristic_frequencies(bearing, rpm / 60.0).as_dict()
+    if as_json:
+        emit_json(kin)
+        return
+    click.echo(bearing_summary(bearing)["id"] + f" at {rpm:g} r/min (shaft {rpm / 60:.4f} Hz)")
+    for k in ("ftf", "bpfo", "bpfi", "bsf"):
+        click.echo(f"  {k.upper():<5} {kin[k + '_hz']:10.4f} Hz   order {kin[k + '_order']:.5f}")
+
+
+def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    nu = bearing.material.poisson_ratio
+    for race in (Race.INNER, Race.OUTER):
+        if isinstance(bearing, BallBearing):
+            c = ball_contact(bearing, q, race, method)
+            s = subsurface_stresses(c, nu) if q > 0 else None
+            a, b, k = float(c.a), float(c.b), c.k_hertz
+            extra = {"ellipticity": c.ellipticity.k, "exponent": 1.5}
+        else:
+            c = roller_contact(bearing, q, race)
+            s = line_subsurface_stresses(c, nu) if q > 0 else None
+            a, b, k = 0.5 * c.length, float(c.b), c.k_line
+            extra = {"exponent": 10.0 / 9.0}
+        out[race.value] = {
+            "a_m": a,
+            "b_m": b,
+            "delta_m": float(c.delta),
+            "p_max_pa": float(c.p_max),
+            "k_hertz": k,
+            "tau_max_pa": s.tau_max if s else 0.0,
+            "tau_max_depth_m": s.tau_max_depth if s else 0.0,
+            "tau_orth_pa": s.tau_orth if s else 0.0,
+            "tau_orth_depth_m": s.tau_orth_depth if s else 0.0,
+            **extra,
+        }
+    n = out["inner"]["exponent"]
+    out["k_combined"] = combined_stiffness(out["inner"]["k_hertz"], out["outer"]["k_hertz"], n)
+    return out
+
+
+@cli.command("contact")
+@bearing_options()
+@click.option("--ball-load", type=float, default=None, help="Element load Q [N].")
+@click.option("--radial-load", type=float, default=None,
+              help="Bearing radial load F_r [N]; the most-loaded element is used.")
+@click.option("--method", type=click.Choice([m.value for m in EllipticMethod]), default="exact",
+              show_default=True, help="Point-contact solution.")
+@json_option
+def contact_cmd(bearing: Bearing, ball_load: float | None, radial_load: float | None,
+                method: str, as_json: bool) -> None:
+    """Hertz contact of the most-loaded element with both raceways."""
+    if (ball_load is None) == (radial_load is None):
+        raise ConfigError("contact: give exactly one of --ball-load Q or --radial-load FR")
+    extra: dict[str, Any] = {}
+    if radial_load is not None:
+        fr = check_range("radial_load_n", radial_load, 0.0, lo_open=True, unit="N")
+        ld = radial_load_distribution(bearing, 0.0, fr)
+        q = float(ld.ball_loads.max())
+        extra = {"radial_load_n": fr, "q_max_n": q, "q_max_stribeck_n": stribeck_qmax(bearing, fr)}
+    else:
+        q = check_range("ball_load_n", ball_load, 0.0, unit="N")
+    out = {"ball_load_n": q, **extra, **_contact_dict(bearing, q, EllipticMethod(method))}
+    if as_json:
+        emit_json(out)
+        return
+    click.echo(f"{bearing.id}: element load {q:.4g} N")
+    for race in ("inner", "outer"):
+        r = out[race]
+        click.echo(
+            f"  {race:<5} a={r['a_m'] * 1e3:.4f} mm b={r['b_m'] * 1e3:.4f} mm "
+            f"delta={r['delta_m'] * 1e6:.3f} um p_max={r['p_max_pa'] / 1e6:.1f} MPa "
+            f"tau_max={r['tau_max_pa'] / 1e6:.1f} MPa @ {r['tau_max_depth_m'] * 1e3:.4f} mm"
+        )
+    click.echo(f"  combined K = {out['k_combined']:.5g}")
+
+
+@cli.command("load")
+@bearing_options()
+@click.option("--fx", type=float, default=0.0, show_default=True, help="Radial force x [N].")
+@click.option("--fy", type=float, default=0.0, show_default=True, help="Radial force y [N].")
+@click.option("--cage-angle-deg", type=float, default=0.0, show_default=True,
+              help="Cage angle [deg].")
+@click.option("--clearance-m", type=float, default=None, help="Diametral clearance [m] (negative = preload).")
+@click.option("--motion", type=click.Choice([m.value for m in RingMotion]), default="free",
+              show_default=True, help="Ring DOF: free in the plane, or along the load line (seed form).")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a polar plot PNG.")
+@json_option
+def load_cmd(bearing: Bearing, fx: float, fy: float, cage_angle_deg: float,
+             clearance_m: float | None, motion: str, plot: str | None, as_json: bool) -> None:
+    """Radial load distribution over the discrete elements."""
+    cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, unit="deg"))
+    ld = radial_load_distribution(bearing, fx, fy, cage, clearance=clearance_m, motion=motion)
+    out = {
+        "theta0_deg": math.degrees(ld.theta0),
+        "fr_n": ld.fr,
+        "delta_max_m": float(ld.delta_max[0]),
+        "delta_r_m": float(ld.delta_r[0]),
+        "epsilon": float(ld.epsilon[0]),
+        "psi_l_deg": math.degrees(float(ld.psi_l[0])),
+        "ball_angles_deg": np.degrees(ld.ball_angles[0]),
+        "ball_loads_n": ld.ball_loads[0],
+        "n_loaded": int(ld.n_loaded[0]),
+        "displacement_m": ld.displacement[0],
+        "residual_rel": float(ld.residual[0]),
+        "stiffness": ld.stiffness,
+    }
+    if plot:
+        from ..report.figures import save_figure
+
+        save_figure(ld.plot(0), plot)
+    if as_json:
+        emit_json(out)
+        return
+    click.echo(
+        f"{bearing.id}: F_r={ld.fr:.4g} N theta0={out['theta0_deg']:.2f} deg "
+        f"delta_max={out['delta_max_m'] * 1e6:.4f} um psi_L={out['psi_l_deg']:.2f} deg "
+        f"n_loaded={out['n_loaded']}"
+    )
+    for a, q in zip(out["ball_angles_deg"], out["ball_loads_n"], strict=True):
+        click.echo(f"  psi={a:8.2f} deg  Q={q:10.4f} N")
