@@ -7,6 +7,7 @@ stderr and exit with code 2; ``--json`` makes a command print exactly one JSON o
 from __future__ import annotations
 
 import importlib
+import pkgutil
 import sys
 
 import click
@@ -15,11 +16,11 @@ from .._version import __version__
 from ..errors import BearingsimError
 from .common import cli
 
-#: command modules, each registering its commands on ``cli`` when imported
-COMMAND_MODULES = [
-    "foundation",
-    "report",
-]
+#: command modules (every module of this package but ``common``), each registering its
+#: commands on ``cli`` when imported
+COMMAND_MODULES = sorted(
+    m.name for m in pkgutil.iter_modules(__path__) if m.name != "common"
+)
 
 for _m in COMMAND_MODULES:
     importlib.import_module(f"{__name__}.{_m}")

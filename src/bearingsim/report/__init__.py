@@ -7,6 +7,7 @@ report writes ``results.json`` (list of rows), the PNG figures and ``report.html
 from __future__ import annotations
 
 import importlib
+import pkgutil
 import math
 import time
 from dataclasses import asdict, dataclass, field
@@ -17,8 +18,13 @@ from ..io import write_json
 
 Status = Literal["match", "explained", "mismatch"]
 
-#: report sections in order; each later model issue appends its module name
-SECTIONS = ["foundation"]
+#: preferred order of the report sections; any other module in ``report/sections`` follows
+_ORDER = ["foundation", "vsm", "qs5", "ias", "life", "rotor", "sweep"]
+#: the sections present (modules in ``report/sections``), in report order
+SECTIONS = sorted(
+    (m.name for m in pkgutil.iter_modules([str(Path(__file__).parent / "sections")])),
+    key=lambda n: (_ORDER.index(n) if n in _ORDER else len(_ORDER), n),
+)
 
 
 @dataclass
