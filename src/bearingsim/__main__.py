@@ -1,0 +1,5 @@
+"""``python -m bearingsim`` runs the CLI."""
+
+from .cli import main
+
+main()
