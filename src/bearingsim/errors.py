@@ -61,16 +61,17 @@ def check_range(
     u = f" {unit}" if unit else ""
     lb = "(" if (lo_open or lo is None) else "["
     rb = ")" if (hi_open or hi is None) else "]"
-    rng = f"{lb}{'-inf' if lo is None else _fmt(float(lo))}, {'inf' if hi is None else _fmt(float(hi))}{rb}{u}"
+    lo_s = "-inf" if lo is None else _fmt(float(lo))
+    hi_s = "inf" if hi is None else _fmt(float(hi))
+    rng = f"{lb}{lo_s}, {hi_s}{rb}{u}"
     try:
         x = float(value)
     except (TypeError, ValueError):
         raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}") from None
     if not math.isfinite(x):
         raise ConfigError(f"{name} = {_fmt(value)} is not finite; valid range {rng}")
-    bad = (
-        (lo is not None and (x < lo or (lo_open and x == lo)))
-        or (hi is not None and (x > hi or (hi_open and x == hi)))
+    bad = (lo is not None and (x < lo or (lo_open and x == lo))) or (
+        hi is not None and (x > hi or (hi_open and x == hi))
     )
     if bad:
         raise ConfigError(f"{name} = {_fmt(x)}{u} is out of range; valid range {rng}")

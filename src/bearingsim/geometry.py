@@ -24,7 +24,9 @@ def _check_common(b: BallBearing | RollerBearing) -> None:
     if isinstance(b.n_elements, bool) or not isinstance(b.n_elements, int | float):
         raise ConfigError(f"n_elements = {b.n_elements!r} is not an integer; valid range [3, inf)")
     if float(b.n_elements) != int(b.n_elements) or b.n_elements < 3:
-        raise ConfigError(f"n_elements = {b.n_elements!r} is out of range; valid range [3, inf) integer")
+        raise ConfigError(
+            f"n_elements = {b.n_elements!r} is out of range; valid range [3, inf) integer"
+        )
     _set(b, "n_elements", int(b.n_elements))
     _set(b, "element_diameter", check_positive("element_diameter_m", b.element_diameter, "m"))
     _set(b, "pitch_diameter", check_positive("pitch_diameter_m", b.pitch_diameter, "m"))
@@ -44,7 +46,9 @@ def _check_common(b: BallBearing | RollerBearing) -> None:
     _set(
         b,
         "contact_angle",
-        check_range("contact_angle_rad", b.contact_angle, 0.0, math.pi / 2, hi_open=True, unit="rad"),
+        check_range(
+            "contact_angle_rad", b.contact_angle, 0.0, math.pi / 2, hi_open=True, unit="rad"
+        ),
     )
     _set(
         b,

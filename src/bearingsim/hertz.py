@@ -31,7 +31,8 @@ class EllipticMethod(enum.Enum):
     #: solve the ellipticity equation with the complete elliptic integrals (exact)
     EXACT = "exact"
     #: Hamrock & Brewe (1983) closed forms ``k = a_r^(2/pi)``, ``E = 1 + q/a_r``,
-    #: ``F = pi/2 + q ln a_r`` (``q = pi/2 - 1``); about 3 % error (their statement)
+    #: ``F = pi/2 + q ln a_r`` (``q = pi/2 - 1``). Measured against EXACT over
+    #: 1 <= R_y/R_x <= 100: k and delta within 4.2 %, a, b and p_max within 2.7 %.
     HAMROCK_BREWE = "hamrock_brewe"
 
 
@@ -182,7 +183,9 @@ def ball_race_radii(bearing: BallBearing, race: Race) -> tuple[float, float]:
     ``1/R_y = 2/d - 1/R_groove`` (Harris & Kotzalas 2007, eqs. (2.27)–(2.33)).
     """
     if not isinstance(bearing, BallBearing):
-        raise ConfigError(f"bearing = {bearing.id!r} is not a ball bearing; point contact needs balls")
+        raise ConfigError(
+            f"bearing = {bearing.id!r} is not a ball bearing; point contact needs balls"
+        )
     d, D, ca = bearing.element_diameter, bearing.pitch_diameter, math.cos(bearing.contact_angle)
     if race is Race.INNER:
         rho_x = 2.0 / d + 2.0 * ca / (D - d * ca)
@@ -340,7 +343,9 @@ def subsurface_stresses(contact: PointContact, nu: float, index: int = 0) -> Sub
     b = float(np.ravel(contact.b)[index])
     k = contact.ellipticity.k
     if k < 1.0:
-        raise ConfigError("subsurface_stresses: ellipse elongated along rolling (k < 1) not supported")
+        raise ConfigError(
+            "subsurface_stresses: ellipse elongated along rolling (k < 1) not supported"
+        )
     zs, Sx, Sy, Sz = _axis_stress_shape(round(k, 10), float(nu))
     s = np.vstack([Sx, Sy, Sz])
     tau = 0.5 * (s.max(axis=0) - s.min(axis=0))
@@ -453,7 +458,9 @@ def roller_race_radius(bearing: RollerBearing, race: Race | str) -> float:
 def roller_contact(bearing: RollerBearing, load: ArrayLike, race: Race | str) -> LineContact:
     """Line contact of a roller with a raceway of ``bearing`` (same material)."""
     if not isinstance(bearing, RollerBearing):
-        raise ConfigError(f"bearing = {bearing.id!r} is not a roller bearing; line contact needs rollers")
+        raise ConfigError(
+            f"bearing = {bearing.id!r} is not a roller bearing; line contact needs rollers"
+        )
     e_eff = effective_modulus(bearing.material, bearing.material)
     return line_contact(load, roller_race_radius(bearing, race), bearing.roller_length, e_eff)
 

@@ -4,8 +4,9 @@ Ball ``j`` sits at azimuth ``psi_j = cage_angle + (j-1) 2 pi / Z + psi_0`` measu
 towards +x (seed VSM fig. 1). A rigid inner-ring displacement ``u = (u_x, u_y)`` compresses it by
 ``delta_j = u_x sin psi_j + u_y cos psi_j - P_d/2`` and it carries ``Q_j = K max(delta_j, 0)^n``
 (``n = 1.5`` balls, ``10/9`` rollers; ``K`` the combined inner+outer constant, seed VSM eq. (10)).
-Writing ``delta_r = |u|`` and the displacement direction ``theta_u``, this is exactly the Harris form
-used by seed VSM eqs. (4)–(9): ``delta_j = delta_max {1 - (1 - cos(psi_j - theta_u))/(2 eps)}`` with
+Writing ``delta_r = |u|`` and the displacement direction ``theta_u``, this is exactly the Harris
+form used by seed VSM eqs. (4)–(9):
+``delta_j = delta_max {1 - (1 - cos(psi_j - theta_u))/(2 eps)}`` with
 ``delta_max = delta_r - P_d/2``, ``eps = (1 - P_d/(2 delta_r))/2`` and load-zone half angle
 ``psi_L = arccos(P_d/(2 delta_r))``.
 
@@ -159,9 +160,10 @@ def _solve_2d(ux, uy, sn, cs, factors, c, K, n, fx, fy):
             p1 = _potential(ux + t * sx, uy + t * sy, sn, cs, factors, c, K, n, fx, fy)
             if p1 <= p0 + 1e-4 * t * slope:
                 break
-            if _residual(ux + t * sx, uy + t * sy, sn, cs, factors, c, K, n, fx, fy) < (
-                1.0 - 1e-4 * t
-            ) * res * scale:
+            if (
+                _residual(ux + t * sx, uy + t * sy, sn, cs, factors, c, K, n, fx, fy)
+                < (1.0 - 1e-4 * t) * res * scale
+            ):
                 break
             t *= 0.5
         ux += t * sx
@@ -363,7 +365,9 @@ def radial_load_distribution(
     res = np.empty(cage.size)
     _distribute(cage, psi0, Z, fac, 0.5 * Pd, K, n, fx, fy, motion is RingMotion.FREE, u, res)
     if not np.all(np.isfinite(u)):
-        raise SolverError("radial load distribution: no equilibrium found (non-finite displacement)")
+        raise SolverError(
+            "radial load distribution: no equilibrium found (non-finite displacement)"
+        )
     psi = cage[:, None] + psi0 + 2.0 * np.pi * np.arange(Z)[None, :] / Z
     dj = u[:, :1] * np.sin(psi) + u[:, 1:] * np.cos(psi) - 0.5 * Pd
     Q = fac * K * np.maximum(dj, 0.0) ** n

@@ -56,10 +56,23 @@ _COMMON = {
 _BALL = _COMMON | {"inner_groove_radius_m", "outer_groove_radius_m"}
 _ROLLER = _COMMON | {"roller_length_m", "inner_raceway_diameter_m", "outer_raceway_diameter_m"}
 _REQUIRED = {
-    "ball": {"id", "type", "n_elements", "element_diameter_m", "pitch_diameter_m",
-             "inner_groove_radius_m", "outer_groove_radius_m"},
-    "cylindrical_roller": {"id", "type", "n_elements", "element_diameter_m", "pitch_diameter_m",
-                           "roller_length_m"},
+    "ball": {
+        "id",
+        "type",
+        "n_elements",
+        "element_diameter_m",
+        "pitch_diameter_m",
+        "inner_groove_radius_m",
+        "outer_groove_radius_m",
+    },
+    "cylindrical_roller": {
+        "id",
+        "type",
+        "n_elements",
+        "element_diameter_m",
+        "pitch_diameter_m",
+        "roller_length_m",
+    },
 }
 
 

@@ -18,9 +18,7 @@ from .common import cli
 
 #: command modules (every module of this package but ``common``), each registering its
 #: commands on ``cli`` when imported
-COMMAND_MODULES = sorted(
-    m.name for m in pkgutil.iter_modules(__path__) if m.name != "common"
-)
+COMMAND_MODULES = sorted(m.name for m in pkgutil.iter_modules(__path__) if m.name != "common")
 
 for _m in COMMAND_MODULES:
     importlib.import_module(f"{__name__}.{_m}")

@@ -37,13 +37,24 @@ def bearing_options(required: bool = True) -> Callable:
 
     def deco(f: Callable) -> Callable:
         @click.argument("bearing_id", metavar="BEARING", required=False)
-        @click.option("--bearing-file", type=click.Path(dir_okay=False), default=None,
-                      help="User bearing TOML file (instead of a catalogue id).")
-        @click.option("--E-pa", "e_pa", type=float, default=None, help="Override Young's modulus [Pa].")
+        @click.option(
+            "--bearing-file",
+            type=click.Path(dir_okay=False),
+            default=None,
+            help="User bearing TOML file (instead of a catalogue id).",
+        )
+        @click.option(
+            "--E-pa", "e_pa", type=float, default=None, help="Override Young's modulus [Pa]."
+        )
         @click.option("--nu", type=float, default=None, help="Override Poisson's ratio [-].")
         @functools.wraps(f)
-        def wrapper(bearing_id: str | None, bearing_file: str | None, e_pa: float | None,
-                    nu: float | None, **kw: Any) -> Any:
+        def wrapper(
+            bearing_id: str | None,
+            bearing_file: str | None,
+            e_pa: float | None,
+            nu: float | None,
+            **kw: Any,
+        ) -> Any:
             if bearing_id is None and bearing_file is None and not required:
                 return f(bearing=None, **kw)
             b = resolve_bearing(bearing_id, bearing_file, youngs_modulus=e_pa, poisson_ratio=nu)

@@ -34,7 +34,8 @@ def bearings_cmd(as_json: bool) -> None:
         return
     for b in items:
         click.echo(
-            f"{b['id']:<16} {b['type']:<18} Z={b['n_elements']:<3} d={b['element_diameter_m'] * 1e3:.3f} mm"
+            f"{b['id']:<16} {b['type']:<18} Z={b['n_elements']:<3} "
+            f"d={b['element_diameter_m'] * 1e3:.3f} mm"
             f"  D={b['pitch_diameter_m'] * 1e3:.3f} mm  ({b['source'][:70]})"
         )
 
@@ -89,13 +90,23 @@ def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[st
 @cli.command("contact")
 @bearing_options()
 @click.option("--ball-load", type=float, default=None, help="Element load Q [N].")
-@click.option("--radial-load", type=float, default=None,
-              help="Bearing radial load F_r [N]; the most-loaded element is used.")
-@click.option("--method", type=click.Choice([m.value for m in EllipticMethod]), default="exact",
-              show_default=True, help="Point-contact solution.")
+@click.option(
+    "--radial-load",
+    type=float,
+    default=None,
+    help="Bearing radial load F_r [N]; the most-loaded element is used.",
+)
+@click.option(
+    "--method",
+    type=click.Choice([m.value for m in EllipticMethod]),
+    default="exact",
+    show_default=True,
+    help="Point-contact solution.",
+)
 @json_option
-def contact_cmd(bearing: Bearing, ball_load: float | None, radial_load: float | None,
-                method: str, as_json: bool) -> None:
+def contact_cmd(
+    bearing: Bearing, ball_load: float | None, radial_load: float | None, method: str, as_json: bool
+) -> None:
     """Hertz contact of the most-loaded element with both raceways."""
     if (ball_load is None) == (radial_load is None):
         raise ConfigError("contact: give exactly one of --ball-load Q or --radial-load FR")
@@ -126,15 +137,33 @@ def contact_cmd(bearing: Bearing, ball_load: float | None, radial_load: float | 
 @bearing_options()
 @click.option("--fx", type=float, default=0.0, show_default=True, help="Radial force x [N].")
 @click.option("--fy", type=float, default=0.0, show_default=True, help="Radial force y [N].")
-@click.option("--cage-angle-deg", type=float, default=0.0, show_default=True,
-              help="Cage angle [deg].")
-@click.option("--clearance-m", type=float, default=None, help="Diametral clearance [m] (negative = preload).")
-@click.option("--motion", type=click.Choice([m.value for m in RingMotion]), default="free",
-              show_default=True, help="Ring DOF: free in the plane, or along the load line (seed form).")
-@click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a polar plot PNG.")
+@click.option(
+    "--cage-angle-deg", type=float, default=0.0, show_default=True, help="Cage angle [deg]."
+)
+@click.option(
+    "--clearance-m", type=float, default=None, help="Diametral clearance [m] (negative = preload)."
+)
+@click.option(
+    "--motion",
+    type=click.Choice([m.value for m in RingMotion]),
+    default="free",
+    show_default=True,
+    help="Ring DOF: free in the plane, or along the load line (seed form).",
+)
+@click.option(
+    "--plot", type=click.Path(dir_okay=False), default=None, help="Write a polar plot PNG."
+)
 @json_option
-def load_cmd(bearing: Bearing, fx: float, fy: float, cage_angle_deg: float,
-             clearance_m: float | None, motion: str, plot: str | None, as_json: bool) -> None:
+def load_cmd(
+    bearing: Bearing,
+    fx: float,
+    fy: float,
+    cage_angle_deg: float,
+    clearance_m: float | None,
+    motion: str,
+    plot: str | None,
+    as_json: bool,
+) -> None:
     """Radial load distribution over the discrete elements."""
     cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, unit="deg"))
     ld = radial_load_distribution(bearing, fx, fy, cage, clearance=clearance_m, motion=motion)

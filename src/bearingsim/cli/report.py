@@ -10,10 +10,20 @@ from .common import cli, emit_json, json_option
 
 @cli.command("reproduce")
 @click.option("--quick", is_flag=True, help="Reduced-size variants of long computations.")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False), required=True,
-              help="Output directory for results.json, figures and report.html.")
-@click.option("--section", "sections", multiple=True, type=click.Choice(SECTIONS),
-              help="Run only these sections (repeatable).")
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False),
+    required=True,
+    help="Output directory for results.json, figures and report.html.",
+)
+@click.option(
+    "--section",
+    "sections",
+    multiple=True,
+    type=click.Choice(SECTIONS),
+    help="Run only these sections (repeatable).",
+)
 @json_option
 def reproduce_cmd(quick: bool, out_dir: str, sections: tuple[str, ...], as_json: bool) -> None:
     """Reproduce the published numbers: write results.json, PNG figures and report.html."""
@@ -25,5 +35,7 @@ def reproduce_cmd(quick: bool, out_dir: str, sections: tuple[str, ...], as_json:
     if as_json:
         emit_json({"out_dir": out_dir, "counts": counts, "sections": [s.name for s in done]})
         return
-    click.echo(f"wrote {out_dir}/report.html and results.json: " +
-               ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
+    click.echo(
+        f"wrote {out_dir}/report.html and results.json: "
+        + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
+    )

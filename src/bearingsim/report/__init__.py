@@ -7,8 +7,8 @@ report writes ``results.json`` (list of rows), the PNG figures and ``report.html
 from __future__ import annotations
 
 import importlib
-import pkgutil
 import math
+import pkgutil
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -46,15 +46,22 @@ class Row:
     tolerance: float | None = None
 
 
-def compare(quantity: str, source: str, published: float, ours: float, tolerance: float,
-            explanation: str = "") -> Row:
+def compare(
+    quantity: str,
+    source: str,
+    published: float,
+    ours: float,
+    tolerance: float,
+    explanation: str = "",
+) -> Row:
     """Row comparing two numbers; ``match`` within ``tolerance`` (relative), otherwise
     ``explained`` when an explanation is given, else ``mismatch``."""
     rel = (ours - published) / abs(published) if published else math.nan
     ok = abs(rel) <= tolerance
     status: Status = "match" if ok else ("explained" if explanation else "mismatch")
-    return Row(quantity, source, published, ours, rel, status, explanation if not ok else "",
-               tolerance)
+    return Row(
+        quantity, source, published, ours, rel, status, explanation if not ok else "", tolerance
+    )
 
 
 @dataclass
@@ -77,8 +84,12 @@ class Context:
     quick: bool = True
 
 
-def run_report(out_dir: str | Path, quick: bool = True, sections: list[str] | None = None,
-               progress: bool = True) -> list[Section]:
+def run_report(
+    out_dir: str | Path,
+    quick: bool = True,
+    sections: list[str] | None = None,
+    progress: bool = True,
+) -> list[Section]:
     """Run the report sections, write ``results.json``, figures and ``report.html``.
 
     Parameters

@@ -31,63 +31,122 @@ def run(ctx: Context) -> Section:
     b6205 = get_bearing("6205")
     k1748 = characteristic_frequencies(b6205, 1748 / 60)
     k1796 = characteristic_frequencies(b6205, 1796 / 60)
-    rows.append(compare("6205 BPFI at 1748 r/min [Hz]", "seed VSM eq. (20)", 157.76,
-                        k1748.bpfi_hz, 1e-3))
-    rows.append(compare("6205 BPFO at 1796 r/min [Hz]", "seed VSM eq. (21)", 107.30,
-                        k1796.bpfo_hz, 1e-3))
+    rows.append(
+        compare("6205 BPFI at 1748 r/min [Hz]", "seed VSM eq. (20)", 157.76, k1748.bpfi_hz, 1e-3)
+    )
+    rows.append(
+        compare("6205 BPFO at 1796 r/min [Hz]", "seed VSM eq. (21)", 107.30, k1796.bpfo_hz, 1e-3)
+    )
     for bid, pub in (
         ("6205-cwru", {"bpfi": 5.4152, "bpfo": 3.5848, "ftf": 0.39828, "2xbsf": 4.7135}),
         ("6203-cwru", {"bpfi": 4.9469, "bpfo": 3.0530, "ftf": 0.3817, "2xbsf": 3.9874}),
     ):
         k = characteristic_frequencies(get_bearing(bid), 1.0)
-        ours = {"bpfi": k.bpfi_order, "bpfo": k.bpfo_order, "ftf": k.ftf_order,
-                "2xbsf": 2 * k.bsf_order}
+        ours = {
+            "bpfi": k.bpfi_order,
+            "bpfo": k.bpfo_order,
+            "ftf": k.ftf_order,
+            "2xbsf": 2 * k.bsf_order,
+        }
         for key, val in pub.items():
-            rows.append(compare(f"{bid} {key.upper()} order [-]", "CWRU bearing table", val,
-                                ours[key], 1e-3))
+            rows.append(
+                compare(
+                    f"{bid} {key.upper()} order [-]", "CWRU bearing table", val, ours[key], 1e-3
+                )
+            )
     knu = characteristic_frequencies(get_bearing("NU204-ECP"), 1.0)
-    rows.append(compare("NU204-ECP BPFO order [-]", "seed IAS eq. (36)", 4.22, knu.bpfo_order,
-                        2e-3))
+    rows.append(
+        compare("NU204-ECP BPFO order [-]", "seed IAS eq. (36)", 4.22, knu.bpfo_order, 2e-3)
+    )
     # --- Hertz: seed LIFE table 2
     b6206 = get_bearing("6206")
     q = stribeck_qmax(b6206, 5000.0)
     ci = ball_contact(b6206, q, Race.INNER)
     co = ball_contact(b6206, q, Race.OUTER)
-    rows.append(compare("6206 inner p_max, Q=4.37*5000/9 N [MPa]", "seed LIFE table 2 (theory)",
-                        2890.0, float(ci.p_max) / 1e6, 0.01))
-    rows.append(compare("6206 outer p_max, Q=4.37*5000/9 N [MPa]", "seed LIFE table 2 (theory)",
-                        2554.0, float(co.p_max) / 1e6, 0.02))
-    fe_note = ("the paper's value is its 3-D ABAQUS FE result; ours is Hertz theory "
-               "(SPEC §4: the project takes the contact from Hertz)")
-    rows.append(compare("6206 inner p_max [MPa]", "seed LIFE table 2 (ABAQUS FE)", 2904.0,
-                        float(ci.p_max) / 1e6, 0.01, fe_note))
-    rows.append(compare("6206 outer p_max [MPa]", "seed LIFE table 2 (ABAQUS FE)", 2501.0,
-                        float(co.p_max) / 1e6, 0.01, fe_note))
+    rows.append(
+        compare(
+            "6206 inner p_max, Q=4.37*5000/9 N [MPa]",
+            "seed LIFE table 2 (theory)",
+            2890.0,
+            float(ci.p_max) / 1e6,
+            0.01,
+        )
+    )
+    rows.append(
+        compare(
+            "6206 outer p_max, Q=4.37*5000/9 N [MPa]",
+            "seed LIFE table 2 (theory)",
+            2554.0,
+            float(co.p_max) / 1e6,
+            0.02,
+        )
+    )
+    fe_note = (
+        "the paper's value is its 3-D ABAQUS FE result; ours is Hertz theory "
+        "(SPEC §4: the project takes the contact from Hertz)"
+    )
+    rows.append(
+        compare(
+            "6206 inner p_max [MPa]",
+            "seed LIFE table 2 (ABAQUS FE)",
+            2904.0,
+            float(ci.p_max) / 1e6,
+            0.01,
+            fe_note,
+        )
+    )
+    rows.append(
+        compare(
+            "6206 outer p_max [MPa]",
+            "seed LIFE table 2 (ABAQUS FE)",
+            2501.0,
+            float(co.p_max) / 1e6,
+            0.01,
+            fe_note,
+        )
+    )
     # --- load distribution: seed VSM §2.1
     ld = radial_load_distribution(b6205, 10.0, 50.0, 0.0)
     rows.append(compare("6205 F_r for F_rx=10, F_ry=50 N [N]", "seed VSM §2.1", 50.99, ld.fr, 1e-3))
-    rows.append(compare("6205 theta_0 [deg]", "seed VSM §2.1", 11.3, math.degrees(ld.theta0),
-                        5e-3))
+    rows.append(compare("6205 theta_0 [deg]", "seed VSM §2.1", 11.3, math.degrees(ld.theta0), 5e-3))
     psi = math.degrees(float(ld.psi_l[0]))
     K = ld.stiffness
     k_needed = brentq(lambda kk: psi_l_seed_case(stiffness=kk) - 68.2, 1e8, K)
     pd_needed = brentq(lambda pd: psi_l_seed_case(clearance=pd) - 68.2, 1e-8, 6e-6)
-    rows.append(compare(
-        "6205 load-zone half angle psi_L [deg]", "seed VSM §2.1 / eq. (8)", 68.2, psi, 0.01,
-        f"Hertz K = {K:.4g} N/m^1.5 (exact elliptic integrals, E 207 GPa) with P_d = 6 um gives "
-        f"{psi:.2f} deg. The paper's 68.2 deg needs K = {k_needed:.3g} N/m^1.5 "
-        f"({k_needed / K:.2f} x Hertz) or P_d = {pd_needed * 1e6:.2f} um; the seed does not state "
-        "its K. We keep the Hertz value (docs/validation.md).",
-    ))
-    rows.append(Row("6205 element constant K giving psi_L = 68.2 deg [N/m^1.5]", "derived", None,
-                    k_needed, None, "explained",
-                    "element constant that reproduces 68.2 deg; not used by any model"))
+    rows.append(
+        compare(
+            "6205 load-zone half angle psi_L [deg]",
+            "seed VSM §2.1 / eq. (8)",
+            68.2,
+            psi,
+            0.01,
+            f"Hertz K = {K:.4g} N/m^1.5 (exact elliptic integrals, E 207 GPa) with P_d = 6 um "
+            f"gives {psi:.2f} deg. The paper's 68.2 deg needs K = {k_needed:.3g} N/m^1.5 "
+            f"({k_needed / K:.2f} x Hertz) or P_d = {pd_needed * 1e6:.2f} um; the seed does not "
+            "state its K. We keep the Hertz value (docs/validation.md).",
+        )
+    )
+    rows.append(
+        Row(
+            "6205 element constant K giving psi_L = 68.2 deg [N/m^1.5]",
+            "derived",
+            None,
+            k_needed,
+            None,
+            "explained",
+            "element constant that reproduces 68.2 deg; not used by any model",
+        )
+    )
     # --- figures
     fig = ld.plot(0)
     save_figure(fig, ctx.out_dir / "foundation_load_6205.png")
-    sec.figures.append(("foundation_load_6205.png",
-                        f"6205, F_rx=10 N, F_ry=50 N, P_d=6 um: element loads at cage angle 0; "
-                        f"psi_L = {psi:.1f} deg (paper 68.2 deg)"))
+    sec.figures.append(
+        (
+            "foundation_load_6205.png",
+            f"6205, F_rx=10 N, F_ry=50 N, P_d=6 um: element loads at cage angle 0; "
+            f"psi_L = {psi:.1f} deg (paper 68.2 deg)",
+        )
+    )
     import matplotlib.pyplot as plt
 
     cage = np.radians(np.linspace(0, 80, 801))
@@ -100,14 +159,16 @@ def run(ctx: Context) -> Section:
     ax[1].set_xlabel("cage angle [deg]")
     ax[0].set_title("6205 seed VSM case: discrete-ball load distribution vs cage angle")
     save_figure(fig, ctx.out_dir / "foundation_cage_6205.png")
-    sec.figures.append(("foundation_cage_6205.png",
-                        "delta_max and number of loaded balls over two ball passes"))
+    sec.figures.append(
+        ("foundation_cage_6205.png", "delta_max and number of loaded balls over two ball passes")
+    )
     s = subsurface_stresses(ci, 0.3)
     fig, ax = plt.subplots(figsize=(6, 4))
     for arr, lab in ((s.sigma_x, "sigma_x"), (s.sigma_y, "sigma_y"), (s.sigma_z, "sigma_z")):
         ax.plot(arr / 1e6, s.depth * 1e3, label=lab)
-    tau = 0.5 * (np.max([s.sigma_x, s.sigma_y, s.sigma_z], 0) - np.min([s.sigma_x, s.sigma_y,
-                                                                         s.sigma_z], 0))
+    tau = 0.5 * (
+        np.max([s.sigma_x, s.sigma_y, s.sigma_z], 0) - np.min([s.sigma_x, s.sigma_y, s.sigma_z], 0)
+    )
     ax.plot(tau / 1e6, s.depth * 1e3, "k", label="tau_max")
     ax.invert_yaxis()
     ax.set_xlabel("stress [MPa]")
@@ -115,8 +176,14 @@ def run(ctx: Context) -> Section:
     ax.legend()
     ax.set_title(f"6206 inner contact at Q = {q:.0f} N: p_max {float(ci.p_max) / 1e6:.0f} MPa")
     save_figure(fig, ctx.out_dir / "foundation_subsurface_6206.png")
-    sec.figures.append(("foundation_subsurface_6206.png",
-                        "Subsurface stresses on the depth axis, 6206 inner contact (seed LIFE)"))
-    sec.text = (f"6206 most-loaded ball: Stribeck {q:.1f} N; discrete-ball solution at zero "
-                f"clearance {float(radial_load_distribution(b6206, 0, 5000).ball_loads.max()):.1f} N.")
+    sec.figures.append(
+        (
+            "foundation_subsurface_6206.png",
+            "Subsurface stresses on the depth axis, 6206 inner contact (seed LIFE)",
+        )
+    )
+    sec.text = (
+        f"6206 most-loaded ball: Stribeck {q:.1f} N; discrete-ball solution at zero "
+        f"clearance {float(radial_load_distribution(b6206, 0, 5000).ball_loads.max()):.1f} N."
+    )
     return sec

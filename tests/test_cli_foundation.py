@@ -1,0 +1,214 @@
+"""The foundation CLI commands: JSON contracts and one-line errors with exit code 2."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+from bearingsim import __version__
+
+
+def test_version(run_cli):
+    r = run_cli("--version")
+    assert r.code == 0 and __version__ in r.out
+
+
+def test_bearings_json(run_cli):
+    r = run_cli("bearings", "--json")
+    assert r.code == 0
+    ids = {b["id"] for b in r.json()["bearings"]}
+    assert {"6205", "6205-cwru", "6203-cwru", "6206", "NU204-ECP"} <= ids
+
+
+def test_info_json(run_cli):
+    r = run_cli("info", "6205", "--rpm", "1748", "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert set(d) == {
+        "ftf_hz",
+        "bpfo_hz",
+        "bpfi_hz",
+        "bsf_hz",
+        "ftf_order",
+        "bpfo_order",
+        "bpfi_order",
+        "bsf_order",
+    }
+    assert_allclose(d["bpfi_hz"], 157.76, rtol=1e-3, err_msg="seed VSM eq (20)")
+
+
+def test_contact_json_ball_load(run_cli):
+    r = run_cli("contact", "6206", "--ball-load", str(4.37 * 5000 / 9), "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    keys = {
+        "a_m",
+        "b_m",
+        "delta_m",
+        "p_max_pa",
+        "k_hertz",
+        "tau_max_pa",
+        "tau_max_depth_m",
+        "tau_orth_pa",
+        "tau_orth_depth_m",
+    }
+    assert keys <= set(d["inner"]) and keys <= set(d["outer"])
+    assert "k_combined" in d
+    assert_allclose(d["inner"]["p_max_pa"], 2890e6, rtol=0.01, err_msg="seed LIFE table 2")
+
+
+def test_contact_json_radial_load(run_cli):
+    r = run_cli("contact", "6206", "--radial-load", "5000", "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert_allclose(d["q_max_stribeck_n"], 4.37 * 5000 / 9, rtol=1e-12)
+    assert d["q_max_n"] == d["ball_load_n"]
+    # discrete balls at zero clearance: within 1 % of Stribeck's 4.37 (Harris & Kotzalas §7.2)
+    assert_allclose(d["q_max_n"], d["q_max_stribeck_n"], rtol=0.01)
+
+
+def test_contact_roller(run_cli):
+    r = run_cli("contact", "NU204-ECP", "--ball-load", "200", "--json")
+    assert r.code == 0, r.err
+    assert_allclose(r.json()["inner"]["exponent"], 10 / 9)
+
+
+def test_load_json(run_cli, tmp_path):
+    png = tmp_path / "l.png"
+    r = run_cli("load", "6205", "--fx", "10", "--fy", "50", "--plot", png, "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    for k in (
+        "theta0_deg",
+        "fr_n",
+        "delta_max_m",
+        "delta_r_m",
+        "epsilon",
+        "psi_l_deg",
+        "ball_angles_deg",
+        "ball_loads_n",
+        "n_loaded",
+    ):
+        assert k in d
+    assert len(d["ball_loads_n"]) == 9
+    assert_allclose(d["fr_n"], 50.99, rtol=1e-3, err_msg="seed VSM §2.1")
+    assert png.stat().st_size > 1000
+
+
+def test_user_bearing_file(run_cli, tmp_path):
+    f = tmp_path / "mine.toml"
+    f.write_text(
+        'id = "mine"\ntype = "ball"\nn_elements = 8\nelement_diameter_m = 6.35e-3\n'
+        "pitch_diameter_m = 28.5e-3\ninner_groove_radius_m = 3.3e-3\n"
+        "outer_groove_radius_m = 3.35e-3\n"
+    )
+    r = run_cli("info", "--bearing-file", f, "--rpm", "1200", "--json")
+    assert r.code == 0, r.err
+    assert r.json()["bpfo_order"] > 0
+
+
+def test_material_override(run_cli):
+    a = run_cli("contact", "6205", "--ball-load", "100", "--json").json()
+    b = run_cli("contact", "6205", "--ball-load", "100", "--E-pa", "100e9", "--json").json()
+    assert b["inner"]["p_max_pa"] < a["inner"]["p_max_pa"]
+
+
+def test_json_output_is_one_object(run_cli):
+    r = run_cli("load", "6205", "--fy", "100", "--json")
+    assert r.out.count("\n") == 1 and isinstance(json.loads(r.out), dict)
+
+
+BAD = [
+    (["info", "6299", "--rpm", "100"], "bearing"),
+    (["info", "6205", "--rpm", "-5"], "rpm"),
+    (["info", "6205", "--rpm", "0"], "rpm"),
+    (["info", "6205", "--rpm", "nan"], "rpm"),
+    (["info", "6205", "--rpm", "abc"], "rpm"),
+    (["contact", "6205", "--ball-load", "-3"], "ball_load_n"),
+    (["contact", "6205", "--radial-load", "inf"], "radial_load_n"),
+    (["contact", "6205"], "--ball-load"),
+    (["load", "6205", "--fx", "nan", "--fy", "1"], "fx_n"),
+    (["load", "6205", "--fy", "10", "--clearance-m", "0.01"], "clearance_m"),
+    (["info", "6205", "--rpm", "100", "--E-pa", "-1"], "youngs_modulus_pa"),
+    (["info", "6205", "--rpm", "100", "--nu", "0.7"], "poisson_ratio"),
+]
+
+
+@pytest.mark.parametrize("args, field", BAD, ids=[" ".join(a) for a, _ in BAD])
+def test_bad_input_one_line_exit_2(run_cli, args, field):
+    r = run_cli(*args)
+    assert r.code == 2
+    lines = r.err.strip().splitlines()
+    assert len(lines) == 1, r.err
+    assert field in lines[0]
+    assert "Traceback" not in r.err
+
+
+@pytest.mark.parametrize(
+    "content, field",
+    [
+        (
+            "id = 'x'\ntype = 'ball'\nn_elements = 2\nelement_diameter_m = 0.005\n"
+            "pitch_diameter_m = 0.03\ninner_groove_radius_m = 0.0026\n"
+            "outer_groove_radius_m = 0.0027",
+            "n_elements",
+        ),
+        (
+            "id = 'x'\ntype = 'ball'\nn_elements = 9\nelement_diameter_m = -0.005\n"
+            "pitch_diameter_m = 0.03\ninner_groove_radius_m = 0.0026\n"
+            "outer_groove_radius_m = 0.0027",
+            "element_diameter_m",
+        ),
+        (
+            "id = 'x'\ntype = 'ball'\nn_elements = 9\nelement_diameter_m = 0.04\n"
+            "pitch_diameter_m = 0.03\ninner_groove_radius_m = 0.0026\n"
+            "outer_groove_radius_m = 0.0027",
+            "element_diameter_m",
+        ),
+        (
+            "id = 'x'\ntype = 'ball'\nn_elements = 9\nelement_diameter_m = 0.005\n"
+            "pitch_diameter_m = 0.03\ninner_groove_radius_m = 0.0024\n"
+            "outer_groove_radius_m = 0.0027",
+            "inner_groove_radius_m",
+        ),
+        ("id = 'x'\ntype = 'ball'\nn_elements = 9\nshoe_size = 3", "shoe_size"),
+        ("id = 'x\ntype = ball", "TOML"),
+    ],
+    ids=["few-elements", "negative-d", "d-ge-D", "conformity", "unknown-key", "malformed"],
+)
+def test_bad_bearing_file(run_cli, tmp_path, content, field):
+    f = tmp_path / "bad.toml"
+    f.write_text(content)
+    r = run_cli("info", "--bearing-file", f, "--rpm", "100")
+    assert r.code == 2
+    assert len(r.err.strip().splitlines()) == 1 and field in r.err
+
+
+def test_missing_bearing_file(run_cli, tmp_path):
+    r = run_cli("info", "--bearing-file", tmp_path / "nope.toml", "--rpm", "100")
+    assert r.code == 2 and "bearing_file" in r.err
+
+
+def test_console_script_subprocess():
+    """The installed console entry point runs (guards the pyproject script entry)."""
+    import subprocess
+    import sys
+
+    p = subprocess.run(
+        [sys.executable, "-m", "bearingsim", "info", "6205-cwru", "--rpm", "1797", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert p.returncode == 0, p.stderr
+    assert math.isclose(json.loads(p.stdout)["bpfo_order"], 3.5848, rel_tol=1e-3)
+    p = subprocess.run(
+        [sys.executable, "-m", "bearingsim", "info", "6205", "--rpm", "-1"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert p.returncode == 2 and p.stderr.count("\n") == 1

@@ -1,0 +1,43 @@
+"""The README's Python tour runs as a doctest; its CLI lines are valid commands."""
+
+from __future__ import annotations
+
+import doctest
+import re
+import shlex
+from pathlib import Path
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+
+
+def test_readme_python_examples():
+    res = doctest.testfile(str(README), module_relative=False, optionflags=doctest.ELLIPSIS)
+    assert res.attempted > 5 and res.failed == 0
+
+
+def test_readme_setup_commands_are_first_and_two():
+    text = README.read_text()
+    block = re.search(r"```bash\n(.*?)```", text, re.S).group(1).strip().splitlines()
+    assert len(block) == 2
+    assert "reproduce --quick" in block[0]
+    assert "pytest" in block[1]
+
+
+def test_readme_cli_examples_run(run_cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "my_bearing.toml").write_text(
+        'id = "mine"\ntype = "ball"\nn_elements = 9\nelement_diameter_m = 7.94e-3\n'
+        "pitch_diameter_m = 39e-3\ninner_groove_radius_m = 4.089e-3\n"
+        "outer_groove_radius_m = 4.169e-3\n"
+    )
+    text = README.read_text()
+    blocks = re.findall(r"```bash\n(.*?)```", text, re.S)[1:]
+    n = 0
+    for block in blocks:
+        for line in block.strip().splitlines():
+            args = shlex.split(line)
+            assert args[0] == "bearingsim"
+            r = run_cli(*args[1:])
+            assert r.code == 0, f"{line}: {r.err}"
+            n += 1
+    assert n >= 4
