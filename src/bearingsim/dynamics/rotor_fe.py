@@ -432,7 +432,8 @@ class Modes:
     damping_ratio : ndarray
         Modal damping ratios [-].
     whirl : ndarray of str
-        ``"forward"`` (whirl in the spin sense), ``"backward"`` or ``"planar"`` per mode.
+        ``"forward"`` (whirl in the spin sense), ``"backward"`` or ``"planar"`` per mode
+        (``"planar"`` for every mode at zero speed, where the x and y planes decouple).
     """
 
     frequency_hz: NDArray[np.float64]
@@ -480,7 +481,7 @@ def complex_modes(
     freq = lam.imag / (2 * math.pi)
     zeta = -lam.real / np.abs(lam)
     whirl = np.full(lam.size, "planar", dtype="<U8")
-    if x_dofs is not None and y_dofs is not None:
+    if x_dofs is not None and y_dofs is not None and spin != 0.0:
         X = vec[np.asarray(x_dofs, dtype=int)]
         Y = vec[np.asarray(y_dofs, dtype=int)]
         # q = Re(V e^{i w t}); the orbit turns from +y towards +x (the spin sense, psi
