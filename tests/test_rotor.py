@@ -303,6 +303,29 @@ def test_fault_frequency_independent_of_disk_count():
     assert np.ptp(freqs) <= df, f"fault frequency moved with the disk count: {freqs}"
 
 
+def test_fan_end_outer_fault_shows_fan_end_bpfo():
+    """FE 6203 outer-race defect at 6 o'clock (a ball sits on it at t = 0): the FE housing
+    envelope shows the FE BPFO (CWRU order 3.0530)."""
+    r = simulate_rotor(cwru_rotor_config(3, fe_fault=LocalFault("outer")), duration=0.5)
+    f, df = envelope_peak(r.channel("FE", "y"), 12000.0)
+    assert abs(f - 3.0530 * 1750 / 60) <= df, "FE BPFO, CWRU bearing table order 3.0530"
+
+
+def test_inner_race_fault_bpfi_with_shaft_sidebands():
+    r = simulate_rotor(cwru_rotor_config(3, de_fault=LocalFault("inner")), duration=1.0)
+    fs_hz = 1750 / 60
+    f, df = envelope_peak(r.channel("DE", "y"), 12000.0, 140.0, 175.0)
+    assert abs(f - 5.4152 * fs_hz) <= df, "BPFI, CWRU bearing table order 5.4152"
+    # the load zone modulates the impacts once per shaft turn: lines at f_s and BPFI - f_s
+    e = envelope(r.channel("DE", "y"), 12000.0)
+    e = e - e.mean()
+    spec = np.abs(np.fft.rfft(e * np.hanning(e.size)))
+    fr = np.fft.rfftfreq(e.size, 1 / 12000.0)
+    top = fr[(fr > 20) & (fr < 200)][np.argsort(spec[(fr > 20) & (fr < 200)])[::-1][:6]]
+    for line in (fs_hz, 5.4152 * fs_hz - fs_hz):
+        assert np.min(np.abs(top - line)) <= df, f"line at {line:.2f} Hz among {top}"
+
+
 def test_healthy_bearing_is_quiet_and_zero_defect_limit():
     base = cwru_rotor_config(3)
     healthy = simulate_rotor(base, duration=0.1)

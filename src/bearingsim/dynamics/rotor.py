@@ -439,19 +439,37 @@ def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]
         a = dydt[npos:]
         return np.concatenate([(rot.M @ a[:nr])[:4], mh * a[nr : nr + 4]])
 
-    # initial guess: housings on their springs under the bearing loads, shaft resting on the
-    # balls below it (half the clearance plus 1 um)
+    # initial guess: housings on their springs under the bearing loads; each shaft end moved
+    # along its load until the balls carry that load (bisection, the ends taken separately)
     x0 = np.zeros(8)
     fb = rot.f_static[:4]
     g = G0 if config.gravity else 0.0
-    for e, (sup, h) in enumerate(((config.de, config.housing_de), (config.fe, config.housing_fe))):
+    pb = model.p.copy()
+    pb[rk.H_BALL_OUT] = 1.0
+    aux = np.zeros(4 + 2 * model.n_balls)
+    housings = (config.housing_de, config.housing_fe)
+    for e, h in enumerate(housings):
         x0[4 + 2 * e] = fb[2 * e] / h.stiffness_x / um
         x0[5 + 2 * e] = (fb[2 * e + 1] - h.mass * g) / h.stiffness_y / um
-        f = np.hypot(fb[2 * e], fb[2 * e + 1])
-        if f > 0:
-            gap = 0.5 * sup.bearing.diametral_clearance + 1e-6
-            x0[2 * e] = x0[4 + 2 * e] + fb[2 * e] / f * gap / um
-            x0[2 * e + 1] = x0[5 + 2 * e] + fb[2 * e + 1] / f * gap / um
+    y[nr : nr + 4] = x0[4:] * um
+    for e in range(2):
+        f = float(np.hypot(fb[2 * e], fb[2 * e + 1]))
+        if f == 0.0:
+            continue
+        d = fb[2 * e : 2 * e + 2] / f
+        z0, z = (0, model.z_de) if e == 0 else (model.z_de, model.z_fe)
+        psi = np.array([pb[int(pb[rk.H_BRG_DE if e == 0 else rk.H_BRG_FE]) + rk.B_PSI0]])
+        psi = psi + 2 * np.pi * np.arange(z) / z
+        lo, hi = 0.0, 1e-4
+        for _ in range(60):
+            u = 0.5 * (lo + hi)
+            y[2 * e : 2 * e + 2] = y[nr + 2 * e : nr + 2 * e + 2] + u * d
+            rk.settle_balls(0.0, y, model.p, dydt, 64)
+            rk.rhs_core(0.0, y, pb, dydt, aux, True)
+            qa = aux[4 + 2 * z0 : 4 + 2 * z0 + z]  # inner contact forces of this bearing
+            carried = float(np.sum(qa * (np.sin(psi) * d[0] + np.cos(psi) * d[1])))
+            lo, hi = (u, hi) if carried < f else (lo, u)
+        x0[2 * e : 2 * e + 2] = y[2 * e : 2 * e + 2] / um
     weight = float(np.abs(fb).sum()) + 1.0
     best = None
     for method in ("hybr", "lm"):
