@@ -125,8 +125,9 @@ def _model(cfg, cutoff=12000.0, ball=True):
     return m, static_state(m, cfg)
 
 
-def test_static_equilibrium_balances_rotor_weight():
-    cfg = cwru_rotor_config(9, de_fault=LocalFault("outer"))
+@pytest.mark.parametrize("n_disks", [1, 9, 17])
+def test_static_equilibrium_balances_rotor_weight(n_disks):
+    cfg = cwru_rotor_config(n_disks, de_fault=LocalFault("outer"))
     m, y0 = _model(cfg)
     dydt, aux = evaluate_rhs(m, 0.0, y0)
     assert np.abs(dydt[m.n_pos :]).max() < 1e-3, "accelerations vanish at rest"

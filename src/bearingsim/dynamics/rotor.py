@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import root
+from scipy.optimize import least_squares, root
 
 from .._version import __version__
 from ..errors import ConfigError, SolverError, check_positive, check_range
@@ -419,7 +419,8 @@ def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]
     they follow directly from the constant load; the balls are put in equilibrium by
     :func:`.rotor_kernel.settle_balls`; the remaining 8 unknowns (bearing-node and housing
     x, y) are found with MINPACK's hybrid Powell method (:func:`scipy.optimize.root`) on the
-    force residual (unknowns in micrometres).
+    force residual (unknowns in micrometres), falling back on Levenberg–Marquardt
+    (:func:`scipy.optimize.least_squares`) with a tiny regularisation.
     """
     npos = model.n_pos
     nr = model.n_r
@@ -471,14 +472,17 @@ def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]
             lo, hi = (u, hi) if carried < f else (lo, u)
         x0[2 * e : 2 * e + 2] = y[2 * e : 2 * e + 2] / um
     weight = float(np.abs(fb).sum()) + 1.0
-    best = None
-    for method in ("hybr", "lm"):
-        sol = root(resid, x0, method=method)
-        r = float(np.max(np.abs(resid(sol.x))))
-        if best is None or r < best[0]:
-            best = (r, sol.x)
-        if r < 1e-9 * weight:
-            break
+    sol = root(resid, x0, method="hybr")
+    best = (float(np.max(np.abs(resid(sol.x)))), sol.x)
+    if best[0] > 1e-9 * weight:
+        # Levenberg-Marquardt with a tiny Tikhonov term (1e-6 N per um): it keeps any neutral
+        # direction (e.g. a shaft end resting on a single ball, free sideways within the
+        # clearance) at the initial guess instead of letting the Jacobian go singular
+        ls = least_squares(lambda x: np.concatenate([resid(x), 1e-6 * (x - x0)]), x0,
+                           method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)  # fmt: skip
+        r = float(np.max(np.abs(resid(ls.x))))
+        if r < best[0]:
+            best = (r, ls.x)
     r, x = best
     if r > 1e-6 * weight:
         raise SolverError(
