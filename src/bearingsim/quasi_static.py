@@ -338,12 +338,11 @@ def check_ball_errors(geom: QSGeometry, errors: ArrayLike | None) -> NDArray[np.
         k = (j + 1) % Z
         gap = pitch + e[k] - e[j]
         if gap < gap_min:
-            lo = e[j] - pitch + gap_min
             raise ConfigError(
-                f"ball_errors_rad[{k}] = {e[k]:.6g} rad makes ball {k + 1} overlap or pass ball "
-                f"{j + 1} (centre spacing {gap:.6g} rad < ball width {gap_min:.6g} rad); valid "
-                f"range [{lo:.6g}, {e[(k + 1) % Z] + pitch - gap_min:.6g}] rad given its "
-                "neighbours"
+                f"ball_errors_rad[{j}] = {e[j]:.6g} rad and ball_errors_rad[{k}] = {e[k]:.6g} rad "
+                f"make balls {j + 1} and {k + 1} overlap or pass each other (centre spacing "
+                f"{gap:.6g} rad < ball angular width {gap_min:.6g} rad); valid: "
+                f"ball_errors_rad[{k}] - ball_errors_rad[{j}] >= {gap_min - pitch:.6g} rad"
             )
     return e
 

@@ -357,6 +357,38 @@ class StiffnessResult:
         axs[0].set_title("stiffness fluctuation spectra")
         return fig
 
+    def plot(self):
+        """Series (left) and spectra (right) of the three stiffnesses; returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        g = self.solution.geometry
+        top = 2.5 * g.n_balls * g.cage_ratio
+        fig, axs = plt.subplots(3, 2, figsize=(11, 7))
+        deg = np.degrees(self.solution.cage_angle)
+        for row, name in enumerate(SERIES):
+            axs[row, 0].plot(deg, self.series(name), lw=1)
+            axs[row, 0].set_ylabel(f"k_{name} [{_UNITS[name]}]")
+            sp = self.spectra[name]
+            sel = (sp.order_shaft > 0) & (sp.order_shaft <= top)
+            axs[row, 1].plot(sp.order_shaft[sel], sp.amplitude[sel], lw=1)
+            for c in sp.components[:3]:
+                if c.order_shaft <= top:
+                    axs[row, 1].annotate(
+                        c.label or f"{c.order_shaft:.3f}",
+                        (c.order_shaft, c.amplitude),
+                        fontsize=7,
+                        xytext=(2, 2),
+                        textcoords="offset points",
+                    )
+            for ax in axs[row]:
+                ax.grid(alpha=0.3)
+        axs[-1, 0].set_xlabel("cage angle [deg]")
+        axs[-1, 1].set_xlabel("order [cycles per shaft revolution]")
+        axs[0, 0].set_title(f"{self.solution.bearing_id}: stiffness vs cage angle")
+        axs[0, 1].set_title("amplitude spectra")
+        fig.tight_layout()
+        return fig
+
     def plot_loads(self, index: int = 0):
         """Polar bar plot of the ball loads at cage position ``index``; returns the Figure."""
         import matplotlib.pyplot as plt
