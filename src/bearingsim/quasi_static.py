@@ -330,7 +330,8 @@ def check_ball_errors(geom: QSGeometry, errors: ArrayLike | None) -> NDArray[np.
     bad = np.flatnonzero(~np.isfinite(e))
     if bad.size:
         raise ConfigError(
-            f"ball_errors_rad[{bad[0]}] = {e[bad[0]]!r} is not finite; valid range (-inf, inf) rad"
+            f"ball_errors_rad[{bad[0]}] = {float(e[bad[0]])} is not finite; "
+            "valid range (-inf, inf) rad"
         )
     gap_min = 2.0 * math.asin(geom.d / geom.dm)
     pitch = 2.0 * math.pi / Z
