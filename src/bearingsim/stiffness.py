@@ -98,31 +98,46 @@ class StiffnessSpectrum:
         return float(self.amplitude[sel].max()) if np.any(sel) else 0.0
 
 
-def component_names(n_balls: int, cage_ratio: float) -> list[tuple[str, float]]:
-    """Named orders ``(label, order_shaft)`` in order of preference (simplest first)."""
+def component_names(
+    n_balls: int, cage_ratio: float, cage_harmonics: bool = True, shaft_harmonics: bool = True
+) -> list[tuple[str, float]]:
+    """Named orders ``(label, order_shaft)``: ball-pass multiples ``kZ×cage`` always; cage
+    harmonics ``m×cage`` when the balls are unevenly spaced; shaft harmonics ``n×shaft`` and the
+    combinations ``n×shaft ± kZ×cage`` (e.g. the inner-race ball pass ``Z×shaft-Z×cage``) when a
+    pattern turns with the shaft."""
     Z = n_balls
-    out: list[tuple[str, float]] = [
-        ("cage", cage_ratio),
-        (f"Z×cage (VC, {Z}×cage)", Z * cage_ratio),
-    ]
-    out += [("shaft", 1.0), ("2×shaft", 2.0)]
-    out += [(f"{m}×cage", m * cage_ratio) for m in range(2, 3 * Z + 1) if m % Z]
-    out += [(f"{k}Z×cage", k * Z * cage_ratio) for k in (2, 3)]
-    out += [(f"{n}×shaft", float(n)) for n in range(3, 9)]
-    for k in (1, 2):
-        kz = "Z" if k == 1 else f"{k}Z"
-        for n in range(1, 5):
-            ns = "shaft" if n == 1 else f"{n}×shaft"
-            out.append((f"{kz}×cage+{ns}", k * Z * cage_ratio + n))
-            if k * Z * cage_ratio - n > 0:
-                out.append((f"{kz}×cage-{ns}", k * Z * cage_ratio - n))
+    out: list[tuple[str, float]] = [(f"Z×cage (VC, {Z}×cage)", Z * cage_ratio)]
+    out += [(f"{k}Z×cage", k * Z * cage_ratio) for k in (2, 3, 4)]
+    if cage_harmonics:
+        out.append(("cage", cage_ratio))
+        out += [(f"{m}×cage", m * cage_ratio) for m in range(2, 4 * Z + 1) if m % Z]
+    if shaft_harmonics:
+        out += [("shaft", 1.0)] + [(f"{n}×shaft", float(n)) for n in range(2, 2 * Z + 1)]
+        for k in (1, 2):
+            kz = "Z" if k == 1 else f"{k}Z"
+            for n in range(1, 2 * Z + 1):
+                ns = "shaft" if n == 1 else f"{n}×shaft"
+                out.append((f"{kz}×cage+{ns}", k * Z * cage_ratio + n))
+                o = n - k * Z * cage_ratio
+                if o > 0:
+                    name = f"{ns}-{kz}×cage" + (" (BPFI)" if (n == Z and k == 1) else "")
+                    out.append((name, o))
+                elif o < 0:
+                    out.append((f"{kz}×cage-{ns}", -o))
     return out
 
 
-def label_order(order_shaft: float, n_balls: int, cage_ratio: float, tolerance: float) -> str:
+def label_order(
+    order_shaft: float,
+    n_balls: int,
+    cage_ratio: float,
+    tolerance: float,
+    cage_harmonics: bool = True,
+    shaft_harmonics: bool = True,
+) -> str:
     """Nearest named component within ``tolerance`` shaft orders, or ``""``."""
     best, dbest = "", tolerance
-    for name, o in component_names(n_balls, cage_ratio):
+    for name, o in component_names(n_balls, cage_ratio, cage_harmonics, shaft_harmonics):
         dd = abs(order_shaft - o)
         if dd <= dbest * (1 - 1e-12):
             best, dbest = name, dd
@@ -135,6 +150,8 @@ def order_spectrum(
     cage_ratio: float,
     n_balls: int,
     n_components: int = 5,
+    cage_harmonics: bool = True,
+    shaft_harmonics: bool = True,
 ) -> StiffnessSpectrum:
     """Hann-windowed amplitude spectrum of a stiffness series sampled ``points_per_rev`` times
     per cage revolution, in cage and shaft orders, with its ``n_components`` largest peaks
@@ -165,7 +182,9 @@ def order_spectrum(
                 order_cage=float(o_c),
                 amplitude=float(amp[p]),
                 amplitude_rel=float(amp[p] / mean),
-                label=label_order(o_s, n_balls, cage_ratio, 1.5 * df * cage_ratio),
+                label=label_order(
+                    o_s, n_balls, cage_ratio, 1.5 * df * cage_ratio, cage_harmonics, shaft_harmonics
+                ),
             )
         )
     return StiffnessSpectrum(oc, os_, amp, comps)
@@ -416,8 +435,10 @@ def _build(
     kt = np.einsum("i,mij,j->m", m, H[:, 3:, 3:], m)
     ka = H[:, 2, 2].copy()
     g = sol.geometry
+    ch = bool(np.any(sol.ball_errors != 0))
+    sh = sol.misalignment.inner_tilt > 0
     spectra = {
-        name: order_spectrum(k, points_per_rev, g.cage_ratio, g.n_balls, n_components)
+        name: order_spectrum(k, points_per_rev, g.cage_ratio, g.n_balls, n_components, ch, sh)
         for name, k in zip(SERIES, (kr, ka, kt), strict=True)
     }
     return StiffnessResult(sol, cage_revs, points_per_rev, n, kr, ka, kt, spectra)
