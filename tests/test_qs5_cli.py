@@ -106,3 +106,14 @@ def test_bad_input_exit_2_one_line(args, needle, capsys, tmp_path):
     assert len(lines) == 1 and lines[0].startswith("error: "), cap.err
     assert needle in lines[0], lines[0]
     assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_reproduce_section_qs5(run_cli, tmp_path):
+    r = run_cli("reproduce", "--quick", "--section", "qs5", "--out", tmp_path, "--json")
+    assert r.code == 0, r.err
+    rows = json.loads((tmp_path / "results.json").read_text())
+    assert rows and all(row["section"] == "qs5" for row in rows)
+    bad = [row["quantity"] for row in rows if row["status"] == "mismatch"]
+    assert not bad, bad
+    for name in ("outer", "outer_err", "inner", "inner_err"):
+        assert (tmp_path / f"qs5_{name}.png").stat().st_size > 1000
