@@ -92,7 +92,6 @@ def test_combined_stiffness_series():
     K = combined_stiffness(ki, ko)
     Q = 123.0
     assert_allclose((Q / ki) ** (2 / 3) + (Q / ko) ** (2 / 3), (Q / K) ** (2 / 3), rtol=1e-12)
-    assert ball_stiffness(get_bearing("6205")) < min(ki, ko) or True  # sanity: defined
 
 
 def test_ball_stiffness_6205_order_of_magnitude():

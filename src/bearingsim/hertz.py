@@ -20,9 +20,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
-from .errors import ConfigError, SolverError, check_positive
+from .errors import ConfigError, check_positive
 from .geometry import BallBearing, RollerBearing
-from .materials import Material, effective_modulus
+from .materials import effective_modulus
 
 
 class EllipticMethod(enum.Enum):
@@ -473,16 +473,6 @@ def element_stiffness(bearing: BallBearing | RollerBearing) -> tuple[float, floa
     ki = roller_contact(bearing, 1.0, Race.INNER).k_line
     ko = roller_contact(bearing, 1.0, Race.OUTER).k_line
     return combined_stiffness(ki, ko, 10.0 / 9.0), 10.0 / 9.0
-
-
-def material_of(bearing: BallBearing | RollerBearing) -> Material:
-    """The bearing's material."""
-    return bearing.material
-
-
-def _check_solver() -> None:  # pragma: no cover - guard for import-time misuse
-    if not callable(brentq):
-        raise SolverError("scipy brentq unavailable")
 
 
 def line_subsurface_stresses(contact: LineContact, nu: float, index: int = 0) -> SubsurfaceStresses:

@@ -1,0 +1,119 @@
+"""``bearingsim stiffness`` command: JSON contract, files, bad input (exit 2, one line)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from bearingsim.cli import main
+from bearingsim.stiffness import StiffnessResult
+
+BASE = ["stiffness", "6205", "--fy", "500", "--cage-revs", "2", "--points-per-rev", "90"]
+
+
+def test_json_contract(run_cli):
+    r = run_cli(*BASE, "--inner-tilt-rad", "3e-3", "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert set(d["displacement"]) == {"x_m", "y_m", "z_m", "theta_x_rad", "theta_y_rad"}
+    assert len(d["stiffness_matrix"]) == 5 and all(len(row) == 5 for row in d["stiffness_matrix"])
+    for key in ("k_radial_mean", "k_axial_mean", "k_tilt_mean"):
+        assert d[key] > 0
+    for name in ("radial", "axial", "tilt"):
+        f = d["fluctuation"][name]
+        assert f["peak_to_peak_rel"] >= 0
+        assert isinstance(f["dominant_orders_shaft"], list) and f["dominant_orders_shaft"]
+    assert abs(d["fluctuation"]["axial"]["dominant_orders_shaft"][0] - 2.0) < 0.3
+    assert r.err == ""
+
+
+def test_files_and_iso_method(run_cli, tmp_path):
+    out, png = tmp_path / "r.json", tmp_path / "r.png"
+    r = run_cli(
+        *BASE,
+        "--method",
+        "iso16281",
+        "--conformities",
+        "iso",
+        "-o",
+        out,
+        "--plot",
+        png,
+        "--ball-errors-rad",
+        "0.05,0,0,0,-0.03,0,0,0,0",
+        "--json",
+    )
+    assert r.code == 0, r.err
+    assert r.json()["method"] == "iso16281"
+    assert png.stat().st_size > 1000
+    res = StiffnessResult.load(out)
+    assert res.solution.cage_angle.size == 180
+    assert json.loads(out.read_text())["method"] == "iso16281"
+
+
+def test_text_output(run_cli):
+    r = run_cli(*BASE, "--rpm", "3000", "--centrifugal", "--gyroscopic")
+    assert r.code == 0, r.err
+    assert "k_radial" in r.out and "dominant shaft orders" in r.out
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--outer-tilt-rad", "0.1"], "outer_tilt_rad = 0.1 rad is beyond what the clearance"),
+        (["--inner-tilt-rad", "0.05", "--outer-tilt-rad", "0.02"], "inner_tilt_rad = 0.05 rad"),
+        (["--ball-errors-rad", "0.5,0,0,0,0,0,0,0,0"], "overlap or pass each other"),
+        (["--ball-errors-rad", "0,0,0"], "has 3 values; valid: exactly n_elements = 9"),
+        (["--ball-errors-rad", "0,0,0,0,nan,0,0,0,0"], "ball_errors_rad[4] = nan"),
+        (["--ball-errors-rad", "0,0,a,0,0,0,0,0,0"], "ball_errors_rad[2] = 'a' is not a number"),
+        (["--fx", "inf"], "fx_n = inf is not finite"),
+        (["--inner-tilt-rad", "nan"], "inner_tilt_rad = nan is not finite"),
+        (["--outer-tilt-azimuth-rad", "inf"], "outer_tilt_azimuth_rad = inf is not finite"),
+        (["--clearance-m", "1e-3"], "clearance_m = 0.001 m is out of range"),
+        (["--fz", "1e6"], "beyond the groove limit"),
+        (["--cage-revs", "0"], "cage_revs = 0"),
+        (["--points-per-rev", "10"], "points_per_rev = 10"),
+        (["--centrifugal"], "need --rpm"),
+        (["--mx", "1", "--inner-tilt-rad", "1e-3"], "held by a misalignment"),
+    ],
+    ids=[
+        "outer-tilt",
+        "combined-tilt",
+        "overlap",
+        "count",
+        "nan-error",
+        "text-error",
+        "inf-load",
+        "nan-tilt",
+        "inf-azimuth",
+        "clearance",
+        "overload",
+        "revs",
+        "points",
+        "rpm",
+        "moment",
+    ],
+)
+def test_bad_input_exit_2_one_line(args, needle, capsys, tmp_path):
+    out = tmp_path / "never.json"
+    with pytest.raises(SystemExit) as exc:
+        main([*BASE, *args, "-o", str(out), "--json"])
+    cap = capsys.readouterr()
+    assert exc.value.code == 2
+    assert cap.out == ""
+    lines = cap.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), cap.err
+    assert needle in lines[0], lines[0]
+    assert not out.exists() and not list(tmp_path.iterdir())
+
+
+def test_reproduce_section_qs5(run_cli, tmp_path):
+    r = run_cli("reproduce", "--quick", "--section", "qs5", "--out", tmp_path, "--json")
+    assert r.code == 0, r.err
+    rows = json.loads((tmp_path / "results.json").read_text())
+    assert rows and all(row["section"] == "qs5" for row in rows)
+    bad = [row["quantity"] for row in rows if row["status"] == "mismatch"]
+    assert not bad, bad
+    for name in ("outer", "outer_err", "inner", "inner_err"):
+        assert (tmp_path / f"qs5_{name}.png").stat().st_size > 1000
