@@ -340,6 +340,37 @@ def test_healthy_bearing_is_quiet_and_zero_defect_limit():
     assert np.std(faulty.channel("DE", "y")) > 20 * np.std(a_h)
 
 
+def _line(x: np.ndarray, fs: float, f0: float) -> float:
+    """Amplitude of the component at exactly ``f0`` [Hz] (Hann-windowed DFT)."""
+    x = x - x.mean()
+    w = np.hanning(x.size)
+    t = np.arange(x.size) / fs
+    return float(2 * abs(np.sum(x * w * np.exp(-2j * np.pi * f0 * t))) / w.sum())
+
+
+def test_unbalance_gives_a_shaft_frequency_line_proportional_to_me():
+    """A small unbalance (force m e Omega^2 = 1.7 and 3.4 N against 20 N of weight) moves the
+    housings at 1x shaft frequency, proportionally to m e."""
+    fs_hz = 1750 / 60
+
+    def line(me):
+        r = simulate_rotor(cwru_rotor_config(3, unbalance=me), duration=0.6, antialias=False)
+        return _line(r.housing_displacement[r.time >= 0.2, 1], 12000.0, fs_hz)
+
+    a0, a1, a2 = line(0.0), line(5e-5), line(1e-4)
+    assert a1 > 20 * a0, "unbalance excites the 1x line"
+    assert_allclose(a2 / a1, 2.0, rtol=0.05, err_msg="linear in m e (small unbalance)")
+
+
+def test_dopri5_agrees_with_rk4():
+    cfg = cwru_rotor_config(1, de_fault=LocalFault("outer"))
+    a = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False)
+    b = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False,
+                       method="dopri5", rtol=1e-7, atol=1e-12)  # fmt: skip
+    ya, yb = a.housing_displacement[:, 1], b.housing_displacement[:, 1]
+    assert_allclose(ya - ya[0], yb - yb[0], atol=1e-3 * np.abs(yb - yb[0]).max())
+
+
 def test_time_step_convergence():
     cfg = cwru_rotor_config(3, de_fault=LocalFault("outer"))
     a = simulate_rotor(cfg, duration=0.05)
