@@ -249,12 +249,13 @@ def find_order_peaks(
     n_peaks: int = 5,
     min_order: float = 0.5,
     max_order: float | None = None,
-    rel_height: float = 0.02,
+    rel_height: float = 0.05,
 ) -> list[OrderPeak]:
     """The ``n_peaks`` largest spectral peaks (refined by parabolic interpolation), by amplitude.
 
     Peaks closer than two resolutions (the Hann main lobe) are merged; a peak must reach
-    ``rel_height`` times the largest one in ``[min_order, max_order]``.
+    ``rel_height`` times the largest one in ``[min_order, max_order]`` (the default 0.05 is above
+    the Hann window's highest side lobe, -31.5 dB = 0.027).
     """
     m = spec.order >= min_order
     if max_order is not None:
