@@ -667,6 +667,7 @@ def simulate_ias(
     p = pack_parameters(params, const)
     y0 = initial_state(params)
     t0 = time.perf_counter()
+    c0 = time.process_time()
     if method == "rk4":
         tr = run_fixed(
             ias_rhs, ias_aux, y0, p, dt=dt, n_out=n_out, decim=decim, n_aux=N_AUX, bound=1e9
@@ -688,6 +689,7 @@ def simulate_ias(
     else:
         raise ConfigError(f"method = {method!r} is not valid; valid: 'rk4', 'dopri5'")
     wall = time.perf_counter() - t0
+    cpu = time.process_time() - c0
     from .ias_result import IasResult
 
     solver = {
@@ -698,6 +700,7 @@ def simulate_ias(
         "output_rate_hz": 1.0 / (decim * dt),
         "duration_s": duration,
         "wall_s": wall,
+        "cpu_s": cpu,
     }
     if method == "dopri5":
         solver.update(rtol=rtol, atol=atol)

@@ -146,16 +146,17 @@ def run(ctx: Context) -> Section:
             "formulas' deflections are ~4x Palmgren's (docs/validation.md)",
         )
     )
+    cpu = runs[1e-3].solver["cpu_s"]
     wall = runs[1e-3].solver["wall_s"]
     rows.append(
         Row(
-            f"wall time of one run ({variant}) [s]",
-            "issue 5 target: 10 s case <= 10 s",
+            f"CPU time of one run ({variant}) [s]",
+            "issue 5 target: the 10 s case <= 10 s on one core",
             None,
-            wall,
+            cpu,
             None,
-            "match" if wall * 10 / dur <= 10 else "mismatch",
-            "compiled RK4, 11 rollers",
+            "match" if cpu * 10 / dur <= 10 else "mismatch",
+            f"compiled RK4, 11 rollers; wall {wall:.2f} s (shared machine)",
         )
     )
 
