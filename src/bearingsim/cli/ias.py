@@ -171,6 +171,7 @@ def ias_cmd(
     d = summary.as_dict()
     d.update(
         wall_s=res.solver["wall_s"],
+        cpu_s=res.solver["cpu_s"],
         free_speed_rpm=res.constants.free_speed * 60 / TWO_PI,
         torque_nm=params.torque,
         spall_width_m=params.spall_width,

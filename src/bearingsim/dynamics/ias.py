@@ -644,7 +644,8 @@ def simulate_ias(
         RK4 step [s] (also the output grid unit for ``dopri5``).
     output_rate : float
         Requested output sample rate [Hz]; the output interval is ``decim dt`` with
-        ``decim = max(1, round(1/(output_rate dt)))``.
+        ``decim = max(1, round(1/(output_rate dt)))``; the run covers at least ``duration``
+        (up to ``decim - 1`` extra steps).
     method : {"rk4", "dopri5"}
         Fixed-step RK4 (the seed's solver) or adaptive Dormand–Prince 5(4) as a check.
     rtol, atol : float
@@ -661,7 +662,7 @@ def simulate_ias(
             f"duration_s = {duration:.6g} s is shorter than one output interval "
             f"{decim * dt:.3g} s; valid range [{decim * dt:.3g}, inf) s"
         )
-    n_out = n_steps // decim + 1
+    n_out = -(-n_steps // decim) + 1  # covers at least ``duration``
     if method not in ("rk4", "dopri5"):
         raise ConfigError(f"method = {method!r} is not valid; valid: 'rk4', 'dopri5'")
     p = pack_parameters(params, const)

@@ -135,13 +135,14 @@ def simulate_ias_scipy(
     y : ndarray, shape (n, 6)
         States at ``t_eval``.
     info : dict
-        ``wall_s``, ``n_rhs`` (right-hand-side calls), ``status``.
+        ``wall_s``, ``cpu_s``, ``n_rhs`` (right-hand-side calls), ``status``.
     """
     from .ias import initial_state
 
     rhs = ReferenceRhs(params)
     te = np.asarray(t_eval, dtype=float)
     t0 = time.perf_counter()
+    c0 = time.process_time()
     sol = solve_ivp(
         rhs,
         (float(te[0]), float(te[-1])),
@@ -153,4 +154,5 @@ def simulate_ias_scipy(
         max_step=max_step,
     )
     wall = time.perf_counter() - t0
-    return sol.y.T, {"wall_s": wall, "n_rhs": rhs.n_calls, "status": int(sol.status)}
+    cpu = time.process_time() - c0
+    return sol.y.T, {"wall_s": wall, "cpu_s": cpu, "n_rhs": rhs.n_calls, "status": int(sol.status)}
