@@ -269,3 +269,26 @@ def test_seed_case_full():
         atol=1e-3,
         err_msg="the default tests' dt = 1e-5 s vs the seed's 1e-6 s",
     )
+
+
+@pytest.mark.parametrize(
+    "change",
+    [{"contact_law": "harris"}, {"spall_load": "dynamic"}],
+    ids=["harris-contact", "dynamic-spall-load"],
+)
+def test_model_options_keep_the_kinematic_results(change):
+    """Order peaks and the width estimate are kinematic: the contact-law and spall-load options
+    change amplitudes, not them."""
+    r = simulate_ias(replace(SEED, **change), DUR, DT, RATE)
+    s = r.analyze()
+    top = sorted(p.order for p in sorted(s.peaks, key=lambda p: -p.amplitude)[:3])
+    assert_allclose(top, PUBLISHED_ORDERS, atol=0.02, err_msg="seed IAS fig. 9")
+    assert_allclose(s.estimate.width, 1e-3, rtol=0.10)
+
+
+def test_spall_outside_the_load_zone_is_silent():
+    """A spall at the top (phi_os = pi/2) sits outside the load zone of a downward load: its roller
+    load Q(phi) of seed eq. (1) is zero, so no spall force, no spall torque, no event."""
+    r = simulate_ias(replace(SEED, spall_angle=0.5 * math.pi), DUR, DT, RATE)
+    assert np.all(r.spall_force == 0.0) and np.all(r.spall_torque == 0.0)
+    assert r.analyze().estimate is None

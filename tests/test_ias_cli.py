@@ -189,3 +189,24 @@ def test_analyze_bad_input(capsys, tmp_path):
         ["analyze-ias", f, "--kind", "angle_rad", "--bearing", "6205"],
         "not a cylindrical roller bearing",
     )
+
+
+def test_user_bearing_with_other_roller_count(run_cli, tmp_path):
+    """The estimator is not tuned to the seed bearing: 13 rollers move the BPFO order to
+    13/2 (1 - 7.94/34) = 4.982 and a 1.5 mm spall is still sized within 10 %."""
+    bf = tmp_path / "nu13.toml"
+    bf.write_text(
+        'id = "NU-13"\ntype = "cylindrical_roller"\nn_elements = 13\n'
+        "element_diameter_m = 7.94e-3\npitch_diameter_m = 34.0e-3\nroller_length_m = 9.0e-3\n"
+        "diametral_clearance_m = 2.0e-6\ninner_raceway_diameter_m = 26.5e-3\n"
+        "outer_raceway_diameter_m = 41.5e-3\n"
+    )
+    sc = tmp_path / "s.toml"
+    sc.write_text('bearing_file = "nu13.toml"\nspall_width_m = 1.5e-3\n')
+    r = run_cli("ias", sc, *FAST, "-o", tmp_path / "r.nc", "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert_allclose(d["bpfo_order_theory"], 6.5 * (1 - 7.94 / 34), rtol=1e-12)
+    top = max(d["order_peaks"], key=lambda p: p["amplitude"])
+    assert_allclose(top["order"], d["bpfo_order_theory"], atol=0.02)
+    assert_allclose(d["spall_width_estimate_m"], 1.5e-3, rtol=0.10)

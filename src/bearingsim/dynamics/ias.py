@@ -190,7 +190,8 @@ def _forces(y, p):
                 v1 = abs(p[P_RHO] * w) * p[P_V1C]
                 v2 = math.sqrt(0.6 * v1 * v1 + 0.8 * p[P_G] * p[P_RC] * (1.0 - math.cos(lam)))
                 fos = 2.0 * p[P_MC] * v1 * v2 / (p[P_RC] * math.cos(lam))
-                fi = fos * math.cos(lam) * (1.0 - sh)
+                # only a loaded roller rides on the outer race and hits the trailing edge
+                fi = fos * math.cos(lam) * (1.0 - sh) if q > 0.0 else 0.0
                 ft = q * (1.0 - sh) + fi
             # inward along the roller radius, tilted by lambda against the rolling direction
             cl = math.cos(lam)

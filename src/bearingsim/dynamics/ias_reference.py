@@ -80,7 +80,8 @@ class ReferenceRhs:
             v1 = abs(k.cage_ratio * w) * self.v1c  # eqs. (24)-(25)
             v2 = math.sqrt(0.6 * v1**2 + 0.8 * GRAVITY * self.rc * (1.0 - math.cos(lam)))
             fos = 2.0 * k.roller_mass * v1 * v2 / (self.rc * math.cos(lam))  # eqs. (26)-(28)
-            ft = np.where(u < 0, q * sh, (q + fos * math.cos(lam)) * (1.0 - sh))  # eq. (30)
+            imp = np.where(q > 0, fos * math.cos(lam), 0.0)  # loaded rollers only
+            ft = np.where(u < 0, q * sh, (q + imp) * (1.0 - sh))  # eq. (30)
             ft = np.where(gamma, ft, 0.0)
             sl = math.sin(lam) * sgn
             fx += np.sum(-ft * (math.cos(lam) * cphi - sl * sphi))
