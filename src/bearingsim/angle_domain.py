@@ -400,6 +400,10 @@ class SpallEstimate:
         ):
             if a is not None:
                 ax.axvline(a, color=col, ls="--", lw=0.8, label=lab)
+        ax.set_xlim(
+            max(0.0, self.entry_angle - self.crossing_angle),
+            min(self.phase[-1], self.exit_angle + self.crossing_angle),
+        )
         ax.set_xlabel("shaft angle within one roller pass [rad]")
         ax.set_ylabel("IAS [r/min]")
         ax.set_title(

@@ -48,6 +48,10 @@ def _summary_figure(summary, title: str):
         for a, col in ((e.entry_angle, "g"), (e.impact_angle, "m"), (e.exit_angle, "r")):
             if a is not None:
                 ax[2].axvline(a, color=col, ls="--", lw=0.8)
+        ax[2].set_xlim(
+            max(0.0, e.entry_angle - e.crossing_angle),
+            min(e.phase[-1], e.exit_angle + e.crossing_angle),
+        )
         ax[2].set_title(
             f"averaged roller pass: crossing {e.crossing_angle:.4f} rad -> "
             f"L_d = {e.width * 1e3:.3f} mm"

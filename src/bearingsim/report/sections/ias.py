@@ -201,8 +201,6 @@ def run(ctx: Context) -> Section:
     )
     # --- fig. 10 analogue
     fig = e.plot()
-    ax = fig.axes[0]
-    ax.set_xlim(e.entry_angle - e.crossing_angle, e.exit_angle + e.crossing_angle)
     save_figure(fig, ctx.out_dir / "ias_fig10_spall.png")
     sec.figures.append(
         (
