@@ -149,6 +149,7 @@ def _bad(capsys, args, *needles, out=None):
         (["--duration-s", "0"], ["duration_s = 0 s", "valid range (0, inf) s"]),
         (["--dt-s", "1e-3"], ["dt_s = 0.001 s is too large for stability", "valid range (0, "]),
         (["--torque-nm", "0"], ["torque_nm = 0 N m with zero initial speed"]),
+        (["--torque-nm", "0", "--initial-rpm", "60", "--dt-s", "1e-5"], ["needs a turning shaft"]),
         (["--rpm", "0"], ["rpm = 0 r/min", "valid range (0, inf)"]),
         (["--rpm", "60", "--torque-nm", "9"], ["at most one of --rpm and --torque-nm"]),
         (["--fy", "0"], ["radial load = 0 N"]),

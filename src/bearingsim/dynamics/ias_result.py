@@ -84,6 +84,12 @@ class IasResult:
         from ..angle_domain import resample_to_angle
 
         m = self.steady(skip_s)
+        wmin = float(self.omega[m].min())
+        if not (wmin > 0.0 and np.all(np.diff(self.theta[m]) > 0.0)):
+            raise ConfigError(
+                f"shaft speed = {wmin:.6g} rad/s after the start-up: the angle-domain analysis "
+                "needs a turning shaft; valid range speed > 0 (raise torque_nm or skip_s)"
+            )
         return resample_to_angle(self.theta[m], self.omega[m], samples_per_rev)
 
     def analyze(self, skip_s: float | None = None, n_peaks: int = 5, method: str = "steps"):
