@@ -3,14 +3,14 @@ analysis, plots, lossless netCDF save/load."""
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ConfigError, check_range
-from ..geometry import RollerBearing, characteristic_frequencies
+from ..geometry import RollerBearing
 from .ias import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
 
 
@@ -200,13 +200,3 @@ class IasResult:
             json.loads(ds.attrs["solver"]),
             ds.attrs["version"],
         )
-
-
-def kinematic_bpfo_order(bearing: RollerBearing) -> float:
-    """BPFO order ``Z/2 (1 - D_c cos(alpha)/D_p)`` [-] (seed IAS eq. (36))."""
-    return characteristic_frequencies(bearing, 1.0).bpfo_order
-
-
-def with_spall(params: IasParams, width: float) -> IasParams:
-    """``params`` with another spall width [m] (0 = healthy)."""
-    return replace(params, spall_width=width)
