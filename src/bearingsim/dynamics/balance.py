@@ -1,0 +1,453 @@
+"""Quasi-static force balance of the inner ring over the discrete balls with a local defect.
+
+This is the static core shared by the VSM, TVSM and DEM kernels (seed VSM eqs. (4)–(16)). At
+time ``t`` ball ``j`` sits at ``psi_j = w_cage t + alpha_0 + (j-1) 2 pi / Z`` (eq. (12)); a rigid
+inner-ring displacement ``u = (u_x, u_y)`` gives it the *nominal* deflection
+``delta_j = u_x sin psi_j + u_y cos psi_j - P_d/2`` (the Harris form of eqs. (4)–(7)) and the load
+
+    Q_j = f_j K (delta_j - o_j)_+^n,                                  (seed VSM eqs. (9), (11))
+
+with ``f_j = 1, o_j = 0`` for a ball on intact raceway and, for a ball over the defect
+(eq. (15)), either
+
+* the retention factor of eq. (11) evaluated implicitly: ``gamma_j = (1 - h_min/delta_j)^1.5``
+  so that ``gamma_j K delta_j^1.5 = K (delta_j - h_min)_+^1.5`` — i.e. ``o_j = h_min``,
+  ``f_j = 1`` (default, "physical"); or
+* a prescribed constant retention factor ``f_j = gamma`` (``o_j = 0``), which is how the seed
+  draws its figs. 6–7 (``gamma = 0.38``).
+
+The balance ``sum_j Q_j (sin psi_j, cos psi_j) = (F_x, F_y)`` — all three lines of eq. (16):
+both components, hence also the load-line one — is solved for ``u`` by Newton's method on the
+convex potential ``sum f K (delta - o)_+^(n+1)/(n+1) - F.u`` with backtracking, warm-started
+from the previous instant. The load-zone flag ``lambda_j`` of eq. (14) is ``delta_j > 0`` (the
+contact decides, default) or, for the seed's literal rule, membership of the fixed window
+``[theta_0 - psi_L, theta_0 + psi_L]`` with a given ``psi_L`` (a ball outside it carries no
+load even when compressed).
+
+Stiffness matrices returned (2×2, symmetric, [N/m]):
+
+secant ``S = sum_j s_j e_j e_j^T``, ``s_j = Q_j / (u . e_j)``
+    Ball force over the ring approach measured from the concentric position, so that
+    ``S u = F`` holds exactly at the static solution. This is the dimensionally consistent form
+    of seed VSM eqs. (17)–(18) used by the VSM (SPEC §1.5). It requires ``P_d >= 0``.
+tangent ``T = sum_j n Q_j / (delta_j - o_j) e_j e_j^T``
+    ``-dF_bearing/du``, the bearing stiffness of Petersen et al. (2015), used by the TVSM.
+
+The compiled functions read their inputs from the flat model parameter vector ``p`` whose
+layout is given by the ``P_*`` offsets below (shared by every kernel in this package).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..load_distribution import _solve_1d
+
+# ---------------------------------------------------------------- parameter vector layout
+P_MASS = 0  #: vibrating mass m [kg]
+P_DAMP = 1  #: equivalent damping c_eq [N s/m]
+P_FX = 2  #: applied force F_x [N]
+P_FY = 3  #: applied force F_y [N]
+P_Z = 4  #: number of balls Z [-]
+P_K = 5  #: ball load-deflection constant K [N/m^n]
+P_N = 6  #: load-deflection exponent n [-]
+P_CLR = 7  #: half diametral clearance P_d/2 [m]
+P_WCAGE = 8  #: cage angular speed 2 pi f_m [rad/s]
+P_WSHAFT = 9  #: shaft angular speed 2 pi f_s [rad/s]
+P_ALPHA0 = 10  #: first-ball azimuth alpha_0 [rad]
+P_FAULT = 11  #: 0 none, 1 outer, 2 inner
+P_BETA0 = 12  #: defect left edge at t = 0, beta_0 [rad]
+P_DBETA = 13  #: defect angular extent Delta_beta [rad]
+P_DFAC = 14  #: load factor of a ball over the defect (prescribed gamma, else 1) [-]
+P_DOFF = 15  #: deflection offset of a ball over the defect (h_min, else 0) [m]
+P_T0 = 16  #: time of the first table row [s]
+P_HTAB = 17  #: table spacing (half the RK4 step) [s]
+P_NTAB = 18  #: number of table rows [-]
+P_PERBALL = 19  #: 1 to fill per-ball auxiliary outputs [-]
+P_WARMX = 20  #: warm start u_x of the on-the-fly static solve (scratch) [m]
+P_WARMY = 21  #: warm start u_y (scratch) [m]
+P_TOL = 22  #: relative force tolerance of the static solve [-]
+P_PSIL = 23  #: fixed load-zone half angle psi_L of eq. (14) [rad]; 0 = contact-defined zone
+P_TH0 = 24  #: load direction theta_0 = atan2(F_x, F_y) [rad]
+P_SSTEP = 25  #: sin(2 pi / Z) [-]
+P_CSTEP = 26  #: cos(2 pi / Z) [-]
+P_CT = 27  #: time of the cached ball frame (scratch, NaN = empty) [s]
+P_CS0 = 28  #: cached sin of ball 1's azimuth (scratch) [-]
+P_CC0 = 29  #: cached cos of ball 1's azimuth (scratch) [-]
+P_CRD = 30  #: cached ball-1 angle past the defect edge (scratch) [rad]
+P_CRW = 31  #: cached ball-1 angle past the fixed-zone edge (scratch) [rad]
+HEADER = 32  #: first table entry
+
+#: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
+NCOL = 8
+C_UX, C_UY, C_SXX, C_SXY, C_SYY, C_TXX, C_TXY, C_TYY = range(NCOL)
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True, inline="always")
+def hertz(dj, n):
+    """``dj^n`` with the fast path ``dj sqrt(dj)`` for balls (n = 1.5)."""
+    return dj * math.sqrt(dj) if n == 1.5 else dj**n
+
+
+@njit(cache=True, inline="always")
+def wrap(x):
+    """``x`` modulo 2 pi in [0, 2 pi) [rad]."""
+    r = x - TWO_PI * math.floor(x / TWO_PI)
+    return r if r < TWO_PI else 0.0
+
+
+@njit(cache=True, inline="always")
+def frame(t, p):
+    """Angles of ball 1 at time ``t``: its azimuth (eq. (12)), its angle past the defect's left
+    edge modulo 2 pi (eqs. (13), (15)) and past the lower edge of a fixed load-zone window
+    (eq. (14)) [rad]."""
+    th = p[P_WCAGE] * t + p[P_ALPHA0]  # seed VSM eq. (12)
+    fault = int(p[P_FAULT])
+    rel_d = 0.0
+    if fault == 2:
+        rel_d = wrap(th - p[P_WSHAFT] * t - p[P_BETA0])  # eq. (13): defect turns with the shaft
+    elif fault == 1:
+        rel_d = wrap(th - p[P_BETA0])
+    rel_w = 0.0
+    if p[P_PSIL] > 0.0:
+        rel_w = wrap(th - p[P_TH0] + p[P_PSIL])
+    return th, rel_d, rel_w
+
+
+@njit(cache=True, inline="always")
+def frame_cached(t, p):
+    """``(sin, cos)`` of ball 1's azimuth and the two relative angles of :func:`frame` at
+    ``t``, cached in the scratch slots of ``p`` (RK4 evaluates each stage time twice)."""
+    if t == p[P_CT]:
+        return p[P_CS0], p[P_CC0], p[P_CRD], p[P_CRW]
+    th, rd, rw = frame(t, p)
+    s0 = math.sin(th)
+    c0 = math.cos(th)
+    p[P_CT] = t
+    p[P_CS0] = s0
+    p[P_CC0] = c0
+    p[P_CRD] = rd
+    p[P_CRW] = rw
+    return s0, c0, rd, rw
+
+
+@njit(cache=True, inline="always")
+def ball_setup(t, p, sn, cs, off, fac):
+    """Fill the ball direction cosines and the per-ball offsets/factors at time ``t``.
+
+    ``off[j] = P_d/2 + o_j`` (total deflection offset) and ``fac[j] = f_j``; returns the number
+    of balls over the defect.
+    """
+    Z = sn.size
+    s0, c0, rd, rw = frame_cached(t, p)
+    step = TWO_PI / Z
+    fault = int(p[P_FAULT])
+    psil2 = 2.0 * p[P_PSIL]
+    clr = p[P_CLR]
+    ss = p[P_SSTEP]
+    cc = p[P_CSTEP]
+    n_def = 0
+    dbeta = p[P_DBETA]
+    doff = p[P_DOFF]
+    dfac = p[P_DFAC]
+    clr = p[P_CLR]
+    for j in range(Z):
+        sn[j] = s0
+        cs[j] = c0
+        off[j] = clr
+        fac[j] = 1.0
+        if fault != 0:
+            if rd < dbeta:  # seed VSM eq. (15): ball over the defect
+                off[j] = clr + doff
+                fac[j] = dfac
+                n_def += 1
+            rd += step
+            if rd >= TWO_PI:
+                rd -= TWO_PI
+        if psil2 > 0.0:
+            if rw > psil2:
+                fac[j] = 0.0  # outside the fixed load-zone window of eq. (14)
+            rw += step
+            if rw >= TWO_PI:
+                rw -= TWO_PI
+        s1 = s0 * cc + c0 * ss
+        c0 = c0 * cc - s0 * ss
+        s0 = s1
+    return n_def
+
+
+@njit(cache=True, inline="always")
+def _potential(ux, uy, sn, cs, off, fac, K, n, fx, fy):
+    pot = -(fx * ux + fy * uy)
+    for j in range(sn.size):
+        dj = ux * sn[j] + uy * cs[j] - off[j]
+        if dj > 0.0:
+            pot += fac[j] * K * dj * hertz(dj, n) / (n + 1.0)
+    return pot
+
+
+@njit(cache=True, inline="always")
+def contact_force(ux, uy, sn, cs, off, fac, K, n):
+    """Bearing force on the ring ``sum Q_j e_j`` [N], the tangent matrix entries
+    ``T_xx, T_xy, T_yy`` and the secant matrix entries ``S_xx, S_xy, S_yy`` [N/m] at ``u``."""
+    gx = 0.0
+    gy = 0.0
+    jxx = 0.0
+    jxy = 0.0
+    jyy = 0.0
+    sxx = 0.0
+    sxy = 0.0
+    syy = 0.0
+    for j in range(sn.size):
+        ue = ux * sn[j] + uy * cs[j]
+        dj = ue - off[j]
+        if dj > 0.0:
+            q = fac[j] * K * hertz(dj, n)
+            gx += q * sn[j]
+            gy += q * cs[j]
+            kk = n * q / dj  # tangent dQ/d delta
+            sk = q / ue  # secant from the concentric position
+            xx = sn[j] * sn[j]
+            xy = sn[j] * cs[j]
+            yy = cs[j] * cs[j]
+            jxx += kk * xx
+            jxy += kk * xy
+            jyy += kk * yy
+            sxx += sk * xx
+            sxy += sk * xy
+            syy += sk * yy
+    return gx, gy, jxx, jxy, jyy, sxx, sxy, syy
+
+
+@njit(cache=True)
+def solve_static(ux, uy, sn, cs, off, fac, K, n, fx, fy, tol, row):
+    """Newton solution of ``sum Q_j e_j = F`` from the start ``(ux, uy)``.
+
+    A full Newton step is taken when it lowers the force residual, otherwise the step is
+    halved until the convex potential decreases (Armijo). Returns ``(ux, uy, relative residual
+    |sum Q e - F| / |F|, iterations)``.
+    """
+    F = math.hypot(fx, fy)
+    scale = F if F > 0.0 else 1.0
+    gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+    res = math.hypot(gx - fx, gy - fy) / scale
+    it = 0
+    while res > tol and it < 100:
+        it += 1
+        rx = gx - fx
+        ry = gy - fy
+        tr = jxx + jyy
+        if tr <= 0.0:
+            # no ball in contact: move along the force until contact
+            ux += 1e-7 * fx / scale
+            uy += 1e-7 * fy / scale
+            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+            res = math.hypot(gx - fx, gy - fy) / scale
+            continue
+        reg = 1e-12 * tr
+        a11 = jxx + reg
+        a22 = jyy + reg
+        det = a11 * a22 - jxy * jxy
+        if det <= 1e-14 * tr * tr or not math.isfinite(det):
+            sx = -rx / tr  # one ball in contact: gradient step
+            sy = -ry / tr
+        else:
+            sx = -(a22 * rx - jxy * ry) / det
+            sy = -(-jxy * rx + a11 * ry) / det
+        hx, hy, kxx, kxy, kyy, lxx, lxy, lyy = contact_force(
+            ux + sx, uy + sy, sn, cs, off, fac, K, n
+        )
+        rn = math.hypot(hx - fx, hy - fy) / scale
+        if rn < res:
+            ux += sx
+            uy += sy
+            gx, gy, jxx, jxy, jyy, res = hx, hy, kxx, kxy, kyy, rn
+            sxx, sxy, syy = lxx, lxy, lyy
+            continue
+        p0 = _potential(ux, uy, sn, cs, off, fac, K, n, fx, fy)
+        slope = rx * sx + ry * sy
+        t = 1.0
+        for _ls in range(60):
+            t *= 0.5
+            p1 = _potential(ux + t * sx, uy + t * sy, sn, cs, off, fac, K, n, fx, fy)
+            if p1 <= p0 + 1e-4 * t * slope:
+                break
+        ux += t * sx
+        uy += t * sy
+        gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+        res = math.hypot(gx - fx, gy - fy) / scale
+    row[C_UX] = ux
+    row[C_UY] = uy
+    row[C_SXX] = sxx
+    row[C_SXY] = sxy
+    row[C_SYY] = syy
+    row[C_TXX] = jxx
+    row[C_TXY] = jxy
+    row[C_TYY] = jyy
+    return res, it
+
+
+@njit(cache=True)
+def initial_guess(sn, cs, fac, clr, K, n, fx, fy):
+    """Ring displacement of the intact bearing along the load line (start for Newton) [m]."""
+    F = math.hypot(fx, fy)
+    th0 = math.atan2(fx, fy)
+    s0 = math.sin(th0)
+    c0 = math.cos(th0)
+    cosl = np.empty(sn.size)
+    ones = np.ones(sn.size)
+    for j in range(sn.size):
+        cosl[j] = sn[j] * s0 + cs[j] * c0
+    dr = _solve_1d(cosl, ones, clr, K, n, F)
+    return dr * s0, dr * c0
+
+
+@njit(cache=True)
+def quasi_static_path(times, p, table, residual, ux, uy):
+    """Static solution and stiffness matrices at every time of ``times``.
+
+    Fills ``table`` (shape ``(len(times), NCOL)``) and ``residual`` (relative force residual);
+    ``(ux, uy)`` is the warm start (NaN = cold start). Newton starts from the linear
+    extrapolation of the two previous solutions. Returns the last ``(ux, uy)``.
+    """
+    Z = int(p[P_Z])
+    sn = np.empty(Z)
+    cs = np.empty(Z)
+    off = np.empty(Z)
+    fac = np.empty(Z)
+    K = p[P_K]
+    n = p[P_N]
+    fx = p[P_FX]
+    fy = p[P_FY]
+    tol = p[P_TOL]
+    px = math.nan
+    py = math.nan
+    for i in range(times.size):
+        ball_setup(times[i], p, sn, cs, off, fac)
+        if not (math.isfinite(ux) and math.isfinite(uy)):
+            gx, gy = initial_guess(sn, cs, fac, p[P_CLR], K, n, fx, fy)
+        elif math.isfinite(px):
+            gx = 2.0 * ux - px
+            gy = 2.0 * uy - py
+        else:
+            gx = ux
+            gy = uy
+        px = ux
+        py = uy
+        row = table[i]
+        res, _it = solve_static(gx, gy, sn, cs, off, fac, K, n, fx, fy, tol, row)
+        if res > tol:
+            # a start in a flat region (after a ball dropped out): restart cold
+            gx, gy = initial_guess(sn, cs, fac, p[P_CLR], K, n, fx, fy)
+            res, _it = solve_static(gx, gy, sn, cs, off, fac, K, n, fx, fy, tol, row)
+        ux = row[C_UX]
+        uy = row[C_UY]
+        residual[i] = res
+    return ux, uy
+
+
+@njit(cache=True)
+def table_row(t, p):
+    """Index of the table row for time ``t`` (nearest half step)."""
+    j = int((t - p[P_T0]) / p[P_HTAB] + 0.5)
+    nt = int(p[P_NTAB])
+    if j < 0:
+        j = 0
+    elif j >= nt:
+        j = nt - 1
+    return HEADER + NCOL * j
+
+
+@njit(cache=True)
+def static_on_the_fly(t, p, row):
+    """Static solution at arbitrary ``t`` (warm start kept in ``p``), filling ``row``.
+
+    Used by the exact right-hand sides that the adaptive integrator calls at arbitrary times.
+    """
+    Z = int(p[P_Z])
+    sn = np.empty(Z)
+    cs = np.empty(Z)
+    off = np.empty(Z)
+    fac = np.empty(Z)
+    K = p[P_K]
+    n = p[P_N]
+    ball_setup(t, p, sn, cs, off, fac)
+    ux = p[P_WARMX]
+    uy = p[P_WARMY]
+    if not (math.isfinite(ux) and math.isfinite(uy)):
+        ux, uy = initial_guess(sn, cs, fac, p[P_CLR], K, n, p[P_FX], p[P_FY])
+    res, _it = solve_static(ux, uy, sn, cs, off, fac, K, n, p[P_FX], p[P_FY], p[P_TOL], row)
+    if res > p[P_TOL]:
+        ux, uy = initial_guess(sn, cs, fac, p[P_CLR], K, n, p[P_FX], p[P_FY])
+        res, _it = solve_static(ux, uy, sn, cs, off, fac, K, n, p[P_FX], p[P_FY], p[P_TOL], row)
+    p[P_WARMX] = row[C_UX]
+    p[P_WARMY] = row[C_UY]
+    return res
+
+
+@njit(cache=True)
+def per_ball(t, p, ux, uy, out, k0, fill):
+    """Number of loaded balls at ring displacement ``u`` and time ``t``; when ``fill``, also
+    write the ball loads Q_j [N] at ``out[k0:k0+Z]`` and the contact deformations
+    ``(Q_j/K)^(1/n)`` [m] at ``out[k0+Z:k0+2Z]`` (no allocation)."""
+    Z = int(p[P_Z])
+    s0, c0, rd, rw = frame_cached(t, p)
+    step = TWO_PI / Z
+    fault = int(p[P_FAULT])
+    psil2 = 2.0 * p[P_PSIL]
+    K = p[P_K]
+    n = p[P_N]
+    ss = p[P_SSTEP]
+    cc = p[P_CSTEP]
+    n_loaded = 0
+    dbeta = p[P_DBETA]
+    doff = p[P_DOFF]
+    dfac = p[P_DFAC]
+    clr = p[P_CLR]
+    for j in range(Z):
+        off = clr
+        fac = 1.0
+        if fault != 0:
+            if rd < dbeta:
+                off += doff
+                fac = dfac
+            rd += step
+            if rd >= TWO_PI:
+                rd -= TWO_PI
+        if psil2 > 0.0:
+            if rw > psil2:
+                fac = 0.0
+            rw += step
+            if rw >= TWO_PI:
+                rw -= TWO_PI
+        dj = ux * s0 + uy * c0 - off
+        q = fac * K * hertz(dj, n) if dj > 0.0 else 0.0
+        if q > 0.0:
+            n_loaded += 1
+        if fill:
+            out[k0 + j] = q
+            out[k0 + Z + j] = (q / K) ** (1.0 / n) if q > 0.0 else 0.0
+        s1 = s0 * cc + c0 * ss
+        c0 = c0 * cc - s0 * ss
+        s0 = s1
+    return n_loaded
+
+
+@njit(cache=True)
+def fill_aux_common(t, p, ux, uy, kxx, kxy, kyy, acc_x, acc_y, out):
+    """Fill the auxiliary outputs shared by all models (see :mod:`.common`)."""
+    out[0] = acc_x
+    out[1] = acc_y
+    out[2] = kxx
+    out[3] = kxy
+    out[4] = kyy
+    th0 = p[P_TH0]
+    s = math.sin(th0)
+    c = math.cos(th0)
+    out[5] = kxx * s * s + 2.0 * kxy * s * c + kyy * c * c
+    out[6] = per_ball(t, p, ux, uy, out, 7, p[P_PERBALL] > 0.5)
