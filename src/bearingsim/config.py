@@ -30,7 +30,7 @@ key                           default         meaning
 ``load_zone_half_angle_deg``  contact         fixed load-zone half angle psi_L (seed eq. (14)
                                               literal); default: the contact decides
 ``dt_s``                      auto            RK4 step [s]; must divide 1/fs_hz into an integer
-                                              number of steps (rounded); auto: omega_max dt <= 0.25
+                                              number of steps (rounded); auto: omega_max dt <= 0.35
 ``solver``                    ``"rk4"``       ``rk4`` (fixed step) | ``dopri5`` (adaptive check)
 ``per_ball``                  false           also store per-ball loads and deformations
 ============================  ==============  ===================================================

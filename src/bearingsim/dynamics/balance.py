@@ -35,6 +35,11 @@ tangent ``T = sum_j n Q_j / (delta_j - o_j) e_j e_j^T``
 
 The compiled functions read their inputs from the flat model parameter vector ``p`` whose
 layout is given by the ``P_*`` offsets below (shared by every kernel in this package).
+
+Developer note: Numba's on-disk cache of a function is keyed on its own source file only, so
+the cached cfuncs of :mod:`.vsm`, :mod:`.tvsm` and :mod:`.dem` keep the constants of this
+module that were current when they were compiled. After editing this module delete the
+package's ``__pycache__/*.nbi`` and ``*.nbc`` files.
 """
 
 from __future__ import annotations
@@ -79,7 +84,10 @@ P_CS0 = 28  #: cached sin of ball 1's azimuth (scratch) [-]
 P_CC0 = 29  #: cached cos of ball 1's azimuth (scratch) [-]
 P_CRD = 30  #: cached ball-1 angle past the defect edge (scratch) [rad]
 P_CRW = 31  #: cached ball-1 angle past the fixed-zone edge (scratch) [rad]
-HEADER = 32  #: first table entry
+P_CELL = 32  #: 1 = average the defect/zone indicators over the RK4 quadrature cell of t [-]
+P_CHD = 33  #: cached angular half-width of the defect cell (scratch) [rad]
+P_CHW = 34  #: cached angular half-width of the zone cell (scratch) [rad]
+HEADER = 40  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -120,20 +128,91 @@ def frame(t, p):
 
 
 @njit(cache=True, inline="always")
+def cell_halfwidth(t, p):
+    """Half-width [s] of the RK4 quadrature cell of stage time ``t`` (0 = point evaluation).
+
+    RK4 integrates a time-only forcing with Simpson's weights 1/6, 4/6, 1/6 at ``t``,
+    ``t + dt/2``, ``t + dt``; giving each stage time the cell ``[t - dt/6, t + dt/6]`` (step
+    boundaries, shared by two steps) or ``[t - dt/3, t + dt/3]`` (midpoints) tiles the time axis
+    with cells proportional to the weights. Averaging a step function (a ball entering the
+    defect) over these cells makes its time integral exact instead of first-order in dt.
+    """
+    if p[P_CELL] <= 0.0:
+        return 0.0
+    h = p[P_HTAB]  # dt / 2
+    k = int(math.floor((t - p[P_T0]) / h + 0.5))
+    return h / 3.0 if k % 2 == 0 else 2.0 * h / 3.0
+
+
+@njit(cache=True, inline="always")
 def frame_cached(t, p):
-    """``(sin, cos)`` of ball 1's azimuth and the two relative angles of :func:`frame` at
-    ``t``, cached in the scratch slots of ``p`` (RK4 evaluates each stage time twice)."""
+    """``(sin, cos)`` of ball 1's azimuth, the two relative angles of :func:`frame` and the
+    angular half-widths of the defect and zone cells at ``t``, cached in the scratch slots of
+    ``p`` (RK4 evaluates each stage time twice)."""
     if t == p[P_CT]:
-        return p[P_CS0], p[P_CC0], p[P_CRD], p[P_CRW]
+        return p[P_CS0], p[P_CC0], p[P_CRD], p[P_CRW], p[P_CHD], p[P_CHW]
     th, rd, rw = frame(t, p)
     s0 = math.sin(th)
     c0 = math.cos(th)
+    ht = cell_halfwidth(t, p)
+    w_rel = p[P_WCAGE] - (p[P_WSHAFT] if int(p[P_FAULT]) == 2 else 0.0)
+    hd = abs(w_rel) * ht
+    hw = p[P_WCAGE] * ht
     p[P_CT] = t
     p[P_CS0] = s0
     p[P_CC0] = c0
     p[P_CRD] = rd
     p[P_CRW] = rw
-    return s0, c0, rd, rw
+    p[P_CHD] = hd
+    p[P_CHW] = hw
+    return s0, c0, rd, rw, hd, hw
+
+
+@njit(cache=True, inline="always")
+def _overlap(a0, a1, b0, b1):
+    lo = a0 if a0 > b0 else b0
+    hi = a1 if a1 < b1 else b1
+    return hi - lo if hi > lo else 0.0
+
+
+@njit(cache=True, inline="always")
+def cell_fraction(r, half, width):
+    """Fraction of the angle interval ``[r - half, r + half]`` (``r`` in [0, 2 pi)) lying in
+    ``[0, width)`` modulo 2 pi; the indicator ``r < width`` when ``half == 0``."""
+    if half <= 0.0:
+        return 1.0 if r < width else 0.0
+    a0 = r - half
+    a1 = r + half
+    ov = (
+        _overlap(a0, a1, 0.0, width)
+        + _overlap(a0, a1, TWO_PI, TWO_PI + width)
+        + _overlap(a0, a1, -TWO_PI, width - TWO_PI)
+    )
+    return ov / (a1 - a0)
+
+
+@njit(cache=True, inline="always")
+def ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr):
+    """Deflection offset [m], load factor [-] and defect fraction [-] of one ball from its
+    angle past the defect edge ``rd`` and past the zone window edge ``rw`` (eqs. (14)–(15))."""
+    off = clr
+    fac = 1.0
+    fr = 0.0
+    if fault != 0:
+        fr = cell_fraction(rd, hd, dbeta)  # seed VSM eq. (15): ball over the defect
+        if fr > 0.0:
+            off += fr * doff
+            fac = 1.0 - fr * (1.0 - dfac)
+    if psil2 > 0.0:
+        fac *= cell_fraction(rw, hw, psil2)  # fixed load-zone window of eq. (14)
+    return off, fac, fr
+
+
+@njit(cache=True, inline="always")
+def advance(r, step):
+    """``r + step`` wrapped into [0, 2 pi) (``0 <= r < 2 pi``, ``0 < step < 2 pi``)."""
+    r += step
+    return r - TWO_PI if r >= TWO_PI else r
 
 
 @njit(cache=True, inline="always")
@@ -141,40 +220,30 @@ def ball_setup(t, p, sn, cs, off, fac):
     """Fill the ball direction cosines and the per-ball offsets/factors at time ``t``.
 
     ``off[j] = P_d/2 + o_j`` (total deflection offset) and ``fac[j] = f_j``; returns the number
-    of balls over the defect.
+    of balls (partly) over the defect.
     """
     Z = sn.size
-    s0, c0, rd, rw = frame_cached(t, p)
+    s0, c0, rd, rw, hd, hw = frame_cached(t, p)
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
-    clr = p[P_CLR]
     ss = p[P_SSTEP]
     cc = p[P_CSTEP]
-    n_def = 0
     dbeta = p[P_DBETA]
     doff = p[P_DOFF]
     dfac = p[P_DFAC]
     clr = p[P_CLR]
+    n_def = 0
     for j in range(Z):
         sn[j] = s0
         cs[j] = c0
-        off[j] = clr
-        fac[j] = 1.0
-        if fault != 0:
-            if rd < dbeta:  # seed VSM eq. (15): ball over the defect
-                off[j] = clr + doff
-                fac[j] = dfac
-                n_def += 1
-            rd += step
-            if rd >= TWO_PI:
-                rd -= TWO_PI
-        if psil2 > 0.0:
-            if rw > psil2:
-                fac[j] = 0.0  # outside the fixed load-zone window of eq. (14)
-            rw += step
-            if rw >= TWO_PI:
-                rw -= TWO_PI
+        o, f, fr = ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
+        off[j] = o
+        fac[j] = f
+        if fr > 0.0:
+            n_def += 1
+        rd = advance(rd, step)
+        rw = advance(rw, step)
         s1 = s0 * cc + c0 * ss
         c0 = c0 * cc - s0 * ss
         s0 = s1
@@ -396,7 +465,7 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     write the ball loads Q_j [N] at ``out[k0:k0+Z]`` and the contact deformations
     ``(Q_j/K)^(1/n)`` [m] at ``out[k0+Z:k0+2Z]`` (no allocation)."""
     Z = int(p[P_Z])
-    s0, c0, rd, rw = frame_cached(t, p)
+    s0, c0, rd, rw, hd, hw = frame_cached(t, p)
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
@@ -404,27 +473,13 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     n = p[P_N]
     ss = p[P_SSTEP]
     cc = p[P_CSTEP]
-    n_loaded = 0
     dbeta = p[P_DBETA]
     doff = p[P_DOFF]
     dfac = p[P_DFAC]
     clr = p[P_CLR]
+    n_loaded = 0
     for j in range(Z):
-        off = clr
-        fac = 1.0
-        if fault != 0:
-            if rd < dbeta:
-                off += doff
-                fac = dfac
-            rd += step
-            if rd >= TWO_PI:
-                rd -= TWO_PI
-        if psil2 > 0.0:
-            if rw > psil2:
-                fac = 0.0
-            rw += step
-            if rw >= TWO_PI:
-                rw -= TWO_PI
+        off, fac, _fr = ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
         dj = ux * s0 + uy * c0 - off
         q = fac * K * hertz(dj, n) if dj > 0.0 else 0.0
         if q > 0.0:
@@ -432,6 +487,8 @@ def per_ball(t, p, ux, uy, out, k0, fill):
         if fill:
             out[k0 + j] = q
             out[k0 + Z + j] = (q / K) ** (1.0 / n) if q > 0.0 else 0.0
+        rd = advance(rd, step)
+        rw = advance(rw, step)
         s1 = s0 * cc + c0 * ss
         c0 = c0 * cc - s0 * ss
         s0 = s1

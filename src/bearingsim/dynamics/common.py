@@ -285,6 +285,7 @@ def integrate_model(
     per_ball: bool = False,
     chunk: int = 4800,
     bound: float = 1.0,
+    cell_average: bool = True,
     progress: Callable[[int], None] | None = None,
 ) -> RawRun:
     """Fixed-step RK4 integration of ``kernel`` from ``y0`` at ``t = 0``.
@@ -313,6 +314,10 @@ def integrate_model(
         Output samples per chunk.
     bound : float
         Divergence guard on every state component (|u| [m], |v| [m/s]).
+    cell_average : bool
+        Average the defect and fixed-zone indicators over each RK4 stage's quadrature cell
+        (:func:`.balance.cell_halfwidth`), which resolves the instants a ball enters or leaves
+        the defect to second order; ``False`` = point evaluation (first order).
     progress : callable, optional
         Called with the number of samples done after each chunk.
     """
@@ -320,6 +325,8 @@ def integrate_model(
     na = n_aux(inputs, per_ball)
     dt = 1.0 / (fs * decim)
     h = 0.5 * dt
+    header[bl.P_CELL] = 1.0 if cell_average else 0.0
+    header[bl.P_HTAB] = h
     t_all = np.empty(n_out)
     y_all = np.empty((n_out, 4))
     a_all = np.empty((n_out, na))
@@ -331,6 +338,8 @@ def integrate_model(
         i1 = min(i0 + chunk, n_out - 1)
         m = i1 - i0 + 1
         t_start = i0 / fs
+        header[bl.P_T0] = t_start
+        header[bl.P_CT] = math.nan
         if kernel.needs_table:
             n_tab = 2 * (m - 1) * decim + 1
             times = t_start + h * np.arange(n_tab)

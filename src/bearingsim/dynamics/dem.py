@@ -26,7 +26,7 @@ def dem_force(t, ux, uy, p):
     """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
     displacement ``u`` and time ``t`` (no allocation: the hot loop of the DEM)."""
     Z = int(p[bl.P_Z])
-    s0, c0, rd, rw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
+    s0, c0, rd, rw, hd, hw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
     step = bl.TWO_PI / Z
     fault = int(p[bl.P_FAULT])
     psil2 = 2.0 * p[bl.P_PSIL]
@@ -34,31 +34,18 @@ def dem_force(t, ux, uy, p):
     n = p[bl.P_N]
     ss = p[bl.P_SSTEP]
     cc = p[bl.P_CSTEP]
+    dbeta = p[bl.P_DBETA]
+    doff = p[bl.P_DOFF]
+    dfac = p[bl.P_DFAC]
+    clr = p[bl.P_CLR]
     gx = 0.0
     gy = 0.0
     jxx = 0.0
     jxy = 0.0
     jyy = 0.0
-    dbeta = p[bl.P_DBETA]
-    doff = p[bl.P_DOFF]
-    dfac = p[bl.P_DFAC]
-    clr = p[bl.P_CLR]
     for _j in range(Z):
-        off = clr
-        fac = 1.0
-        if fault != 0:
-            if rd < dbeta:  # ball over the defect: the geometric drop h_min
-                off += doff
-                fac = dfac
-            rd += step
-            if rd >= bl.TWO_PI:
-                rd -= bl.TWO_PI
-        if psil2 > 0.0:
-            if rw > psil2:
-                fac = 0.0
-            rw += step
-            if rw >= bl.TWO_PI:
-                rw -= bl.TWO_PI
+        # ball over the defect: the geometric drop h_min enters its deflection
+        off, fac, _fr = bl.ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
         dj = ux * s0 + uy * c0 - off
         if dj > 0.0 and fac > 0.0:
             q = fac * K * bl.hertz(dj, n)
@@ -68,6 +55,8 @@ def dem_force(t, ux, uy, p):
             jxx += kk * s0 * s0
             jxy += kk * s0 * c0
             jyy += kk * c0 * c0
+        rd = bl.advance(rd, step)
+        rw = bl.advance(rw, step)
         s1 = s0 * cc + c0 * ss
         c0 = c0 * cc - s0 * ss
         s0 = s1
