@@ -19,7 +19,10 @@ with ``f_j = 1, o_j = 0`` for a ball on intact raceway and, for a ball over the 
 The balance ``sum_j Q_j (sin psi_j, cos psi_j) = (F_x, F_y)`` — all three lines of eq. (16):
 both components, hence also the load-line one — is solved for ``u`` by Newton's method on the
 convex potential ``sum f K (delta - o)_+^(n+1)/(n+1) - F.u`` with backtracking, warm-started
-from the previous instant. The load-zone flag ``lambda_j`` of eq. (14) is ``delta_j > 0`` (the
+from the previous instant. In the fixed-step integration the defect indicator is averaged over
+each RK4 stage's quadrature cell and the ball load is the corresponding blend of the intact and
+the defective load (:func:`cell_halfwidth`, :func:`ball_load`); traces and the adaptive
+integrator use the point values. The load-zone flag ``lambda_j`` of eq. (14) is ``delta_j > 0`` (the
 contact decides, default) or, for the seed's literal rule, membership of the fixed window
 ``[theta_0 - psi_L, theta_0 + psi_L]`` with a given ``psi_L`` (a ball outside it carries no
 load even when compressed).
@@ -192,20 +195,42 @@ def cell_fraction(r, half, width):
 
 
 @njit(cache=True, inline="always")
-def ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr):
-    """Deflection offset [m], load factor [-] and defect fraction [-] of one ball from its
-    angle past the defect edge ``rd`` and past the zone window edge ``rw`` (eqs. (14)–(15))."""
-    off = clr
-    fac = 1.0
-    fr = 0.0
-    if fault != 0:
-        fr = cell_fraction(rd, hd, dbeta)  # seed VSM eq. (15): ball over the defect
+def ball_flags(rd, rw, hd, hw, fault, psil2, dbeta):
+    """Defect fraction ``f_d`` (eq. (15): 1 = over the defect) and zone factor ``f_z``
+    (eq. (14) fixed window: 1 = inside) of one ball from its angle past the defect edge ``rd``
+    and past the window edge ``rw``, averaged over the quadrature cell [-]."""
+    fr = cell_fraction(rd, hd, dbeta) if fault != 0 else 0.0
+    zf = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
+    return fr, zf
+
+
+@njit(cache=True, inline="always")
+def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
+    """Load Q [N], stiffness dQ/d(u.e) [N/m] and contact potential [J] of one ball whose ring
+    approach is ``u.e`` [m]: the blend ``(1 - f_d) Q_intact + f_d Q_defect`` (times ``f_z``)
+    with ``Q_intact = K (u.e - P_d/2)_+^n`` and ``Q_defect = gamma K (u.e - P_d/2 - h)_+^n``
+    (seed VSM eqs. (9), (11))."""
+    q = 0.0
+    dq = 0.0
+    pot = 0.0
+    if zf > 0.0:
+        if fr < 1.0:
+            d = ue - clr
+            if d > 0.0:
+                w = (1.0 - fr) * zf
+                qo = K * hertz(d, n)
+                q += w * qo
+                dq += w * n * qo / d
+                pot += w * qo * d / (n + 1.0)
         if fr > 0.0:
-            off += fr * doff
-            fac = 1.0 - fr * (1.0 - dfac)
-    if psil2 > 0.0:
-        fac *= cell_fraction(rw, hw, psil2)  # fixed load-zone window of eq. (14)
-    return off, fac, fr
+            d = ue - clr - doff
+            if d > 0.0:
+                w = fr * zf
+                qi = dfac * K * hertz(d, n)
+                q += w * qi
+                dq += w * n * qi / d
+                pot += w * qi * d / (n + 1.0)
+    return q, dq, pot
 
 
 @njit(cache=True, inline="always")
@@ -216,31 +241,29 @@ def advance(r, step):
 
 
 @njit(cache=True, inline="always")
-def ball_setup(t, p, sn, cs, off, fac):
-    """Fill the ball direction cosines and the per-ball offsets/factors at time ``t``.
-
-    ``off[j] = P_d/2 + o_j`` (total deflection offset) and ``fac[j] = f_j``; returns the number
-    of balls (partly) over the defect.
-    """
+def ball_setup(t, p, sn, cs, fr, zf, point):
+    """Fill the ball direction cosines, defect fractions and zone factors at time ``t`` (cell
+    averages, or point values when ``point``); returns the number of balls (partly) over the
+    defect."""
     Z = sn.size
     s0, c0, rd, rw, hd, hw = frame_cached(t, p)
+    if point:
+        hd = 0.0
+        hw = 0.0
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
     ss = p[P_SSTEP]
     cc = p[P_CSTEP]
     dbeta = p[P_DBETA]
-    doff = p[P_DOFF]
-    dfac = p[P_DFAC]
-    clr = p[P_CLR]
     n_def = 0
     for j in range(Z):
         sn[j] = s0
         cs[j] = c0
-        o, f, fr = ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
-        off[j] = o
-        fac[j] = f
-        if fr > 0.0:
+        f, z = ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
+        fr[j] = f
+        zf[j] = z
+        if f > 0.0:
             n_def += 1
         rd = advance(rd, step)
         rw = advance(rw, step)
@@ -251,19 +274,20 @@ def ball_setup(t, p, sn, cs, off, fac):
 
 
 @njit(cache=True, inline="always")
-def _potential(ux, uy, sn, cs, off, fac, K, n, fx, fy):
+def _potential(ux, uy, sn, cs, fr, zf, cst, fx, fy):
+    clr, doff, dfac, K, n = cst
     pot = -(fx * ux + fy * uy)
     for j in range(sn.size):
-        dj = ux * sn[j] + uy * cs[j] - off[j]
-        if dj > 0.0:
-            pot += fac[j] * K * dj * hertz(dj, n) / (n + 1.0)
+        _q, _dq, e = ball_load(ux * sn[j] + uy * cs[j], fr[j], zf[j], clr, doff, dfac, K, n)
+        pot += e
     return pot
 
 
 @njit(cache=True, inline="always")
-def contact_force(ux, uy, sn, cs, off, fac, K, n):
+def contact_force(ux, uy, sn, cs, fr, zf, cst):
     """Bearing force on the ring ``sum Q_j e_j`` [N], the tangent matrix entries
     ``T_xx, T_xy, T_yy`` and the secant matrix entries ``S_xx, S_xy, S_yy`` [N/m] at ``u``."""
+    clr, doff, dfac, K, n = cst
     gx = 0.0
     gy = 0.0
     jxx = 0.0
@@ -274,17 +298,15 @@ def contact_force(ux, uy, sn, cs, off, fac, K, n):
     syy = 0.0
     for j in range(sn.size):
         ue = ux * sn[j] + uy * cs[j]
-        dj = ue - off[j]
-        if dj > 0.0:
-            q = fac[j] * K * hertz(dj, n)
+        q, kk, _e = ball_load(ue, fr[j], zf[j], clr, doff, dfac, K, n)
+        if q > 0.0:
             gx += q * sn[j]
             gy += q * cs[j]
-            kk = n * q / dj  # tangent dQ/d delta
             sk = q / ue  # secant from the concentric position
             xx = sn[j] * sn[j]
             xy = sn[j] * cs[j]
             yy = cs[j] * cs[j]
-            jxx += kk * xx
+            jxx += kk * xx  # tangent dQ/d delta
             jxy += kk * xy
             jyy += kk * yy
             sxx += sk * xx
@@ -294,16 +316,17 @@ def contact_force(ux, uy, sn, cs, off, fac, K, n):
 
 
 @njit(cache=True)
-def solve_static(ux, uy, sn, cs, off, fac, K, n, fx, fy, tol, row):
+def solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, tol, row):
     """Newton solution of ``sum Q_j e_j = F`` from the start ``(ux, uy)``.
 
     A full Newton step is taken when it lowers the force residual, otherwise the step is
-    halved until the convex potential decreases (Armijo). Returns ``(ux, uy, relative residual
+    halved until the convex potential decreases (Armijo). Writes the static solution, the
+    secant and tangent entries (layout ``C_*``) into ``row`` and returns ``(relative residual
     |sum Q e - F| / |F|, iterations)``.
     """
     F = math.hypot(fx, fy)
     scale = F if F > 0.0 else 1.0
-    gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+    gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
     res = math.hypot(gx - fx, gy - fy) / scale
     it = 0
     while res > tol and it < 100:
@@ -315,7 +338,7 @@ def solve_static(ux, uy, sn, cs, off, fac, K, n, fx, fy, tol, row):
             # no ball in contact: move along the force until contact
             ux += 1e-7 * fx / scale
             uy += 1e-7 * fy / scale
-            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
             res = math.hypot(gx - fx, gy - fy) / scale
             continue
         reg = 1e-12 * tr
@@ -328,27 +351,25 @@ def solve_static(ux, uy, sn, cs, off, fac, K, n, fx, fy, tol, row):
         else:
             sx = -(a22 * rx - jxy * ry) / det
             sy = -(-jxy * rx + a11 * ry) / det
-        hx, hy, kxx, kxy, kyy, lxx, lxy, lyy = contact_force(
-            ux + sx, uy + sy, sn, cs, off, fac, K, n
-        )
+        hx, hy, kxx, kxy, kyy, lxx, lxy, lyy = contact_force(ux + sx, uy + sy, sn, cs, fr, zf, cst)
         rn = math.hypot(hx - fx, hy - fy) / scale
         if rn < res:
             ux += sx
             uy += sy
-            gx, gy, jxx, jxy, jyy, res = hx, hy, kxx, kxy, kyy, rn
-            sxx, sxy, syy = lxx, lxy, lyy
+            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = hx, hy, kxx, kxy, kyy, lxx, lxy, lyy
+            res = rn
             continue
-        p0 = _potential(ux, uy, sn, cs, off, fac, K, n, fx, fy)
+        p0 = _potential(ux, uy, sn, cs, fr, zf, cst, fx, fy)
         slope = rx * sx + ry * sy
         t = 1.0
         for _ls in range(60):
             t *= 0.5
-            p1 = _potential(ux + t * sx, uy + t * sy, sn, cs, off, fac, K, n, fx, fy)
+            p1 = _potential(ux + t * sx, uy + t * sy, sn, cs, fr, zf, cst, fx, fy)
             if p1 <= p0 + 1e-4 * t * slope:
                 break
         ux += t * sx
         uy += t * sy
-        gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, off, fac, K, n)
+        gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
         res = math.hypot(gx - fx, gy - fy) / scale
     row[C_UX] = ux
     row[C_UY] = uy
@@ -361,8 +382,14 @@ def solve_static(ux, uy, sn, cs, off, fac, K, n, fx, fy, tol, row):
     return res, it
 
 
+@njit(cache=True, inline="always")
+def constants(p):
+    """``(P_d/2, h, gamma, K, n)`` of the ball load law from ``p``."""
+    return p[P_CLR], p[P_DOFF], p[P_DFAC], p[P_K], p[P_N]
+
+
 @njit(cache=True)
-def initial_guess(sn, cs, fac, clr, K, n, fx, fy):
+def initial_guess(sn, cs, clr, K, n, fx, fy):
     """Ring displacement of the intact bearing along the load line (start for Newton) [m]."""
     F = math.hypot(fx, fy)
     th0 = math.atan2(fx, fy)
@@ -387,19 +414,18 @@ def quasi_static_path(times, p, table, residual, ux, uy):
     Z = int(p[P_Z])
     sn = np.empty(Z)
     cs = np.empty(Z)
-    off = np.empty(Z)
-    fac = np.empty(Z)
-    K = p[P_K]
-    n = p[P_N]
+    fr = np.empty(Z)
+    zf = np.empty(Z)
+    cst = constants(p)
     fx = p[P_FX]
     fy = p[P_FY]
     tol = p[P_TOL]
     px = math.nan
     py = math.nan
     for i in range(times.size):
-        ball_setup(times[i], p, sn, cs, off, fac)
+        ball_setup(times[i], p, sn, cs, fr, zf, False)
         if not (math.isfinite(ux) and math.isfinite(uy)):
-            gx, gy = initial_guess(sn, cs, fac, p[P_CLR], K, n, fx, fy)
+            gx, gy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
         elif math.isfinite(px):
             gx = 2.0 * ux - px
             gy = 2.0 * uy - py
@@ -409,11 +435,11 @@ def quasi_static_path(times, p, table, residual, ux, uy):
         px = ux
         py = uy
         row = table[i]
-        res, _it = solve_static(gx, gy, sn, cs, off, fac, K, n, fx, fy, tol, row)
+        res, _it = solve_static(gx, gy, sn, cs, fr, zf, cst, fx, fy, tol, row)
         if res > tol:
             # a start in a flat region (after a ball dropped out): restart cold
-            gx, gy = initial_guess(sn, cs, fac, p[P_CLR], K, n, fx, fy)
-            res, _it = solve_static(gx, gy, sn, cs, off, fac, K, n, fx, fy, tol, row)
+            gx, gy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
+            res, _it = solve_static(gx, gy, sn, cs, fr, zf, cst, fx, fy, tol, row)
         ux = row[C_UX]
         uy = row[C_UY]
         residual[i] = res
@@ -433,27 +459,30 @@ def table_row(t, p):
 
 
 @njit(cache=True)
-def static_on_the_fly(t, p, row):
-    """Static solution at arbitrary ``t`` (warm start kept in ``p``), filling ``row``.
+def static_on_the_fly(t, p, row, point):
+    """Static solution at arbitrary ``t`` (warm start kept in ``p``), filling ``row``; the
+    defect/zone indicators are point values when ``point`` (else as ``p[P_CELL]`` says).
 
-    Used by the exact right-hand sides that the adaptive integrator calls at arbitrary times.
+    Used by the exact right-hand sides that the adaptive integrator calls at arbitrary times
+    and for the outputs at samples next to a defect edge.
     """
     Z = int(p[P_Z])
     sn = np.empty(Z)
     cs = np.empty(Z)
-    off = np.empty(Z)
-    fac = np.empty(Z)
-    K = p[P_K]
-    n = p[P_N]
-    ball_setup(t, p, sn, cs, off, fac)
+    fr = np.empty(Z)
+    zf = np.empty(Z)
+    cst = constants(p)
+    fx = p[P_FX]
+    fy = p[P_FY]
+    ball_setup(t, p, sn, cs, fr, zf, point)
     ux = p[P_WARMX]
     uy = p[P_WARMY]
     if not (math.isfinite(ux) and math.isfinite(uy)):
-        ux, uy = initial_guess(sn, cs, fac, p[P_CLR], K, n, p[P_FX], p[P_FY])
-    res, _it = solve_static(ux, uy, sn, cs, off, fac, K, n, p[P_FX], p[P_FY], p[P_TOL], row)
+        ux, uy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
+    res, _it = solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, p[P_TOL], row)
     if res > p[P_TOL]:
-        ux, uy = initial_guess(sn, cs, fac, p[P_CLR], K, n, p[P_FX], p[P_FY])
-        res, _it = solve_static(ux, uy, sn, cs, off, fac, K, n, p[P_FX], p[P_FY], p[P_TOL], row)
+        ux, uy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
+        res, _it = solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, p[P_TOL], row)
     p[P_WARMX] = row[C_UX]
     p[P_WARMY] = row[C_UY]
     return res
@@ -463,25 +492,22 @@ def static_on_the_fly(t, p, row):
 def per_ball(t, p, ux, uy, out, k0, fill):
     """Number of loaded balls at ring displacement ``u`` and time ``t``; when ``fill``, also
     write the ball loads Q_j [N] at ``out[k0:k0+Z]`` and the contact deformations
-    ``(Q_j/K)^(1/n)`` [m] at ``out[k0+Z:k0+2Z]`` (no allocation)."""
+    ``(Q_j/K)^(1/n)`` [m] at ``out[k0+Z:k0+2Z]`` (point values at ``t``; no allocation)."""
     Z = int(p[P_Z])
-    s0, c0, rd, rw, hd, hw = frame_cached(t, p)
+    s0, c0, rd, rw, _hd, _hw = frame_cached(t, p)
+    hd = 0.0
+    hw = 0.0
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
-    K = p[P_K]
-    n = p[P_N]
     ss = p[P_SSTEP]
     cc = p[P_CSTEP]
     dbeta = p[P_DBETA]
-    doff = p[P_DOFF]
-    dfac = p[P_DFAC]
-    clr = p[P_CLR]
+    clr, doff, dfac, K, n = constants(p)
     n_loaded = 0
     for j in range(Z):
-        off, fac, _fr = ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
-        dj = ux * s0 + uy * c0 - off
-        q = fac * K * hertz(dj, n) if dj > 0.0 else 0.0
+        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
         if q > 0.0:
             n_loaded += 1
         if fill:
@@ -493,6 +519,40 @@ def per_ball(t, p, ux, uy, out, k0, fill):
         c0 = c0 * cc - s0 * ss
         s0 = s1
     return n_loaded
+
+
+@njit(cache=True)
+def has_partial(t, p):
+    """Whether some ball's cell-averaged defect or zone indicator at ``t`` is fractional, i.e.
+    differs from its point value (a defect or window edge lies within the cell)."""
+    if p[P_CELL] <= 0.0:
+        return False
+    Z = int(p[P_Z])
+    _s0, _c0, rd, rw, hd, hw = frame_cached(t, p)
+    step = TWO_PI / Z
+    fault = int(p[P_FAULT])
+    psil2 = 2.0 * p[P_PSIL]
+    for _j in range(Z):
+        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, p[P_DBETA])
+        if 0.0 < fr < 1.0 or 0.0 < zf < 1.0:
+            return True
+        rd = advance(rd, step)
+        rw = advance(rw, step)
+    return False
+
+
+@njit(cache=True)
+def output_row(t, p, out_row):
+    """Row of quasi-static values for an *output* sample at ``t``: the table row, or a point
+    re-solve (warm-started from it) when a defect/zone edge lies within the cell. Returns the
+    offset ``r`` such that ``out_row[r + C_*]`` holds the values."""
+    r = table_row(t, p)
+    if not has_partial(t, p):
+        return p, r
+    p[P_WARMX] = p[r + C_UX]
+    p[P_WARMY] = p[r + C_UY]
+    static_on_the_fly(t, p, out_row, True)
+    return out_row, 0
 
 
 @njit(cache=True)

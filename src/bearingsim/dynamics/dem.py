@@ -22,36 +22,34 @@ from .integrate import RHS_SIG
 
 
 @njit(cache=True)
-def dem_force(t, ux, uy, p):
+def dem_force(t, ux, uy, p, point):
     """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
-    displacement ``u`` and time ``t`` (no allocation: the hot loop of the DEM)."""
+    displacement ``u`` and time ``t`` (cell-averaged defect indicator, or point values when
+    ``point``; no allocation: the hot loop of the DEM)."""
     Z = int(p[bl.P_Z])
     s0, c0, rd, rw, hd, hw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
+    if point:
+        hd = 0.0
+        hw = 0.0
     step = bl.TWO_PI / Z
     fault = int(p[bl.P_FAULT])
     psil2 = 2.0 * p[bl.P_PSIL]
-    K = p[bl.P_K]
-    n = p[bl.P_N]
     ss = p[bl.P_SSTEP]
     cc = p[bl.P_CSTEP]
     dbeta = p[bl.P_DBETA]
-    doff = p[bl.P_DOFF]
-    dfac = p[bl.P_DFAC]
-    clr = p[bl.P_CLR]
+    clr, doff, dfac, K, n = bl.constants(p)
     gx = 0.0
     gy = 0.0
     jxx = 0.0
     jxy = 0.0
     jyy = 0.0
     for _j in range(Z):
-        # ball over the defect: the geometric drop h_min enters its deflection
-        off, fac, _fr = bl.ball_modifiers(rd, rw, hd, hw, fault, psil2, dbeta, doff, dfac, clr)
-        dj = ux * s0 + uy * c0 - off
-        if dj > 0.0 and fac > 0.0:
-            q = fac * K * bl.hertz(dj, n)
+        # a ball over the defect loses the geometric drop h_min from its deflection
+        fr, zf = bl.ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
+        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
+        if q > 0.0:
             gx += q * s0
             gy += q * c0
-            kk = n * q / dj
             jxx += kk * s0 * s0
             jxy += kk * s0 * c0
             jyy += kk * c0 * c0
@@ -65,7 +63,7 @@ def dem_force(t, ux, uy, p):
 
 @njit(cache=True)
 def _deriv(t, y, p, out):
-    gx, gy, _jxx, _jxy, _jyy = dem_force(t, y[0], y[1], p)
+    gx, gy, _jxx, _jxy, _jyy = dem_force(t, y[0], y[1], p, False)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     out[0] = y[2]
@@ -83,7 +81,7 @@ def dem_rhs(t, y, p, dydt):
 @cfunc(RHS_SIG, cache=True)
 def dem_aux(t, y, p, out):
     """DEM auxiliary outputs; the stiffness is the tangent at the dynamic state."""
-    gx, gy, jxx, jxy, jyy = dem_force(t, y[0], y[1], p)
+    gx, gy, jxx, jxy, jyy = dem_force(t, y[0], y[1], p, True)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     ax = (p[bl.P_FX] - gx - c * y[2]) / m

@@ -53,17 +53,18 @@ def tvsm_rhs(t, y, p, dydt):
 
 @cfunc(RHS_SIG, cache=True)
 def tvsm_aux(t, y, p, out):
-    """TVSM auxiliary outputs (see :mod:`.common`)."""
-    r = bl.table_row(t, p)
-    ax, ay = _acc(y, p, p, r)
+    """TVSM auxiliary outputs (see :mod:`.common`); point values at the sample instant."""
+    buf = np.empty(bl.NCOL)
+    src, r = bl.output_row(t, p, buf)
+    ax, ay = _acc(y, p, src, r)
     bl.fill_aux_common(
         t,
         p,
-        p[r + bl.C_UX],
-        p[r + bl.C_UY],
-        p[r + bl.C_TXX],
-        p[r + bl.C_TXY],
-        p[r + bl.C_TYY],
+        src[r + bl.C_UX],
+        src[r + bl.C_UY],
+        src[r + bl.C_TXX],
+        src[r + bl.C_TXY],
+        src[r + bl.C_TYY],
         ax,
         ay,
         out,
@@ -74,7 +75,7 @@ def tvsm_aux(t, y, p, out):
 def tvsm_rhs_exact(t, y, p, dydt):
     """TVSM right-hand side solving the static balance at ``t``."""
     row = np.empty(bl.NCOL)
-    bl.static_on_the_fly(t, p, row)
+    bl.static_on_the_fly(t, p, row, False)
     ax, ay = _acc(y, p, row, 0)
     dydt[0] = y[2]
     dydt[1] = y[3]
@@ -86,7 +87,7 @@ def tvsm_rhs_exact(t, y, p, dydt):
 def tvsm_aux_exact(t, y, p, out):
     """TVSM auxiliary outputs with the on-the-fly static solve."""
     row = np.empty(bl.NCOL)
-    bl.static_on_the_fly(t, p, row)
+    bl.static_on_the_fly(t, p, row, False)
     ax, ay = _acc(y, p, row, 0)
     bl.fill_aux_common(
         t, p, row[bl.C_UX], row[bl.C_UY], row[bl.C_TXX], row[bl.C_TXY], row[bl.C_TYY], ax, ay, out

@@ -67,17 +67,18 @@ def vsm_rhs(t, y, p, dydt):
 
 @cfunc(RHS_SIG, cache=True)
 def vsm_aux(t, y, p, out):
-    """VSM auxiliary outputs (see :mod:`.common`)."""
-    r = bl.table_row(t, p)
-    ax, ay = _acc(y, p, p, r)
+    """VSM auxiliary outputs (see :mod:`.common`); point values at the sample instant."""
+    buf = np.empty(bl.NCOL)
+    src, r = bl.output_row(t, p, buf)
+    ax, ay = _acc(y, p, src, r)
     bl.fill_aux_common(
         t,
         p,
-        p[r + bl.C_UX],
-        p[r + bl.C_UY],
-        p[r + bl.C_SXX],
-        p[r + bl.C_SXY],
-        p[r + bl.C_SYY],
+        src[r + bl.C_UX],
+        src[r + bl.C_UY],
+        src[r + bl.C_SXX],
+        src[r + bl.C_SXY],
+        src[r + bl.C_SYY],
         ax,
         ay,
         out,
@@ -88,7 +89,7 @@ def vsm_aux(t, y, p, out):
 def vsm_rhs_exact(t, y, p, dydt):
     """VSM right-hand side solving the static balance at ``t`` (any time)."""
     row = np.empty(bl.NCOL)
-    bl.static_on_the_fly(t, p, row)
+    bl.static_on_the_fly(t, p, row, False)
     ax, ay = _acc(y, p, row, 0)
     dydt[0] = y[2]
     dydt[1] = y[3]
@@ -100,7 +101,7 @@ def vsm_rhs_exact(t, y, p, dydt):
 def vsm_aux_exact(t, y, p, out):
     """VSM auxiliary outputs with the on-the-fly static solve."""
     row = np.empty(bl.NCOL)
-    bl.static_on_the_fly(t, p, row)
+    bl.static_on_the_fly(t, p, row, False)
     ax, ay = _acc(y, p, row, 0)
     bl.fill_aux_common(
         t, p, row[bl.C_UX], row[bl.C_UY], row[bl.C_SXX], row[bl.C_SXY], row[bl.C_SYY], ax, ay, out
