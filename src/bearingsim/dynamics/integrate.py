@@ -196,19 +196,8 @@ def _fail(status: int, t: float, dt: float | None) -> SolverError:
     return SolverError(f"integration diverged at t = {t:.6g} s: {cause}{hint}")
 
 
-def run_fixed(
-    rhs,
-    aux,
-    y0,
-    p,
-    *,
-    dt: float,
-    n_out: int,
-    decim: int,
-    n_aux: int = 0,
-    bound: float = 1e3,
-    t0: float = 0.0,
-) -> Trajectory:
+def run_fixed(rhs, aux, y0, p, *, dt: float, n_out: int, decim: int, n_aux: int = 0,
+              bound: float = 1e3, t0: float = 0.0) -> Trajectory:
     """Run :func:`rk4_fixed` and raise :class:`SolverError` on divergence.
 
     Parameters
@@ -234,49 +223,23 @@ def run_fixed(
     """
     y0 = np.ascontiguousarray(y0, dtype=float)
     p = np.ascontiguousarray(p, dtype=float)
-    t, y, a, status, n_done = rk4_fixed(
-        rhs, aux, y0, float(t0), float(dt), int(n_out), int(decim), p, int(n_aux), float(bound)
-    )
+    t, y, a, status, n_done = rk4_fixed(rhs, aux, y0, float(t0), float(dt), int(n_out),
+                                        int(decim), p, int(n_aux), float(bound))
     if status != STATUS_OK:
         raise _fail(status, float(t[n_done - 1]), dt)
     return Trajectory(t, y, a[:, :n_aux], "rk4", (n_out - 1) * decim)
 
 
-def run_adaptive(
-    rhs,
-    aux,
-    y0,
-    p,
-    t_eval,
-    *,
-    n_aux: int = 0,
-    rtol: float = 1e-8,
-    atol: float = 1e-12,
-    h0: float = 1e-7,
-    hmax: float = np.inf,
-    bound: float = 1e3,
-) -> Trajectory:
+def run_adaptive(rhs, aux, y0, p, t_eval, *, n_aux: int = 0, rtol: float = 1e-8,
+                 atol: float = 1e-12, h0: float = 1e-7, hmax: float = np.inf,
+                 bound: float = 1e3) -> Trajectory:
     """Run the Dormand–Prince 5(4) integrator to the output times ``t_eval`` [s]."""
     y0 = np.ascontiguousarray(y0, dtype=float)
     p = np.ascontiguousarray(p, dtype=float)
     te = np.ascontiguousarray(t_eval, dtype=float)
-    y, a, status, n_done, n_steps = _dopri(
-        rhs,
-        aux,
-        y0,
-        te,
-        p,
-        int(n_aux),
-        float(rtol),
-        float(atol),
-        float(h0),
-        float(hmax),
-        float(bound),
-        _C,
-        _A,
-        _B5,
-        _B4,
-    )
+    y, a, status, n_done, n_steps = _dopri(rhs, aux, y0, te, p, int(n_aux), float(rtol),
+                                           float(atol), float(h0), float(hmax), float(bound),
+                                           _C, _A, _B5, _B4)
     if status != STATUS_OK:
         raise _fail(status, float(te[max(n_done - 1, 0)]), None)
     return Trajectory(te, y, a[:, :n_aux], "dopri5", int(n_steps))
