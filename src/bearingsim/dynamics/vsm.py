@@ -392,6 +392,7 @@ def stiffness_trace(
         label += f", fixed zone +/-{math.degrees(inputs.load_zone_half_angle):.1f} deg"
     meta = {
         "zone_margin": margin,
+        "psi": psi,
         "fault": loc.value,
         "alpha0": inputs.first_ball_angle,
         "beta0": inputs.defect.angle,
