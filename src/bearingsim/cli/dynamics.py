@@ -132,9 +132,10 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     """
     from tqdm import tqdm
 
-    from ..simulate import simulate
+    from ..simulate import model_inputs, simulate
 
     sc = _scenario(scenario_file, kw)
+    model_inputs(sc)  # validate everything before any output (no progress bar before an error)
     t0 = time.perf_counter()
     bar = tqdm(
         total=sc.n_samples,
@@ -142,6 +143,7 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
         unit="sample",
         disable=as_json,
         leave=False,
+        delay=1.0,
         file=click.get_text_stream("stderr"),
     )
     last = [0]
