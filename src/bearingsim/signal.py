@@ -251,8 +251,8 @@ def kurtogram_levels(max_level: int) -> list[tuple[float, int]]:
     out = [(0.0, 1)]
     for k in range(1, max_level + 1):
         out.append((float(k), 2**k))
-    for k in range(max_level):
-        out.append((k + math.log2(3.0), 3 * 2**k))  # levels 1.585, 2.585, ...
+    for k in range(max_level - 1):
+        out.append((k + math.log2(3.0), 3 * 2**k))  # levels 1.585, 2.585, ... < max_level
     return sorted(out)
 
 

@@ -108,7 +108,7 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
     if scenario.solver is Solver.RK4:
         try:
             raw = integrate_model(
-                kernel, inputs, y0, fs, n, decim, per_ball=scenario.per_ball, progress=progress
+                kernel, inputs, y0, fs, n + 1, decim, per_ball=scenario.per_ball, progress=progress
             )
         except SolverError as exc:
             auto = 1.0 / (fs * max(1, math.ceil(w / (OMEGA_DT * fs))))
@@ -118,22 +118,32 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
                 f"(0, {RK4_STABILITY / w:.3g}) s (automatic step {auto:.3g} s)"
             ) from None
     else:
-        raw = integrate_model_adaptive(kernel, inputs, y0, fs, n, per_ball=scenario.per_ball)
+        raw = integrate_model_adaptive(kernel, inputs, y0, fs, n + 1, per_ball=scenario.per_ball)
         dt = math.nan
     Z = inputs.bearing.n_elements
+    ys, aux = raw.y[:n], raw.aux[:n]
+    # sensor-like acceleration: mean over [t_k, t_k + 1/fs] = (v_{k+1} - v_k) fs, i.e. the
+    # instantaneous model acceleration through a boxcar anti-aliasing filter (the model's
+    # acceleration jumps when a ball meets a defect edge; point samples of a jump alias)
+    acc_mean = np.diff(raw.y[:, 2:4], axis=0) * fs
     ch: dict[str, np.ndarray] = {
-        "disp_x": raw.y[:, 0],
-        "disp_y": raw.y[:, 1],
-        "vel_x": raw.y[:, 2],
-        "vel_y": raw.y[:, 3],
+        "disp_x": ys[:, 0].copy(),
+        "disp_y": ys[:, 1].copy(),
+        "vel_x": ys[:, 2].copy(),
+        "vel_y": ys[:, 3].copy(),
+        "acc_x": acc_mean[:, 0].copy(),
+        "acc_y": acc_mean[:, 1].copy(),
     }
     units = {"disp_x": "m", "disp_y": "m", "vel_x": "m/s", "vel_y": "m/s"}
     for k, name in enumerate(AUX_NAMES):
-        ch[name] = raw.aux[:, k].copy()
+        key = name.replace("acc_", "acc_inst_")
+        ch[key] = aux[:, k].copy()
     units.update(
         {
             "acc_x": "m/s^2",
             "acc_y": "m/s^2",
+            "acc_inst_x": "m/s^2",
+            "acc_inst_y": "m/s^2",
             "k_xx": "N/m",
             "k_xy": "N/m",
             "k_yy": "N/m",
@@ -142,8 +152,8 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
         }
     )
     if scenario.per_ball:
-        ch["ball_load"] = raw.aux[:, 7 : 7 + Z].copy()
-        ch["ball_deformation"] = raw.aux[:, 7 + Z : 7 + 2 * Z].copy()
+        ch["ball_load"] = aux[:, 7 : 7 + Z].copy()
+        ch["ball_deformation"] = aux[:, 7 + Z : 7 + 2 * Z].copy()
         units["ball_load"] = "N"
         units["ball_deformation"] = "m"
     if scenario.noise_rms_m_s2 > 0:
@@ -162,6 +172,14 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
             "race_radius_m": g.race_radius,
         }
     meta = {
+        "channels": {
+            "acc_x, acc_y": "mean acceleration over [t, t + 1/fs] (boxcar anti-aliasing) plus "
+            "the optional measurement noise",
+            "acc_inst_x, acc_inst_y": "instantaneous model acceleration at t",
+            "k_xx, k_xy, k_yy, k_load": f"{kernel.stiffness} stiffness at t (k_load along the "
+            "load direction)",
+            "ball_load, ball_deformation": "per-ball contact force and (Q/K)^(2/3) at t",
+        },
         "model": scenario.model.value,
         "model_stiffness": kernel.stiffness,
         "bearing_id": inputs.bearing.id,
@@ -194,7 +212,7 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
-    return SimulationResult(raw.t.copy(), ch, units, scenario.to_dict(), meta)
+    return SimulationResult(raw.t[:n].copy(), ch, units, scenario.to_dict(), meta)
 
 
 #: model → runner
