@@ -106,6 +106,16 @@ def hertz(dj, n):
 
 
 @njit(cache=True, inline="always")
+def hertz_and_slope(d, K, n):
+    """``K d^n`` [N] and ``n K d^(n-1)`` [N/m] for ``d > 0`` (no division for n = 1.5)."""
+    if n == 1.5:
+        sd = math.sqrt(d)
+        return K * d * sd, 1.5 * K * sd
+    q = K * d**n
+    return q, n * q / d
+
+
+@njit(cache=True, inline="always")
 def wrap(x):
     """``x`` modulo 2 pi in [0, 2 pi) [rad]."""
     r = x - TWO_PI * math.floor(x / TWO_PI)
@@ -184,6 +194,10 @@ def cell_fraction(r, half, width):
     ``[0, width)`` modulo 2 pi; the indicator ``r < width`` when ``half == 0``."""
     if half <= 0.0:
         return 1.0 if r < width else 0.0
+    if width + half <= r <= TWO_PI - half:
+        return 0.0  # the cell does not reach the window (the common case)
+    if half <= r <= width - half:
+        return 1.0
     a0 = r - half
     a1 = r + half
     ov = (
@@ -218,17 +232,17 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
             d = ue - clr
             if d > 0.0:
                 w = (1.0 - fr) * zf
-                qo = K * hertz(d, n)
+                qo, ko = hertz_and_slope(d, K, n)
                 q += w * qo
-                dq += w * n * qo / d
+                dq += w * ko
                 pot += w * qo * d / (n + 1.0)
         if fr > 0.0:
             d = ue - clr - doff
             if d > 0.0:
-                w = fr * zf
-                qi = dfac * K * hertz(d, n)
+                w = fr * zf * dfac
+                qi, ki = hertz_and_slope(d, K, n)
                 q += w * qi
-                dq += w * n * qi / d
+                dq += w * ki
                 pot += w * qi * d / (n + 1.0)
     return q, dq, pot
 
@@ -246,10 +260,16 @@ def ball_setup(t, p, sn, cs, fr, zf, point):
     averages, or point values when ``point``); returns the number of balls (partly) over the
     defect."""
     Z = sn.size
-    s0, c0, rd, rw, hd, hw = frame_cached(t, p)
-    if point:
-        hd = 0.0
-        hw = 0.0
+    th, rd, rw = frame(t, p)  # each instant once here: no use for the cache
+    s0 = math.sin(th)
+    c0 = math.cos(th)
+    hd = 0.0
+    hw = 0.0
+    if not point:
+        ht = cell_halfwidth(t, p)
+        if ht > 0.0:
+            hd = abs(p[P_WCAGE] - (p[P_WSHAFT] if int(p[P_FAULT]) == 2 else 0.0)) * ht
+            hw = p[P_WCAGE] * ht
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
