@@ -255,154 +255,6 @@ def advance(r, step):
 
 
 @njit(cache=True, inline="always")
-def ball_setup(t, p, sn, cs, fr, zf, point):
-    """Fill the ball direction cosines, defect fractions and zone factors at time ``t`` (cell
-    averages, or point values when ``point``); returns the number of balls (partly) over the
-    defect."""
-    Z = sn.size
-    th, rd, rw = frame(t, p)  # each instant once here: no use for the cache
-    s0 = math.sin(th)
-    c0 = math.cos(th)
-    hd = 0.0
-    hw = 0.0
-    if not point:
-        ht = cell_halfwidth(t, p)
-        if ht > 0.0:
-            hd = abs(p[P_WCAGE] - (p[P_WSHAFT] if int(p[P_FAULT]) == 2 else 0.0)) * ht
-            hw = p[P_WCAGE] * ht
-    step = TWO_PI / Z
-    fault = int(p[P_FAULT])
-    psil2 = 2.0 * p[P_PSIL]
-    ss = p[P_SSTEP]
-    cc = p[P_CSTEP]
-    dbeta = p[P_DBETA]
-    n_def = 0
-    for j in range(Z):
-        sn[j] = s0
-        cs[j] = c0
-        f, z = ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
-        fr[j] = f
-        zf[j] = z
-        if f > 0.0:
-            n_def += 1
-        rd = advance(rd, step)
-        rw = advance(rw, step)
-        s1 = s0 * cc + c0 * ss
-        c0 = c0 * cc - s0 * ss
-        s0 = s1
-    return n_def
-
-
-@njit(cache=True, inline="always")
-def _potential(ux, uy, sn, cs, fr, zf, cst, fx, fy):
-    clr, doff, dfac, K, n = cst
-    pot = -(fx * ux + fy * uy)
-    for j in range(sn.size):
-        _q, _dq, e = ball_load(ux * sn[j] + uy * cs[j], fr[j], zf[j], clr, doff, dfac, K, n)
-        pot += e
-    return pot
-
-
-@njit(cache=True, inline="always")
-def contact_force(ux, uy, sn, cs, fr, zf, cst):
-    """Bearing force on the ring ``sum Q_j e_j`` [N], the tangent matrix entries
-    ``T_xx, T_xy, T_yy`` and the secant matrix entries ``S_xx, S_xy, S_yy`` [N/m] at ``u``."""
-    clr, doff, dfac, K, n = cst
-    gx = 0.0
-    gy = 0.0
-    jxx = 0.0
-    jxy = 0.0
-    jyy = 0.0
-    sxx = 0.0
-    sxy = 0.0
-    syy = 0.0
-    for j in range(sn.size):
-        ue = ux * sn[j] + uy * cs[j]
-        q, kk, _e = ball_load(ue, fr[j], zf[j], clr, doff, dfac, K, n)
-        if q > 0.0:
-            gx += q * sn[j]
-            gy += q * cs[j]
-            sk = q / ue  # secant from the concentric position
-            xx = sn[j] * sn[j]
-            xy = sn[j] * cs[j]
-            yy = cs[j] * cs[j]
-            jxx += kk * xx  # tangent dQ/d delta
-            jxy += kk * xy
-            jyy += kk * yy
-            sxx += sk * xx
-            sxy += sk * xy
-            syy += sk * yy
-    return gx, gy, jxx, jxy, jyy, sxx, sxy, syy
-
-
-@njit(cache=True)
-def solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, tol, row):
-    """Newton solution of ``sum Q_j e_j = F`` from the start ``(ux, uy)``.
-
-    A full Newton step is taken when it lowers the force residual, otherwise the step is
-    halved until the convex potential decreases (Armijo). Writes the static solution, the
-    secant and tangent entries (layout ``C_*``) into ``row`` and returns ``(relative residual
-    |sum Q e - F| / |F|, iterations)``.
-    """
-    F = math.hypot(fx, fy)
-    scale = F if F > 0.0 else 1.0
-    gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
-    res = math.hypot(gx - fx, gy - fy) / scale
-    it = 0
-    while res > tol and it < 100:
-        it += 1
-        rx = gx - fx
-        ry = gy - fy
-        tr = jxx + jyy
-        if tr <= 0.0:
-            # no ball in contact: move along the force until contact
-            ux += 1e-7 * fx / scale
-            uy += 1e-7 * fy / scale
-            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
-            res = math.hypot(gx - fx, gy - fy) / scale
-            continue
-        reg = 1e-12 * tr
-        a11 = jxx + reg
-        a22 = jyy + reg
-        det = a11 * a22 - jxy * jxy
-        if det <= 1e-14 * tr * tr or not math.isfinite(det):
-            sx = -rx / tr  # one ball in contact: gradient step
-            sy = -ry / tr
-        else:
-            sx = -(a22 * rx - jxy * ry) / det
-            sy = -(-jxy * rx + a11 * ry) / det
-        hx, hy, kxx, kxy, kyy, lxx, lxy, lyy = contact_force(ux + sx, uy + sy, sn, cs, fr, zf, cst)
-        rn = math.hypot(hx - fx, hy - fy) / scale
-        if rn < res:
-            ux += sx
-            uy += sy
-            gx, gy, jxx, jxy, jyy, sxx, sxy, syy = hx, hy, kxx, kxy, kyy, lxx, lxy, lyy
-            res = rn
-            continue
-        p0 = _potential(ux, uy, sn, cs, fr, zf, cst, fx, fy)
-        slope = rx * sx + ry * sy
-        t = 1.0
-        for _ls in range(60):
-            t *= 0.5
-            p1 = _potential(ux + t * sx, uy + t * sy, sn, cs, fr, zf, cst, fx, fy)
-            if p1 <= p0 + 1e-4 * t * slope:
-                break
-        ux += t * sx
-        uy += t * sy
-        gx, gy, jxx, jxy, jyy, sxx, sxy, syy = contact_force(ux, uy, sn, cs, fr, zf, cst)
-        res = math.hypot(gx - fx, gy - fy) / scale
-    row[C_UX] = ux
-    row[C_UY] = uy
-    row[C_SXX] = sxx
-    row[C_SXY] = sxy
-    row[C_SYY] = syy
-    row[C_TXX] = jxx
-    row[C_TXY] = jxy
-    row[C_TYY] = jyy
-    return res, it
-
-
-@njit(cache=True, inline="always")
 def constants(p):
     """``(P_d/2, h, gamma, K, n)`` of the ball load law from ``p``."""
     return p[P_CLR], p[P_DOFF], p[P_DFAC], p[P_K], p[P_N]
@@ -424,28 +276,86 @@ def initial_guess(sn, cs, clr, K, n, fx, fy):
 
 
 @njit(cache=True)
-def quasi_static_path(times, p, table, residual, ux, uy):
-    """Static solution and stiffness matrices at every time of ``times``.
+def static_kernel(times, point, p, table, residual, ux, uy):
+    """Static solution of eq. (16) and the secant/tangent matrices at every time of ``times``.
 
-    Fills ``table`` (shape ``(len(times), NCOL)``) and ``residual`` (relative force residual);
-    ``(ux, uy)`` is the warm start (NaN = cold start). Newton starts from the linear
-    extrapolation of the two previous solutions. Returns the last ``(ux, uy)``.
+    Fills ``table`` (shape ``(len(times), NCOL)``) and ``residual`` (relative force residual
+    ``|sum Q e - F| / |F|``); ``(ux, uy)`` is the warm start (NaN = cold start) and Newton
+    starts from the linear extrapolation of the two previous solutions. The defect and zone
+    indicators are cell averages (``p[P_CELL]``) unless ``point``. Damped Newton: a step is
+    halved until the force residual decreases (the Newton direction of a convex potential's
+    gradient is a descent direction of the residual norm); a start that does not converge is
+    retried from the intact bearing's load-line solution. Returns the last ``(ux, uy)``.
+
+    Written as one loop over scalars (no array-argument helper calls in the hot path: each such
+    call costs reference-count updates that dominate a 9-ball sum).
     """
     Z = int(p[P_Z])
     sn = np.empty(Z)
     cs = np.empty(Z)
     fr = np.empty(Z)
     zf = np.empty(Z)
-    cst = constants(p)
+    wc = p[P_WCAGE]
+    ws = p[P_WSHAFT]
+    a0 = p[P_ALPHA0]
+    fault = p[P_FAULT]
+    beta0 = p[P_BETA0]
+    dbeta = p[P_DBETA]
+    psil = p[P_PSIL]
+    psil2 = 2.0 * psil
+    th0 = p[P_TH0]
+    ss = p[P_SSTEP]
+    cc = p[P_CSTEP]
+    step = TWO_PI / Z
+    clr = p[P_CLR]
+    doff = p[P_DOFF]
+    dfac = p[P_DFAC]
+    K = p[P_K]
+    n = p[P_N]
     fx = p[P_FX]
     fy = p[P_FY]
+    scale = math.hypot(fx, fy)
+    if scale <= 0.0:
+        scale = 1.0
     tol = p[P_TOL]
+    cell = p[P_CELL] > 0.0 and not point
+    hh = p[P_HTAB]
+    t0 = p[P_T0]
+    w_rel = abs(wc - (ws if fault == 2.0 else 0.0))
     px = math.nan
     py = math.nan
     for i in range(times.size):
-        ball_setup(times[i], p, sn, cs, fr, zf, False)
+        t = times[i]
+        # ---- ball positions and defect/zone indicators (eqs. 12-15)
+        th = wc * t + a0
+        rd = 0.0
+        if fault == 2.0:
+            rd = wrap(th - ws * t - beta0)
+        elif fault == 1.0:
+            rd = wrap(th - beta0)
+        rw = wrap(th - th0 + psil) if psil > 0.0 else 0.0
+        hd = 0.0
+        hw = 0.0
+        if cell:
+            k = int(math.floor((t - t0) / hh + 0.5))
+            ht = hh / 3.0 if k % 2 == 0 else 2.0 * hh / 3.0
+            hd = w_rel * ht
+            hw = wc * ht
+        s0 = math.sin(th)
+        c0 = math.cos(th)
+        for j in range(Z):
+            sn[j] = s0
+            cs[j] = c0
+            fr[j] = cell_fraction(rd, hd, dbeta) if fault != 0.0 else 0.0
+            zf[j] = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
+            rd = advance(rd, step)
+            rw = advance(rw, step)
+            s1 = s0 * cc + c0 * ss
+            c0 = c0 * cc - s0 * ss
+            s0 = s1
+        # ---- start
         if not (math.isfinite(ux) and math.isfinite(uy)):
-            gx, gy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
+            gx, gy = initial_guess(sn, cs, clr, K, n, fx, fy)
         elif math.isfinite(px):
             gx = 2.0 * ux - px
             gy = 2.0 * uy - py
@@ -454,16 +364,95 @@ def quasi_static_path(times, p, table, residual, ux, uy):
             gy = uy
         px = ux
         py = uy
+        bx = gx
+        by = gy
+        rbest = math.inf
+        sxx = sxy = syy = txx = txy = tyy = 0.0
+        for attempt in range(2):
+            if attempt == 1:
+                if rbest <= tol:
+                    break
+                gx, gy = initial_guess(sn, cs, clr, K, n, fx, fy)
+            vx = gx
+            vy = gy
+            rbest = math.inf
+            lam = 1.0
+            dx = 0.0
+            dy = 0.0
+            it = 0
+            while True:
+                # contact sums at (vx, vy)
+                qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
+                for j in range(Z):
+                    ue = vx * sn[j] + vy * cs[j]
+                    q, kk, _e = ball_load(ue, fr[j], zf[j], clr, doff, dfac, K, n)
+                    if q > 0.0:
+                        a = sn[j]
+                        b = cs[j]
+                        qx += q * a
+                        qy += q * b
+                        kxx += kk * a * a
+                        kxy += kk * a * b
+                        kyy += kk * b * b
+                        sk = q / ue  # secant from the concentric position
+                        lxx += sk * a * a
+                        lxy += sk * a * b
+                        lyy += sk * b * b
+                rx = qx - fx
+                ry = qy - fy
+                r = math.hypot(rx, ry) / scale
+                tr = kxx + kyy
+                if it > 0 and r >= rbest and tr > 0.0 and lam > 1e-12:
+                    lam *= 0.5  # damped Newton: halve the step until the residual decreases
+                    vx = bx + lam * dx
+                    vy = by + lam * dy
+                    continue
+                bx = vx
+                by = vy
+                rbest = r
+                sxx, sxy, syy, txx, txy, tyy = lxx, lxy, lyy, kxx, kxy, kyy
+                if r <= tol or it >= 100:
+                    break
+                it += 1
+                lam = 1.0
+                if tr <= 0.0:
+                    # no ball in contact: move along the force until contact
+                    dx = 1e-7 * fx / scale
+                    dy = 1e-7 * fy / scale
+                    rbest = math.inf
+                else:
+                    reg = 1e-12 * tr
+                    a11 = kxx + reg
+                    a22 = kyy + reg
+                    det = a11 * a22 - kxy * kxy
+                    if det <= 1e-14 * tr * tr or not math.isfinite(det):
+                        dx = -rx / tr  # one ball in contact: gradient step
+                        dy = -ry / tr
+                    else:
+                        dx = -(a22 * rx - kxy * ry) / det
+                        dy = -(-kxy * rx + a11 * ry) / det
+                vx = bx + dx
+                vy = by + dy
         row = table[i]
-        res, _it = solve_static(gx, gy, sn, cs, fr, zf, cst, fx, fy, tol, row)
-        if res > tol:
-            # a start in a flat region (after a ball dropped out): restart cold
-            gx, gy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
-            res, _it = solve_static(gx, gy, sn, cs, fr, zf, cst, fx, fy, tol, row)
-        ux = row[C_UX]
-        uy = row[C_UY]
-        residual[i] = res
+        row[C_UX] = bx
+        row[C_UY] = by
+        row[C_SXX] = sxx
+        row[C_SXY] = sxy
+        row[C_SYY] = syy
+        row[C_TXX] = txx
+        row[C_TXY] = txy
+        row[C_TYY] = tyy
+        residual[i] = rbest
+        ux = bx
+        uy = by
     return ux, uy
+
+
+@njit(cache=True)
+def quasi_static_path(times, p, table, residual, ux, uy):
+    """Static solution and stiffness matrices at every time of ``times`` (indicators as
+    ``p[P_CELL]`` says); see :func:`static_kernel`. Returns the last ``(ux, uy)``."""
+    return static_kernel(times, False, p, table, residual, ux, uy)
 
 
 @njit(cache=True)
@@ -486,26 +475,15 @@ def static_on_the_fly(t, p, row, point):
     Used by the exact right-hand sides that the adaptive integrator calls at arbitrary times
     and for the outputs at samples next to a defect edge.
     """
-    Z = int(p[P_Z])
-    sn = np.empty(Z)
-    cs = np.empty(Z)
-    fr = np.empty(Z)
-    zf = np.empty(Z)
-    cst = constants(p)
-    fx = p[P_FX]
-    fy = p[P_FY]
-    ball_setup(t, p, sn, cs, fr, zf, point)
-    ux = p[P_WARMX]
-    uy = p[P_WARMY]
-    if not (math.isfinite(ux) and math.isfinite(uy)):
-        ux, uy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
-    res, _it = solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, p[P_TOL], row)
-    if res > p[P_TOL]:
-        ux, uy = initial_guess(sn, cs, cst[0], cst[3], cst[4], fx, fy)
-        res, _it = solve_static(ux, uy, sn, cs, fr, zf, cst, fx, fy, p[P_TOL], row)
-    p[P_WARMX] = row[C_UX]
-    p[P_WARMY] = row[C_UY]
-    return res
+    times = np.empty(1)
+    times[0] = t
+    tab = np.empty((1, NCOL))
+    res = np.empty(1)
+    ux, uy = static_kernel(times, point, p, tab, res, p[P_WARMX], p[P_WARMY])
+    p[P_WARMX] = ux
+    p[P_WARMY] = uy
+    row[:] = tab[0]
+    return res[0]
 
 
 @njit(cache=True)

@@ -14,6 +14,8 @@ defect geometry and kinematics as the VSM (:mod:`.balance`).
 
 from __future__ import annotations
 
+import math
+
 from numba import cfunc, njit
 
 from . import balance as bl
@@ -21,23 +23,12 @@ from .common import ModelKernel
 from .integrate import RHS_SIG
 
 
-@njit(cache=True)
-def dem_force(t, ux, uy, p, point):
-    """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
-    displacement ``u`` and time ``t`` (cell-averaged defect indicator, or point values when
-    ``point``; no allocation: the hot loop of the DEM)."""
-    Z = int(p[bl.P_Z])
-    s0, c0, rd, rw, hd, hw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
-    if point:
-        hd = 0.0
-        hw = 0.0
+@njit(cache=True, inline="always")
+def ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, Z, fault, psil2, dbeta, ss, cc, clr, doff, dfac, K, n):
+    """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
+    ball 1's direction ``(s0, c0)`` and angles past the defect/zone edges (scalars only: this is
+    the DEM's hot loop)."""
     step = bl.TWO_PI / Z
-    fault = int(p[bl.P_FAULT])
-    psil2 = 2.0 * p[bl.P_PSIL]
-    ss = p[bl.P_SSTEP]
-    cc = p[bl.P_CSTEP]
-    dbeta = p[bl.P_DBETA]
-    clr, doff, dfac, K, n = bl.constants(p)
     gx = 0.0
     gy = 0.0
     jxx = 0.0
@@ -62,25 +53,107 @@ def dem_force(t, ux, uy, p, point):
 
 
 @njit(cache=True)
-def _deriv(t, y, p, out):
-    gx, gy, _jxx, _jxy, _jyy = dem_force(t, y[0], y[1], p, False)
-    m = p[bl.P_MASS]
-    c = p[bl.P_DAMP]
-    out[0] = y[2]
-    out[1] = y[3]
-    out[2] = (p[bl.P_FX] - gx - c * y[2]) / m  # DEM equation of motion
-    out[3] = (p[bl.P_FY] - gy - c * y[3]) / m
+def dem_force(t, ux, uy, p, point):
+    """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
+    displacement ``u`` and time ``t`` (cell-averaged defect indicator, or point values when
+    ``point``)."""
+    s0, c0, rd, rw, hd, hw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
+    if point:
+        hd = 0.0
+        hw = 0.0
+    return ball_sum(
+        ux,
+        uy,
+        s0,
+        c0,
+        rd,
+        rw,
+        hd,
+        hw,
+        int(p[bl.P_Z]),
+        int(p[bl.P_FAULT]),
+        2.0 * p[bl.P_PSIL],
+        p[bl.P_DBETA],
+        p[bl.P_SSTEP],
+        p[bl.P_CSTEP],
+        p[bl.P_CLR],
+        p[bl.P_DOFF],
+        p[bl.P_DFAC],
+        p[bl.P_K],
+        p[bl.P_N],
+    )
 
 
 @cfunc(RHS_SIG, cache=True)
 def dem_rhs(t, y, p, dydt):
-    """DEM right-hand side (nonlinear Hertz forces at the dynamic displacement)."""
-    _deriv(t, y, p, dydt)
+    """DEM right-hand side: nonlinear Hertz forces at the dynamic displacement (written out
+    with scalar helpers only, so that nothing but arithmetic runs per call)."""
+    if t == p[bl.P_CT]:  # the ball frame at this instant was computed for the previous stage
+        s0 = p[bl.P_CS0]
+        c0 = p[bl.P_CC0]
+        rd = p[bl.P_CRD]
+        rw = p[bl.P_CRW]
+        hd = p[bl.P_CHD]
+        hw = p[bl.P_CHW]
+    else:
+        wc = p[bl.P_WCAGE]
+        fault = p[bl.P_FAULT]
+        th = wc * t + p[bl.P_ALPHA0]  # seed VSM eq. (12)
+        rd = 0.0
+        if fault == 2.0:
+            rd = bl.wrap(th - p[bl.P_WSHAFT] * t - p[bl.P_BETA0])  # eqs. (13), (15)
+        elif fault == 1.0:
+            rd = bl.wrap(th - p[bl.P_BETA0])
+        rw = bl.wrap(th - p[bl.P_TH0] + p[bl.P_PSIL]) if p[bl.P_PSIL] > 0.0 else 0.0
+        hd = 0.0
+        hw = 0.0
+        if p[bl.P_CELL] > 0.0:
+            hh = p[bl.P_HTAB]
+            k = int(math.floor((t - p[bl.P_T0]) / hh + 0.5))
+            ht = hh / 3.0 if k % 2 == 0 else 2.0 * hh / 3.0
+            hd = abs(wc - (p[bl.P_WSHAFT] if fault == 2.0 else 0.0)) * ht
+            hw = wc * ht
+        s0 = math.sin(th)
+        c0 = math.cos(th)
+        p[bl.P_CT] = t
+        p[bl.P_CS0] = s0
+        p[bl.P_CC0] = c0
+        p[bl.P_CRD] = rd
+        p[bl.P_CRW] = rw
+        p[bl.P_CHD] = hd
+        p[bl.P_CHW] = hw
+    gx, gy, _a, _b, _c = ball_sum(
+        y[0],
+        y[1],
+        s0,
+        c0,
+        rd,
+        rw,
+        hd,
+        hw,
+        int(p[bl.P_Z]),
+        int(p[bl.P_FAULT]),
+        2.0 * p[bl.P_PSIL],
+        p[bl.P_DBETA],
+        p[bl.P_SSTEP],
+        p[bl.P_CSTEP],
+        p[bl.P_CLR],
+        p[bl.P_DOFF],
+        p[bl.P_DFAC],
+        p[bl.P_K],
+        p[bl.P_N],
+    )
+    m = p[bl.P_MASS]
+    c = p[bl.P_DAMP]
+    dydt[0] = y[2]
+    dydt[1] = y[3]
+    dydt[2] = (p[bl.P_FX] - gx - c * y[2]) / m  # DEM equation of motion
+    dydt[3] = (p[bl.P_FY] - gy - c * y[3]) / m
 
 
 @cfunc(RHS_SIG, cache=True)
 def dem_aux(t, y, p, out):
-    """DEM auxiliary outputs; the stiffness is the tangent at the dynamic state."""
+    """DEM auxiliary outputs (point values at t); the stiffness is the tangent at the state."""
     gx, gy, jxx, jxy, jyy = dem_force(t, y[0], y[1], p, True)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]

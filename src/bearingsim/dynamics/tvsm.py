@@ -43,12 +43,22 @@ def _acc(y, p, row, r):
 
 @cfunc(RHS_SIG, cache=True)
 def tvsm_rhs(t, y, p, dydt):
-    """TVSM right-hand side reading the tabulated tangent stiffness and static path."""
-    ax, ay = _acc(y, p, p, bl.table_row(t, p))
+    """TVSM right-hand side reading the tabulated tangent stiffness and static path
+    (written out: no calls)."""
+    j = int((t - p[bl.P_T0]) / p[bl.P_HTAB] + 0.5)  # table row of this stage time
+    nt = int(p[bl.P_NTAB])
+    j = 0 if j < 0 else (nt - 1 if j >= nt else j)
+    r = bl.HEADER + bl.NCOL * j
+    m = p[bl.P_MASS]
+    c = p[bl.P_DAMP]
+    ex = p[r + bl.C_UX] - y[0]
+    ey = p[r + bl.C_UY] - y[1]
+    fx = p[r + bl.C_TXX] * ex + p[r + bl.C_TXY] * ey
+    fy = p[r + bl.C_TXY] * ex + p[r + bl.C_TYY] * ey
     dydt[0] = y[2]
     dydt[1] = y[3]
-    dydt[2] = ax
-    dydt[3] = ay
+    dydt[2] = (fx - c * y[2]) / m
+    dydt[3] = (fy - c * y[3]) / m
 
 
 @cfunc(RHS_SIG, cache=True)

@@ -57,12 +57,19 @@ def _acc(y, p, row, r):
 
 @cfunc(RHS_SIG, cache=True)
 def vsm_rhs(t, y, p, dydt):
-    """VSM right-hand side reading the tabulated secant stiffness."""
-    ax, ay = _acc(y, p, p, bl.table_row(t, p))
+    """VSM right-hand side reading the tabulated secant stiffness (written out: no calls)."""
+    j = int((t - p[bl.P_T0]) / p[bl.P_HTAB] + 0.5)  # table row of this stage time
+    nt = int(p[bl.P_NTAB])
+    j = 0 if j < 0 else (nt - 1 if j >= nt else j)
+    r = bl.HEADER + bl.NCOL * j
+    m = p[bl.P_MASS]
+    c = p[bl.P_DAMP]
+    fx = p[bl.P_FX] - p[r + bl.C_SXX] * y[0] - p[r + bl.C_SXY] * y[1]
+    fy = p[bl.P_FY] - p[r + bl.C_SXY] * y[0] - p[r + bl.C_SYY] * y[1]
     dydt[0] = y[2]
     dydt[1] = y[3]
-    dydt[2] = ax
-    dydt[3] = ay
+    dydt[2] = (fx - c * y[2]) / m  # seed VSM eq. (19), x
+    dydt[3] = (fy - c * y[3]) / m  # seed VSM eq. (19), y
 
 
 @cfunc(RHS_SIG, cache=True)
