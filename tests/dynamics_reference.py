@@ -124,22 +124,33 @@ class Reference:
                         out.append(t)
         return sorted(out)
 
-    def run(self, y0, fs: float, n: int, rtol: float = 1e-10):
-        """Integrate to the output times k/fs, k < n; returns (t, y (n, 4), acc (n, 2))."""
+    def run(
+        self,
+        y0,
+        fs: float,
+        n: int,
+        rtol: float = 1e-10,
+        method: str = "DOP853",
+        atol_scale: float = 1.0,
+    ):
+        """Integrate to the output times k/fs, k < n; returns (t, y (n, 4), acc (n, 2)).
+
+        ``rtol``, ``method`` and ``atol_scale`` (multiplying atol = 1e-16 m, 1e-12 m/s) are
+        passed to ``solve_ivp``."""
         t_eval = np.arange(n) / fs
         t_end = t_eval[-1]
         edges = [0.0, *self.jump_times(t_end), t_end]
         ys = np.empty((n, 4))
         acc = np.empty((n, 2))
         y = np.asarray(y0, float)
-        atol = np.array([1e-16, 1e-16, 1e-12, 1e-12])
+        atol = atol_scale * np.array([1e-16, 1e-16, 1e-12, 1e-12])
         for a, b in zip(edges[:-1], edges[1:], strict=True):
             if b <= a:
                 continue
             self.frozen = self.membership(0.5 * (a + b))
             sel = np.flatnonzero((t_eval >= a) & (t_eval <= b))
             te = np.append(t_eval[sel], b) if sel.size == 0 or t_eval[sel[-1]] < b else t_eval[sel]
-            sol = solve_ivp(self.rhs, (a, b), y, method="DOP853", t_eval=te, rtol=rtol, atol=atol)
+            sol = solve_ivp(self.rhs, (a, b), y, method=method, t_eval=te, rtol=rtol, atol=atol)
             ys[sel] = sol.y[:, : sel.size].T
             for i in sel:
                 acc[i] = self.acc(t_eval[i], ys[i])
