@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 import time
+import types
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -259,3 +261,14 @@ def simulate(
     except KeyError:
         raise ConfigError(f"model = {scenario.model.value!r} has no registered runner") from None
     return runner(scenario, progress)
+
+
+class _CallableModule(types.ModuleType):
+    """Makes ``bearingsim.simulate(scenario)`` call :func:`simulate` while
+    ``bearingsim.simulate`` stays this module (``from bearingsim.simulate import ...`` works)."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> SimulationResult:
+        return simulate(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule
