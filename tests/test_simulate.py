@@ -302,3 +302,13 @@ def test_second_process_does_not_recompile(tmp_path):
     d = json.loads(p.stdout.strip().splitlines()[-1])
     assert d["miss"] == 0, d
     assert all(h >= 1 for h in d["cfunc_hits"]), d
+
+
+def test_example_scenario_runs(run_cli, tmp_path):
+    """examples/vsm_outer_cwru.toml (shortened) simulates and is diagnosed as outer."""
+    ex = Path(__file__).resolve().parents[1] / "examples" / "vsm_outer_cwru.toml"
+    out = tmp_path / "o.nc"
+    r = run_cli("simulate", ex, "--duration-s", "0.5", "-o", out, "--json")
+    assert r.code == 0, r.err
+    r2 = run_cli("analyze", out, "--json")
+    assert r2.code == 0 and r2.json()["diagnosis"] == "outer", r2.err

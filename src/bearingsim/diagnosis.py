@@ -6,27 +6,30 @@ One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or 
    among bands at least ``3 f_max + f_s`` wide (``f_max`` the largest of BPFO, BPFI, 2×BSF), so
    that the envelope keeps the first three harmonics and the shaft sidebands.
 2. **Envelope spectrum** of that band (:func:`.signal.envelope_spectrum`).
-3. **Lines.** For each family — outer (BPFO), inner (BPFI, with ±f_s sidebands), ball (2×BSF,
-   with ±FTF sidebands), plus cage (FTF) and shaft (f_s) for reference — the largest line within
-   ``max(1 % of the target, 2 bins)`` of each of the first three harmonics (1 %: allowance for
-   the speed uncertainty and the 1–2 % slip of rolling elements, Randall & Antoni 2011) and its
-   SNR against the median of the surrounding ``±10`` tolerances.
-   A line is *detected* at SNR >= 12 dB: for Gaussian noise the envelope-spectrum amplitudes are
-   Rayleigh distributed and the largest of ~30–200 bins in a tolerance window exceeds 12 dB
-   above the median with probability ~1e-3.
-   A line that lies closer to a target of another family is attributed to that family only
-   (e.g. 3×BPFO and 2×BPFI differ by 0.7 %).
-4. **Decision.** A family is *supported* when its fundamental and at least one of its 2nd/3rd
-   harmonics are detected. Its score is the mean over the three harmonics of
-   ``0.5 + 0.5 clip((SNR - 12 dB)/20 dB, 0, 1)`` for detected lines (0 otherwise), plus, for the
-   inner and ball families, ``0.1`` per detected sideband (at most 4), capped at 1.
-   * exactly one supported family, or one whose score is at least twice every other supported
-     family's → that fault; ``confidence = score × (1 − runner-up score / score)``;
-   * several comparable supported families → ``"uncertain"`` (confidence 0);
-   * none supported and no fault line detected at all → ``"none"`` with
-     ``confidence = clip((12 dB − strongest fault-line SNR)/10 dB, 0, 1)``... floored at 0.5
-     when no line exceeds 6 dB;
-   * none supported but isolated fault lines detected → ``"uncertain"`` (confidence 0).
+3. **Lines** (:func:`find_lines`). The fundamentals of BPFO (outer), BPFI (inner), 2×BSF (ball),
+   FTF (cage) and f_s (shaft) are searched within ``max(1 % of the target, 2 bins)`` (1 %:
+   allowance for the speed uncertainty and the 1–2 % slip of rolling elements, Randall & Antoni
+   2011); harmonics 2 and 3 at exact multiples of the *found* fundamental within
+   ``max(2, h)`` bins; sidebands ±f_s of BPFO and BPFI and ±FTF of 2×BSF (first two
+   harmonics). Each line's SNR is taken against the median amplitude within ±10 % of the target
+   (at least five tolerances), without the tolerance band. A line is *detected* at
+   SNR >= 12 dB: for Gaussian noise the envelope-spectrum amplitudes are Rayleigh distributed
+   and the largest of ~30–200 bins in a tolerance window exceeds 12 dB above the median with
+   probability ~1e-3. A line claimed by targets of two families counts only for the nearer
+   target (e.g. 3×BPFO and 2×BPFI differ by 0.7 %).
+4. **Decision** (:func:`diagnose`). A family (outer, inner, ball) is *supported* when its
+   fundamental and at least one of its 2nd/3rd harmonics are detected; its *evidence* is the
+   summed envelope amplitude of its detected harmonics, its *quality* the mean over the three
+   harmonics of ``0.5 + 0.5 clip((SNR - 12 dB)/20 dB, 0, 1)`` (0 when not detected) plus 0.1 per
+   detected sideband (BPFI ± f_s, 2×BSF ± FTF), capped at 1.
+
+   * the supported family with the largest evidence, if that evidence is at least twice every
+     other family's → that fault, ``confidence = quality × (1 − runner-up evidence / evidence)``;
+   * otherwise (another family's lines are comparable) → ``"uncertain"`` (confidence 0);
+   * no supported family and no detected fault line → ``"none"``, ``confidence =
+     clip((12 dB − strongest fault-line SNR) / 10 dB, 0, 1)``;
+   * no supported family but isolated fault lines → ``"uncertain"`` (confidence 0);
+   * a record too short to resolve the lines (resolution > f_s/4) → ``"uncertain"``.
 
 The rule never looks at the file name or the expected answer.
 """
