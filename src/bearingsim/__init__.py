@@ -10,6 +10,26 @@ from .errors import BearingsimError, ConfigError, SolverError
 from .geometry import BallBearing, RollerBearing, characteristic_frequencies
 from .materials import Material
 
+
+def __getattr__(name: str):
+    """Lazy attributes (PEP 562) of the fault-dynamics layer, so that ``import bearingsim``
+    does not load the compiled kernels: ``bearingsim.simulate(scenario)``, ``Scenario``,
+    ``SimulationResult``."""
+    if name == "simulate":
+        import importlib
+
+        return importlib.import_module(".simulate", __name__)  # a callable module
+    if name == "Scenario":
+        from .config import Scenario
+
+        return Scenario
+    if name == "SimulationResult":
+        from .results import SimulationResult
+
+        return SimulationResult
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 __all__ = [
     "BallBearing",
     "BearingsimError",

@@ -1,0 +1,410 @@
+"""Fault-dynamics commands: ``simulate``, ``vsm-trace``, ``analyze`` (SPEC §1, §0.5)."""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+import click
+
+from ..errors import ConfigError, check_range
+from .common import cli, emit_json, json_option
+
+_MODELS = ["vsm", "dem", "tvsm"]
+_FAULTS = ["none", "outer", "inner"]
+
+
+def _opt(f):
+    """Options shared by ``simulate`` and ``vsm-trace`` (each overrides the scenario key)."""
+    opts = [
+        click.option("--bearing", "bearing", default=None, help="Catalogue bearing id [6205]."),
+        click.option(
+            "--bearing-file",
+            default=None,
+            type=click.Path(dir_okay=False),
+            help="User bearing TOML file.",
+        ),
+        click.option(
+            "--fault", type=click.Choice(_FAULTS), default=None, help="Defect location [none]."
+        ),
+        click.option(
+            "--defect-width-m",
+            type=float,
+            default=None,
+            help="Defect width b along the raceway [m] (CWRU 0.007 in = 1.778e-4).",
+        ),
+        click.option(
+            "--defect-depth-m",
+            type=float,
+            default=None,
+            help="Defect depth h_d [m] (CWRU 0.011 in = 2.794e-4).",
+        ),
+        click.option(
+            "--defect-angle-deg",
+            type=float,
+            default=None,
+            help="Defect left edge at t = 0, beta_0 [deg] (seed: 10).",
+        ),
+        click.option("--rpm", type=float, default=None, help="Shaft speed [r/min] (1750)."),
+        click.option("--fx", "fx_n", type=float, default=None, help="Radial force x [N] (10)."),
+        click.option("--fy", "fy_n", type=float, default=None, help="Radial force y [N] (50)."),
+        click.option(
+            "--stiffness",
+            "stiffness_n_m15",
+            type=float,
+            default=None,
+            help="Ball constant K [N/m^1.5] instead of the Hertz value.",
+        ),
+        click.option(
+            "--clearance-m",
+            type=float,
+            default=None,
+            help="Diametral clearance P_d [m] instead of the bearing's.",
+        ),
+        click.option(
+            "--retention-factor",
+            type=float,
+            default=None,
+            help="Prescribed gamma in [0, 1] for a ball over the defect (seed figs 6-7).",
+        ),
+        click.option(
+            "--load-zone-deg",
+            "load_zone_half_angle_deg",
+            type=float,
+            default=None,
+            help="Fixed load-zone half angle psi_L [deg] (seed eq. 14 literal).",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
+
+
+def _scenario(path: str | None, overrides: dict[str, Any]):
+    from ..config import Scenario
+
+    base = Scenario.from_toml(path).to_dict() if path else {}
+    given = {k: v for k, v in overrides.items() if v is not None}
+    if "bearing_file" in given:
+        base["bearing"] = None
+    if "bearing" in given:
+        base["bearing_file"] = None
+    base.update(given)
+    return Scenario.from_dict(base, origin=Path(path).name if path else "options")
+
+
+@cli.command("simulate")
+@click.argument(
+    "scenario_file", metavar="[SCENARIO.toml]", required=False, type=click.Path(dir_okay=False)
+)
+@click.option("--model", type=click.Choice(_MODELS), default=None, help="Model [vsm].")
+@_opt
+@click.option("--duration-s", type=float, default=None, help="Simulated time [s] (1).")
+@click.option("--fs", "fs_hz", type=float, default=None, help="Output sample rate [Hz] (48000).")
+@click.option("--seed", type=int, default=None, help="Seed of the measurement noise (0).")
+@click.option(
+    "--noise-rms",
+    "noise_rms_m_s2",
+    type=float,
+    default=None,
+    help="RMS of white measurement noise added to the accelerations [m/s^2] (0).",
+)
+@click.option("--mass-kg", type=float, default=None, help="Vibrating mass [kg] (seed table 1).")
+@click.option("--damping", "damping_n_s_m", type=float, default=None, help="c_eq [N s/m] (300).")
+@click.option("--dt-s", type=float, default=None, help="RK4 step [s] (automatic).")
+@click.option(
+    "--solver",
+    type=click.Choice(["rk4", "dopri5"]),
+    default=None,
+    help="Integrator [rk4]; dopri5 = adaptive check.",
+)
+@click.option("--per-ball", is_flag=True, default=None, help="Store per-ball loads/deformations.")
+@click.option(
+    "-o", "--output", required=True, type=click.Path(dir_okay=False), help="Output file (netCDF-4)."
+)
+@json_option
+def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: Any) -> None:
+    """Simulate a (faulty) bearing and write a self-describing netCDF file.
+
+    Options override the keys of SCENARIO.toml (see bearingsim.config for the keys).
+    """
+    from tqdm import tqdm
+
+    from ..simulate import model_inputs, simulate
+
+    sc = _scenario(scenario_file, kw)
+    model_inputs(sc)  # validate everything before any output (no progress bar before an error)
+    t0 = time.perf_counter()
+    bar = tqdm(
+        total=sc.n_samples,
+        desc=f"simulate {sc.model.value}",
+        unit="sample",
+        disable=as_json,
+        leave=False,
+        delay=1.0,
+        file=click.get_text_stream("stderr"),
+    )
+    last = [0]
+
+    def progress(n: int) -> None:
+        bar.update(n - last[0])
+        last[0] = n
+
+    try:
+        res = simulate(sc, progress=progress)
+    finally:
+        bar.close()
+    res.save(output)
+    wall = time.perf_counter() - t0
+    out = {
+        "output": str(output),
+        "fs_hz": res.fs_hz,
+        "n_samples": int(res.time.size),
+        "rms_acc_x": res.rms("acc_x"),
+        "rms_acc_y": res.rms("acc_y"),
+        "wall_s": wall,
+    }
+    if as_json:
+        emit_json(out)
+        return
+    click.echo(
+        f"wrote {output}: {sc.model.value} {res.meta['bearing_id']} fault {sc.fault}, "
+        f"{out['n_samples']} samples at {res.fs_hz:g} Hz, RMS acc x {out['rms_acc_x']:.4g} "
+        f"y {out['rms_acc_y']:.4g} m/s^2, {wall:.2f} s"
+    )
+
+
+@cli.command("vsm-trace")
+@_opt
+@click.option(
+    "--first-ball-deg",
+    type=float,
+    default=0.0,
+    show_default=True,
+    help="Ball 1 azimuth alpha_0 [deg].",
+)
+@click.option(
+    "--cage-revs", type=float, default=1.0, show_default=True, help="Cage revolutions to trace."
+)
+@click.option(
+    "--step-deg", type=float, default=0.05, show_default=True, help="Cage-angle step [deg]."
+)
+@click.option(
+    "-o",
+    "--output",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="CSV output (one row per cage angle).",
+)
+@click.option(
+    "--plot",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="PNG: total stiffness (seed figs 5-8).",
+)
+@click.option(
+    "--ball",
+    type=int,
+    default=None,
+    help="Also plot this ball's stiffness/force/deformation (seed figs 9, 11) "
+    "to PLOT with suffix _ballN.",
+)
+@json_option
+def vsm_trace_cmd(
+    output: str | None,
+    plot: str | None,
+    as_json: bool,
+    cage_revs: float,
+    step_deg: float,
+    first_ball_deg: float,
+    ball: int | None,
+    **kw: Any,
+) -> None:
+    """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
+    import numpy as np
+
+    from ..dynamics.vsm import stiffness_trace
+    from ..simulate import model_inputs
+
+    if output is None and plot is None and not as_json:
+        raise ConfigError("vsm-trace: give -o OUT.csv, --plot PNG and/or --json")
+    revs = check_range("cage_revs", cage_revs, 0.0, 100.0, lo_open=True)
+    step = check_range("step_deg", step_deg, 0.0, 10.0, lo_open=True, unit="deg")
+    sc = _scenario(None, {**kw, "first_ball_angle_deg": first_ball_deg, "duration_s": 1.0})
+    inputs = model_inputs(sc)
+    if ball is not None and not 1 <= ball <= inputs.bearing.n_elements:
+        raise ConfigError(
+            f"ball = {ball} is out of range; valid range [1, {inputs.bearing.n_elements}]"
+        )
+    n = int(round(360.0 * revs / step)) + 1
+    if n > 2_000_000:
+        raise ConfigError(f"cage_revs/step_deg = {n} points is too many; valid range [2, 2e6]")
+    tr = stiffness_trace(inputs, np.radians(np.linspace(0.0, 360.0 * revs, n)))
+    if output:
+        tr.to_csv(output)
+    if plot:
+        from ..report.figures import save_figure
+
+        save_figure(tr.plot_total(), plot)
+        if ball is not None:
+            p = Path(plot)
+            save_figure(tr.plot_ball(ball), p.with_name(f"{p.stem}_ball{ball}{p.suffix}"))
+    ev = [{"cage_angle_deg": a, "ball": b, "event": k} for a, b, k in tr.events()]
+    out = {
+        "output": output,
+        "plot": plot,
+        "n_points": n,
+        "label": tr.label,
+        "psi_l0_deg": math.degrees(tr.psi_l0),
+        "k_load_min_n_m": float(tr.k_load.min()),
+        "k_load_max_n_m": float(tr.k_load.max()),
+        "n_loaded_min": int(tr.n_loaded.min()),
+        "n_loaded_max": int(tr.n_loaded.max()),
+        "residual_max": float(tr.residual.max()),
+        "events": ev,
+    }
+    if as_json:
+        emit_json(out)
+        return
+    click.echo(
+        f"{tr.label}: k_load {out['k_load_min_n_m']:.4g}..{out['k_load_max_n_m']:.4g} N/m, "
+        f"{out['n_loaded_min']}-{out['n_loaded_max']} loaded balls, {len(ev)} events"
+        + (f", wrote {output}" if output else "")
+    )
+
+
+@cli.command("analyze", context_settings={"ignore_unknown_options": False})
+@click.argument("inputs", nargs=-1, required=True, metavar="FILE")
+@click.option(
+    "--bearing",
+    "bearing_id",
+    default=None,
+    help="Catalogue bearing id [6205-cwru for .mat; the file's for results].",
+)
+@click.option(
+    "--bearing-file", default=None, type=click.Path(dir_okay=False), help="User bearing TOML file."
+)
+@click.option("--rpm", type=float, default=None, help="Shaft speed [r/min] (else from the file).")
+@click.option(
+    "--fs",
+    "fs_hz",
+    type=float,
+    default=None,
+    help="Sample rate [Hz] (else from the file; CWRU: 12k/48k in the name, else 48k).",
+)
+@click.option(
+    "--channel",
+    default=None,
+    help="DE|FE (CWRU .mat, default DE), x|y (result, default y), or a CSV column.",
+)
+@click.option(
+    "--band",
+    default="auto",
+    show_default=True,
+    help="Envelope band: 'auto' (fast kurtogram) or LO HI [Hz].",
+)
+@click.option(
+    "--plot",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="PNG with the envelope spectrum and the matched lines.",
+)
+@json_option
+def analyze_cmd(
+    inputs: tuple[str, ...],
+    bearing_id: str | None,
+    bearing_file: str | None,
+    rpm: float | None,
+    fs_hz: float | None,
+    channel: str | None,
+    band: str,
+    plot: str | None,
+    as_json: bool,
+) -> None:
+    """Envelope analysis and diagnosis of a measured (CWRU .mat), simulated (.nc) or CSV signal.
+
+    Prints {"diagnosis": outer|inner|ball|none|uncertain, "confidence", "band_hz", "shaft_hz",
+    "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous.
+    """
+    from ..catalog import resolve_bearing
+    from ..diagnosis import analyze_record, load_signal
+
+    path, band_v = _parse_band(inputs, band)
+    if rpm is not None:
+        check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
+    if fs_hz is not None:
+        check_range("fs_hz", fs_hz, 0.0, lo_open=True, unit="Hz")
+    rec = load_signal(path, channel=channel, fs=fs_hz, rpm=rpm)
+    if bearing_id or bearing_file:
+        bearing = resolve_bearing(bearing_id, bearing_file)
+    elif rec.bearing is not None:
+        bearing = rec.bearing
+    else:
+        bearing = resolve_bearing("6205-cwru")
+    d = analyze_record(rec, bearing, band=band_v)
+    if plot:
+        from ..report.figures import save_figure
+
+        save_figure(
+            d.plot(title=f"{Path(path).name} [{rec.channel}]: {d.diagnosis} ({d.confidence:.2f})"),
+            plot,
+        )
+    out = d.as_dict()
+    out.update(
+        {
+            "file": str(path),
+            "channel": rec.channel,
+            "fs_hz": rec.fs,
+            "bearing": bearing.id,
+            "rpm": rec.rpm,
+            **rec.info,
+        }
+    )
+    if as_json:
+        emit_json(out)
+        return
+    click.echo(
+        f"{Path(path).name} [{rec.channel}]: {d.diagnosis} (confidence "
+        f"{d.confidence:.2f}), band {d.band_hz[0]:.0f}-{d.band_hz[1]:.0f}"
+    )
+    for p in d.peaks:
+        if p.detected:
+            click.echo(
+                f"  {p.label:<12} {p.freq_hz:9.2f} Hz  order {p.order:7.3f}  SNR {p.snr_db:5.1f} dB"
+            )
+
+
+def _parse_band(inputs: tuple[str, ...], band: str) -> tuple[str, tuple[float, float] | str]:
+    """``--band auto``, ``--band LO,HI`` or ``--band LO HI`` (HI then arrives as a positional
+    argument beside FILE)."""
+    items = list(inputs)
+    b = band.strip().lower()
+    if b == "auto":
+        if len(items) != 1:
+            raise ConfigError(f"analyze: expected one FILE, got {len(items)}: {' '.join(items)}")
+        return items[0], "auto"
+    parts = [v for v in b.replace(",", " ").split() if v]
+    if len(parts) == 1:
+        nums = [v for v in items if _is_float(v) and not Path(v).exists()]
+        if len(nums) != 1 or len(items) != 2:
+            raise ConfigError(
+                f"band = {band!r} is invalid; valid: --band auto or --band LO HI "
+                "(two numbers in Hz)"
+            )
+        parts.append(nums[0])
+        items.remove(nums[0])
+    if len(parts) != 2 or not all(_is_float(v) for v in parts):
+        raise ConfigError(f"band = {band!r} is invalid; valid: --band auto or --band LO HI [Hz]")
+    if len(items) != 1:
+        raise ConfigError(f"analyze: expected one FILE, got {len(items)}: {' '.join(items)}")
+    return items[0], (float(parts[0]), float(parts[1]))
+
+
+def _is_float(v: str) -> bool:
+    try:
+        float(v)
+        return True
+    except ValueError:
+        return False

@@ -1,0 +1,509 @@
+"""Report section for SPEC §1: the VSM with its DEM and TVSM baselines, envelope diagnosis and
+the measured CWRU records (seed VSM figs. 5–15, tables 2–3)."""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ...catalog import get_bearing
+from ...config import Scenario
+from ...diagnosis import analyze_record, diagnose, load_signal
+from ...dynamics.common import ModelInputs
+from ...dynamics.defects import Defect, FaultLocation
+from ...dynamics.vsm import stiffness_trace
+from ...geometry import characteristic_frequencies
+from ...load_distribution import radial_load_distribution
+from ...signal import envelope_spectrum, fast_kurtogram
+from ...simulate import simulate
+from .. import Context, Row, Section, compare
+from ..figures import save_figure
+
+TITLE = "VSM / DEM / TVSM fault dynamics and CWRU diagnosis (SPEC §1, seed VSM)"
+
+B6205 = get_bearing("6205")
+FX, FY = 10.0, 50.0  # seed VSM table 1
+#: seed VSM table 2, ball 5 (outer defect, b = 1 mm, gamma = 0.38)
+TABLE2 = [
+    (143.1, 5, "enters_zone"),
+    (159.5, 8, "leaves_zone"),
+    (170.0, 6, "enters_defect"),
+    (183.1, 4, "enters_zone"),
+    (199.5, 7, "leaves_zone"),
+    (210.0, 5, "enters_defect"),
+    (223.1, 3, "enters_zone"),
+    (239.5, 6, "leaves_zone"),
+    (250.0, 4, "enters_defect"),
+    (263.1, 2, "enters_zone"),
+    (279.5, 5, "leaves_zone"),
+]
+#: CWRU records (SOURCES.md) and their labels
+RECORDS = {
+    "109": "inner",
+    "107": "inner",
+    "135": "outer",
+    "132": "outer",
+    "97": "none",
+    "122": "ball",
+    "120": "ball",
+}
+#: RMS of the CWRU normal baseline 97 drive-end signal [m/s^2]: noise added to the simulations
+NOISE_97 = 0.713
+
+
+def _cwru_dir() -> Path:
+    shared = os.environ.get("BEARINGSIM_SHARED")
+    cands = [Path(shared)] if shared else []
+    here = Path(__file__).resolve()
+    cands += [p / "shared" for p in here.parents]
+    for c in cands:
+        d = c / "data" / "cwru"
+        if d.is_dir():
+            return d
+    return Path("shared/data/cwru")
+
+
+def _record(num: str) -> Path | None:
+    m = sorted(_cwru_dir().glob(f"*_{num}.mat"))
+    return m[0] if m else None
+
+
+def k_paper() -> float:
+    """Ball constant K reproducing the paper's psi_L = 68.2 deg at cage angle 0 [N/m^1.5]."""
+
+    def f(k):
+        ld = radial_load_distribution(B6205, FX, FY, 0.0, stiffness=k)
+        return math.degrees(float(ld.psi_l[0])) - 68.2
+
+    return brentq(f, 1e8, 9.4e9, xtol=1e-3)
+
+
+def _inputs(loc, gamma=0.38, **kw):
+    return ModelInputs(
+        B6205,
+        FX,
+        FY,
+        1750 / 60,
+        Defect(FaultLocation(loc), 1e-3, 1e-3, math.radians(10.0)),
+        retention_factor=gamma,
+        **kw,
+    )
+
+
+def _traces(ctx: Context, sec: Section) -> None:
+    import matplotlib.pyplot as plt
+
+    step = 0.05 if ctx.quick else 0.01
+    cage = np.radians(np.arange(0.0, 360.0 + 1e-9, step))
+    kp = k_paper()
+    # ---- table 2 with the paper's psi_L (eq. 14 fixed window) and ours
+    fixed = stiffness_trace(_inputs("outer", load_zone_half_angle=math.radians(68.2)), cage)
+    contact_kp = stiffness_trace(_inputs("outer", stiffness=kp), cage)
+    ours = stiffness_trace(_inputs("outer"), cage)
+
+    def ev(tr, lo=140.0, hi=285.0):
+        return {(b, k): a for a, b, k in tr.events() if lo <= a <= hi}
+
+    e_fixed, e_kp, e_ours = ev(fixed), ev(contact_kp), ev(ours, 140.0, 300.0)
+    for pub, ball, kind in TABLE2:
+        got = e_fixed.get((ball, kind), math.nan)
+        sec.rows.append(
+            compare(
+                f"table 2: ball {ball} {kind.replace('_', ' ')} [deg], "
+                "psi_L = 68.2 deg (eq. 14 window)",
+                "seed VSM table 2",
+                pub,
+                got,
+                0.5 / pub,
+            )
+        )
+    note_kp = (
+        "contact-defined zone with K tuned to psi_L = 68.2 deg at cage angle 0: the "
+        "discrete-ball zone is wider (about 69.6 deg) when a ball sits on its edge"
+    )
+    for pub, ball, kind in TABLE2[:2]:
+        sec.rows.append(
+            compare(
+                f"table 2: ball {ball} {kind.replace('_', ' ')} [deg], contact zone, K = {kp:.3g}",
+                "seed VSM table 2",
+                pub,
+                e_kp.get((ball, kind), math.nan),
+                0.5 / pub,
+                note_kp,
+            )
+        )
+    note_ours = (
+        "our Hertz K = 9.37e9 N/m^1.5 gives psi_L = 56.0 deg (foundation row), so the "
+        "zone is 24 deg narrower and ball 5 enters 10 deg later"
+    )
+    sec.rows.append(
+        compare(
+            "table 2: ball 5 enters the zone [deg], ours (Hertz K, contact)",
+            "seed VSM table 2",
+            143.1,
+            e_ours.get((5, "enters_zone"), math.nan),
+            0.5 / 143.1,
+            note_ours,
+        )
+    )
+    # ---- healthy ball count (fig. 5)
+    healthy_kp = stiffness_trace(_inputs("none", stiffness=kp), cage)
+    healthy = stiffness_trace(_inputs("none"), cage)
+    for tr, lab, note in (
+        (healthy_kp, "K for psi_L 68.2", ""),
+        (
+            healthy,
+            "ours, Hertz K",
+            "psi_L = 56.0 deg: the zone holds 2 or 3 balls (see foundation psi_L row)",
+        ),
+    ):
+        got = "/".join(str(v) for v in sorted(set(tr.n_loaded.tolist())))
+        sec.rows.append(
+            Row(
+                f"fig. 5: loaded balls alternate ({lab})",
+                "seed VSM §2.2",
+                "3/4",
+                got,
+                None,
+                "match" if got == "3/4" else "explained",
+                "" if got == "3/4" else note,
+            )
+        )
+    # ---- figures 5-8
+    fig, axs = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    deg = np.degrees(cage)
+    axs[0].plot(deg, healthy_kp.k_load / 1e6, label=f"K {kp:.3g} (psi_L 68.2)")
+    axs[0].plot(deg, healthy.k_load / 1e6, label="Hertz K (psi_L 56.0)")
+    axs[0].set_title("fig. 5: healthy, total effective (secant) stiffness along the load")
+    for g in (0.8, 0.38, 0.0):
+        tr = stiffness_trace(_inputs("outer", gamma=g, stiffness=kp), cage)
+        axs[1].plot(deg, tr.k_load / 1e6, label=f"gamma {g:g}")
+    axs[1].set_title("figs. 6-7: outer defect b = 1 mm at 10 deg, drops every 40 deg")
+    inner = stiffness_trace(_inputs("inner", stiffness=kp), cage)
+    axs[2].plot(deg, inner.k_load / 1e6, label="gamma 0.38")
+    axs[2].set_title("fig. 8: inner defect, drops of varying depth")
+    for a in axs:
+        a.set_ylabel("k_load [MN/m]")
+        a.legend(fontsize=7)
+    axs[-1].set_xlabel("cage angle [deg]")
+    save_figure(fig, ctx.out_dir / "vsm_stiffness_figs5-8.png")
+    sec.figures.append(
+        (
+            "vsm_stiffness_figs5-8.png",
+            "Total effective stiffness vs cage angle "
+            "(seed VSM figs. 5-8); secant definition (docs/models.md)",
+        )
+    )
+    fig = contact_kp.plot_balls([4, 5, 6])
+    fig.axes[0].set_xlim(140, 285)
+    save_figure(fig, ctx.out_dir / "vsm_balls_fig10.png")
+    sec.figures.append(
+        (
+            "vsm_balls_fig10.png",
+            "Contact force and deformation of balls 4, 5, 6 "
+            "(seed VSM figs. 9-10): the load shed by a ball in the defect is taken "
+            "up by its neighbours",
+        )
+    )
+
+
+def _envelope_peaks(x, fs, shaft, kin, band=None):
+    band = band or fast_kurtogram(x, fs, min_bandwidth_hz=3 * kin.bpfi_hz + shaft).band
+    return envelope_spectrum(x, fs, band), band
+
+
+def _near(es, f, tol=0.01):
+    sel = (es.freq >= f * (1 - tol)) & (es.freq <= f * (1 + tol))
+    i = np.flatnonzero(sel)
+    return float(es.freq[i[np.argmax(es.amplitude[i])]]) if i.size else math.nan
+
+
+def _dynamics(ctx: Context, sec: Section) -> None:
+    import matplotlib.pyplot as plt
+
+    dur = 0.5 if ctx.quick else 2.0
+    cases = {
+        "outer": ({"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}, "135"),
+        "inner": ({"fault": "inner", "rpm": 1748.0, "defect_width_m": 3.556e-4}, "107"),
+    }
+    amp: dict[str, dict[str, float]] = {}
+    for fault, (kw, rec_id) in cases.items():
+        sims = {
+            m: simulate(Scenario(model=m, duration_s=dur, **kw)) for m in ("vsm", "dem", "tvsm")
+        }
+        path = _record(rec_id)
+        rec = load_signal(path) if path else None
+        kin = characteristic_frequencies(
+            get_bearing("6205-cwru"), (rec.rpm if rec else kw["rpm"]) / 60
+        )
+        fig, axs = plt.subplots(4, 2, figsize=(11, 8))
+        rows = [("test", rec.x if rec else None, rec.fs if rec else 48000.0)]
+        rows += [(m.upper(), s["acc_y"], s.fs_hz) for m, s in sims.items()]
+        amp[fault] = {}
+        for i, (lab, x, fs) in enumerate(rows):
+            if x is None:
+                continue
+            if rec is not None and lab != "test" and rec.fs < fs:
+                # compare at the record's bandwidth: decimate the 48 kHz simulation (FIR,
+                # zero phase) to the record's sample rate
+                from scipy.signal import decimate
+
+                q = int(round(fs / rec.fs))
+                amp[fault][lab + "_at_record_fs"] = float(
+                    np.max(np.abs(decimate(x, q, ftype="fir", zero_phase=True)))
+                )
+            n = int(0.05 * fs)
+            t = np.arange(n) / fs
+            axs[i, 0].plot(t * 1e3, x[:n], lw=0.6)
+            axs[i, 0].set_ylabel(f"{lab} [m/s^2]")
+            es, band = _envelope_peaks(x, fs, kin.shaft_hz, kin)
+            sel = es.freq <= 500
+            axs[i, 1].plot(es.freq[sel], es.amplitude[sel], lw=0.7)
+            axs[i, 1].set_ylabel(f"{band[0] / 1e3:.1f}-{band[1] / 1e3:.1f} kHz")
+            amp[fault][lab] = float(np.max(np.abs(x - x.mean())))
+            amp[fault][lab + "_rms"] = float(np.std(x))
+        axs[-1, 0].set_xlabel("time [ms]")
+        axs[-1, 1].set_xlabel("envelope frequency [Hz]")
+        axs[0, 0].set_title(f"{fault} race: acceleration (first 50 ms)")
+        axs[0, 1].set_title("envelope spectrum (kurtogram band)")
+        name = "vsm_fig14_outer.png" if fault == "outer" else "vsm_fig15_inner.png"
+        save_figure(fig, ctx.out_dir / name)
+        sec.figures.append(
+            (
+                name,
+                f"Seed VSM fig. {14 if fault == 'outer' else 15} style: CWRU "
+                f"record {rec_id} (drive end) beside the VSM, DEM and TVSM "
+                f"({kw['rpm']:g} r/min, defect {kw['defect_width_m'] * 1e3:.4g} mm "
+                "x 0.2794 mm)",
+            )
+        )
+        # published envelope peaks (seed VSM §2.5) vs the measured record and the VSM
+        if rec is not None:
+            es, _b = _envelope_peaks(rec.x, rec.fs, kin.shaft_hz, kin)
+            pubs = (
+                [107.70, 215.30, 323.00]
+                if fault == "outer"
+                else [157.70, 315.50, 473.10, 29.11, 58.23, 128.50, 186.80]
+            )
+            for f0 in pubs:
+                note = (
+                    ""
+                    if fault == "outer"
+                    else "the paper's inner record (0.014 in, 48 kHz) is "
+                    "not in shared/data; CWRU 107 (0.007 in, 1748 r/min, 12 kHz) has the same "
+                    "speed"
+                )
+                sec.rows.append(
+                    compare(
+                        f"{fault}: envelope peak near {f0:g} Hz, CWRU {rec_id} [Hz]",
+                        "seed VSM §2.5 (test data)",
+                        f0,
+                        _near(es, f0),
+                        0.005,
+                        note,
+                    )
+                )
+        es_v, _b = _envelope_peaks(sims["vsm"]["acc_y"], sims["vsm"].fs_hz, kin.shaft_hz, kin)
+        f_pub = 107.70 if fault == "outer" else 157.70
+        f_th = kin.bpfo_hz if fault == "outer" else kin.bpfi_hz
+        sec.rows.append(
+            compare(
+                f"{fault}: VSM envelope peak near {f_pub:g} Hz [Hz]",
+                "seed VSM §2.5",
+                f_pub,
+                _near(es_v, f_th, 0.02),
+                0.01,
+                "simulation runs at the nominal speed (no slip): its line sits at "
+                f"the kinematic {f_th:.2f} Hz; {dur:g} s resolution "
+                f"{1 / dur:.2g} Hz",
+            )
+        )
+    # amplitude comparison (figs 14-15 claims)
+    o, i = amp["outer"], amp["inner"]
+    if "test" in o:
+        r = o["VSM"] / o["test"]
+        sec.rows.append(
+            Row(
+                "fig. 14: outer, VSM peak / test peak [-]",
+                "seed VSM §2.5: 'VSM close to test'",
+                "close (0.5-2)",
+                r,
+                None,
+                "match" if 0.5 <= r <= 2 else "mismatch",
+            )
+        )
+        for m in ("DEM", "TVSM"):
+            r = o[m] / o["test"]
+            sec.rows.append(
+                Row(
+                    f"fig. 14: outer, {m} peak / test peak [-]",
+                    "seed VSM §2.5: 'DEM and TVSM too small'",
+                    "< 1",
+                    r,
+                    None,
+                    "match" if r < 1 else "explained",
+                    ""
+                    if r < 1
+                    else "our DEM/TVSM use the same defect drop h_min "
+                    "as the VSM but the tangent (stiffer) Hertz stiffness: the ring "
+                    "rings at ~4 kHz instead of ~2 kHz with a larger force step "
+                    "(docs/validation.md)",
+                )
+            )
+    order = sorted(("VSM", "TVSM", "DEM"), key=lambda m: i[m])
+    got = " < ".join(order)
+    sec.rows.append(
+        Row(
+            "fig. 15: inner, peak order of the models",
+            "seed VSM §2.5",
+            "VSM < TVSM < DEM",
+            got,
+            None,
+            "match" if got == "VSM < TVSM < DEM" else "mismatch",
+        )
+    )
+    if "test" in i:
+        lo = min(i.get(m + "_at_record_fs", i[m]) for m in ("VSM", "TVSM", "DEM")) / i["test"]
+        sec.rows.append(
+            Row(
+                "fig. 15: inner (0.3556 mm, 1748 r/min, decimated to 12 kHz), "
+                "smallest model peak / CWRU 107 peak [-]",
+                "seed VSM §2.5: 'all too large'",
+                "> 1",
+                lo,
+                None,
+                "match" if lo > 1 else "mismatch",
+            )
+        )
+    # same size, speed and sample rate as a record we have: CWRU 109 (0.007 in, 1796, 48 kHz)
+    path = _record("109")
+    if path is not None:
+        rec = load_signal(path)
+        test_pk = float(np.max(np.abs(rec.x - rec.x.mean())))
+        pk = {}
+        for m in ("vsm", "tvsm", "dem"):
+            s = simulate(
+                Scenario(
+                    model=m, fault="inner", rpm=1796.0, defect_width_m=1.778e-4, duration_s=dur
+                )
+            )
+            pk[m.upper()] = float(np.max(np.abs(s["acc_y"])))
+        order = " < ".join(sorted(pk, key=pk.get))
+        sec.rows.append(
+            Row(
+                "inner at CWRU 109 conditions (0.1778 mm, 1796 r/min, 48 kHz): "
+                "order of the model peaks",
+                "seed VSM §2.5",
+                "VSM < TVSM < DEM",
+                order,
+                None,
+                "match" if order == "VSM < TVSM < DEM" else "mismatch",
+            )
+        )
+        sec.rows.append(
+            Row(
+                "inner at CWRU 109 conditions: smallest model peak / test peak [-]",
+                "seed VSM §2.5: 'all too large'",
+                "> 1",
+                min(pk.values()) / test_pk,
+                None,
+                "match" if min(pk.values()) > test_pk else "mismatch",
+            )
+        )
+        sec.text += (
+            f" CWRU 109 peak {test_pk:.3g} m/s^2; simulated at its conditions: "
+            + ", ".join(f"{k} {v:.3g}" for k, v in pk.items())
+            + "."
+        )
+    sec.text += (
+        " Peak |acceleration| [m/s^2] — outer: "
+        + ", ".join(f"{k} {v:.3g}" for k, v in o.items() if not k.endswith("_rms"))
+        + "; inner: "
+        + ", ".join(f"{k} {v:.3g}" for k, v in i.items() if not k.endswith("_rms"))
+        + "."
+    )
+
+
+def _diagnosis(ctx: Context, sec: Section) -> None:
+    b = get_bearing("6205-cwru")
+    for num, label in RECORDS.items():
+        path = _record(num)
+        if path is None:
+            sec.rows.append(
+                Row(
+                    f"CWRU {num}: diagnosis",
+                    "CWRU label",
+                    label,
+                    "missing file",
+                    None,
+                    "mismatch",
+                    "record not found in shared/data/cwru",
+                )
+            )
+            continue
+        d = analyze_record(load_signal(path), b)
+        ok = d.diagnosis == label
+        note = ""
+        if label == "ball":
+            note = (
+                "CWRU 0.007 in ball records show no ball signature (Smith & Randall 2015, "
+                "SOURCES.md); reported as found"
+            )
+        sec.rows.append(
+            Row(
+                f"CWRU {num} drive end: diagnosis (confidence {d.confidence:.2f})",
+                "CWRU label",
+                label,
+                d.diagnosis,
+                None,
+                "match" if ok else ("explained" if note else "mismatch"),
+                note,
+            )
+        )
+    for m in ("vsm", "dem", "tvsm"):
+        for fault, kw in (
+            ("outer", {"rpm": 1796.0, "defect_width_m": 1.778e-4}),
+            ("inner", {"rpm": 1748.0, "defect_width_m": 3.556e-4}),
+            ("none", {"rpm": 1796.0}),
+        ):
+            s = simulate(
+                Scenario(
+                    model=m, fault=fault, duration_s=0.5, noise_rms_m_s2=NOISE_97, seed=1, **kw
+                )
+            )
+            d = diagnose(s["acc_y"], s.fs_hz, B6205, s.shaft_hz)
+            sec.rows.append(
+                Row(
+                    f"{m.upper()} {fault} simulation + CWRU-97-level noise: diagnosis",
+                    "simulated fault",
+                    fault,
+                    d.diagnosis,
+                    None,
+                    "match" if d.diagnosis == fault else "mismatch",
+                )
+            )
+
+
+def run(ctx: Context) -> Section:
+    sec = Section("vsm", TITLE)
+    kin1796 = characteristic_frequencies(B6205, 1796 / 60)
+    kin1748 = characteristic_frequencies(B6205, 1748 / 60)
+    sec.rows.append(
+        compare("6205 BPFO at 1796 r/min [Hz]", "seed VSM eq. (21)", 107.30, kin1796.bpfo_hz, 1e-3)
+    )
+    sec.rows.append(
+        compare("6205 BPFI at 1748 r/min [Hz]", "seed VSM eq. (20)", 157.76, kin1748.bpfi_hz, 1e-3)
+    )
+    _traces(ctx, sec)
+    _dynamics(ctx, sec)
+    _diagnosis(ctx, sec)
+    sec.text = (
+        "Stiffness: secant (VSM), tangent (TVSM), nonlinear Hertz (DEM); simulations "
+        "start at the static equilibrium; acceleration = mean over each 1/fs interval. "
+        "Diagnosis rule: docs/validation.md." + sec.text
+    )
+    return sec

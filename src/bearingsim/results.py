@@ -1,0 +1,215 @@
+"""Simulation results: SI arrays plus every input as metadata; lossless netCDF (h5netcdf) files.
+
+A :class:`SimulationResult` holds the sample times and named channels (first axis = time; a
+second axis, e.g. ``ball``, is allowed and named in ``dims``), their units, the scenario that
+produced it and solver metadata. ``save``/``load`` round-trip it exactly through a
+self-describing netCDF-4 file written with xarray (engine ``h5netcdf``): float64 variables with
+``units`` attributes, the scenario and metadata as JSON attributes. Later models add channels
+(e.g. per-bearing-end accelerations) without changing the format.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ._version import __version__
+from .errors import ConfigError
+from .io import atomic_path, to_jsonable
+
+#: identifies our files
+FORMAT = "bearingsim.SimulationResult/1"
+
+
+@dataclass
+class SimulationResult:
+    """Time series of one simulation.
+
+    Attributes
+    ----------
+    time : ndarray (n,)
+        Sample times [s].
+    channels : dict[str, ndarray]
+        Named arrays with first axis time (e.g. ``acc_y`` [m/s^2], ``ball_load`` [N] with shape
+        (n, Z)).
+    units : dict[str, str]
+        Unit of each channel.
+    scenario : dict
+        Every input (:meth:`bearingsim.config.Scenario.to_dict`).
+    meta : dict
+        Model, solver, resolved defaults, bearing, kinematic frequencies, version, wall time.
+    dims : dict[str, tuple[str, ...]]
+        Dimension names of the channels that are not 1-D (default ``("time", "ball")``).
+    """
+
+    time: NDArray[np.float64]
+    channels: dict[str, NDArray[np.float64]]
+    units: dict[str, str]
+    scenario: dict[str, Any]
+    meta: dict[str, Any]
+    dims: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        try:
+            return self.channels[name]
+        except KeyError:
+            raise ConfigError(
+                f"channel = {name!r} is not in the result; valid: " + ", ".join(self.channels)
+            ) from None
+
+    @property
+    def fs_hz(self) -> float:
+        """Output sample rate [Hz]."""
+        return float(self.meta["fs_hz"])
+
+    @property
+    def shaft_hz(self) -> float:
+        """Shaft frequency [Hz]."""
+        return float(self.meta["shaft_hz"])
+
+    def acceleration(self, axis: str = "y") -> NDArray[np.float64]:
+        """Acceleration along ``axis`` (``"x"`` or ``"y"``) [m/s^2]."""
+        a = axis.lower()
+        if a not in ("x", "y"):
+            raise ConfigError(f"axis = {axis!r} is invalid; valid: x, y")
+        return self[f"acc_{a}"]
+
+    def rms(self, name: str) -> float:
+        """Root mean square of a channel (its unit)."""
+        x = self[name]
+        return float(np.sqrt(np.mean(x * x)))
+
+    # ------------------------------------------------------------------------ files
+    def _dims(self, name: str, arr: NDArray) -> tuple[str, ...]:
+        if name in self.dims:
+            return self.dims[name]
+        if arr.ndim == 1:
+            return ("time",)
+        if arr.ndim == 2:
+            return ("time", "ball")
+        raise ConfigError(f"channel {name!r} has {arr.ndim} dims; name them in dims")
+
+    def to_dataset(self):
+        """The result as an :class:`xarray.Dataset` (units in attributes, metadata as JSON)."""
+        import xarray as xr
+
+        data_vars = {}
+        for name, arr in self.channels.items():
+            a = np.asarray(arr)
+            data_vars[name] = (self._dims(name, a), a, {"units": self.units.get(name, "")})
+        coords: dict[str, Any] = {"time": ("time", np.asarray(self.time), {"units": "s"})}
+        for name, arr in self.channels.items():
+            d = self._dims(name, np.asarray(arr))
+            if len(d) == 2 and d[1] not in coords:
+                coords[d[1]] = (d[1], np.arange(1, np.asarray(arr).shape[1] + 1))
+        attrs = {
+            "format": FORMAT,
+            "bearingsim_version": __version__,
+            "scenario_json": json.dumps(to_jsonable(self.scenario)),
+            "meta_json": json.dumps(to_jsonable(self.meta)),
+            "dims_json": json.dumps({k: list(v) for k, v in self.dims.items()}),
+            "model": str(self.meta.get("model", "")),
+            "fs_hz": self.fs_hz,
+        }
+        return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+    @classmethod
+    def from_dataset(cls, ds) -> SimulationResult:
+        """Inverse of :meth:`to_dataset`."""
+        if ds.attrs.get("format") != FORMAT:
+            raise ConfigError(
+                f"file format = {ds.attrs.get('format')!r} is not a bearingsim result; "
+                f"valid: {FORMAT!r}"
+            )
+        dims = {k: tuple(v) for k, v in json.loads(ds.attrs.get("dims_json", "{}")).items()}
+        channels = {}
+        units = {}
+        for name, var in ds.data_vars.items():
+            channels[str(name)] = np.asarray(var.values)
+            units[str(name)] = str(var.attrs.get("units", ""))
+        return cls(
+            time=np.asarray(ds["time"].values),
+            channels=channels,
+            units=units,
+            scenario=json.loads(ds.attrs["scenario_json"]),
+            meta=json.loads(ds.attrs["meta_json"]),
+            dims=dims,
+        )
+
+    def save(self, path: str | Path) -> Path:
+        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path."""
+        p = Path(path)
+        ds = self.to_dataset()
+        with atomic_path(p, suffix=".nc") as tmp:
+            ds.to_netcdf(tmp, engine="h5netcdf")
+        return p
+
+    @classmethod
+    def load(cls, path: str | Path) -> SimulationResult:
+        """Read a file written by :meth:`save`."""
+        import xarray as xr
+
+        p = Path(path)
+        try:
+            with xr.open_dataset(p, engine="h5netcdf") as ds:
+                ds.load()
+                return cls.from_dataset(ds)
+        except (OSError, ValueError) as exc:
+            if isinstance(exc, ConfigError):
+                raise
+            raise ConfigError(
+                f"file = {str(p)!r} is not a readable bearingsim result ({type(exc).__name__})"
+            ) from None
+
+    # ------------------------------------------------------------------------ plots
+    def plot_time(self, channel: str = "acc_y", t_range: tuple[float, float] | None = None):
+        """Time waveform of ``channel``; returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        x = self[channel]
+        t = self.time
+        sel = slice(None) if t_range is None else (t >= t_range[0]) & (t <= t_range[1])
+        fig, ax = plt.subplots(figsize=(8, 3))
+        ax.plot(t[sel], x[sel], lw=0.6)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(f"{channel} [{self.units.get(channel, '')}]")
+        ax.set_title(self.title)
+        return fig
+
+    def plot_stiffness(self):
+        """Total effective stiffness along the load direction vs time; returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(8, 3))
+        ax.plot(self.time, self["k_load"] / 1e6, lw=0.8)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("k_load [MN/m]")
+        ax.set_title(self.title)
+        return fig
+
+    def plot_envelope(
+        self, channel: str = "acc_y", band: tuple[float, float] | None = None, f_max: float = 600.0
+    ):
+        """Envelope spectrum of ``channel`` (band from the kurtogram unless given)."""
+        from .signal import envelope_spectrum, fast_kurtogram
+
+        x = self[channel]
+        if band is None:
+            band = fast_kurtogram(x, self.fs_hz).band
+        es = envelope_spectrum(x, self.fs_hz, band)
+        return es.plot(f_max=f_max, title=f"{self.title}, band {band[0]:.0f}-{band[1]:.0f} Hz")
+
+    @property
+    def title(self) -> str:
+        """Short description: model, bearing, fault, speed."""
+        m = self.meta
+        return (
+            f"{m.get('model', '?').upper()} {m.get('bearing_id', '')} fault "
+            f"{self.scenario.get('fault', '?')} at {self.scenario.get('rpm', math.nan):g} r/min"
+        )
