@@ -6,7 +6,7 @@ degrees and speed in r/min at this edge only). Any other key is an error naming 
 ============================  ==============  ===================================================
 key                           default         meaning
 ============================  ==============  ===================================================
-``model``                     ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm`` (:class:`Model`)
+``model``                     ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm`` | ``rotor`` (``Model``)
 ``bearing``                   ``"6205"``      catalogue id (seed VSM table 1 bearing)
 ``bearing_file``              –               user bearing TOML (instead of ``bearing``)
 ``fault``                     ``"none"``      ``none`` | ``outer`` | ``inner``
@@ -34,6 +34,35 @@ key                           default         meaning
 ``solver``                    ``"rk4"``       ``rk4`` (fixed step) | ``dopri5`` (adaptive check)
 ``per_ball``                  false           also store per-ball loads and deformations
 ============================  ==============  ===================================================
+
+Keys of the bearing–rotor–housing model (``model = "rotor"``, seed ROTOR, SPEC §2; the ring-model
+keys ``bearing``, ``fault``, ``defect_angle_deg``, ``first_ball_angle_deg``, ``fx_n``, ``fy_n``,
+``mass_kg``, ``damping_n_s_m``, ``stiffness_n_m15``, ``clearance_m``, ``retention_factor`` and
+``load_zone_half_angle_deg`` are not used by it; ``fault`` must stay ``"none"``):
+
+============================  ==============  ===================================================
+key                           default         meaning
+============================  ==============  ===================================================
+``de_bearing``, ``fe_bearing``  6205-cwru,    drive-end / fan-end catalogue ids (CWRU motor)
+                                6203-cwru
+``de_fault``, ``fe_fault``    ``"none"``      defect of each bearing: none | outer | inner
+                                              (width and depth from ``defect_width_m/_depth_m``)
+``de_defect_angle_deg``,      180.0           defect **centre** azimuth at t = 0 [deg], from +y
+``fe_defect_angle_deg``                       towards +x (180 = 6 o'clock, CWRU ``OR@6``)
+``disks``                     9               number of equal disks carrying the rotor mass
+``disk_positions_mm``         equal spacing   disk positions from the DE bearing [mm] (list)
+``distributed_rotor``         false           rotor mass spread along the shaft instead of disks
+``n_elements``                auto            minimum number of beam elements
+``shaft_mass_model``          ``"lumped"``    lumped (half at each bearing, seed) | distributed
+``housing_mass_kg``           1.0             mass of each housing [kg]
+``housing_frequency_hz``      3300.0          housing mount natural frequency [Hz] (sets k = m w^2)
+``housing_damping_ratio``     0.05            housing mount damping ratio [-]
+``contact_damping_n_s_m``     50.0            damping of each ball-race contact [N s/m]
+``gravity``                   true            gravity (-y) on every mass
+``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
+``antialias``                 true            4x internal sampling and FIR decimation of the
+                                              accelerations (like a DAQ)
+============================  ==============  ===================================================
 """
 
 from __future__ import annotations
@@ -55,6 +84,7 @@ class Model(enum.Enum):
     VSM = "vsm"
     DEM = "dem"
     TVSM = "tvsm"
+    ROTOR = "rotor"
 
 
 class Solver(enum.Enum):
@@ -96,6 +126,25 @@ class Scenario:
     dt_s: float | None = None
     solver: Solver = Solver.RK4
     per_ball: bool = False
+    # bearing-rotor-housing model (model = "rotor"); see the second table above
+    de_bearing: str = "6205-cwru"
+    fe_bearing: str = "6203-cwru"
+    de_fault: str = "none"
+    fe_fault: str = "none"
+    de_defect_angle_deg: float = 180.0
+    fe_defect_angle_deg: float = 180.0
+    disks: int = 9
+    disk_positions_mm: tuple[float, ...] | None = None
+    distributed_rotor: bool = False
+    n_elements: int | None = None
+    shaft_mass_model: str = "lumped"
+    housing_mass_kg: float = 1.0
+    housing_frequency_hz: float = 3300.0
+    housing_damping_ratio: float = 0.05
+    contact_damping_n_s_m: float = 50.0
+    gravity: bool = True
+    unbalance_kg_m: float = 0.0
+    antialias: bool = True
 
     def __post_init__(self) -> None:
         s = object.__setattr__
@@ -194,6 +243,77 @@ class Scenario:
             s(self, "dt_s", dt)
         if not isinstance(self.per_ball, bool):
             raise ConfigError(f"per_ball = {self.per_ball!r} is invalid; valid: true or false")
+        self._check_rotor_keys()
+
+    def _check_rotor_keys(self) -> None:
+        """Types and simple ranges of the rotor keys (the rotor model validates the rest when
+        it builds its :class:`~bearingsim.dynamics.rotor_config.RotorConfig`)."""
+        s = object.__setattr__
+        for name in ("de_fault", "fe_fault"):
+            if getattr(self, name) not in ("none", "outer", "inner"):
+                raise ConfigError(
+                    f"{name} = {getattr(self, name)!r} is invalid; valid: none, outer, inner"
+                )
+        if self.model is Model.ROTOR and self.fault != "none":
+            raise ConfigError(
+                f"fault = {self.fault!r} is not used by model rotor; valid: none (give the "
+                "defects with de_fault / fe_fault)"
+            )
+        for name in ("de_bearing", "fe_bearing"):
+            if not isinstance(getattr(self, name), str) or not getattr(self, name):
+                raise ConfigError(
+                    f"{name} = {getattr(self, name)!r} is invalid; valid: a catalogue id"
+                )
+        for name in ("de_defect_angle_deg", "fe_defect_angle_deg"):
+            s(self, name, check_range(name, getattr(self, name), -360.0, 360.0, unit="deg"))
+        for name, lo in (("disks", 1), ("n_elements", 1)):
+            v = getattr(self, name)
+            if v is None and name == "n_elements":
+                continue
+            if isinstance(v, bool) or not isinstance(v, int) or v < lo:
+                raise ConfigError(f"{name} = {v!r} is invalid; valid range [{lo}, inf) integer")
+        if self.disk_positions_mm is not None:
+            try:
+                pos = tuple(float(v) for v in self.disk_positions_mm)
+            except (TypeError, ValueError):
+                raise ConfigError(
+                    f"disk_positions_mm = {self.disk_positions_mm!r} is invalid; valid: a list "
+                    "of positions [mm]"
+                ) from None
+            if not pos:
+                raise ConfigError("disk_positions_mm = [] is invalid; valid: a non-empty list")
+            s(self, "disk_positions_mm", pos)
+        if self.shaft_mass_model not in ("lumped", "distributed"):
+            raise ConfigError(
+                f"shaft_mass_model = {self.shaft_mass_model!r} is invalid; valid: lumped, "
+                "distributed"
+            )
+        s(self, "housing_mass_kg", check_positive("housing_mass_kg", self.housing_mass_kg, "kg"))
+        s(
+            self,
+            "housing_frequency_hz",
+            check_positive("housing_frequency_hz", self.housing_frequency_hz, "Hz"),
+        )
+        s(
+            self,
+            "housing_damping_ratio",
+            check_range("housing_damping_ratio", self.housing_damping_ratio, 0.0),
+        )
+        s(
+            self,
+            "contact_damping_n_s_m",
+            check_range("contact_damping_n_s_m", self.contact_damping_n_s_m, 0.0, unit="N s/m"),
+        )
+        s(
+            self,
+            "unbalance_kg_m",
+            check_range("unbalance_kg_m", self.unbalance_kg_m, 0.0, unit="kg m"),
+        )
+        for name in ("distributed_rotor", "gravity", "antialias"):
+            if not isinstance(getattr(self, name), bool):
+                raise ConfigError(
+                    f"{name} = {getattr(self, name)!r} is invalid; valid: true or false"
+                )
 
     # ------------------------------------------------------------------ conversions
     @property

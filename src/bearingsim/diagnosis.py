@@ -517,7 +517,8 @@ def load_signal(
 
     * ``.mat``: channel ``DE`` (default) or ``FE``; rpm from ``X###RPM`` unless ``rpm`` is
       given; fs from ``fs``, else from ``12k``/``48k`` in the file name, else 48 kHz.
-    * ``.nc``/``.h5``: channel ``x`` or ``y`` (default ``y``); fs, rpm and bearing from the file.
+    * ``.nc``/``.h5``: channel ``x`` or ``y`` (default ``y``; rotor results also ``x_fe``,
+      ``y_fe``, the fan-end housing); fs, rpm and bearing from the file.
     * ``.csv``: optional header; a ``time``/``t`` column gives fs, a ``speed_hz`` or ``rpm``
       column gives a per-sample speed (order tracking); the signal is the column named by
       ``channel`` or the first other column. Without a time column ``fs`` is required.
@@ -565,14 +566,18 @@ def load_signal(
 
         res = SimulationResult.load(p)
         ch = (channel or "y").lower()
-        if ch not in ("x", "y"):
+        # rotor results also carry the fan-end housing (acc_x_fe, acc_y_fe) and its bearing
+        valid = ("x", "y", "x_fe", "y_fe") if "acc_y_fe" in res.channels else ("x", "y")
+        if ch not in valid:
             raise ConfigError(
-                f"channel = {channel!r} is invalid for a simulation result; valid: x, y"
+                f"channel = {channel!r} is invalid for this simulation result; valid: "
+                + ", ".join(valid)
             )
-        b = _bearing_from_meta(res.meta)
+        meta = {"bearing": res.meta.get("bearing_fe")} if ch.endswith("_fe") else res.meta
+        b = _bearing_from_meta(meta)
         r = rpm if rpm is not None else float(res.scenario["rpm"])
         return SignalRecord(
-            res.acceleration(ch),
+            res[f"acc_{ch}"],
             fs or res.fs_hz,
             r,
             str(p),

@@ -217,12 +217,31 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
     return SimulationResult(raw.t[:n].copy(), ch, units, scenario.to_dict(), meta)
 
 
+def _run_rotor(scenario: Scenario, progress: Callable[[int], None] | None) -> SimulationResult:
+    """Bearing–rotor–housing model (issue 6), imported on first use."""
+    from .dynamics.rotor_scenario import run_rotor
+
+    return run_rotor(scenario, progress)
+
+
 #: model → runner
 MODEL_RUNNERS: dict[Model, Callable[..., SimulationResult]] = {
     Model.VSM: _run_ring_model,
     Model.DEM: _run_ring_model,
     Model.TVSM: _run_ring_model,
+    Model.ROTOR: _run_rotor,
 }
+
+
+def validate_scenario(scenario: Scenario) -> None:
+    """Build the model's inputs from ``scenario`` without running it, so that bad values
+    raise their one-line :class:`ConfigError` before any output is written."""
+    if scenario.model is Model.ROTOR:
+        from .dynamics.rotor_scenario import rotor_config_from_scenario
+
+        rotor_config_from_scenario(scenario)
+    else:
+        model_inputs(scenario)
 
 
 def register_model(model: Model, runner: Callable[..., SimulationResult]) -> None:

@@ -11,8 +11,9 @@ import click
 
 from ..errors import ConfigError, check_range
 from .common import cli, emit_json, json_option
+from .rotor import rotor_simulate_options
 
-_MODELS = ["vsm", "dem", "tvsm"]
+_MODELS = ["vsm", "dem", "tvsm", "rotor"]
 _FAULTS = ["none", "outer", "inner"]
 
 
@@ -101,6 +102,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 )
 @click.option("--model", type=click.Choice(_MODELS), default=None, help="Model [vsm].")
 @_opt
+@rotor_simulate_options
 @click.option("--duration-s", type=float, default=None, help="Simulated time [s] (1).")
 @click.option("--fs", "fs_hz", type=float, default=None, help="Output sample rate [Hz] (48000).")
 @click.option("--seed", type=int, default=None, help="Seed of the measurement noise (0).")
@@ -132,10 +134,10 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     """
     from tqdm import tqdm
 
-    from ..simulate import model_inputs, simulate
+    from ..simulate import simulate, validate_scenario
 
     sc = _scenario(scenario_file, kw)
-    model_inputs(sc)  # validate everything before any output (no progress bar before an error)
+    validate_scenario(sc)  # everything checked before any output (no progress bar before an error)
     t0 = time.perf_counter()
     bar = tqdm(
         total=sc.n_samples,
@@ -166,11 +168,15 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
         "rms_acc_y": res.rms("acc_y"),
         "wall_s": wall,
     }
+    if "acc_y_fe" in res.channels:  # rotor model: per-end accelerations (acc_x/y = drive end)
+        out["rms_acc_x_fe"] = res.rms("acc_x_fe")
+        out["rms_acc_y_fe"] = res.rms("acc_y_fe")
     if as_json:
         emit_json(out)
         return
+    fault = sc.fault if sc.model.value != "rotor" else f"DE {sc.de_fault} / FE {sc.fe_fault}"
     click.echo(
-        f"wrote {output}: {sc.model.value} {res.meta['bearing_id']} fault {sc.fault}, "
+        f"wrote {output}: {sc.model.value} {res.meta['bearing_id']} fault {fault}, "
         f"{out['n_samples']} samples at {res.fs_hz:g} Hz, RMS acc x {out['rms_acc_x']:.4g} "
         f"y {out['rms_acc_y']:.4g} m/s^2, {wall:.2f} s"
     )
@@ -297,7 +303,8 @@ def vsm_trace_cmd(
 @click.option(
     "--channel",
     default=None,
-    help="DE|FE (CWRU .mat, default DE), x|y (result, default y), or a CSV column.",
+    help="DE|FE (CWRU .mat, default DE), x|y (result, default y; rotor results also "
+    "x_fe|y_fe), or a CSV column.",
 )
 @click.option(
     "--band",

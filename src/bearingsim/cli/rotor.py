@@ -1,6 +1,7 @@
-"""Rotor commands: ``rotor-modes`` (natural frequencies of the rotor alone), and the shared
-options that build a :class:`~bearingsim.dynamics.rotor_config.RotorConfig` from the command
-line (lengths in millimetres at this edge, SI inside)."""
+"""Rotor commands: ``rotor-modes`` (natural frequencies of the rotor alone); the options that
+build a :class:`~bearingsim.dynamics.rotor_config.RotorConfig` from the command line; and the
+rotor options of ``bearingsim simulate --model rotor`` (:func:`rotor_simulate_options`, keys of
+:class:`bearingsim.config.Scenario`). Lengths in millimetres at this edge, SI inside."""
 
 from __future__ import annotations
 
@@ -10,7 +11,6 @@ from typing import Any
 
 import click
 
-from ..dynamics.rotor import Armature, Shaft, ShaftMassModel, rotor_modes
 from ..dynamics.rotor_config import (
     SEED_DISK_DIAMETER_M,
     SEED_ROTOR_MASS_KG,
@@ -18,6 +18,9 @@ from ..dynamics.rotor_config import (
     SEED_SHAFT_E_PA,
     SEED_SHAFT_LENGTH_M,
     SEED_SHAFT_MASS_KG,
+    Armature,
+    Shaft,
+    ShaftMassModel,
     cwru_rotor_config,
 )
 from ..errors import ConfigError
@@ -33,6 +36,81 @@ def _positions_mm(text: str | None) -> tuple[float, ...] | None:
         raise ConfigError(
             f"disk_positions_mm = {text!r} is not a comma-separated list of numbers"
         ) from None
+
+
+def _positions_option(ctx, param, value):
+    """``--disk-positions-mm "20,100,180"`` -> (20.0, 100.0, 180.0) [mm] (Scenario key)."""
+    pos = _positions_mm(value)
+    return None if pos is None else tuple(v * 1e3 for v in pos)
+
+
+def rotor_simulate_options(f: Callable) -> Callable:
+    """Options of ``simulate`` for ``--model rotor``; each sets the Scenario key of the same
+    name (None = the scenario file's value or the default)."""
+    faults = click.Choice(["none", "outer", "inner"])
+    opts = [
+        click.option("--de-bearing", default=None, help="Drive-end bearing id [6205-cwru]."),
+        click.option("--fe-bearing", default=None, help="Fan-end bearing id [6203-cwru]."),
+        click.option("--de-fault", type=faults, default=None, help="Drive-end defect [none]."),
+        click.option("--fe-fault", type=faults, default=None, help="Fan-end defect [none]."),
+        click.option(
+            "--de-defect-angle-deg",
+            type=float,
+            default=None,
+            help="DE defect centre azimuth at t = 0 from +y towards +x [deg] (180 = 6 o'clock).",
+        ),
+        click.option(
+            "--fe-defect-angle-deg", type=float, default=None, help="FE defect centre [deg] (180)."
+        ),
+        click.option("--disks", type=int, default=None, help="Number of rotor disks [9]."),
+        click.option(
+            "--disk-positions-mm",
+            default=None,
+            callback=_positions_option,
+            help="Disk positions from the DE bearing, comma-separated [mm] (equal spacing).",
+        ),
+        click.option(
+            "--distributed-rotor/--disk-rotor",
+            default=None,
+            help="Rotor mass spread along the shaft instead of on disks.",
+        ),
+        click.option(
+            "--elements", "n_elements", type=int, default=None, help="Min. beam elements (auto)."
+        ),
+        click.option(
+            "--shaft-mass-model",
+            type=click.Choice(["lumped", "distributed"]),
+            default=None,
+            help="Half the shaft mass at each bearing (seed) or distributed [lumped].",
+        ),
+        click.option("--housing-mass-kg", type=float, default=None, help="Housing mass [kg] (1)."),
+        click.option(
+            "--housing-frequency-hz",
+            type=float,
+            default=None,
+            help="Housing mount natural frequency [Hz] (3300).",
+        ),
+        click.option(
+            "--housing-damping-ratio", type=float, default=None, help="Housing damping [-] (0.05)."
+        ),
+        click.option(
+            "--contact-damping",
+            "contact_damping_n_s_m",
+            type=float,
+            default=None,
+            help="Damping of each ball-race contact [N s/m] (50).",
+        ),
+        click.option("--gravity/--no-gravity", default=None, help="Gravity on every mass [on]."),
+        click.option("--unbalance-kg-m", type=float, default=None, help="Rotor unbalance m e."),
+        click.option(
+            "--antialias/--no-antialias",
+            default=None,
+            help="4x internal sampling and FIR decimation of the accelerations [on].",
+        ),
+    ]
+    for o in reversed(opts):
+        f = o(f)
+    return f
 
 
 def rotor_options(f: Callable) -> Callable:
@@ -120,6 +198,8 @@ def rotor_modes_cmd(
     rotor_kw: dict[str, Any], supports: str, rpm: float, n_modes: int, as_json: bool
 ) -> None:
     """Natural frequencies of the CWRU rotor alone (seed ROTOR table 2 by default)."""
+    from ..dynamics.rotor import rotor_modes
+
     if n_modes < 1:
         raise ConfigError(f"n_modes = {n_modes} is out of range; valid range [1, inf)")
     cfg = cwru_rotor_config(**rotor_kw)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -522,9 +523,11 @@ def stable_step(model: PackedModel, config: RotorConfig, y0: NDArray, margin: fl
 # ------------------------------------------------------------------------------ simulation
 
 
-def _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol, chunk=1 << 15):
+def _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress=None, q=1,
+         chunk=1 << 15):  # fmt: skip
     """Integrate in chunks of ``chunk`` output samples (bounded memory); returns the times,
-    auxiliary outputs, positions of the bearing nodes and housings, and the step count."""
+    auxiliary outputs, positions of the bearing nodes and housings, and the step count.
+    ``progress(n)`` is called with the number of final (every ``q``-th) samples done."""
     nr = model.n_r
     h = 1.0 / (fs_int * decim) if decim else None
     t_all = np.empty(n_int)
@@ -551,6 +554,8 @@ def _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol, chunk=1 << 15)
         n_steps += tr.n_steps
         y = tr.y[-1].copy()
         i += n_c - 1
+        if progress is not None:
+            progress(i // q + 1)
         if n_int == 1:
             break
     return t_all, aux, pos, n_steps
@@ -566,6 +571,7 @@ def simulate_rotor(
     method: str = "rk4",
     rtol: float = 1e-8,
     atol: float = 1e-13,
+    progress: Callable[[int], None] | None = None,
 ) -> RotorResponse:
     """Simulate the bearing–rotor–housing system from static equilibrium.
 
@@ -574,7 +580,7 @@ def simulate_rotor(
     config : RotorConfig
         Inputs.
     duration : float
-        Simulated time [s] (> 0).
+        Simulated time [s] (> 0): ``round(duration * sample_rate)`` samples from t = 0.
     sample_rate : float
         Output sample rate [Hz] (CWRU: 12 000 or 48 000).
     dt : float or None
@@ -591,6 +597,8 @@ def simulate_rotor(
     method : {"rk4", "dopri5"}
         Compiled fixed-step RK4 (default) or adaptive Dormand–Prince 5(4) with ``rtol``,
         ``atol`` (for checking).
+    progress : callable, optional
+        Called with the number of output samples done (for progress bars).
 
     Returns
     -------
@@ -608,7 +616,12 @@ def simulate_rotor(
     y0 = static_state(model, config)
     q = 4 if antialias else 1
     fs_int = q * fs
-    n_out = int(round(duration * fs)) + 1
+    n_out = int(round(duration * fs))
+    if n_out < 2:
+        raise ConfigError(
+            f"duration_s * sample_rate_hz = {duration * fs:.6g} samples is too few; valid range "
+            "[2, inf) samples"
+        )
     n_int = q * (n_out - 1) + 1
     na = n_aux(model, ball_forces)
     decim = 0
@@ -620,7 +633,9 @@ def simulate_rotor(
         solver = {"solver": "rk4", "dt_s": 1.0 / (fs_int * decim), "decim": decim}
     else:
         solver = {"solver": "dopri5", "rtol": rtol, "atol": atol}
-    t, aux, pos, n_steps = _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol)
+    t, aux, pos, n_steps = _run(
+        model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress, q
+    )
     acc = aux[:, :4]
     if q > 1:
         acc = decimate(acc, q, ftype="fir", axis=0, zero_phase=True)
