@@ -1,0 +1,397 @@
+"""Report section for SPEC §2 (seed ROTOR, Liu et al. 2021): the rotor alone against beam
+theory, the simulated CWRU record 132 (drive-end outer-race fault, 1750 r/min, 12 kHz; seed
+figs. 5–6) and the fault-frequency amplitude against the number of disks (seed fig. 7)."""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+from scipy.signal import find_peaks
+
+from ...diagnosis import load_signal
+from ...dynamics.rotor import (
+    Armature,
+    LocalFault,
+    Shaft,
+    ShaftMassModel,
+    cwru_rotor_config,
+    rotor_modes,
+    simulate_rotor,
+)
+from ...dynamics.rotor_fe import Disk, assemble_rotor, complex_modes
+from ...signal import amplitude_spectrum, envelope, envelope_spectrum
+from .. import Context, Row, Section, compare
+from ..figures import save_figure
+
+TITLE = "ROTOR: bearing–rotor–housing system with a multi-disk rotor (SPEC §2, seed ROTOR)"
+
+#: envelope band at 12 kHz (shared/data/cwru/SOURCES.md sanity check: 2–5 kHz)
+BAND = (2000.0, 5000.0)
+FS = 12000.0
+G0 = 9.80665
+#: seed ROTOR §3: fault-frequency amplitude from the highest to the lowest disk case [%]
+SEED_DROP_PCT = -52.9
+RECORD = "12k_Drive_End_OR007@6_2_132.mat"
+
+
+def _record_path() -> Path | None:
+    shared = os.environ.get("BEARINGSIM_SHARED")
+    cands = [Path(shared)] if shared else []
+    cands += [p / "shared" for p in Path(__file__).resolve().parents]
+    for c in cands:
+        p = c / "data" / "cwru" / RECORD
+        if p.is_file():
+            return p
+    return None
+
+
+def _near(spec, f0: float, tol: float = 0.01) -> tuple[float, float]:
+    """(frequency [Hz], amplitude) of the largest line within ``f0 (1 +/- tol)``."""
+    sel = np.flatnonzero((spec.freq >= f0 * (1 - tol)) & (spec.freq <= f0 * (1 + tol)))
+    i = sel[np.argmax(spec.amplitude[sel])]
+    return float(spec.freq[i]), float(spec.amplitude[i])
+
+
+def _impacts(x: np.ndarray, fs: float, period: float, t0=0.10, t1=0.20) -> int:
+    """Envelope peaks in [t0, t1] s above 30 % of the largest, >= 0.6 fault periods apart."""
+    e = envelope(x, fs, BAND)[int(t0 * fs) : int(t1 * fs)]
+    pk, _ = find_peaks(e, distance=int(0.6 * period * fs), height=0.3 * e.max())
+    return int(pk.size)
+
+
+def _rotor_alone(sec: Section) -> None:
+    # seed rotor, one disk at mid-span of the massless shaft: a Jeffcott rotor
+    cfg = cwru_rotor_config(1)
+    sh = cfg.shaft
+    fa = math.sqrt(48 * sh.ei / (cfg.armature.mass * sh.length**3)) / (2 * math.pi)
+    sec.rows.append(
+        compare(
+            "rotor alone, 1 disk, pinned: 1st natural frequency [Hz]",
+            "Jeffcott rotor sqrt(48 EI/(m L^3)) (Friswell et al. 2010 eq. 3.4)",
+            fa,
+            float(rotor_modes(cfg).frequency_hz[0]),
+            1e-6,
+        )
+    )
+    # shaft and rotor mass distributed: a pinned Rayleigh beam
+    cfg = cwru_rotor_config(
+        shaft=Shaft(mass_model=ShaftMassModel.DISTRIBUTED),
+        armature=Armature(distributed=True),
+        n_elements=32,
+    )
+    arm = cfg.armature
+    rho_a = (sh.mass + arm.mass) / sh.length
+    rho_i = (
+        sh.mass / sh.length * sh.diameter**2 / 16
+        + arm.mass / sh.length * (arm.diameter**2 + sh.diameter**2) / 16
+    )
+    f = rotor_modes(cfg, n_modes=6).frequency_hz[::2]
+    for n in (1, 2, 3):
+        k = n * math.pi / sh.length
+        sec.rows.append(
+            compare(
+                f"rotor alone, distributed mass, pinned: mode {n} [Hz]",
+                "Rayleigh beam w^2 = EI k^4/(rhoA + rhoI k^2) (Han, Benaroya & Wei 1999)",
+                math.sqrt(sh.ei * k**4 / (rho_a + rho_i * k**2)) / (2 * math.pi),
+                float(f[n - 1]),
+                0.01,
+            )
+        )
+    # mesh convergence (distributed shaft mass, 3 disks)
+    f8, f64 = (
+        rotor_modes(
+            cwru_rotor_config(3, shaft=Shaft(mass_model="distributed"), n_elements=ne), n_modes=6
+        ).frequency_hz[4]
+        for ne in (8, 64)
+    )
+    sec.rows.append(
+        compare(
+            "rotor alone, 3 disks + distributed shaft: 3rd mode, 8 vs 64 elements [Hz]",
+            "mesh convergence (64 elements as reference)",
+            float(f64),
+            float(f8),
+            1e-3,
+        )
+    )
+    # gyroscopics: Friswell et al. (2010) Example 5.9.1 at 4000 r/min, computed by ROSS
+    E, rho, d, L = 211e9, 7810.0, 0.05, 1.5
+    A, ia = math.pi * d**2 / 4, math.pi * d**4 / 64
+
+    def disk(z, do, t=0.07, di=0.05):
+        return Disk.from_geometry(z, rho * math.pi * (do**2 - di**2) / 4 * t, do, di, t)
+
+    r = assemble_rotor(np.linspace(0, L, 7), E * ia, rho * A, rho * ia,
+                       [disk(0.5, 0.28), disk(1.0, 0.35)])  # fmt: skip
+    K = r.K.copy()
+    for nd in (0, 6):
+        K[r.dof(nd, "x"), r.dof(nd, "x")] += 1e6
+        K[r.dof(nd, "y"), r.dof(nd, "y")] += 1e6
+    m = complex_modes(r.M, K, r.G, 4000 * math.pi / 30)
+    for i, ross in ((0, 85.389), (1, 87.796), (3, 294.713)):
+        sec.rows.append(
+            compare(
+                f"Friswell Example 5.9.1 at 4000 r/min, mode {i + 1} [rad/s]",
+                "Friswell et al. 2010 Ex. 5.9.1 via ROSS (Timoshenko elements)",
+                ross,
+                float(m.frequency_hz[i] * 2 * math.pi),
+                3e-3,
+            )
+        )
+
+
+def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
+    import matplotlib.pyplot as plt
+
+    dur = 1.0 if ctx.quick else 2.0
+    cfg = cwru_rotor_config(9, de_fault=LocalFault("outer"))
+    sim = simulate_rotor(cfg, duration=dur, sample_rate=FS)
+    xs = sim.channel("DE", "y")
+    path = _record_path()
+    kin = sim.kinematics["DE"]
+    bpfo = kin.bpfo_hz
+    out = {"sim_rms": float(np.std(xs)), "sim_peak": float(np.abs(xs).max())}
+    es_s = envelope_spectrum(xs, FS, BAND)
+    rec = load_signal(path) if path else None
+    if rec is None:
+        sec.text += f" CWRU record {RECORD} not found: measured rows skipped."
+        return out
+    xm = rec.x[: xs.size]
+    es_m = envelope_spectrum(xm, rec.fs, BAND)
+    res = es_m.resolution
+    fm, am = _near(es_m, bpfo)
+    fsim, asim = _near(es_s, bpfo)
+    out |= {"meas_rms": float(np.std(xm)), "meas_peak": float(np.abs(xm).max()),
+            "meas_env": am, "sim_env": asim}  # fmt: skip
+    sec.rows.append(
+        compare(
+            "DE outer fault: fault frequency, simulated vs measured 132 [Hz]",
+            f"CWRU 132 envelope spectrum ({dur:g} s, bin {res:.3g} Hz; seed figs. 5-6)",
+            fm,
+            fsim,
+            res / fm,
+        )
+    )
+    sec.rows.append(
+        compare(
+            "DE outer fault: measured 132 fault frequency vs BPFO [Hz]",
+            "CWRU bearing table BPFO 3.5848 x 1750/60",
+            3.5848 * rec.rpm / 60,
+            fm,
+            res / fm,
+        )
+    )
+    for h in (2, 3):
+        fmh, _ = _near(es_m, h * bpfo)
+        fsh, _ = _near(es_s, h * bpfo)
+        sec.rows.append(
+            compare(
+                f"DE outer fault: envelope harmonic {h} x BPFO, simulated vs measured [Hz]",
+                "CWRU 132 (seed fig. 6: 'harmonics close')",
+                fmh,
+                fsh,
+                res / fmh,
+            )
+        )
+    n_m = _impacts(rec.x, rec.fs, 1 / bpfo)
+    n_s = _impacts(xs, FS, 1 / bpfo)
+    sec.rows.append(
+        compare(
+            "impacts between 0.10 s and 0.20 s [-]",
+            "CWRU 132 DE (seed fig. 5a vs 6a: 'same number')",
+            float(n_m),
+            float(n_s),
+            0.0,
+        )
+    )
+    why = (
+        "housing mass, mount and contact damping are not given by the seed (docs/models.md); "
+        "the only radial load is the rotor weight (20 N), and the motor structure, "
+        "coupling and dynamometer paths of the rig are not modelled"
+    )
+    for lab, key in (("RMS", "rms"), ("peak", "peak")):
+        sec.rows.append(
+            compare(
+                f"DE acceleration {lab}, 1 s [g]",
+                "CWRU 132 DE",
+                out[f"meas_{key}"] / G0,
+                out[f"sim_{key}"] / G0,
+                0.5,
+                why,
+            )
+        )
+    sec.rows.append(
+        compare(
+            "DE envelope amplitude at BPFO (2-5 kHz band) [m/s^2]",
+            "CWRU 132 DE",
+            am,
+            asim,
+            0.5,
+            why,
+        )
+    )
+    # figures: seed figs. 5 and 6 analogues
+    fig, axs = plt.subplots(3, 2, figsize=(12, 8))
+    for j, (lab, x, fs) in enumerate((("measured CWRU 132", xm, rec.fs),
+                                      ("simulated, 9 disks", xs, FS))):  # fmt: skip
+        t = np.arange(x.size) / fs
+        sel = (t >= 0.10) & (t <= 0.20)
+        axs[0, j].plot(t[sel], x[sel] / G0, lw=0.6)
+        axs[0, j].set_title(f"{lab}: DE acceleration")
+        axs[0, j].set_xlabel("time [s]")
+        axs[0, j].set_ylabel("[g]")
+        sp = amplitude_spectrum(x / G0, fs, "g")
+        axs[1, j].plot(sp.freq, sp.amplitude, lw=0.5)
+        axs[1, j].set_xlabel("frequency [Hz]")
+        axs[1, j].set_ylabel("amplitude [g]")
+        es = envelope_spectrum(x / G0, fs, BAND)
+        sel = es.freq <= 500
+        axs[2, j].plot(es.freq[sel], es.amplitude[sel], lw=0.7)
+        for h in (1, 2, 3, 4):
+            axs[2, j].axvline(h * bpfo, color="r", ls=":", lw=0.7)
+        axs[2, j].set_xlabel("envelope frequency [Hz] (red: BPFO harmonics)")
+        axs[2, j].set_ylabel("envelope amplitude [g]")
+    fig.tight_layout()
+    save_figure(fig, ctx.out_dir / "rotor_fig5_6_cwru132.png")
+    sec.figures.append(
+        (
+            "rotor_fig5_6_cwru132.png",
+            "Seed ROTOR figs. 5-6 analogue: CWRU record 132 (DE, outer race 0.007 in at 6 o'clock, "
+            "1750 r/min) beside the simulated DE housing acceleration (9 disks): waveform "
+            "0.10-0.20 s, amplitude spectrum, envelope spectrum (2-5 kHz band).",
+        )
+    )
+    return out
+
+
+def _disks(ctx: Context, sec: Section, cwru: dict[str, float]) -> None:
+    import matplotlib.pyplot as plt
+
+    dur = 0.5 if ctx.quick else 1.0
+    cases: list[tuple[str, Armature]] = [(f"{n}", Armature(n_disks=n)) for n in (1, 2, 3, 5, 9)]
+    if not ctx.quick:
+        cases.append(("17", Armature(n_disks=17)))
+    cases.append(("FE limit", Armature(distributed=True)))
+    env, raw, fpk = {}, {}, {}
+    fig, axs = plt.subplots(len(cases), 1, figsize=(9, 1.6 * len(cases) + 1), sharex=True)
+    bpfo = res = math.nan
+    for ax, (lab, arm) in zip(axs, cases, strict=True):
+        r = simulate_rotor(cwru_rotor_config(armature=arm, de_fault=LocalFault("outer")),
+                           duration=dur, sample_rate=FS)  # fmt: skip
+        x = r.channel("DE", "y")
+        bpfo = r.kinematics["DE"].bpfo_hz
+        es = envelope_spectrum(x, FS, BAND)
+        res = es.resolution
+        fpk[lab], env[lab] = _near(es, bpfo)
+        sp = amplitude_spectrum(x / G0, FS, "g")
+        raw[lab] = _near(sp, bpfo)[1]
+        sel = sp.freq <= 1000
+        ax.plot(sp.freq[sel], sp.amplitude[sel], lw=0.6)
+        ax.set_ylabel(lab if lab == "FE limit" else f"{lab} disk(s)", fontsize=8)
+        for h in (1, 2, 3):
+            ax.axvline(h * bpfo, color="r", ls=":", lw=0.6)
+    axs[-1].set_xlabel("frequency [Hz] (red: BPFO harmonics); amplitude [g]")
+    fig.tight_layout()
+    save_figure(fig, ctx.out_dir / "rotor_fig7_spectra.png")
+    labs = list(env)
+    fig2, ax = plt.subplots(figsize=(7, 3.5))
+    xs = np.arange(len(labs))
+    ax.plot(xs, [env[k] for k in labs], "o-", label="simulated, envelope at BPFO")
+    if "meas_env" in cwru:
+        ax.axhline(cwru["meas_env"], color="k", ls="--", label="measured CWRU 132")
+    ax.set_xticks(xs, labs)
+    ax.set_xlabel("number of disks")
+    ax.set_ylabel("envelope amplitude [m/s^2]")
+    ax.legend(fontsize=8)
+    fig2.tight_layout()
+    save_figure(fig2, ctx.out_dir / "rotor_fig7_amplitude.png")
+    sec.figures += [
+        ("rotor_fig7_spectra.png", "Seed ROTOR fig. 7 analogue: DE amplitude spectra (0-1 kHz) "
+         f"for 1, 2, 3, 5, 9{'' if ctx.quick else ', 17'} disks and the distributed rotor mass "
+         f"(converged FE limit), {dur:g} s each."),
+        ("rotor_fig7_amplitude.png", "DE envelope amplitude at BPFO (2-5 kHz band) against the "
+         "number of disks, with the measured CWRU 132 value."),
+    ]  # fmt: skip
+    spread = max(fpk.values()) - min(fpk.values())
+    sec.rows.append(
+        Row(
+            "fault frequency over 1, 2, 3, 5, 9 disks and the FE limit: spread [Hz]",
+            "seed ROTOR §3: 'does not change'",
+            0.0,
+            spread,
+            None,
+            "match" if spread <= res else "mismatch",
+            f"envelope peak frequencies {sorted(set(round(v, 3) for v in fpk.values()))} Hz, "
+            f"bin {res:.3g} Hz",
+            res,
+        )
+    )
+    for name, amp in (("envelope", env), ("raw-spectrum", raw)):
+        hi, lo = max(amp.values()), min(amp.values())
+        sec.rows.append(
+            compare(
+                f"{name} amplitude at BPFO, highest to lowest disk case [%]",
+                "seed ROTOR §3",
+                SEED_DROP_PCT,
+                100 * (lo - hi) / hi,
+                0.1,
+                "the impacts excite the housing and bearing-node dynamics at 2-5 kHz, "
+                "which the rotor's mass distribution (modes 160-3000 Hz) barely changes; "
+                "see docs/validation.md"
+                if name == "envelope"
+                else "the raw line at BPFO is the small low-frequency response "
+                "(1e-5 g range, 100x below the measured line): it depends on how the rotor "
+                "modes sit against the BPFO harmonics, not monotonically on the disk count",
+            )
+        )
+    two = env["2"] > env["1"]
+    sec.rows.append(
+        Row(
+            "envelope amplitude at BPFO: 2 disks above 1 disk",
+            "seed ROTOR §3",
+            "yes",
+            "yes" if two else "no",
+            None,
+            "match" if two else "explained",
+            "" if two else "see docs/validation.md",
+        )
+    )
+    if "meas_env" in cwru:
+        trend = env["FE limit"] < env["1"]
+        closer = abs(env["FE limit"] - cwru["meas_env"]) < abs(env["1"] - cwru["meas_env"])
+        sec.rows.append(
+            Row(
+                "more disks bring the amplitude towards the measured one",
+                "seed ROTOR §3",
+                "yes",
+                "yes" if closer else f"no (trend {'down' if trend else 'up'}, but below test)",
+                None,
+                "match" if closer else "explained",
+                ""
+                if closer
+                else "our simulated amplitude is below the measured one for "
+                "every disk count, so the (small) decrease moves it away",
+            )
+        )
+    sec.text += (
+        " Disk study, DE envelope amplitude at BPFO [m/s^2]: "
+        + ", ".join(f"{k}: {v:.4g}" for k, v in env.items())
+        + "; raw spectrum at BPFO [g]: "
+        + ", ".join(f"{k}: {v:.3g}" for k, v in raw.items())
+        + "."
+    )
+
+
+def run(ctx: Context) -> Section:
+    sec = Section("rotor", TITLE)
+    _rotor_alone(sec)
+    cwru = _cwru(ctx, sec)
+    _disks(ctx, sec, cwru)
+    sec.text = (
+        "Beam finite elements with lumped disks and nonlinear ball bearings (docs/models.md, "
+        "ROTOR); housings 1 kg at 3.3 kHz (chosen, not published); gravity is the only "
+        "radial load; anti-aliased 12 kHz output." + sec.text
+    )
+    return sec
