@@ -60,8 +60,8 @@ key                           default         meaning
 ``contact_damping_n_s_m``     50.0            damping of each ball-race contact [N s/m]
 ``gravity``                   true            gravity (-y) on every mass
 ``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
-``antialias``                 true            4x internal sampling and FIR decimation of the
-                                              accelerations (like a DAQ)
+``antialias``                 true            4x (2x above 24 kHz) internal sampling and FIR
+                                              decimation of the accelerations (like a DAQ)
 ============================  ==============  ===================================================
 """
 

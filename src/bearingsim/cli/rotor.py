@@ -105,7 +105,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--antialias/--no-antialias",
             default=None,
-            help="4x internal sampling and FIR decimation of the accelerations [on].",
+            help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations [on].",
         ),
     ]
     for o in reversed(opts):

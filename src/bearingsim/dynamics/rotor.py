@@ -589,10 +589,10 @@ def simulate_rotor(
     ball_forces : bool
         Also return every ball's contact forces.
     antialias : bool
-        Like a data-acquisition system, sample internally at 4 x ``sample_rate`` and
-        low-pass filter the accelerations before keeping every 4th sample
-        (:func:`scipy.signal.decimate`, zero-phase FIR, cut-off at the output Nyquist
-        frequency); the other outputs are sampled without filtering. ``False`` samples the
+        Like a data-acquisition system, sample internally at ``q`` x ``sample_rate`` (q = 4 up
+        to 24 kHz output, 2 above) and low-pass filter the accelerations before keeping every
+        q-th sample (:func:`scipy.signal.decimate`, zero-phase FIR, cut-off at the output
+        Nyquist frequency); the other outputs are sampled without filtering. ``False`` samples the
         model's acceleration directly (content above ``sample_rate/2`` then aliases).
     method : {"rk4", "dopri5"}
         Compiled fixed-step RK4 (default) or adaptive Dormand–Prince 5(4) with ``rtol``,
@@ -614,7 +614,7 @@ def simulate_rotor(
     t_wall = time.perf_counter()
     model = pack_model(config, cutoff, ball_forces)
     y0 = static_state(model, config)
-    q = 4 if antialias else 1
+    q = (4 if fs <= 24000.0 else 2) if antialias else 1
     fs_int = q * fs
     n_out = int(round(duration * fs))
     if n_out < 2:
