@@ -632,7 +632,7 @@ def contact_section(
     def traction(v, w):
         xi = (w.x[0] - w.xc) / b
         p = p_max * np.sqrt(np.clip(1.0 - xi * xi, 0.0, None))
-        return -p * v.value[1]  # seed LIFE eq. (9), pressing into the race (-y)
+        return -p * v[1]  # seed LIFE eq. (9), pressing into the race (-y)
 
     F_full = np.empty((n, positions.size))
     for k, xc in enumerate(positions):
