@@ -19,8 +19,8 @@ from bearingsim.life.fe import (
     contact_section,
     core_substructure,
     section_spec,
-    validate_against_hertz,
 )
+from bearingsim.life.validation import validate_against_hertz
 
 B6206 = get_bearing("6206")
 

@@ -50,9 +50,11 @@ def test_first_failure_after_about_one_over_delta_d_blocks(quick_spall):
     element stays the fastest (a neighbour may overtake it by a block or two)."""
     r = quick_spall
     inc = np.diff(r.damage_max[: r.steps_initiation + 1])
-    assert np.all(inc > 0) and np.all(inc <= 0.01 * (1 + 1e-9))
-    assert_allclose(inc[:50], 0.01, rtol=1e-9)
-    assert 100 <= r.steps_initiation <= 105
+    assert np.all(inc > 0) and np.all(inc[:-1] <= 0.01 * (1 + 1e-9))
+    assert inc[-1] <= 0.01 * (1 + 1e-3)  # the failing element is snapped to D = 1
+    assert_allclose(np.median(inc), 0.01, rtol=1e-9)
+    assert np.all(inc > 0.99 * 0.01)
+    assert 100 <= r.steps_initiation <= 102
     assert np.all(np.diff(r.cycles) >= 0)
     assert np.all((r.damage_final >= 0) & (r.damage_final <= 1))
 

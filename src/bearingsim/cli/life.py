@@ -42,8 +42,9 @@ from .common import bearing_options, cli, emit_json, json_option
 @click.option(
     "--delta-d-spall",
     type=float,
-    default=None,
-    help="Damage block after initiation [-] (default: --delta-d).",
+    default=0.01,
+    show_default=True,
+    help="Damage block after initiation, growth of the failed zone to the surface [-].",
 )
 @click.option(
     "--measure",
@@ -109,7 +110,7 @@ def life_cmd(
     mesh: str,
     element_size_um: float | None,
     delta_d: float,
-    delta_d_spall: float | None,
+    delta_d_spall: float,
     measure: str,
     load_method: str,
     kappa: float | None,

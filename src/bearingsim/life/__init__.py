@@ -3,14 +3,14 @@ ISO/TS 16281 ratings beside it.
 
 Modules: :mod:`.damage` (damage law, S–N fit, torsion check), :mod:`.analytic` (McEwen
 line-contact field), :mod:`.fe` (scikit-fem plane-strain section under a moving Hertz pressure),
-:mod:`.fatigue` (semi-decoupled damage loop, :class:`LifeResult`), :mod:`.iso281` (ISO 281
-rating, static capacity, cycle/revolution/hour conversions), :mod:`.iso16281` (reference rating
-life from the load distribution).
+:mod:`.validation` (FE vs McEwen), :mod:`.fatigue` (semi-decoupled damage loop,
+:class:`LifeResult`), :mod:`.iso281` (ISO 281 rating, static capacity, cycle/revolution/hour
+conversions), :mod:`.iso16281` (reference rating life from the load distribution).
 """
 
 from .damage import GCR15_TORSION, DamageLaw, SNCurve, fit_sn_curve, torsion_check
 from .fatigue import ElementLoadMethod, LifeResult, contact_fatigue_life, inner_contact
-from .fe import ShearMeasure, contact_section, section_spec, validate_against_hertz
+from .fe import ShearMeasure, contact_section, section_spec
 from .iso281 import (
     StaticCapacityWarning,
     basic_rating_life,
