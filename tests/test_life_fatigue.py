@@ -30,8 +30,11 @@ B6206 = get_bearing("6206")
 
 @pytest.fixture(scope="module")
 def quick_spall():
-    """Coarse mesh, Delta_D = 0.01 (reduced-size variant of the seed's 0.001)."""
-    return contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.01, max_steps=3000)
+    """Coarse mesh, Delta_D = 0.01 (reduced-size variant of the seed's 0.001), 0.05 after
+    initiation."""
+    return contact_fatigue_life(
+        B6206, 5000.0, mesh="coarse", delta_d=0.01, delta_d_spall=0.05, max_steps=3000
+    )
 
 
 def test_inner_contact_matches_seed_table2():
