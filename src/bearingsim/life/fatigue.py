@@ -254,13 +254,19 @@ class LifeResult:
         ax2 = ax.twinx()
         ax2.plot(self.cycles, self.n_failed, "r-", label="failed elements")
         ax2.set_ylabel("failed elements [-]", color="r")
-        for val, lab, st in (
-            (self.cycles_initiation, "initiation", "--"),
-            (self.cycles_spall, "spall", ":"),
+        for k, (val, lab, st) in enumerate(
+            ((self.cycles_initiation, "initiation", "--"), (self.cycles_spall, "spall", ":"))
         ):
             if np.isfinite(val):
                 ax.axvline(val, color="k", ls=st, lw=1)
-                ax.text(val, 0.05, f" {lab}\n {val:.3g}", fontsize=8)
+                ax.text(
+                    val,
+                    0.55 + 0.12 * k,
+                    f"{lab} {val:.4g} ",
+                    fontsize=8,
+                    ha="right",
+                    transform=ax.get_xaxis_transform(),
+                )
         ax.set_title("damage evolution (semi-decoupled, seed LIFE eqs. (7)-(8))")
         return fig
 
@@ -384,9 +390,7 @@ def contact_fatigue_life(
     s_init = s_spall = -1
     z_init = x_init = math.nan
     dtau0 = None
-    bar = tqdm(
-        total=max_steps, desc="damage blocks", unit="block", disable=not progress, leave=False
-    )
+    bar = tqdm(desc="damage blocks", unit="block", disable=not progress, leave=False)
     t1 = time.perf_counter()
     try:
         for step in range(1, max_steps + 1):

@@ -9,8 +9,9 @@ the point-contact ``p_max`` and the semi-axis ``b`` *along the rolling direction
 and applies them to a plane-strain section in the rolling plane, i.e. it treats the central strip
 of the ellipse as a line contact. The subsurface field of this 2-D model is therefore the McEwen
 line-contact field scaled by the point-contact ``p_max`` and ``b`` (orthogonal shear
-``0.25 p_max`` at ``0.5 b``), not the 3-D elliptical field (``tau_yz ≈ 0.24 p_max`` at
-``0.49 b`` for the 6206 ellipse, Lundberg & Palmgren).
+``0.25 p_max`` at ``0.5 b``), not the 3-D elliptical field — though for a slender ellipse the two
+are close (6206 inner contact, ``a/b = 11``: Lundberg–Palmgren ``tau_yz = 0.2495 p_max`` at
+``0.497 b``, :func:`bearingsim.hertz.subsurface_stresses`).
 
 **Load cycle.** The pressure is moved across the surface in steps (one pass = one load cycle on
 every material point of the section): centres ``x_c`` from ``-s`` to ``+s`` with a step equal to
