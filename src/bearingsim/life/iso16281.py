@@ -68,8 +68,9 @@ def load_integrals(epsilon: float = 0.5, line_contact: bool = False) -> LoadInte
     """``J_r = 1/(2pi) int q^n cos psi dpsi``, ``J_1 = [1/(2pi) int q^(n w1) dpsi]^(1/w1)``,
     ``J_2 = [1/(2pi) int q^(n w2) dpsi]^(1/w2)`` with ``q = 1 - (1 - cos psi)/(2 epsilon)`` over
     the load zone; ``n = 1.5, w1 = 3, w2 = 10/3`` (point) or ``n = 10/9, w1 = 4, w2 = 9/2``
-    (line). Harris's tabulated values at ``epsilon = 0.5``: 0.2288/0.5625/0.5875 (point),
-    0.2453/0.6925/0.7233 (line).
+    (line). At ``epsilon = 0.5`` the point-contact values are Harris's 0.2288/0.5625/0.5875
+    (checked in the tests); the line-contact ones (0.2448/0.6504/0.6743 with ``n = 10/9``) are
+    computed, not compared with a table.
 
     Parameters
     ----------
