@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._version import __version__
-from ..errors import ConfigError, check_positive, check_range
+from ..errors import ConfigError, SolverError, check_positive, check_range
 from ..geometry import BallBearing, Bearing
 from .damage import GCR15_TORSION, DamageLaw, fit_sn_curve
 from .fe import ShearMeasure, contact_section, core_substructure, section_spec
@@ -403,7 +403,7 @@ def contact_fatigue_life(
             rate[failed] = 0.0
             j = int(np.argmax(rate))
             if not rate[j] > 0.0:
-                raise ConfigError("contact_fatigue_life: no element is being damaged")
+                raise SolverError("contact_fatigue_life: no element is being damaged")
             dN = dd_now / rate[j]  # seed LIFE eq. (7)
             D += dN * rate  # seed LIFE eq. (8)
             N += dN
@@ -436,6 +436,13 @@ def contact_fatigue_life(
     if s_init < 0:
         warnings.warn(
             f"contact_fatigue_life: no element failed within max_steps = {max_steps}",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    elif stop == "spall" and s_spall < 0:
+        warnings.warn(
+            f"contact_fatigue_life: the failed zone did not reach the surface within "
+            f"max_steps = {max_steps}",
             RuntimeWarning,
             stacklevel=2,
         )
