@@ -141,3 +141,11 @@ def test_static_capacity_warning_and_limit():
 def test_bad_input(kw, match):
     with pytest.raises(ConfigError, match=match):
         contact_fatigue_life(B6206, 5000.0, mesh="coarse", **kw)
+
+
+def test_step_limit_warns():
+    with pytest.warns(RuntimeWarning, match="did not reach the surface"):
+        r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=22)
+    assert math.isfinite(r.cycles_initiation) and math.isnan(r.cycles_spall)
+    with pytest.warns(RuntimeWarning, match="no element failed"):
+        contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=3)
