@@ -1,0 +1,368 @@
+"""Report section for SPEC §4 (seed LIFE): damage-mechanics contact-fatigue life of the 6206,
+beside the ISO 281 and ISO/TS 16281-style ratings."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...catalog import get_bearing
+from ...life.analytic import mcewen_stresses
+from ...life.damage import GCR15_TORSION, fit_sn_curve, torsion_check
+from ...life.fatigue import contact_fatigue_life, inner_contact
+from ...life.fe import ShearMeasure, contact_section, section_spec
+from ...life.iso281 import (
+    basic_rating_life,
+    dynamic_load_rating,
+    inner_race_cycles_per_revolution,
+)
+from ...life.iso16281 import reference_rating_life
+from ...life.validation import validate_against_hertz
+from .. import Context, Row, Section, compare
+from ..figures import save_figure
+
+TITLE = "LIFE (SPEC §4): damage-mechanics contact-fatigue life of the 6206; ISO 281 / ISO/TS 16281"
+
+#: seed LIFE table 4: predicted life and the three test bearings [cycles]
+SEED_PREDICTED = 2.72e8
+SEED_TESTS = (2.1e8, 2.64e8, 5.57e8)
+SEED_ERRORS_PCT = (29.52, 3.03, 51.16)
+
+
+def _fe_figure(section, st):
+    """tau_xz vs depth under the orthogonal-shear peak: FE element averages vs McEwen."""
+    import matplotlib.pyplot as plt
+
+    b, p0 = section.b, section.p_max
+    k0 = int(np.argmin(np.abs(section.positions)))
+    cx, cz = section.centroids
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    for xb, mk in ((-0.87, "o"), (0.87, "s")):
+        col = np.isclose(cx, cx[np.argmin(np.abs(cx - xb * b))], rtol=0, atol=1e-9)
+        sel = col & (cz < 3 * b)
+        order = np.argsort(cz[sel])
+        z = cz[sel][order]
+        ax.plot(
+            st.tau_xz[sel, k0][order] / p0,
+            z / b,
+            mk,
+            ms=3,
+            mfc="none",
+            label=f"FE, x = {cx[sel][0] / b:+.2f} b",
+        )
+        zz = np.linspace(0.01, 3, 300) * b
+        ax.plot(mcewen_stresses(cx[sel][0], zz, p0, b).tau_xz / p0, zz / b, "k-", lw=1)
+    ax.plot([], [], "k-", label="McEwen (Johnson eq. 4.75)")
+    ax.invert_yaxis()
+    ax.set_xlabel("tau_xz / p_max [-]")
+    ax.set_ylabel("depth z / b [-]")
+    ax.legend(fontsize=8)
+    ax.set_title("undamaged section, load at x = 0")
+    return fig
+
+
+def run(ctx: Context) -> Section:
+    sec = Section("life", TITLE)
+    rows = sec.rows
+    out = ctx.out_dir
+    # ---------------------------------------------------------------- §1.1 damage law fit
+    fit = fit_sn_curve(GCR15_TORSION)
+    law = fit.law
+    rows.append(
+        compare(
+            "kappa from the GCr15 torsional S-N fit [-]",
+            "seed LIFE §1.1",
+            11.1,
+            law.kappa,
+            0.05 / 11.1,
+        )
+    )
+    rows.append(
+        compare(
+            "sigma_t from the GCr15 torsional S-N fit [MPa]",
+            "seed LIFE §1.1",
+            5979.0,
+            law.sigma_t / 1e6,
+            5e-3,
+        )
+    )
+    save_figure(fit.plot(GCR15_TORSION), out / "life_sn_fit.png")
+    sec.figures.append(
+        (
+            "life_sn_fit.png",
+            "Seed LIFE fig. 1 analogue: GCr15 torsional S-N "
+            "curve (eq. (5)) and the integrated damage law (eq. (6)) fitted to it",
+        )
+    )
+    # ---------------------------------------------------------------- §1.2 torsion check
+    tc = torsion_check(law)
+    for i in (0, -1):
+        ta = tc.tau_amplitude[i] / 1e6
+        rows.append(
+            compare(
+                f"torsion life at shear amplitude {ta:.0f} MPa [cycles]",
+                "seed LIFE §1.2 / eq. (5) S-N curve",
+                float(tc.cycles_sn[i]),
+                float(tc.cycles_predicted[i]),
+                0.01,
+            )
+        )
+    save_figure(tc.plot(), out / "life_torsion.png")
+    sec.figures.append(
+        (
+            "life_torsion.png",
+            "Seed LIFE fig. 3 analogue: torsion 1000 -> 400 MPa "
+            "by 50 MPa; the damage law (blocks Delta D = 0.001) against the S-N "
+            "curve. The seed compares with the scattered test points (not "
+            "available); against its own fitted curve the law agrees to the "
+            "block error Delta_D (kappa+1)/2 = 0.6 %.",
+        )
+    )
+    # ---------------------------------------------------------------- §2.1 contact
+    b6206 = get_bearing("6206")
+    c = inner_contact(b6206, 5000.0)
+    rows.append(
+        compare(
+            "6206 inner p_max at 5 kN used by the FE [MPa]",
+            "seed LIFE table 3 (ABAQUS)",
+            2904.0,
+            c.p_max / 1e6,
+            0.01,
+            "ours is Hertz theory with Stribeck Q_max = 4.37 F_r/Z = 2428 N; it "
+            "matches the seed's own theory value 2890 MPa (table 2)",
+        )
+    )
+    rows.append(
+        compare(
+            "6206 inner contact semi-axis b (along rolling) [mm]",
+            "seed LIFE table 3",
+            0.23,
+            c.b * 1e3,
+            0.03,
+            f"Hertz gives b = {c.b * 1e3:.3f} mm (a = {c.a * 1e3:.2f} mm) for "
+            "Q = 2428 N; b = 0.23 mm would need 1.8 x that load (b ~ Q^(1/3)); the "
+            "seed does not say how its 0.23 mm was obtained",
+        )
+    )
+    # ---------------------------------------------------------------- FE validation
+    spec = section_spec(c.b, "default")
+    fe = contact_section(b6206.material, c.p_max, c.b, spec)
+    st = fe.solve()
+    v = validate_against_hertz(fe, st)
+    rows.append(
+        compare(
+            "FE max orthogonal shear |tau_xz| (default mesh) [MPa]",
+            "McEwen / Johnson (1985) §4.2: 0.25 p_max",
+            v.tau_max_exact / 1e6,
+            v.tau_max_fe / 1e6,
+            0.03,
+        )
+    )
+    rows.append(
+        compare(
+            "FE depth of max |tau_xz| (default mesh) [um]",
+            "McEwen / Johnson (1985) §4.2: 0.5 b",
+            v.depth_exact * 1e6,
+            v.depth_fe * 1e6,
+            0.03,
+        )
+    )
+    rows.append(
+        compare(
+            "6206 max shear stress at 5 kN [MPa]",
+            "seed LIFE table 3",
+            459.0,
+            v.tau_max_fe / 1e6,
+            0.03,
+            "ours is the orthogonal shear amplitude 0.25 p_max of the Hertz field "
+            "(the in-plane maximum shear is 0.30 p_max = 867 MPa); 459 MPa = "
+            "0.16 p_max matches no Hertz shear measure",
+        )
+    )
+    save_figure(_fe_figure(fe, st), out / "life_fe_vs_mcewen.png")
+    sec.figures.append(
+        (
+            "life_fe_vs_mcewen.png",
+            f"Undamaged plane-strain section (default mesh, {fe.n_elements} "
+            f"elements, h = b/10): tau_xz vs depth at x = +/-0.87 b against the "
+            "McEwen line-contact field",
+        )
+    )
+    # ---------------------------------------------------------------- damage life
+    dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.01)
+    res = contact_fatigue_life(
+        b6206, 5000.0, mesh="default", delta_d=dd, delta_d_spall=dds, law=law
+    )
+    variant = (
+        f"default mesh (h = b/10), Delta_D = {dd:g}"
+        + (" (quick variant; the seed's 0.001 in the full report)" if ctx.quick else "")
+        + f", Delta_D = {dds:g} after initiation"
+    )
+    reason = (
+        "With the orthogonal shear range Delta_tau = 0.5 p_max = 1445 MPa that the seed names "
+        "as the damage driver (§2.2), the seed's own law (kappa 11.1, sigma_t 5979 MPa) gives "
+        f"{float(law.cycles_to_failure(0.5 * c.p_max)):.3g} cycles even for a uniformly stressed "
+        "element (eq. (6)); the paper's 2.72e8 corresponds to Delta_tau ~ 0.32 p_max, i.e. the "
+        "459 MPa shear amplitude of its table 3, which is not a Hertz shear stress of the stated "
+        "contact. Ours: " + variant + ". See docs/validation.md (mesh convergence, Delta_D and "
+        "Delta_tau sensitivity). No calibration factor is applied."
+    )
+    rows.append(
+        compare(
+            "6206 life at 5 kN, first surface element failed (spall) [cycles]",
+            "seed LIFE table 4 (predicted)",
+            SEED_PREDICTED,
+            res.cycles_spall,
+            0.1,
+            reason,
+        )
+    )
+    rows.append(
+        Row(
+            "6206 life at 5 kN, first element failed (initiation) [cycles]",
+            "ours (" + variant + ")",
+            None,
+            res.cycles_initiation,
+            None,
+            "explained",
+            f"initiation at depth {res.initiation_depth * 1e6:.0f} um = "
+            f"{res.initiation_depth / c.b:.2f} b after {res.steps_initiation} blocks; "
+            f"spall after {res.steps_spall} blocks",
+        )
+    )
+    for k, (t, e) in enumerate(zip(SEED_TESTS, SEED_ERRORS_PCT, strict=True), start=1):
+        rows.append(
+            compare(
+                f"test bearing {k} life [cycles]",
+                "seed LIFE table 4 (test)",
+                t,
+                res.cycles_spall,
+                0.5,
+                "see the predicted-life row",
+            )
+        )
+        rows.append(
+            compare(
+                f"seed's relative error, bearing {k} [%]",
+                "seed LIFE table 4 (recomputed from its lives)",
+                e,
+                100 * abs(SEED_PREDICTED - t) / t,
+                2e-3,
+            )
+        )
+    deep = res.initiation_depth > 0 and not res.surface[np.argmax(res.damage_initiation)]
+    rows.append(
+        Row(
+            "damage initiation site",
+            "seed LIFE fig. 15",
+            "below the surface",
+            f"depth {res.initiation_depth / c.b:.2f} b",
+            None,
+            "match" if deep else "mismatch",
+        )
+    )
+    # uniform-element estimates per Delta_tau definition (from the undamaged default mesh)
+    est = []
+    for m in ShearMeasure:
+        dt = float(st.shear_range(m).max())
+        est.append(
+            f"{m.value}: Delta_tau {dt / 1e6:.0f} MPa -> "
+            f"{float(law.cycles_to_failure(dt)):.3g} cycles"
+        )
+    rows.append(
+        Row(
+            "uniform-element life eq. (6) with the seed's table-3 shear amplitude "
+            "459 MPa (Delta_tau = 918 MPa) [cycles]",
+            "derived from seed LIFE table 3",
+            None,
+            float(law.cycles_to_failure(918e6)),
+            None,
+            "explained",
+            "shows the order of magnitude of the seed's 2.72e8 follows from its "
+            "459 MPa; Hertz-field estimates per Delta_tau definition: " + "; ".join(est),
+        )
+    )
+    save_figure(res.plot_damage_field("final"), out / "life_damage_field.png")
+    sec.figures.append(
+        (
+            "life_damage_field.png",
+            "Seed LIFE fig. 15 analogue: damage field when the first surface element "
+            f"fails ({variant}); white squares = failed elements",
+        )
+    )
+    save_figure(res.plot_damage_field("initiation"), out / "life_damage_initiation.png")
+    sec.figures.append(
+        ("life_damage_initiation.png", "damage field at the first failure (subsurface initiation)")
+    )
+    save_figure(res.plot_damage_curve(), out / "life_damage_curve.png")
+    sec.figures.append(
+        ("life_damage_curve.png", "largest element damage and failed elements vs load cycles")
+    )
+    # ---------------------------------------------------------------- ISO 281 / 16281
+    u = inner_race_cycles_per_revolution(b6206)
+    for bid, nsk, skf in (("6206", 19.5, 20.3), ("6205", 14.0, 14.8)):
+        r = dynamic_load_rating(get_bearing(bid))
+        rows.append(
+            compare(
+                f"{bid} ISO 281 C_r from geometry [kN]",
+                "NSK catalogue (ISO 281)",
+                nsk,
+                r.c / 1e3,
+                0.01,
+            )
+        )
+        rows.append(
+            compare(
+                f"{bid} ISO 281 C_r from geometry [kN]",
+                "SKF catalogue",
+                skf,
+                r.c / 1e3,
+                0.01,
+                "SKF's listed ratings exceed ISO 281 with b_m = 1.3 (their steel "
+                "and manufacturing quality); NSK lists the plain ISO 281 value",
+            )
+        )
+    l10 = basic_rating_life(b6206, 5000.0)
+    ref = reference_rating_life(b6206, 5000.0)
+    rows.append(
+        compare(
+            "6206 ISO 281 L10 at 5 kN, inner-race cycles [cycles]",
+            "vs seed LIFE table 4 predicted",
+            SEED_PREDICTED,
+            l10 * u,
+            0.1,
+            f"L10 = {l10:.3g} rev x u_i = Z(1+gamma)/2 = {u:.3f} over-rollings per "
+            "revolution; L10 is the 10 % failure life of a population, the damage "
+            "life a deterministic one",
+        )
+    )
+    rows.append(
+        Row(
+            "6206 ISO/TS 16281-style L10r at 5 kN [rev]",
+            "ours (zero clearance)",
+            None,
+            ref.l10r,
+            None,
+            "explained",
+            f"L10 (ISO 281) = {l10:.3g} rev; L10r is higher because the seed's grooves "
+            f"(f_i {b6206.inner_conformity:.3f}, f_e {b6206.outer_conformity:.3f}) are "
+            "tighter than ISO's reference 0.52/0.53",
+        )
+    )
+    sec.text = (
+        "Plane-strain idealisation (the seed's): the elliptical ball/race contact is represented "
+        "by its central strip, a 12 x 4 mm section in the rolling plane loaded by "
+        "p(x) = p_max sqrt(1 - (x/b)^2) with the point-contact p_max and b from Hertz theory; "
+        "the pressure moves across the surface (+/-2 b in steps of h), one pass = one cycle; "
+        "Delta_tau = range of the orthogonal shear tau_xz. "
+        f"Damage run: {res.meta['n_core_elements']} core elements, "
+        f"{res.meta['n_positions']} load positions, {res.meta['n_steps']} blocks in "
+        f"{res.wall_s:.1f} s ({1e3 * res.meta['time_per_step_s']:.1f} ms per block). "
+        f"Units: u_i = {u:.3f} inner-race cycles per revolution; spall at "
+        f"{res.cycles_spall / u:.3g} rev. ISO: C_r = {dynamic_load_rating(b6206).c:.0f} N, "
+        f"L10 = {l10:.3g} rev, L10r = {ref.l10r:.3g} rev."
+    )
+    if not math.isfinite(res.cycles_spall):
+        sec.text += " The spall criterion was not reached within the block limit."
+    return sec

@@ -1,0 +1,128 @@
+"""``bearingsim life`` command: JSON contract, files, one-line errors with exit code 2."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from numpy.testing import assert_allclose
+
+from bearingsim.catalog import get_bearing
+from bearingsim.cli import main
+from bearingsim.life.fatigue import LifeResult
+from bearingsim.life.iso281 import static_capacity
+
+QUICK = ["--mesh", "coarse", "--delta-d", "0.05", "--stop", "initiation"]
+KEYS = {
+    "p_max_pa",
+    "b_m",
+    "kappa",
+    "sigma_t_pa",
+    "cycles_initiation",
+    "cycles_spall",
+    "initiation_depth_m",
+    "l10_iso281_rev",
+    "l10r_iso16281_rev",
+    "wall_s",
+}
+
+
+def test_life_json(run_cli, tmp_path):
+    out = tmp_path / "life.npz"
+    png = tmp_path / "field.png"
+    curve = tmp_path / "curve.png"
+    r = run_cli(
+        "life",
+        "6206",
+        "--radial-load",
+        "5000",
+        "--rpm",
+        "12000",
+        *QUICK,
+        "--plot",
+        png,
+        "--plot-curve",
+        curve,
+        "-o",
+        out,
+        "--json",
+    )
+    assert r.code == 0, r.err
+    d = r.json()
+    assert KEYS <= set(d)
+    assert_allclose(d["p_max_pa"], 2890e6, rtol=0.01, err_msg="seed LIFE table 2 theory")
+    assert_allclose(d["kappa"], 11.1, atol=0.05, err_msg="seed LIFE §1.1")
+    assert d["cycles_spall"] is None  # stopped at initiation
+    assert 0 < d["initiation_depth_m"] < d["b_m"]
+    assert_allclose(d["l10_iso281_h"], d["l10_iso281_rev"] / (60 * 12000), rtol=1e-12)
+    assert out.exists() and png.stat().st_size > 0 and curve.stat().st_size > 0
+    res = LifeResult.load(out)
+    assert_allclose(res.cycles_initiation, d["cycles_initiation"], rtol=1e-15)
+    assert r.err == ""
+
+
+def test_life_text_output(run_cli, tmp_path):
+    r = run_cli("life", "6206", "--radial-load", "5000", *QUICK, "-o", tmp_path / "a.npz")
+    assert r.code == 0, r.err
+    assert "damage life: initiation" in r.out and "ISO 281: C =" in r.out
+
+
+def _bad(capsys, args, tmp_path, match):
+    out = tmp_path / "bad.npz"
+    with pytest.raises(SystemExit) as exc:
+        main(["life", "6206", *args, "-o", str(out)])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), err
+    assert match in lines[0], lines[0]
+    assert not out.exists()
+    return lines[0]
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["--radial-load", "5000", "--kappa", "0"], "kappa = 0"),
+        (["--radial-load", "5000", "--kappa", "-2"], "kappa = -2"),
+        (["--radial-load", "5000", "--sigma-t-pa", "0"], "sigma_t_pa = 0"),
+        (["--radial-load", "5000", "--sigma-t-pa", "-5e9"], "sigma_t_pa = -5e+09"),
+        (["--radial-load", "0"], "radial_load_n = 0"),
+        (["--radial-load", "5000", "--element-size-um", "100"], "does not resolve"),
+        (["--radial-load", "5000", "--delta-d", "0"], "delta_d = 0"),
+        (["--radial-load", "5000", "--mesh", "huge"], "Invalid value for '--mesh'"),
+    ],
+)
+def test_life_bad_input(capsys, tmp_path, args, match):
+    line = _bad(capsys, args, tmp_path, match)
+    if "kappa" in match or "sigma_t" in match:
+        assert "valid range (0, inf)" in line
+
+
+def test_life_overload_error_and_warning(capsys, tmp_path, run_cli):
+    c0 = static_capacity(get_bearing("6206")).c0
+    line = _bad(capsys, ["--radial-load", f"{2.5 * c0:.0f}"], tmp_path, "static capacity")
+    assert "valid range (0," in line
+    r = run_cli(
+        "life",
+        "6206",
+        "--radial-load",
+        f"{1.3 * c0:.0f}",
+        *QUICK,
+        "-o",
+        tmp_path / "w.npz",
+        "--json",
+    )
+    assert r.code == 0
+    assert r.err.startswith("warning: radial load") and "static capacity" in r.err
+    assert math.isfinite(r.json()["cycles_initiation"])
+
+
+def test_too_coarse_message_names_the_needed_size(capsys, tmp_path):
+    line = _bad(
+        capsys,
+        ["--radial-load", "5000", "--element-size-um", "60"],
+        tmp_path,
+        "need element size <= b/4",
+    )
+    assert " um" in line

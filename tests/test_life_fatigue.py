@@ -1,0 +1,151 @@
+"""Semi-decoupled damage loop on the FE section (seed LIFE §2.3, eqs. (7)–(8))."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from bearingsim.catalog import get_bearing
+from bearingsim.errors import ConfigError
+from bearingsim.life.damage import DamageLaw
+from bearingsim.life.fatigue import (
+    ElementLoadMethod,
+    LifeResult,
+    contact_fatigue_life,
+    default_damage_law,
+    inner_contact,
+)
+from bearingsim.life.iso281 import StaticCapacityWarning, static_capacity
+
+B6206 = get_bearing("6206")
+
+
+@pytest.fixture(scope="module")
+def quick_spall():
+    """Coarse mesh, Delta_D = 0.01 (reduced-size variant of the seed's 0.001), 0.05 after
+    initiation."""
+    return contact_fatigue_life(
+        B6206, 5000.0, mesh="coarse", delta_d=0.01, delta_d_spall=0.05, max_steps=3000
+    )
+
+
+def test_inner_contact_matches_seed_table2():
+    c = inner_contact(B6206, 5000.0)
+    assert_allclose(c.q, 4.37 * 5000 / 9, rtol=1e-12, err_msg="Stribeck Q_max, seed LIFE §2.1")
+    assert_allclose(c.p_max, 2890e6, rtol=0.01, err_msg="inner p_max vs seed LIFE table 2 theory")
+    d = inner_contact(B6206, 5000.0, ElementLoadMethod.DISTRIBUTION)
+    # zero clearance: the discrete-ball maximum is within 1 % of Stribeck's 4.37 F_r/Z
+    assert_allclose(d.q, c.q, rtol=0.01)
+
+
+def test_first_failure_after_about_one_over_delta_d_blocks(quick_spall):
+    """The fastest element gains exactly Delta_D per block (eq. (7)) and no element more, so the
+    largest damage grows by at most Delta_D per block and the first failure needs at least
+    1/Delta_D blocks (the seed's "i from 1 to 1000"); exactly 1/Delta_D when the most damaged
+    element stays the fastest (a neighbour may overtake it by a block or two)."""
+    r = quick_spall
+    inc = np.diff(r.damage_max[: r.steps_initiation + 1])
+    assert np.all(inc > 0) and np.all(inc[:-1] <= 0.01 * (1 + 1e-9))
+    assert inc[-1] <= 0.01 * (1 + 1e-3)  # the failing element is snapped to D = 1
+    assert_allclose(np.median(inc), 0.01, rtol=1e-9)
+    assert np.all(inc > 0.99 * 0.01)
+    assert 100 <= r.steps_initiation <= 102
+    assert np.all(np.diff(r.cycles) >= 0)
+    assert np.all((r.damage_final >= 0) & (r.damage_final <= 1))
+
+
+def test_damage_initiates_below_the_surface(quick_spall):
+    """Seed LIFE fig. 15: initiation below the surface, near the orthogonal-shear peak 0.5 b."""
+    r = quick_spall
+    b = r.meta["b_m"]
+    assert 0.3 * b < r.initiation_depth < 0.7 * b
+    assert abs(r.initiation_x) < 1.0 * b
+    assert not r.surface[np.argmax(r.damage_initiation)]
+
+
+def test_spall_after_initiation_and_at_the_surface(quick_spall):
+    r = quick_spall
+    assert r.steps_spall > r.steps_initiation
+    assert r.cycles_spall >= r.cycles_initiation
+    assert np.any(r.surface & (r.damage_final >= 1.0))
+    assert r.n_failed[-1] >= 2
+
+
+def test_life_is_of_the_order_of_the_single_element_estimate(quick_spall):
+    """Uniform-stress estimate eq. (6) with the undamaged Delta_tau of the critical element is
+    the no-redistribution limit; the FE life stays within a factor 2 of it."""
+    r = quick_spall
+    law = default_damage_law()
+    est = float(law.cycles_to_failure(r.delta_tau0.max()))
+    assert 0.8 * est < r.cycles_initiation < 2.0 * est
+    assert r.meta["outer_rate_ratio"] < 1e-2
+
+
+def test_result_roundtrip(quick_spall, tmp_path):
+    p = quick_spall.save(tmp_path / "life.npz")
+    q = LifeResult.load(p)
+    for k in LifeResult._ARRAYS:
+        np.testing.assert_array_equal(getattr(q, k), getattr(quick_spall, k))
+    assert q.cycles_spall == quick_spall.cycles_spall
+    assert q.meta == quick_spall.meta
+    fig = q.plot_damage_field("final")
+    assert fig.axes
+    assert q.plot_damage_curve().axes
+
+
+def test_nan_survives_roundtrip(tmp_path):
+    r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, stop="initiation")
+    assert math.isnan(r.cycles_spall)
+    q = LifeResult.load(r.save(tmp_path / "x.npz"))
+    assert math.isnan(q.cycles_spall) and q.steps_spall == -1
+
+
+def test_weaker_material_shorter_life():
+    law = default_damage_law()
+    kw = dict(mesh="coarse", delta_d=0.05, stop="initiation")
+    r1 = contact_fatigue_life(B6206, 5000.0, law=law, **kw)
+    r2 = contact_fatigue_life(B6206, 5000.0, law=DamageLaw(law.kappa, 0.9 * law.sigma_t), **kw)
+    # Delta_tau enters as (Delta_tau/sigma_t)^kappa: 10 % lower sigma_t -> 0.9^kappa
+    assert_allclose(r2.cycles_initiation / r1.cycles_initiation, 0.9**law.kappa, rtol=1e-6)
+
+
+def test_static_capacity_warning_and_limit():
+    c0 = static_capacity(B6206).c0
+    with pytest.raises(ConfigError, match=r"radial_load_n = .* exceeds 2 x the static capacity"):
+        contact_fatigue_life(B6206, 2.1 * c0, mesh="coarse")
+    with pytest.warns(StaticCapacityWarning, match="exceeds the static capacity"):
+        r = contact_fatigue_life(B6206, 1.2 * c0, mesh="coarse", delta_d=0.05, stop="initiation")
+    assert 20 <= r.steps_initiation <= 22
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        contact_fatigue_life(B6206, 0.5 * c0, mesh="coarse", delta_d=0.1, stop="initiation")
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(delta_d=0.0), "delta_d = 0 .* valid range"),
+        (dict(delta_d=0.5), "delta_d = 0.5 .* valid range"),
+        (dict(stop="never"), "stop = 'never' is invalid"),
+        (dict(element_size=1e-4), "does not resolve"),
+    ],
+)
+def test_bad_input(kw, match):
+    with pytest.raises(ConfigError, match=match):
+        contact_fatigue_life(B6206, 5000.0, mesh="coarse", **kw)
+
+
+def test_step_limit_warns():
+    with pytest.warns(RuntimeWarning, match="did not reach the surface"):
+        r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=22)
+    assert math.isfinite(r.cycles_initiation) and math.isnan(r.cycles_spall)
+    with pytest.warns(RuntimeWarning, match="no element failed"):
+        contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=3)
