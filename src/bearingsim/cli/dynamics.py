@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -146,7 +147,7 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
         disable=as_json,
         leave=False,
         delay=1.0,
-        file=click.get_text_stream("stderr"),
+        file=sys.stderr,
     )
     last = [0]
 
