@@ -1,0 +1,815 @@
+"""Parameter sweeps on Dask: a local cluster by default, a cluster by address, resumable.
+
+:func:`plan_sweep` counts the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` and estimates
+time and disk from short timing runs; :func:`run_sweep` executes them, each run being
+``bearingsim.simulate(scenario_i)`` — exactly the single-run API, so a sweep result equals the
+same scenario run on its own, bit for bit (the nominal ``time`` coordinate ``k/fs`` differs from
+the integrator's accumulated time by < 1e-16 s).
+
+Execution
+---------
+The client (this process) validates every run's scenario, connects to Dask — a
+:class:`distributed.LocalCluster` of *process* workers with one thread each by default (the
+Numba kernels hold the GIL, so threads would serialise), or an existing scheduler by address —
+and imports the compiled kernels on every worker. A few probe runs (two samples each) on the
+workers give the channels, units and shapes; the client then creates the Zarr dataset
+(:mod:`bearingsim.sweep_dataset`), or checks that an existing one was created by the same spec
+(same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
+runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
+
+Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
+tasks hold one run each; then the size follows the measured run time (tasks of ~0.5 s, so
+Dask's ~1–3 ms per task stays below 1 %) and shrinks towards the end (at most the remaining runs
+/ (2 x threads)) so that the workers finish together. At most two tasks per worker thread are in
+flight; the client submits the next one as each finishes, which keeps memory bounded for any
+number of runs. Each run is committed on its own as soon as it finishes: by the worker when it
+sees the dataset directory (same machine or a shared file system; checked with the dataset's
+uuid), otherwise its arrays are sent back and the client commits them. A run that raises is
+committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A worker that dies
+loses at most its running run: Dask reruns the task elsewhere and the runs already committed by
+it are skipped; a task lost more than ``distributed.scheduler.allowed-failures`` times is recorded
+as failed (``KilledWorker``). Killing the client loses nothing committed; running the same
+command again resumes.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures
+import contextlib
+import json
+import logging
+import math
+import os
+import re
+import shutil
+import socket
+import sys
+import time
+import uuid as uuidlib
+import warnings
+from collections import deque
+from collections.abc import Callable, Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._version import __version__
+from .config import Scenario
+from .errors import BearingsimError, ConfigError
+from .io import to_jsonable
+from .sweep_dataset import (
+    FAILED,
+    OK,
+    PENDING,
+    ChannelLayout,
+    Layout,
+    RunWriter,
+    client_lock,
+    create_dataset,
+    read_attrs,
+    read_status,
+    remove_stale_temporaries,
+)
+from .sweep_spec import SweepSpec, canonical_hash, spec_differences
+
+#: automatic task size: aim at this much compute per task [s]
+TARGET_TASK_S = 0.5
+#: tasks in flight per worker thread
+INFLIGHT_PER_THREAD = 2
+#: scheduler connection timeout [s]
+CONNECT_TIMEOUT_S = 20.0
+_ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
+
+
+class SweepInterrupted(BearingsimError):
+    """The sweep was interrupted (Ctrl-C); committed runs are kept (``report`` has counts)."""
+
+    def __init__(self, message: str, report: SweepReport) -> None:
+        super().__init__(message)
+        self.report = report
+
+
+# ------------------------------------------------------------------------------ worker side
+#: per worker process: (dataset path, uuid) -> RunWriter, or None when not visible from here
+_WRITERS: dict[tuple[str, str], RunWriter | None] = {}
+
+
+def _writer_for(path: str, uuid: str) -> RunWriter | None:
+    key = (path, uuid)
+    if key not in _WRITERS:
+        try:
+            _WRITERS[key] = RunWriter(path, uuid)
+        except (OSError, ValueError, KeyError):
+            _WRITERS[key] = None
+    return _WRITERS[key]
+
+
+def worker_hello() -> dict[str, Any]:
+    """Run on each worker before the sweep: loads the compiled kernels, reports identity."""
+    from . import simulate  # noqa: F401  (imports and loads the cached Numba kernels)
+
+    return {"version": __version__, "host": socket.gethostname(), "pid": os.getpid()}
+
+
+def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
+    """Two-sample run of ``scenario``: channel names, units and trailing shapes."""
+    from .simulate import simulate
+
+    sc = Scenario.from_dict(scenario)
+    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, noise_rms_m_s2=0.0))
+    out = {}
+    for name, x in res.channels.items():
+        a = np.asarray(x)
+        dims = res._dims(name, a)
+        out[name] = {
+            "units": res.units.get(name, ""),
+            "extra_dim": dims[1] if a.ndim == 2 else None,
+            "n_extra": int(a.shape[1]) if a.ndim == 2 else 0,
+        }
+    return out
+
+
+def _error_text(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+
+
+def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
+    """Execute a group of runs on a worker and commit each one (see the module docstring).
+
+    ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
+    ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``runs`` (list of (run, scenario
+    dict)). Returns one record per run: ``run``, ``status`` (1 ok, 2 failed, or ``"skipped"``
+    when already committed), ``compute_s``, ``error``, ``commit_s``, and when the client must
+    commit: ``meta_json`` and ``channels``.
+    """
+    import time as _t
+
+    from .simulate import simulate
+
+    writer = None if task["writer"] == "client" else _writer_for(task["dataset"], task["uuid"])
+    version_error = (
+        ""
+        if task["version"] == __version__
+        else f"ConfigError: worker {socket.gethostname()}:{os.getpid()} runs bearingsim "
+        f"{__version__}, the client {task['version']}; install the same version on every worker"
+    )
+    names = task["channels"]
+    out: list[dict[str, Any]] = []
+    for i, sd in task["runs"]:
+        if writer is not None and writer.committed(i):
+            out.append({"run": i, "status": "skipped"})
+            continue
+        t0 = _t.perf_counter()
+        res, err = None, version_error
+        if not err:
+            try:
+                res = simulate(Scenario.from_dict(sd, origin=f"run {i}"))
+            except Exception as exc:  # every failure is recorded; the sweep goes on
+                err = _error_text(exc)
+        compute = _t.perf_counter() - t0
+        if res is not None:
+            meta = res.meta
+            chans = {k: v for k, v in res.channels.items() if names is None or k in names}
+        else:
+            meta = {"error": err, "host": socket.gethostname(), "bearingsim_version": __version__}
+            chans = None
+        status = OK if res is not None else FAILED
+        rec: dict[str, Any] = {"run": i, "status": status, "compute_s": compute, "error": err}
+        mj = json.dumps(to_jsonable(meta))
+        if writer is not None:
+            t1 = _t.perf_counter()
+            writer.commit(i, status, compute, err, mj, chans)
+            rec["commit_s"] = _t.perf_counter() - t1
+        else:
+            rec["meta_json"] = mj
+            rec["channels"] = chans
+        out.append(rec)
+    return out
+
+
+# ------------------------------------------------------------------------------ layout
+def _group_key(sd: dict[str, Any]) -> tuple:
+    return (sd["model"], sd["per_ball"], sd.get("bearing"), sd.get("bearing_file"))
+
+
+def probe_groups(scenarios: list[Scenario]) -> dict[tuple, list[int]]:
+    """Runs grouped by what decides the channel set (model, per_ball, bearing): up to three
+    candidate runs per group."""
+    groups: dict[tuple, list[int]] = {}
+    for i, sc in enumerate(scenarios):
+        g = groups.setdefault(_group_key(sc.to_dict()), [])
+        if len(g) < 3:
+            g.append(i)
+    return groups
+
+
+def make_layout(
+    spec: SweepSpec, scenarios: list[Scenario], probes: dict[tuple, dict[str, Any]]
+) -> Layout:
+    """Dataset layout from the probe results of every group (see :func:`probe_groups`)."""
+    order: list[str] = []
+    info: dict[str, dict[str, Any]] = {}
+    for p in probes.values():
+        for name, d in p.items():
+            if name not in info:
+                order.append(name)
+                info[name] = dict(d)
+            else:
+                info[name]["n_extra"] = max(info[name]["n_extra"], d["n_extra"])
+    if spec.channels is None:
+        names = order
+    else:
+        names = list(spec.channels)
+        for name in names:
+            for key, p in probes.items():
+                if name not in p:
+                    valid = [k for k in order if all(k in q for q in probes.values())]
+                    raise ConfigError(
+                        f"{spec.origin}: channel {name!r} is not produced by the runs with "
+                        f"model = {key[0]!r}, per_ball = {key[1]}; valid: " + ", ".join(valid)
+                    )
+    chans = tuple(
+        ChannelLayout(n, info[n]["units"], info[n]["extra_dim"], info[n]["n_extra"]) for n in names
+    )
+    lengths = {(sc.fs_hz, sc.n_samples) for sc in scenarios}
+    n_time = max(sc.n_samples for sc in scenarios)
+    fs = next(iter(lengths))[0] if len(lengths) == 1 else None
+    return Layout(len(scenarios), n_time, fs, chans)
+
+
+def _coords(spec: SweepSpec, scenarios: list[Scenario]) -> dict[str, list[Any]]:
+    dicts = [sc.to_dict() for sc in scenarios]
+    return {k: [d[k] for d in dicts] for k in spec.coordinate_keys}
+
+
+# ------------------------------------------------------------------------------ plan
+@dataclass
+class SweepPlan:
+    """Run count and estimates of a sweep.
+
+    Attributes
+    ----------
+    n_runs : int
+        Number of runs.
+    axes : dict
+        Number of values per axis.
+    channels : list of str
+        Stored channels.
+    n_samples : tuple of int
+        Smallest and largest samples per run.
+    compute_s_per_run : float
+        Estimated mean compute time of one run on one worker [s].
+    compute_s_total : float
+        Estimated compute time of every run on one worker [s].
+    workers : int
+        Worker count of ``wall_s`` [-].
+    wall_s : float
+        ``compute_s_total / workers`` (ideal scaling) [s].
+    bytes_raw, bytes_estimate : int
+        Size of the stored arrays uncompressed, and the estimate after compression [byte].
+    timing : list of dict
+        The timing runs (run, duration [s], wall [s]).
+    spec_hash : str
+        SHA-256 of the canonical spec.
+    """
+
+    n_runs: int
+    combine: str
+    axes: dict[str, int]
+    channels: list[str]
+    n_samples: tuple[int, int]
+    compute_s_per_run: float
+    compute_s_total: float
+    workers: int
+    wall_s: float
+    bytes_raw: int
+    bytes_estimate: int
+    timing: list[dict[str, Any]] = field(default_factory=list)
+    spec_hash: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON)."""
+        return to_jsonable(asdict(self))
+
+
+def plan_sweep(
+    spec: SweepSpec,
+    *,
+    timing_runs: int = 3,
+    timing_duration_s: float = 0.1,
+    workers: int | None = None,
+    seed: int = 0,
+) -> SweepPlan:
+    """Count the runs and estimate compute time and disk from short timing runs (in this
+    process).
+
+    Each timing run is a randomly chosen run (``seed``), at least one per model, simulated
+    twice: for 2 samples and for ``min(duration_s, timing_duration_s)``; the per-run cost is
+    extrapolated linearly in ``duration_s`` (fixed part + rate per simulated second, per model).
+    The disk estimate compresses the timing runs' channels with the dataset's codec.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    timing_runs : int
+        Number of timing runs (0: count only) [-].
+    timing_duration_s : float
+        Longest simulated time of a timing run [s].
+    workers : int, optional
+        Worker count for the wall-time estimate (default: CPU count).
+    seed : int
+        Choice of the timing runs.
+    """
+    import numcodecs
+
+    from .simulate import simulate
+
+    scenarios = spec.scenarios()
+    groups = probe_groups(scenarios)
+    probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
+    layout = make_layout(spec, scenarios, probes)
+    n = len(scenarios)
+    w = workers or os.cpu_count() or 1
+    raw_per_run = sum(8 * layout.n_time * max(1, c.n_extra) for c in layout.channels)
+    timing: list[dict[str, Any]] = []
+    ratio = 1.0
+    est = np.full(n, math.nan)
+    if timing_runs > 0:
+        rng = np.random.default_rng(seed)
+        models = sorted({sc.model.value for sc in scenarios})
+        picks = [next(i for i, sc in enumerate(scenarios) if sc.model.value == m) for m in models]
+        rest = [i for i in rng.permutation(n) if i not in picks]
+        picks = sorted(picks + rest[: max(0, timing_runs - len(picks))])
+        blosc = numcodecs.Blosc(cname="lz4", clevel=5, shuffle=numcodecs.Blosc.SHUFFLE)
+        enc = raw = 0
+        fit: dict[str, list[tuple[float, float]]] = {}
+        for i in picks:
+            sc = scenarios[i]
+            d0 = 2.0 / sc.fs_hz
+            d1 = max(min(sc.duration_s, timing_duration_s), 2 * d0)
+            t = []
+            res = None
+            for d in (d0, d1):
+                t0 = time.perf_counter()
+                try:
+                    res = simulate(sc.replace(duration_s=d))
+                except BearingsimError:
+                    res = None
+                    break
+                t.append(time.perf_counter() - t0)
+            if res is None:
+                timing.append({"run": i, "failed": True})
+                continue
+            rate = max(t[1] - t[0], 0.0) / (d1 - d0)
+            fit.setdefault(sc.model.value, []).append((t[0], rate))
+            timing.append({"run": i, "duration_s": d1, "wall_s": t[1], "fixed_s": t[0]})
+            for name in (c.name for c in layout.channels):
+                if name in res.channels:
+                    x = np.ascontiguousarray(res.channels[name], dtype=np.float64)
+                    raw += x.nbytes
+                    enc += len(blosc.encode(x))
+        ratio = enc / raw if raw else 1.0
+        allfit = [v for vs in fit.values() for v in vs]
+        for i, sc in enumerate(scenarios):
+            f = fit.get(sc.model.value) or allfit
+            if f:
+                a = float(np.mean([v[0] for v in f]))
+                r = float(np.mean([v[1] for v in f]))
+                est[i] = a + r * sc.duration_s
+    total = float(np.sum(est))
+    ns = [sc.n_samples for sc in scenarios]
+    return SweepPlan(
+        n_runs=n,
+        combine=spec.combine.value,
+        axes={a.name: len(a) for a in spec.axes},
+        channels=[c.name for c in layout.channels],
+        n_samples=(min(ns), max(ns)),
+        compute_s_per_run=total / n,
+        compute_s_total=total,
+        workers=w,
+        wall_s=total / w,
+        bytes_raw=raw_per_run * n,
+        bytes_estimate=int(raw_per_run * n * ratio + 600 * n),
+        timing=timing,
+        spec_hash=spec.spec_hash,
+    )
+
+
+def _probe_local(scenarios: list[Scenario], idx: list[int]) -> dict[str, Any]:
+    err: BearingsimError | None = None
+    for i in idx:
+        try:
+            return probe_run(scenarios[i].to_dict())
+        except BearingsimError as exc:
+            err = exc
+    raise ConfigError(f"run {idx[0]} cannot start: {' '.join(str(err).split())}")
+
+
+# ------------------------------------------------------------------------------ run
+@dataclass
+class SweepReport:
+    """Outcome of one :func:`run_sweep` call.
+
+    Attributes
+    ----------
+    out : str
+        Dataset path.
+    n_runs : int
+        Runs in the spec.
+    n_skipped : int
+        Runs already committed when this call started (not recomputed).
+    n_computed : int
+        Runs computed and committed by this call.
+    n_ok, n_failed, n_pending : int
+        Status counts of the whole dataset at the end.
+    n_failed_now : int
+        Runs of this call that failed.
+    wall_s : float
+        Wall time from the first submitted task to the last commit [s].
+    setup_s : float
+        Wall time before that: cluster start, kernel loading, probes, dataset creation [s].
+    compute_s : float
+        Sum of the runs' ``simulate`` wall times [s].
+    commit_s : float
+        Sum of the per-run commit times on the workers and the client [s].
+    workers : int
+        Worker threads at the end [-].
+    tasks : int
+        Dask tasks submitted [-].
+    committed_by : dict
+        Runs committed by workers and by the client.
+    """
+
+    out: str
+    n_runs: int
+    n_skipped: int = 0
+    n_computed: int = 0
+    n_ok: int = 0
+    n_failed: int = 0
+    n_pending: int = 0
+    n_failed_now: int = 0
+    wall_s: float = 0.0
+    setup_s: float = 0.0
+    compute_s: float = 0.0
+    commit_s: float = 0.0
+    workers: int = 0
+    tasks: int = 0
+    cluster: str = ""
+    created: bool = False
+    committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
+    interrupted: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON)."""
+        d = to_jsonable(asdict(self))
+        d["throughput_runs_per_s"] = self.n_computed / self.wall_s if self.wall_s > 0 else None
+        return d
+
+
+@contextlib.contextmanager
+def connect(
+    workers: int | None = None,
+    scheduler: str | None = None,
+    timeout_s: float = CONNECT_TIMEOUT_S,
+) -> Iterator[tuple[Any, str]]:
+    """A :class:`distributed.Client` on a new local cluster of ``workers`` process workers
+    (one thread each), or on the scheduler at ``scheduler``; closed on exit."""
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        if not _ADDRESS.match(scheduler):
+            raise ConfigError(
+                f"scheduler = {scheduler!r} is invalid; valid: an address like tcp://HOST:PORT"
+            )
+        if workers is not None:
+            raise ConfigError(
+                "workers: --workers sets up a local cluster; with --scheduler the cluster's own "
+                "workers run the sweep"
+            )
+        try:
+            client = Client(scheduler, timeout=timeout_s, set_as_default=False)
+        except (OSError, TimeoutError) as exc:
+            raise ConfigError(
+                f"scheduler = {scheduler!r} is not reachable within {timeout_s:g} s "
+                f"({type(exc).__name__}); valid: the address printed by a running "
+                "'dask scheduler'"
+            ) from None
+        try:
+            yield client, scheduler
+        finally:
+            client.close()
+        return
+    n = workers if workers is not None else (os.cpu_count() or 1)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ConfigError(f"workers = {n!r} is out of range; valid range [1, inf) integer")
+    with warnings.catch_warnings():
+        # distributed warns when creating its scratch directory is slow on a busy disk
+        warnings.filterwarnings("ignore", message="Creating scratch directories")
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=logging.ERROR,
+        )
+    try:
+        client = Client(cluster, set_as_default=False)
+        try:
+            yield client, f"local cluster, {n} process worker(s)"
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def _threads(client) -> int:
+    try:
+        return int(sum(client.nthreads().values()))
+    except Exception:  # a lost scheduler shows up in the task results
+        return 0
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    client: Any = None,
+    force_new: bool = False,
+    retry_failed: bool = False,
+    runs_per_task: int | None = None,
+    writer: str = "auto",
+    progress: bool | Callable[[SweepReport], None] = False,
+) -> SweepReport:
+    """Run (or resume) a sweep into the Zarr dataset ``out``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    out : str or Path
+        Dataset directory; created, or resumed when it holds the same spec.
+    workers : int, optional
+        Process workers of the local cluster (default: CPU count).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://HOST:PORT``) instead of a local cluster.
+    client : distributed.Client, optional
+        An existing client to use (neither cluster is created nor closed).
+    force_new : bool
+        Replace an existing dataset made by a different spec (deleted first).
+    retry_failed : bool
+        Compute the runs recorded as failed again.
+    runs_per_task : int, optional
+        Fixed number of runs per Dask task (default: automatic, see the module docstring).
+    writer : {"auto", "client"}
+        ``auto``: workers commit when they see the dataset; ``client``: always the client.
+    progress : bool or callable
+        ``True``: a tqdm bar on stderr (runs done, failed, ETA); a callable gets the report
+        after every finished task.
+
+    Returns
+    -------
+    SweepReport
+        Counts and timings. Raises :class:`SweepInterrupted` on Ctrl-C (committed runs kept).
+    """
+    t_start = time.perf_counter()
+    if writer not in ("auto", "client"):
+        raise ConfigError(f"writer = {writer!r} is invalid; valid: auto, client")
+    if runs_per_task is not None and (
+        isinstance(runs_per_task, bool) or not isinstance(runs_per_task, int) or runs_per_task < 1
+    ):
+        raise ConfigError(
+            f"runs_per_task = {runs_per_task!r} is out of range; valid range [1, inf) integer"
+        )
+    scenarios = spec.scenarios()
+    canonical = spec.canonical()
+    h = canonical_hash(canonical)
+    path = Path(out).absolute()
+    replace_old = False
+    if path.exists():
+        attrs = read_attrs(path)
+        if attrs.get("spec_hash") != h:
+            if not force_new:
+                old = json.loads(attrs.get("spec_json", "{}"))
+                new = json.loads(json.dumps(to_jsonable(canonical)))
+                diff = ", ".join(spec_differences(old, new)[:6]) or "content"
+                raise ConfigError(
+                    f"out = {str(out)!r} holds a dataset of a different sweep spec (differs in: "
+                    f"{diff}); use another --out, or --force-new to replace it"
+                )
+            replace_old = True
+    rep = SweepReport(out=str(out), n_runs=len(scenarios))
+    ctx = contextlib.nullcontext((client, "given client")) if client is not None else None
+    with ctx or connect(workers, scheduler) as (cl, desc):
+        rep.cluster = desc
+        hello = cl.run(worker_hello)
+        bad = {a: v for a, v in hello.items() if v["version"] != __version__}
+        if bad:
+            a, v = next(iter(bad.items()))
+            raise ConfigError(
+                f"worker {a} runs bearingsim {v['version']}, this client {__version__}; install "
+                "the same version on every worker"
+            )
+        uid = None
+        if not path.exists() or replace_old:
+            groups = probe_groups(scenarios)
+            futs = {
+                k: cl.submit(_probe_first, [scenarios[i].to_dict() for i in idx], pure=False)
+                for k, idx in groups.items()
+            }
+            probes = {k: f.result() for k, f in futs.items()}
+            for k, p in probes.items():
+                if isinstance(p, str):
+                    raise ConfigError(f"run {groups[k][0]} cannot start: {p}")
+            layout = make_layout(spec, scenarios, probes)
+            if replace_old:  # read_attrs() above proved it is a sweep dataset
+                shutil.rmtree(path)
+            attrs_new = {
+                "spec_hash": h,
+                "spec_json": json.dumps(to_jsonable(canonical)),
+                "label": list(spec.label),
+                "axes": list(spec.axis_names),
+                "name": spec.name,
+            }
+            uid = create_dataset(
+                path, layout, attrs_new, _coords(spec, scenarios), [s.to_dict() for s in scenarios]
+            )
+            rep.created = True
+        with client_lock(path):
+            attrs = read_attrs(path)
+            uid = attrs["uuid"]
+            remove_stale_temporaries(path)
+            status = read_status(path)
+            todo_mask = status == PENDING
+            if retry_failed:
+                todo_mask |= status == FAILED
+            todo = deque(int(i) for i in np.flatnonzero(todo_mask))
+            rep.n_skipped = len(scenarios) - len(todo)
+            cw = RunWriter(path, uid)
+            rep.setup_s = time.perf_counter() - t_start
+            _execute(
+                cl, spec, scenarios, todo, str(path), uid, cw, rep, runs_per_task, writer, progress
+            )
+    st = read_status(path)
+    rep.n_ok = int(np.sum(st == OK))
+    rep.n_failed = int(np.sum(st == FAILED))
+    rep.n_pending = int(np.sum(st == PENDING))
+    return rep
+
+
+def _probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
+    """Probe the first candidate that starts; the last error text when none does."""
+    err = ""
+    for sd in candidates:
+        try:
+            return probe_run(sd)
+        except BearingsimError as exc:
+            err = " ".join(str(exc).split())
+    return err
+
+
+def _execute(
+    cl,
+    spec: SweepSpec,
+    scenarios: list[Scenario],
+    todo: deque,
+    path: str,
+    uid: str,
+    cw: RunWriter,
+    rep: SweepReport,
+    runs_per_task: int | None,
+    writer: str,
+    progress: bool | Callable[[SweepReport], None],
+) -> None:
+    """The submission loop: feed tasks, commit what the workers send back, count."""
+    from distributed import as_completed
+
+    n_todo = len(todo)
+    bar = None
+    if progress is True:
+        from tqdm import tqdm
+
+        bar = tqdm(total=n_todo, desc="sweep", unit="run", file=sys.stderr, smoothing=0.1)
+    channels = None if spec.channels is None else list(spec.channels)
+    dicts = {}
+    t0 = time.perf_counter()
+    run_time: list[float] = []  # per-run compute + commit on the workers
+    threads = max(1, _threads(cl))
+    t_threads = time.perf_counter()
+    ac = as_completed(loop=cl.loop)
+    inflight: dict[Any, list[int]] = {}
+
+    def submit() -> None:
+        nonlocal threads, t_threads
+        if time.perf_counter() - t_threads > 2.0:
+            threads, t_threads = max(1, _threads(cl)), time.perf_counter()
+        if runs_per_task is not None:
+            size = runs_per_task
+        elif not run_time:
+            size = 1
+        else:
+            per_run = max(float(np.mean(run_time[-64:])), 1e-6)
+            size = min(max(1, int(TARGET_TASK_S / per_run)), max(1, len(todo) // (2 * threads)))
+        runs = [todo.popleft() for _ in range(min(size, len(todo)))]
+        for i in runs:
+            if i not in dicts:
+                dicts[i] = scenarios[i].to_dict()
+        task = {
+            "dataset": path,
+            "uuid": uid,
+            "version": __version__,
+            "channels": channels,
+            "writer": writer,
+            "runs": [(i, dicts.pop(i)) for i in runs],
+        }
+        key = f"bearingsim-sweep-run{runs[0]}-{uuidlib.uuid4().hex[:12]}"
+        fut = cl.submit(run_task, task, pure=False, key=key)
+        inflight[fut] = runs
+        ac.add(fut)
+        rep.tasks += 1
+
+    try:
+        while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
+            submit()
+        for fut in ac:
+            runs = inflight.pop(fut)
+            try:
+                records = fut.result()
+            except (asyncio.CancelledError, concurrent.futures.CancelledError) as exc:
+                raise ConfigError(
+                    f"lost the Dask scheduler ({_error_text(exc)}); committed runs are kept: run "
+                    "the same command again to resume"
+                ) from None
+            except Exception as exc:  # KilledWorker, a bug in a task: recorded, sweep goes on
+                records = _failed_records(cw, runs, exc)
+            for r in records:
+                if r["status"] == "skipped":
+                    continue
+                if "commit_s" in r:
+                    rep.committed_by["worker"] += 1
+                    rep.commit_s += r["commit_s"]
+                    run_time.append(r["compute_s"] + r["commit_s"])
+                else:
+                    tc = time.perf_counter()
+                    cw.commit(
+                        r["run"],
+                        r["status"],
+                        r["compute_s"],
+                        r["error"],
+                        r.get("meta_json", "{}"),
+                        r.get("channels"),
+                    )
+                    rep.commit_s += time.perf_counter() - tc
+                    rep.committed_by["client"] += 1
+                    run_time.append(r["compute_s"])
+                rep.n_computed += 1
+                rep.compute_s += r["compute_s"]
+                if r["status"] == FAILED:
+                    rep.n_failed_now += 1
+            if bar is not None:
+                bar.update(len(runs))
+                bar.set_postfix_str(
+                    f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
+                    refresh=False,
+                )
+            if callable(progress):
+                progress(rep)
+            del fut
+            while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
+                submit()
+    except KeyboardInterrupt:
+        rep.interrupted = True
+        cl.cancel(list(inflight))
+        rep.wall_s = time.perf_counter() - t0
+        raise SweepInterrupted(
+            f"interrupted: {rep.n_skipped + rep.n_computed} of {rep.n_runs} runs committed; run "
+            "the same command again to resume",
+            rep,
+        ) from None
+    finally:
+        if bar is not None:
+            bar.close()
+        rep.workers = threads
+        rep.wall_s = time.perf_counter() - t0
+
+
+def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[dict[str, Any]]:
+    """Failure records for the runs of a task that raised, except those it committed."""
+    err = _error_text(exc)
+    return [
+        {
+            "run": i,
+            "status": FAILED,
+            "compute_s": 0.0,
+            "error": err,
+            "meta_json": json.dumps({"error": err}),
+        }
+        if not cw.committed(i)
+        else {"run": i, "status": "skipped"}
+        for i in runs
+    ]

@@ -1,0 +1,705 @@
+"""Sweep datasets: one Zarr store, one slot per run, atomic per-run commits, an ML-ready loader.
+
+Layout (Zarr format 2, consolidated metadata, readable with ``xarray.open_zarr(path)``)::
+
+    DATASET/
+      .zattrs                format, uuid, spec hash, canonical spec, channels, units, label, ...
+      run (run)              run number 0..n-1
+      time (time)            nominal sample times k/fs [s] (all runs share fs and length),
+                             otherwise the dimension is ``sample`` (no coordinate)
+      <axis> (run)           every swept scenario key (and the label keys) as a coordinate
+      scenario_json (run)    the full scenario of each run (JSON), written at creation
+      <channel> (run, time[, ball])  stored signals, float64, one chunk per run, NaN = not written
+      status (run)           int8: 0 pending, 1 ok, 2 failed — the per-run commit marker
+      compute_s (run)        wall time of ``simulate`` for the run [s]
+      error (run)            "" or "ErrorType: message" of a failed run
+      meta_json (run)        ``SimulationResult.meta`` of the run (JSON)
+
+Commit protocol
+---------------
+All metadata (every ``.zarray``/``.zattrs``, the coordinates, ``scenario_json`` and the zeros of
+``status``) is written once, into a temporary directory beside ``DATASET`` that is renamed into
+place (``os.rename`` of a directory is atomic); afterwards only chunks are written, never
+metadata, so the consolidated metadata stays valid. A run ``i`` owns chunk ``i`` of every per-run
+array, so concurrent writers never touch the same file. Committing run ``i`` writes its channel
+chunks, ``compute_s``, ``error`` and ``meta_json`` first and the ``status`` chunk last; every
+chunk file is written to a temporary name in its array directory and renamed onto its key
+(``os.replace``, atomic on POSIX), so a reader sees either the old or the new complete chunk. A
+run counts as done only when its ``status`` chunk says ok (1) or failed (2): a process killed at
+any point leaves the previous commits intact and at most one run whose data chunks were written
+without its marker; that run is still pending and is computed again (overwriting the same chunks)
+on resume. Chunks are encoded with the codecs named in each array's own ``.zarray`` (the
+numcodecs objects zarr itself uses — the tests check the bytes equal zarr-python's), which costs
+~0.05 ms per chunk instead of ~1 ms through zarr-python's asynchronous store for a one-chunk
+write. Durability against a power cut would need ``fsync``; against killed processes it does not.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import itertools
+import json
+import os
+import shutil
+import socket
+import threading
+import time
+import uuid as uuidlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ._version import __version__
+from .errors import ConfigError
+from .io import to_jsonable
+
+#: identifies a sweep dataset (root attribute ``format``)
+FORMAT = "bearingsim.Sweep/1"
+#: values of the ``status`` array
+PENDING, OK, FAILED = 0, 1, 2
+STATUS_NAMES = {PENDING: "pending", OK: "ok", FAILED: "failed"}
+#: per-run bookkeeping arrays (besides the channels)
+RUN_ARRAYS = ("status", "compute_s", "error", "meta_json")
+#: lock file of the client running a sweep on the dataset
+LOCK_NAME = ".bearingsim-lock"
+#: at most this many axis values are listed per axis in a summary
+SUMMARY_MAX_VALUES = 50
+
+
+@dataclass(frozen=True)
+class ChannelLayout:
+    """One stored channel: name, unit and an optional second dimension (e.g. ``ball``)."""
+
+    name: str
+    units: str
+    extra_dim: str | None = None
+    n_extra: int = 0
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Array shapes of a dataset.
+
+    Attributes
+    ----------
+    n_runs : int
+        Number of runs.
+    n_time : int
+        Samples per run (the longest run; shorter runs are NaN-padded).
+    fs_hz : float or None
+        Common sample rate [Hz] when every run has the same rate and length, else ``None``.
+    channels : tuple of ChannelLayout
+        Stored channels.
+    """
+
+    n_runs: int
+    n_time: int
+    fs_hz: float | None
+    channels: tuple[ChannelLayout, ...]
+
+    @property
+    def time_dim(self) -> str:
+        """``time`` (uniform runs, with a time coordinate) or ``sample``."""
+        return "time" if self.fs_hz is not None else "sample"
+
+
+# ---------------------------------------------------------------------------- chunk writing
+_tmp_counter = itertools.count()
+
+
+def _atomic_write(path: str, data: bytes) -> None:
+    """Write ``data`` to a temporary file beside ``path`` and rename it onto ``path``."""
+    d, name = os.path.split(path)
+    tmp = os.path.join(d, f".{name}.{os.getpid()}-{threading.get_ident()}-{next(_tmp_counter)}.tmp")
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+    try:
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view) :]
+    finally:
+        os.close(fd)
+    try:
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+class _ChunkCodec:
+    """Encoder of one array's per-run chunk, from the array's own zarr v2 metadata."""
+
+    def __init__(self, root: Path, arr) -> None:
+        md = arr.metadata
+        self.dir = str(root / arr.basename)
+        self.chunk_shape = tuple(md.chunks)
+        self.filters = tuple(md.filters or ())
+        self.compressor = md.compressor
+        self.encode_key = md.encode_chunk_key
+        self.ndim = len(md.shape)
+        self.dtype = np.dtype(object) if self.filters else np.dtype(arr.dtype)
+
+    def encode(self, chunk: Any) -> bytes:
+        """Chunk bytes as zarr v2 stores them: filters in order, then the compressor."""
+        buf: Any = np.ascontiguousarray(chunk, dtype=self.dtype).reshape(self.chunk_shape)
+        for f in self.filters:
+            buf = f.encode(buf)
+        if self.compressor is not None:
+            buf = self.compressor.encode(buf)
+        return buf if isinstance(buf, bytes) else memoryview(buf).tobytes()
+
+    def write(self, i: int, chunk: Any) -> None:
+        key = self.encode_key((i,) + (0,) * (self.ndim - 1))
+        _atomic_write(os.path.join(self.dir, key), self.encode(chunk))
+
+
+class RunWriter:
+    """Commits runs into an existing dataset (see the module docstring for the protocol).
+
+    Parameters
+    ----------
+    path : str or Path
+        The dataset directory.
+    uuid : str, optional
+        Expected dataset id; a different id raises :class:`ConfigError` (a stale copy).
+    """
+
+    def __init__(self, path: str | Path, uuid: str | None = None) -> None:
+        import zarr
+
+        self.path = Path(path)
+        g = zarr.open_group(str(self.path), mode="r", zarr_format=2, use_consolidated=True)
+        attrs = dict(g.attrs)
+        if attrs.get("format") != FORMAT:
+            raise ConfigError(f"dataset = {str(path)!r} is not a bearingsim sweep dataset")
+        if uuid is not None and attrs.get("uuid") != uuid:
+            raise ConfigError(
+                f"dataset = {str(path)!r} has uuid {attrs.get('uuid')!r}, expected {uuid!r}"
+            )
+        self.uuid = attrs["uuid"]
+        self.channels = [c["name"] for c in attrs["channels"]]
+        self.n_time = int(attrs["n_time"])
+        self.n_extra = {c["name"]: int(c["n_extra"]) for c in attrs["channels"]}
+        self.codecs = {name: _ChunkCodec(self.path, g[name]) for name in self.channels}
+        for name in RUN_ARRAYS:
+            self.codecs[name] = _ChunkCodec(self.path, g[name])
+
+    def committed(self, i: int) -> bool:
+        """Whether run ``i`` has its commit marker (status ok or failed)."""
+        c = self.codecs["status"]
+        try:
+            with open(os.path.join(c.dir, c.encode_key((i,))), "rb") as fh:
+                b = fh.read()
+        except FileNotFoundError:
+            return False
+        return len(b) == 1 and b[0] in (OK, FAILED)
+
+    def _padded(self, name: str, x: NDArray) -> NDArray[np.float64]:
+        a = np.asarray(x, dtype=np.float64)
+        shape = (1, self.n_time) + ((self.n_extra[name],) if self.n_extra[name] else ())
+        if a.shape == shape[1:]:
+            return a.reshape(shape)
+        out = np.full(shape, np.nan)
+        if a.ndim == 1:
+            out[0, : a.shape[0]] = a
+        else:
+            out[0, : a.shape[0], : a.shape[1]] = a
+        return out
+
+    def commit(
+        self,
+        i: int,
+        status: int,
+        compute_s: float,
+        error: str,
+        meta: dict[str, Any] | str,
+        channels: dict[str, NDArray] | None = None,
+    ) -> None:
+        """Commit run ``i``: channel chunks, bookkeeping, and the ``status`` marker last."""
+        if status not in (OK, FAILED):
+            raise ConfigError(
+                f"status = {status!r} is invalid; valid: {OK} (ok), {FAILED} (failed)"
+            )
+        for name, x in (channels or {}).items():
+            if name in self.n_extra:
+                self.codecs[name].write(i, self._padded(name, x))
+        c = self.codecs
+        c["compute_s"].write(i, np.array([compute_s], dtype=np.float64))
+        c["error"].write(i, np.array([error], dtype=object))
+        mj = meta if isinstance(meta, str) else json.dumps(to_jsonable(meta))
+        c["meta_json"].write(i, np.array([mj], dtype=object))
+        c["status"].write(i, np.array([status], dtype=np.int8))  # the commit marker, last
+
+
+# ---------------------------------------------------------------------------- creation
+def _dims(a, dims: list[str]) -> None:
+    a.attrs["_ARRAY_DIMENSIONS"] = dims
+
+
+def _coord_array(values: list[Any]) -> NDArray:
+    """Per-run coordinate values as one NumPy array (numbers, bools or strings)."""
+    if all(isinstance(v, bool) for v in values):
+        return np.array(values, dtype=bool)
+    if all(isinstance(v, int) and not isinstance(v, bool) for v in values):
+        return np.array(values, dtype=np.int64)
+    if all(isinstance(v, int | float) and not isinstance(v, bool) for v in values):
+        return np.array(values, dtype=np.float64)
+    return np.array(["" if v is None else str(v) for v in values], dtype=object)
+
+
+def create_dataset(
+    path: str | Path,
+    layout: Layout,
+    attrs: dict[str, Any],
+    coords: dict[str, list[Any]],
+    scenarios: list[dict[str, Any]],
+) -> str:
+    """Create an empty dataset atomically (temporary directory renamed into place).
+
+    Parameters
+    ----------
+    path : str or Path
+        Dataset directory (must not exist).
+    layout : Layout
+        Shapes and channels.
+    attrs : dict
+        Root attributes to add (spec, hash, label, ...).
+    coords : dict
+        Per-run coordinate values by scenario key.
+    scenarios : list of dict
+        Full scenario of every run.
+
+    Returns
+    -------
+    str
+        The new dataset's uuid.
+    """
+    import numcodecs
+    import zarr
+
+    dest = Path(path)
+    if dest.exists():
+        raise ConfigError(f"out = {str(dest)!r} exists already")
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    uid = uuidlib.uuid4().hex
+    tmp = dest.parent / f".{dest.name}.creating-{uid}"
+    n, t = layout.n_runs, layout.n_time
+    tdim = layout.time_dim
+    blosc = numcodecs.Blosc(cname="lz4", clevel=5, shuffle=numcodecs.Blosc.SHUFFLE)
+    try:
+        g = zarr.open_group(str(tmp), mode="w-", zarr_format=2)
+        coord_names = list(coords)
+        run = g.create_array(
+            "run", shape=(n,), chunks=(min(n, 65536),), dtype="int64", fill_value=None
+        )
+        _dims(run, ["run"])
+        run[:] = np.arange(n)
+        if layout.fs_hz is not None:
+            tm = g.create_array("time", shape=(t,), chunks=(t,), dtype="float64", fill_value=None)
+            _dims(tm, ["time"])
+            tm.attrs["units"] = "s"
+            tm.attrs["long_name"] = "nominal sample time k/fs"
+            tm[:] = np.arange(t) / layout.fs_hz
+        for key, values in coords.items():
+            arr = _coord_array(values)
+            dtype = str if arr.dtype == object else arr.dtype
+            a = g.create_array(
+                key, shape=(n,), chunks=(min(n, 65536),), dtype=dtype, fill_value=None
+            )
+            _dims(a, ["run"])
+            a[:] = arr
+        sj = g.create_array(
+            "scenario_json", shape=(n,), chunks=(min(n, 4096),), dtype=str, fill_value=None
+        )
+        _dims(sj, ["run"])
+        sj[:] = np.array([json.dumps(to_jsonable(s)) for s in scenarios], dtype=object)
+        for ch in layout.channels:
+            shape = (n, t) + ((ch.n_extra,) if ch.extra_dim else ())
+            a = g.create_array(
+                ch.name,
+                shape=shape,
+                chunks=(1,) + shape[1:],
+                dtype="float64",
+                fill_value=np.nan,
+                compressors=blosc,
+            )
+            _dims(a, ["run", tdim] + ([ch.extra_dim] if ch.extra_dim else []))
+            a.attrs["units"] = ch.units
+            a.attrs["coordinates"] = " ".join(coord_names)
+        st = g.create_array(
+            "status", shape=(n,), chunks=(1,), dtype="int8", fill_value=None, compressors=None
+        )
+        _dims(st, ["run"])
+        st.attrs["flag_values"] = [PENDING, OK, FAILED]
+        st.attrs["flag_meanings"] = "pending ok failed"
+        st.attrs["coordinates"] = " ".join(coord_names)
+        cs = g.create_array(
+            "compute_s",
+            shape=(n,),
+            chunks=(1,),
+            dtype="float64",
+            fill_value=np.nan,
+            compressors=None,
+        )
+        _dims(cs, ["run"])
+        cs.attrs["units"] = "s"
+        for name in ("error", "meta_json"):
+            a = g.create_array(
+                name, shape=(n,), chunks=(1,), dtype=str, fill_value=None, compressors=None
+            )
+            _dims(a, ["run"])
+        g.attrs.update(
+            to_jsonable(
+                {
+                    **attrs,
+                    "format": FORMAT,
+                    "uuid": uid,
+                    "n_runs": n,
+                    "n_time": t,
+                    "time_dim": tdim,
+                    "fs_hz": layout.fs_hz,
+                    "channels": [dataclasses.asdict(c) for c in layout.channels],
+                    "coordinate_keys": coord_names,
+                    "created_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+                    "created_with": f"bearingsim {__version__}",
+                }
+            )
+        )
+        # status zeros written explicitly (fill_value null: readers must not guess)
+        codec = _ChunkCodec(tmp, st)
+        zero = codec.encode(np.zeros(1, dtype=np.int8))
+        for i in range(n):
+            _atomic_write(os.path.join(codec.dir, codec.encode_key((i,))), zero)
+        zarr.consolidate_metadata(str(tmp))
+        os.rename(tmp, dest)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return uid
+
+
+def read_attrs(path: str | Path) -> dict[str, Any]:
+    """Root attributes of a sweep dataset (``ConfigError`` if it is not one)."""
+    p = Path(path)
+    zattrs = p / ".zattrs"
+    try:
+        with open(zattrs, encoding="utf-8") as fh:
+            attrs = json.load(fh)
+    except (OSError, ValueError):
+        raise ConfigError(
+            f"dataset = {str(p)!r} is not a bearingsim sweep dataset (no readable .zattrs)"
+        ) from None
+    if attrs.get("format") != FORMAT:
+        raise ConfigError(
+            f"dataset = {str(p)!r} is not a bearingsim sweep dataset (format = "
+            f"{attrs.get('format')!r}; valid: {FORMAT!r})"
+        )
+    return attrs
+
+
+def read_status(path: str | Path) -> NDArray[np.int8]:
+    """The ``status`` array (0 pending, 1 ok, 2 failed) of every run."""
+    import zarr
+
+    a = zarr.open_array(str(Path(path) / "status"), mode="r", zarr_format=2)
+    return np.asarray(a[:], dtype=np.int8)
+
+
+def remove_stale_temporaries(path: str | Path) -> int:
+    """Delete temporary chunk files left by killed writers; returns how many."""
+    n = 0
+    for d in Path(path).iterdir():
+        if d.is_dir():
+            for f in d.glob(".*.tmp"):
+                with contextlib.suppress(OSError):
+                    f.unlink()
+                    n += 1
+    return n
+
+
+# ---------------------------------------------------------------------------- lock
+@contextlib.contextmanager
+def client_lock(path: str | Path):
+    """Hold ``DATASET/.bearingsim-lock`` while a sweep client writes (one client at a time).
+
+    A lock left by a dead process on this host is taken over; a live one (or one from another
+    host) is an error naming its owner.
+    """
+    lock = Path(path) / LOCK_NAME
+    me = {"host": socket.gethostname(), "pid": os.getpid()}
+    for _ in range(2):
+        try:
+            fd = os.open(lock, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        except FileExistsError:
+            try:
+                owner = json.loads(lock.read_text())
+            except (OSError, ValueError):
+                owner = {}
+            if owner.get("host") == me["host"] and not _pid_alive(int(owner.get("pid", -1))):
+                with contextlib.suppress(OSError):
+                    lock.unlink()
+                continue
+            raise ConfigError(
+                f"dataset = {str(path)!r} is in use by the sweep client {owner.get('host')}:"
+                f"{owner.get('pid')}; if that process is gone, delete {str(lock)!r}"
+            ) from None
+        with os.fdopen(fd, "w") as fh:
+            json.dump(me, fh)
+        break
+    try:
+        yield
+    finally:
+        with contextlib.suppress(OSError):
+            if json.loads(lock.read_text()).get("pid") == me["pid"]:
+                lock.unlink()
+
+
+def _pid_alive(pid: int) -> bool:
+    if pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+# ---------------------------------------------------------------------------- loader
+class SweepDataset:
+    """A sweep dataset (or a subset of its runs) ready for analysis and machine learning.
+
+    Parameters
+    ----------
+    path : str or Path
+        Dataset directory written by ``bearingsim sweep run``.
+    runs : array of int, optional
+        Run numbers of this view (default: every run).
+
+    Examples
+    --------
+    >>> ds = open_dataset("faults.zarr").completed()            # doctest: +SKIP
+    >>> train, test = ds.split("rpm", test=[1797])              # doctest: +SKIP
+    >>> X, y = train.arrays(["acc_y"])     # X (n, 1, n_time) [m/s^2], y labels  # doctest: +SKIP
+    """
+
+    def __init__(self, path: str | Path, runs: NDArray[np.int64] | None = None, _xr=None) -> None:
+        import xarray as xr
+
+        self.path = Path(path)
+        self.attrs = read_attrs(self.path)
+        self._ds = (
+            _xr
+            if _xr is not None
+            else xr.open_dataset(
+                self.path, engine="zarr", chunks=None, cache=False, consolidated=True
+            )
+        )
+        n = int(self.attrs["n_runs"])
+        self.runs = np.arange(n) if runs is None else np.asarray(runs, dtype=np.int64)
+
+    def _view(self, runs: NDArray[np.int64]) -> SweepDataset:
+        return SweepDataset(self.path, runs, _xr=self._ds)
+
+    def __len__(self) -> int:
+        return int(self.runs.size)
+
+    def __repr__(self) -> str:
+        return f"SweepDataset({str(self.path)!r}, {len(self)} of {self.attrs['n_runs']} runs)"
+
+    @property
+    def xr(self):
+        """The selected runs as an :class:`xarray.Dataset` (lazy; ``.load()`` to read)."""
+        return self._ds.isel(run=self.runs)
+
+    @property
+    def channels(self) -> list[str]:
+        """Stored channel names."""
+        return [c["name"] for c in self.attrs["channels"]]
+
+    @property
+    def label_keys(self) -> list[str]:
+        """Scenario keys that form the label."""
+        return list(self.attrs.get("label", []))
+
+    @property
+    def status(self) -> NDArray[np.int8]:
+        """0 pending, 1 ok, 2 failed, per selected run (read now, so it is current)."""
+        return read_status(self.path)[self.runs]
+
+    def completed(self) -> SweepDataset:
+        """Only the runs committed ok."""
+        return self._view(self.runs[self.status == OK])
+
+    def param(self, key: str) -> NDArray:
+        """Per-run values of a coordinate (a swept or label key)."""
+        if key not in self.attrs["coordinate_keys"]:
+            raise ConfigError(
+                f"key = {key!r} is not stored per run; valid: "
+                + ", ".join(self.attrs["coordinate_keys"])
+            )
+        v = np.asarray(self._ds[key].values)[self.runs]
+        return v.astype(object) if v.dtype.kind == "T" else v  # numpy StringDType
+
+    def labels(self, keys: str | list[str] | None = None) -> NDArray:
+        """Class label of each selected run (label keys joined by ``|``)."""
+        ks = self.label_keys if keys is None else ([keys] if isinstance(keys, str) else keys)
+        if not ks:
+            raise ConfigError("label: the dataset has no label keys; pass keys=")
+        cols = [self.param(k).astype(str) for k in ks]
+        if len(cols) == 1:
+            return cols[0].astype(object)
+        return np.array(["|".join(v) for v in zip(*cols, strict=True)], dtype=object)
+
+    def select(self, **conditions: Any) -> SweepDataset:
+        """Runs whose coordinate ``key`` is one of the given values (a scalar or a list)."""
+        mask = np.ones(len(self), dtype=bool)
+        for key, vals in conditions.items():
+            v = vals if isinstance(vals, list | tuple | np.ndarray) else [vals]
+            mask &= np.isin(self.param(key), np.asarray(v))
+        return self._view(self.runs[mask])
+
+    def split(self, by: str, test: Any) -> tuple[SweepDataset, SweepDataset]:
+        """Train/test split by parameter: runs with ``by`` in ``test`` form the test set."""
+        v = test if isinstance(test, list | tuple | np.ndarray) else [test]
+        mask = np.isin(self.param(by), np.asarray(v))
+        if not mask.any():
+            raise ConfigError(
+                f"test = {list(v)!r} matches no run for {by!r}; values present: "
+                + ", ".join(map(str, np.unique(self.param(by))[:SUMMARY_MAX_VALUES]))
+            )
+        return self._view(self.runs[~mask]), self._view(self.runs[mask])
+
+    def random_split(
+        self, test_fraction: float, seed: int = 0, stratify: bool = True
+    ) -> tuple[SweepDataset, SweepDataset]:
+        """Random train/test split (stratified by label when ``stratify``), seeded."""
+        if not 0.0 < test_fraction < 1.0:
+            raise ConfigError(
+                f"test_fraction = {test_fraction!r} is out of range; valid range (0, 1)"
+            )
+        rng = np.random.default_rng(seed)
+        groups = self.labels() if stratify and self.label_keys else np.zeros(len(self), dtype=int)
+        test = np.zeros(len(self), dtype=bool)
+        for g in np.unique(groups):
+            idx = np.flatnonzero(groups == g)
+            k = int(round(test_fraction * idx.size))
+            test[rng.choice(idx, size=k, replace=False)] = True
+        return self._view(self.runs[~test]), self._view(self.runs[test])
+
+    def arrays(
+        self, channels: list[str] | None = None, label: str | list[str] | None = None
+    ) -> tuple[NDArray[np.float64], NDArray]:
+        """Signals and labels as NumPy arrays.
+
+        Parameters
+        ----------
+        channels : list of str, optional
+            Time-series channels to stack (default: every 1-D stored channel).
+        label : str or list of str, optional
+            Label keys (default: the dataset's).
+
+        Returns
+        -------
+        X : ndarray, shape (n_runs, n_channels, n_time)
+            Signals in their units (``self.xr[name].attrs["units"]``, SI).
+        y : ndarray of str, shape (n_runs,)
+            Labels.
+        """
+        one_d = [c["name"] for c in self.attrs["channels"] if not c["extra_dim"]]
+        chans = one_d if channels is None else list(channels)
+        for c in chans:
+            if c not in one_d:
+                raise ConfigError(
+                    f"channel = {c!r} is not a stored time series; valid: " + ", ".join(one_d)
+                )
+        X = np.stack([np.asarray(self._ds[c][self.runs].values) for c in chans], axis=1)
+        return X, self.labels(label)
+
+    def scenario(self, run: int) -> dict[str, Any]:
+        """Full scenario of run number ``run``."""
+        return json.loads(str(self._ds["scenario_json"].values[run]))
+
+    def result(self, run: int):
+        """Run number ``run`` as a :class:`~bearingsim.results.SimulationResult` (stored
+        channels only; time = the nominal sample times)."""
+        from .results import SimulationResult
+
+        st = int(read_status(self.path)[run])
+        if st != OK:
+            raise ConfigError(f"run = {run} has status {STATUS_NAMES[st]!r}; valid: an ok run")
+        sc = self.scenario(run)
+        n = int(round(sc["duration_s"] * sc["fs_hz"]))
+        chans, units, dims = {}, {}, {}
+        for c in self.attrs["channels"]:
+            x = np.asarray(self._ds[c["name"]][run].values)[:n]
+            if c["extra_dim"]:
+                z = int(np.sum(~np.all(np.isnan(x), axis=0)))
+                x = x[:, :z]
+                dims[c["name"]] = ("time", c["extra_dim"])
+            chans[c["name"]] = x
+            units[c["name"]] = c["units"]
+        meta = json.loads(str(self._ds["meta_json"].values[run]))
+        return SimulationResult(np.arange(n) / sc["fs_hz"], chans, units, sc, meta, dims)
+
+    def summary(self, label: str | list[str] | None = None) -> dict[str, Any]:
+        """Counts by label and by axis value, failures with their errors, totals."""
+        st = self.status
+        out: dict[str, Any] = {
+            "path": str(self.path),
+            "n_runs": len(self),
+            "n_ok": int(np.sum(st == OK)),
+            "n_failed": int(np.sum(st == FAILED)),
+            "n_pending": int(np.sum(st == PENDING)),
+        }
+        out["complete"] = out["n_pending"] == 0
+        names = ["pending", "ok", "failed"]
+
+        def counts(values: NDArray) -> dict[str, dict[str, int]]:
+            res: dict[str, dict[str, int]] = {}
+            for v in np.unique(values.astype(str)):
+                m = values.astype(str) == v
+                res[str(v)] = {names[s]: int(np.sum(st[m] == s)) for s in (OK, FAILED, PENDING)}
+            return res
+
+        keys = self.label_keys if label is None else ([label] if isinstance(label, str) else label)
+        out["label"] = keys
+        out["by_label"] = counts(self.labels(keys)) if keys else {}
+        by_axis = {}
+        for key in self.attrs["coordinate_keys"]:
+            v = self.param(key)
+            if np.unique(v.astype(str)).size <= SUMMARY_MAX_VALUES:
+                by_axis[key] = counts(v)
+        out["by_axis"] = by_axis
+        cs = np.asarray(self._ds["compute_s"].values)[self.runs]
+        done = np.isfinite(cs)
+        out["compute_s_total"] = float(cs[done].sum())
+        out["compute_s_mean"] = float(cs[done].mean()) if done.any() else None
+        err = np.asarray(self._ds["error"].values).astype(object)[self.runs]
+        coords = {k: self.param(k) for k in self.attrs["coordinate_keys"]}
+        out["failures"] = [
+            {
+                "run": int(self.runs[j]),
+                "params": {k: _scalar(v[j]) for k, v in coords.items()},
+                "error": str(err[j]),
+            }
+            for j in np.flatnonzero(st == FAILED)
+        ]
+        out["spec_hash"] = self.attrs.get("spec_hash")
+        return out
+
+
+def _scalar(v: Any) -> Any:
+    """NumPy scalar → plain JSON-able Python value."""
+    v = v.item() if isinstance(v, np.generic) else v
+    return str(v) if not isinstance(v, bool | int | float) else to_jsonable(v)
+
+
+def open_dataset(path: str | Path) -> SweepDataset:
+    """Open a sweep dataset for reading (see :class:`SweepDataset`)."""
+    return SweepDataset(path)
