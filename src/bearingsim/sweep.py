@@ -58,7 +58,7 @@ import numpy as np
 
 from ._version import __version__
 from .config import Scenario
-from .errors import BearingsimError, ConfigError
+from .errors import BearingsimError, ConfigError, check_range
 from .io import to_jsonable
 from .sweep_dataset import (
     FAILED,
@@ -143,7 +143,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``runs`` (list of (run, scenario
     dict)). Returns one record per run: ``run``, ``status`` (1 ok, 2 failed, or ``"skipped"``
     when already committed), ``compute_s``, ``error``, ``commit_s``, and when the client must
-    commit: ``meta_json`` and ``channels``.
+    commit: ``record_json`` and ``channels``.
     """
     import time as _t
 
@@ -170,21 +170,28 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             except Exception as exc:  # every failure is recorded; the sweep goes on
                 err = _error_text(exc)
         compute = _t.perf_counter() - t0
+        chans = None
         if res is not None:
-            meta = res.meta
             chans = {k: v for k, v in res.channels.items() if names is None or k in names}
-        else:
-            meta = {"error": err, "host": socket.gethostname(), "bearingsim_version": __version__}
-            chans = None
         status = OK if res is not None else FAILED
         rec: dict[str, Any] = {"run": i, "status": status, "compute_s": compute, "error": err}
-        mj = json.dumps(to_jsonable(meta))
+        rj = json.dumps(
+            to_jsonable(
+                {
+                    "compute_s": compute,
+                    "host": socket.gethostname(),
+                    "pid": os.getpid(),
+                    "bearingsim_version": __version__,
+                    "meta": None if res is None else res.meta,
+                }
+            )
+        )
         if writer is not None:
             t1 = _t.perf_counter()
-            writer.commit(i, status, compute, err, mj, chans)
+            writer.commit(i, status, rj, err, chans)
             rec["commit_s"] = _t.perf_counter() - t1
         else:
-            rec["meta_json"] = mj
+            rec["record_json"] = rj
             rec["channels"] = chans
         out.append(rec)
     return out
@@ -480,16 +487,9 @@ def connect(
     (one thread each), or on the scheduler at ``scheduler``; closed on exit."""
     from distributed import Client, LocalCluster
 
+    check_cluster_args(workers, scheduler)
+    check_range("connect_timeout_s", timeout_s, 0.0, lo_open=True, unit="s")
     if scheduler is not None:
-        if not _ADDRESS.match(scheduler):
-            raise ConfigError(
-                f"scheduler = {scheduler!r} is invalid; valid: an address like tcp://HOST:PORT"
-            )
-        if workers is not None:
-            raise ConfigError(
-                "workers: --workers sets up a local cluster; with --scheduler the cluster's own "
-                "workers run the sweep"
-            )
         try:
             client = Client(scheduler, timeout=timeout_s, set_as_default=False)
         except (OSError, TimeoutError) as exc:
@@ -504,8 +504,6 @@ def connect(
             client.close()
         return
     n = workers if workers is not None else (os.cpu_count() or 1)
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise ConfigError(f"workers = {n!r} is out of range; valid range [1, inf) integer")
     with warnings.catch_warnings():
         # distributed warns when creating its scratch directory is slow on a busy disk
         warnings.filterwarnings("ignore", message="Creating scratch directories")
@@ -524,6 +522,24 @@ def connect(
             client.close()
     finally:
         cluster.close()
+
+
+def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
+    """Validate ``workers`` (>= 1) and ``scheduler`` (``tcp://HOST:PORT``; not both)."""
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
+        raise ConfigError(f"workers = {workers!r} is out of range; valid range [1, inf) integer")
+    if scheduler is not None:
+        if not isinstance(scheduler, str) or not _ADDRESS.match(scheduler):
+            raise ConfigError(
+                f"scheduler = {scheduler!r} is invalid; valid: an address like tcp://HOST:PORT"
+            )
+        if workers is not None:
+            raise ConfigError(
+                f"workers = {workers} applies to a local cluster only; with scheduler = "
+                f"{scheduler!r} the cluster's own workers run the sweep"
+            )
 
 
 def _threads(client) -> int:
@@ -545,6 +561,7 @@ def run_sweep(
     runs_per_task: int | None = None,
     writer: str = "auto",
     progress: bool | Callable[[SweepReport], None] = False,
+    connect_timeout_s: float = CONNECT_TIMEOUT_S,
 ) -> SweepReport:
     """Run (or resume) a sweep into the Zarr dataset ``out``.
 
@@ -571,6 +588,8 @@ def run_sweep(
     progress : bool or callable
         ``True``: a tqdm bar on stderr (runs done, failed, ETA); a callable gets the report
         after every finished task.
+    connect_timeout_s : float
+        How long to try reaching ``scheduler`` [s].
 
     Returns
     -------
@@ -586,11 +605,14 @@ def run_sweep(
         raise ConfigError(
             f"runs_per_task = {runs_per_task!r} is out of range; valid range [1, inf) integer"
         )
+    if client is None:
+        check_cluster_args(workers, scheduler)
     scenarios = spec.scenarios()
     canonical = spec.canonical()
     h = canonical_hash(canonical)
     path = Path(out).absolute()
     replace_old = False
+    rep = SweepReport(out=str(out), n_runs=len(scenarios))
     if path.exists():
         attrs = read_attrs(path)
         if attrs.get("spec_hash") != h:
@@ -603,9 +625,15 @@ def run_sweep(
                     f"{diff}); use another --out, or --force-new to replace it"
                 )
             replace_old = True
-    rep = SweepReport(out=str(out), n_runs=len(scenarios))
+        else:
+            st = read_status(path)
+            if not np.any((st == PENDING) | ((st == FAILED) & retry_failed)):
+                rep.n_skipped = len(scenarios)  # nothing to compute: no cluster needed
+                _final_counts(rep, st)
+                rep.setup_s = time.perf_counter() - t_start
+                return rep
     ctx = contextlib.nullcontext((client, "given client")) if client is not None else None
-    with ctx or connect(workers, scheduler) as (cl, desc):
+    with ctx or connect(workers, scheduler, connect_timeout_s) as (cl, desc):
         rep.cluster = desc
         hello = cl.run(worker_hello)
         bad = {a: v for a, v in hello.items() if v["version"] != __version__}
@@ -655,11 +683,14 @@ def run_sweep(
             _execute(
                 cl, spec, scenarios, todo, str(path), uid, cw, rep, runs_per_task, writer, progress
             )
-    st = read_status(path)
+    _final_counts(rep, read_status(path))
+    return rep
+
+
+def _final_counts(rep: SweepReport, st: np.ndarray) -> None:
     rep.n_ok = int(np.sum(st == OK))
     rep.n_failed = int(np.sum(st == FAILED))
     rep.n_pending = int(np.sum(st == PENDING))
-    return rep
 
 
 def _probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
@@ -757,12 +788,7 @@ def _execute(
                 else:
                     tc = time.perf_counter()
                     cw.commit(
-                        r["run"],
-                        r["status"],
-                        r["compute_s"],
-                        r["error"],
-                        r.get("meta_json", "{}"),
-                        r.get("channels"),
+                        r["run"], r["status"], r["record_json"], r["error"], r.get("channels")
                     )
                     rep.commit_s += time.perf_counter() - tc
                     rep.committed_by["client"] += 1
@@ -807,7 +833,7 @@ def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[
             "status": FAILED,
             "compute_s": 0.0,
             "error": err,
-            "meta_json": json.dumps({"error": err}),
+            "record_json": json.dumps({"compute_s": None, "meta": None}),
         }
         if not cw.committed(i)
         else {"run": i, "status": "skipped"}

@@ -1,37 +1,43 @@
 """Sweep datasets: one Zarr store, one slot per run, atomic per-run commits, an ML-ready loader.
 
-Layout (Zarr format 2, consolidated metadata, readable with ``xarray.open_zarr(path)``)::
+Layout (Zarr format 2 with consolidated metadata: ``xarray.open_zarr(path)`` reads it)::
 
     DATASET/
-      .zattrs                format, uuid, spec hash, canonical spec, channels, units, label, ...
-      run (run)              run number 0..n-1
-      time (time)            nominal sample times k/fs [s] (all runs share fs and length),
-                             otherwise the dimension is ``sample`` (no coordinate)
-      <axis> (run)           every swept scenario key (and the label keys) as a coordinate
-      scenario_json (run)    the full scenario of each run (JSON), written at creation
-      <channel> (run, time[, ball])  stored signals, float64, one chunk per run, NaN = not written
-      status (run)           int8: 0 pending, 1 ok, 2 failed — the per-run commit marker
-      compute_s (run)        wall time of ``simulate`` for the run [s]
-      error (run)            "" or "ErrorType: message" of a failed run
-      meta_json (run)        ``SimulationResult.meta`` of the run (JSON)
+      .zattrs               format, uuid, spec hash, canonical spec, channels, label, axes, ...
+      run (run)             run number 0..n-1
+      time (time)           nominal sample times k/fs [s] when every run has the same fs and
+                            length; otherwise the dimension is ``sample`` (no coordinate)
+      <key> (run)           each swept scenario key (and each label key) as a coordinate
+      scenario_json (run)   the full scenario of each run (JSON), written at creation
+      channel, units (channel)   names and units of the stored time series
+      signal (run, channel, time)   the stored time series, float64 (SI), one chunk per run;
+                            NaN where not (yet) written
+      <name> (run, time, ball)   each stored per-ball channel, one chunk per run
+      status (run)          int8 commit marker: 0 pending (the fill value, no chunk yet), 1 ok,
+                            2 failed (xarray decodes the fill value 0 as NaN)
+      error (run)           "ErrorType: message" of a failed run ("" otherwise)
+      record_json (run)     {"compute_s": wall time of simulate [s], "host", "pid",
+                            "meta": SimulationResult.meta}
 
 Commit protocol
 ---------------
-All metadata (every ``.zarray``/``.zattrs``, the coordinates, ``scenario_json`` and the zeros of
-``status``) is written once, into a temporary directory beside ``DATASET`` that is renamed into
-place (``os.rename`` of a directory is atomic); afterwards only chunks are written, never
-metadata, so the consolidated metadata stays valid. A run ``i`` owns chunk ``i`` of every per-run
-array, so concurrent writers never touch the same file. Committing run ``i`` writes its channel
-chunks, ``compute_s``, ``error`` and ``meta_json`` first and the ``status`` chunk last; every
-chunk file is written to a temporary name in its array directory and renamed onto its key
-(``os.replace``, atomic on POSIX), so a reader sees either the old or the new complete chunk. A
-run counts as done only when its ``status`` chunk says ok (1) or failed (2): a process killed at
-any point leaves the previous commits intact and at most one run whose data chunks were written
-without its marker; that run is still pending and is computed again (overwriting the same chunks)
-on resume. Chunks are encoded with the codecs named in each array's own ``.zarray`` (the
-numcodecs objects zarr itself uses — the tests check the bytes equal zarr-python's), which costs
-~0.05 ms per chunk instead of ~1 ms through zarr-python's asynchronous store for a one-chunk
-write. Durability against a power cut would need ``fsync``; against killed processes it does not.
+All metadata (every ``.zarray``/``.zattrs``, the coordinates and ``scenario_json``) is written
+once, into a temporary directory beside ``DATASET`` that is then renamed into place
+(``os.rename`` of a directory is atomic); afterwards only chunks are written, never metadata,
+so the consolidated metadata stays valid. Run ``i`` owns chunk ``i`` of every per-run array, so
+concurrent writers never touch the same file. Committing run ``i`` writes its data chunks
+(``signal``, per-ball arrays), its ``error`` (failed runs) and ``record_json`` first and its
+``status`` chunk last. Every chunk file is written under a temporary name in its array directory
+and renamed onto its key (``os.replace``, atomic on POSIX), so a reader sees either no chunk or a
+complete one. A run counts as done only when its ``status`` chunk says ok (1) or failed (2): a
+process killed at any instant leaves every earlier commit intact and at most one run per writer
+whose data chunks exist without its marker; that run is still pending and is computed again on
+resume (rewriting the same chunks). Chunks are encoded with the codecs recorded in each array's
+own ``.zarray`` (the numcodecs objects zarr uses; a test checks the bytes equal zarr-python's)
+and written with plain file operations: ~0.1 ms per chunk here instead of ~1 ms for a one-chunk
+write through zarr-python's asynchronous store — a run costs three files (signal, record,
+status). Durability against a power cut would need ``fsync``; against killed processes it does
+not.
 """
 
 from __future__ import annotations
@@ -63,7 +69,7 @@ FORMAT = "bearingsim.Sweep/1"
 PENDING, OK, FAILED = 0, 1, 2
 STATUS_NAMES = {PENDING: "pending", OK: "ok", FAILED: "failed"}
 #: per-run bookkeeping arrays (besides the channels)
-RUN_ARRAYS = ("status", "compute_s", "error", "meta_json")
+RUN_ARRAYS = ("status", "error", "record_json")
 #: lock file of the client running a sweep on the dataset
 LOCK_NAME = ".bearingsim-lock"
 #: at most this many axis values are listed per axis in a summary
@@ -181,12 +187,12 @@ class RunWriter:
                 f"dataset = {str(path)!r} has uuid {attrs.get('uuid')!r}, expected {uuid!r}"
             )
         self.uuid = attrs["uuid"]
-        self.channels = [c["name"] for c in attrs["channels"]]
         self.n_time = int(attrs["n_time"])
-        self.n_extra = {c["name"]: int(c["n_extra"]) for c in attrs["channels"]}
-        self.codecs = {name: _ChunkCodec(self.path, g[name]) for name in self.channels}
-        for name in RUN_ARRAYS:
-            self.codecs[name] = _ChunkCodec(self.path, g[name])
+        chans = attrs["channels"]
+        self.series = [c["name"] for c in chans if not c["extra_dim"]]
+        self.wide = {c["name"]: int(c["n_extra"]) for c in chans if c["extra_dim"]}
+        names = list(RUN_ARRAYS) + list(self.wide) + (["signal"] if self.series else [])
+        self.codecs = {name: _ChunkCodec(self.path, g[name]) for name in names}
 
     def committed(self, i: int) -> bool:
         """Whether run ``i`` has its commit marker (status ok or failed)."""
@@ -198,40 +204,64 @@ class RunWriter:
             return False
         return len(b) == 1 and b[0] in (OK, FAILED)
 
-    def _padded(self, name: str, x: NDArray) -> NDArray[np.float64]:
+    def _signal(self, channels: dict[str, NDArray]) -> NDArray[np.float64]:
+        """The (1, n_channel, n_time) chunk of the time series (NaN where absent or short)."""
+        xs = [
+            np.asarray(channels[k], dtype=np.float64) if k in channels else None
+            for k in self.series
+        ]
+        if all(x is not None and x.shape == (self.n_time,) for x in xs):
+            return np.stack(xs)[None]  # type: ignore[arg-type]
+        out = np.full((1, len(self.series), self.n_time), np.nan)
+        for k, x in enumerate(xs):
+            if x is not None:
+                out[0, k, : x.shape[0]] = x
+        return out
+
+    def _wide(self, name: str, x: NDArray) -> NDArray[np.float64]:
         a = np.asarray(x, dtype=np.float64)
-        shape = (1, self.n_time) + ((self.n_extra[name],) if self.n_extra[name] else ())
-        if a.shape == shape[1:]:
-            return a.reshape(shape)
-        out = np.full(shape, np.nan)
-        if a.ndim == 1:
-            out[0, : a.shape[0]] = a
-        else:
-            out[0, : a.shape[0], : a.shape[1]] = a
+        out = np.full((1, self.n_time, self.wide[name]), np.nan)
+        out[0, : a.shape[0], : a.shape[1]] = a
         return out
 
     def commit(
         self,
         i: int,
         status: int,
-        compute_s: float,
-        error: str,
-        meta: dict[str, Any] | str,
+        record: dict[str, Any] | str,
+        error: str = "",
         channels: dict[str, NDArray] | None = None,
     ) -> None:
-        """Commit run ``i``: channel chunks, bookkeeping, and the ``status`` marker last."""
+        """Commit run ``i``: data chunks, record (and error), then the ``status`` marker last.
+
+        Parameters
+        ----------
+        i : int
+            Run number.
+        status : int
+            :data:`OK` or :data:`FAILED`.
+        record : dict or str
+            ``{"compute_s": [s], "host", "meta": SimulationResult.meta}`` (or its JSON).
+        error : str
+            ``"ErrorType: message"`` of a failed run.
+        channels : dict, optional
+            The run's arrays by channel name (stored ones are picked).
+        """
         if status not in (OK, FAILED):
             raise ConfigError(
                 f"status = {status!r} is invalid; valid: {OK} (ok), {FAILED} (failed)"
             )
-        for name, x in (channels or {}).items():
-            if name in self.n_extra:
-                self.codecs[name].write(i, self._padded(name, x))
         c = self.codecs
-        c["compute_s"].write(i, np.array([compute_s], dtype=np.float64))
-        c["error"].write(i, np.array([error], dtype=object))
-        mj = meta if isinstance(meta, str) else json.dumps(to_jsonable(meta))
-        c["meta_json"].write(i, np.array([mj], dtype=object))
+        if channels:
+            if self.series:
+                c["signal"].write(i, self._signal(channels))
+            for name in self.wide:
+                if name in channels:
+                    c[name].write(i, self._wide(name, channels[name]))
+        if error:
+            c["error"].write(i, np.array([error], dtype=object))
+        rj = record if isinstance(record, str) else json.dumps(to_jsonable(record))
+        c["record_json"].write(i, np.array([rj], dtype=object))
         c["status"].write(i, np.array([status], dtype=np.int8))  # the commit marker, last
 
 
@@ -317,37 +347,48 @@ def create_dataset(
         )
         _dims(sj, ["run"])
         sj[:] = np.array([json.dumps(to_jsonable(s)) for s in scenarios], dtype=object)
-        for ch in layout.channels:
-            shape = (n, t) + ((ch.n_extra,) if ch.extra_dim else ())
+        series = [ch for ch in layout.channels if not ch.extra_dim]
+        if series:
+            nc = len(series)
+            cn = g.create_array("channel", shape=(nc,), chunks=(nc,), dtype=str, fill_value=None)
+            _dims(cn, ["channel"])
+            cn[:] = np.array([ch.name for ch in series], dtype=object)
+            cu = g.create_array("units", shape=(nc,), chunks=(nc,), dtype=str, fill_value=None)
+            _dims(cu, ["channel"])
+            cu[:] = np.array([ch.units for ch in series], dtype=object)
             a = g.create_array(
-                ch.name,
-                shape=shape,
-                chunks=(1,) + shape[1:],
+                "signal",
+                shape=(n, nc, t),
+                chunks=(1, nc, t),
                 dtype="float64",
                 fill_value=np.nan,
                 compressors=blosc,
             )
-            _dims(a, ["run", tdim] + ([ch.extra_dim] if ch.extra_dim else []))
+            _dims(a, ["run", "channel", tdim])
+            a.attrs["long_name"] = "stored time series; the unit of each channel is in 'units'"
+            a.attrs["coordinates"] = " ".join(coord_names + ["units"])
+        for ch in layout.channels:
+            if not ch.extra_dim:
+                continue
+            a = g.create_array(
+                ch.name,
+                shape=(n, t, ch.n_extra),
+                chunks=(1, t, ch.n_extra),
+                dtype="float64",
+                fill_value=np.nan,
+                compressors=blosc,
+            )
+            _dims(a, ["run", tdim, ch.extra_dim])
             a.attrs["units"] = ch.units
             a.attrs["coordinates"] = " ".join(coord_names)
         st = g.create_array(
-            "status", shape=(n,), chunks=(1,), dtype="int8", fill_value=None, compressors=None
+            "status", shape=(n,), chunks=(1,), dtype="int8", fill_value=PENDING, compressors=None
         )
         _dims(st, ["run"])
         st.attrs["flag_values"] = [PENDING, OK, FAILED]
         st.attrs["flag_meanings"] = "pending ok failed"
         st.attrs["coordinates"] = " ".join(coord_names)
-        cs = g.create_array(
-            "compute_s",
-            shape=(n,),
-            chunks=(1,),
-            dtype="float64",
-            fill_value=np.nan,
-            compressors=None,
-        )
-        _dims(cs, ["run"])
-        cs.attrs["units"] = "s"
-        for name in ("error", "meta_json"):
+        for name in ("error", "record_json"):
             a = g.create_array(
                 name, shape=(n,), chunks=(1,), dtype=str, fill_value=None, compressors=None
             )
@@ -369,11 +410,6 @@ def create_dataset(
                 }
             )
         )
-        # status zeros written explicitly (fill_value null: readers must not guess)
-        codec = _ChunkCodec(tmp, st)
-        zero = codec.encode(np.zeros(1, dtype=np.int8))
-        for i in range(n):
-            _atomic_write(os.path.join(codec.dir, codec.encode_key((i,))), zero)
         zarr.consolidate_metadata(str(tmp))
         os.rename(tmp, dest)
     except BaseException:
@@ -523,6 +559,16 @@ class SweepDataset:
         return [c["name"] for c in self.attrs["channels"]]
 
     @property
+    def series(self) -> list[str]:
+        """Stored time-series channels (the ``channel`` axis of ``signal``)."""
+        return [c["name"] for c in self.attrs["channels"] if not c["extra_dim"]]
+
+    def records(self) -> list[dict[str, Any]]:
+        """``record_json`` of the selected runs (``{}`` for pending runs)."""
+        rj = np.asarray(self._ds["record_json"].values).astype(object)[self.runs]
+        return [json.loads(str(r)) if str(r) else {} for r in rj]
+
+    @property
     def label_keys(self) -> list[str]:
         """Scenario keys that form the label."""
         return list(self.attrs.get("label", []))
@@ -611,14 +657,20 @@ class SweepDataset:
         y : ndarray of str, shape (n_runs,)
             Labels.
         """
-        one_d = [c["name"] for c in self.attrs["channels"] if not c["extra_dim"]]
+        one_d = self.series
         chans = one_d if channels is None else list(channels)
         for c in chans:
             if c not in one_d:
                 raise ConfigError(
                     f"channel = {c!r} is not a stored time series; valid: " + ", ".join(one_d)
                 )
-        X = np.stack([np.asarray(self._ds[c][self.runs].values) for c in chans], axis=1)
+        idx = [one_d.index(c) for c in chans]
+        sig = self._ds["signal"].variable
+        X = (
+            np.asarray(sig[self.runs].values)[:, idx, :]
+            if len(self)
+            else np.empty((0, len(idx), 0))
+        )
         return X, self.labels(label)
 
     def scenario(self, run: int) -> dict[str, Any]:
@@ -636,15 +688,20 @@ class SweepDataset:
         sc = self.scenario(run)
         n = int(round(sc["duration_s"] * sc["fs_hz"]))
         chans, units, dims = {}, {}, {}
+        series = self.series
+        if series:
+            sig = np.asarray(self._ds["signal"].variable[run].values)
         for c in self.attrs["channels"]:
-            x = np.asarray(self._ds[c["name"]][run].values)[:n]
             if c["extra_dim"]:
+                x = np.asarray(self._ds[c["name"]].variable[run].values)[:n]
                 z = int(np.sum(~np.all(np.isnan(x), axis=0)))
                 x = x[:, :z]
                 dims[c["name"]] = ("time", c["extra_dim"])
+            else:
+                x = sig[series.index(c["name"]), :n]
             chans[c["name"]] = x
             units[c["name"]] = c["units"]
-        meta = json.loads(str(self._ds["meta_json"].values[run]))
+        meta = json.loads(str(self._ds["record_json"].values[run]))["meta"]
         return SimulationResult(np.arange(n) / sc["fs_hz"], chans, units, sc, meta, dims)
 
     def summary(self, label: str | list[str] | None = None) -> dict[str, Any]:
@@ -676,7 +733,7 @@ class SweepDataset:
             if np.unique(v.astype(str)).size <= SUMMARY_MAX_VALUES:
                 by_axis[key] = counts(v)
         out["by_axis"] = by_axis
-        cs = np.asarray(self._ds["compute_s"].values)[self.runs]
+        cs = np.array([r.get("compute_s", np.nan) for r in self.records()], dtype=float)
         done = np.isfinite(cs)
         out["compute_s_total"] = float(cs[done].sum())
         out["compute_s_mean"] = float(cs[done].mean()) if done.any() else None

@@ -130,6 +130,7 @@ def run_cmd(
     out: str,
     workers: int | None,
     scheduler: str | None,
+    connect_timeout_s: float,
     force_new: bool,
     retry_failed: bool,
     runs_per_task: int | None,
@@ -137,11 +138,13 @@ def run_cmd(
     as_json: bool,
 ) -> None:
     """Run the sweep (or resume it: only runs not yet committed are computed)."""
-    from ..sweep import SweepInterrupted, run_sweep
+    from ..sweep import SweepInterrupted, check_cluster_args, run_sweep
     from ..sweep_spec import SweepSpec
 
     workers = _count("workers", workers)
     runs_per_task = _count("runs_per_task", runs_per_task)
+    check_cluster_args(workers, scheduler)
+    check_range("connect_timeout_s", connect_timeout_s, 0.0, lo_open=True, unit="s")
     p = Path(out)
     if p.exists() and not p.is_dir():
         raise ConfigError(f"out = {out!r} is a file; valid: a dataset directory")
@@ -159,6 +162,7 @@ def run_cmd(
             runs_per_task=runs_per_task,
             writer=writer,
             progress=not as_json,
+            connect_timeout_s=connect_timeout_s,
         )
     except SweepInterrupted as exc:
         click.echo(f"error: {exc}", err=True)

@@ -1,0 +1,127 @@
+"""Benchmark of ``bearingsim sweep``: 64 DEM runs (0.5 s at 12 kHz each) on 1 and 2 workers.
+
+Targets (issue 8): throughput with 2 workers >= 1.8 x that with 1 worker; overhead per run
+<= 5 % of its compute time.
+
+Definitions (printed):
+
+- throughput = runs / wall, wall from the first submitted task to the last commit (cluster
+  start, kernel loading on the workers, probes and dataset creation are ``setup``, printed apart);
+- compute = the wall time of ``simulate()`` of each run inside the worker;
+- overhead per run = (workers x wall - sum of compute) / runs: everything that is not
+  ``simulate`` (Dask scheduling and transfer, Zarr commits, idle workers at the end), and the
+  same against a serial baseline measured in this process without Dask or writing.
+
+Other jobs on the machine inflate every figure: the load average is printed before and after
+each measurement; run it when ``uptime`` shows a low load.
+
+Run::
+
+    PYTHONPATH=src python benchmarks/bench_sweep.py [--repeats 3] [--runs 64]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+from bearingsim.simulate import simulate
+from bearingsim.sweep import connect, run_sweep, worker_hello
+from bearingsim.sweep_spec import SweepSpec
+
+
+def make_spec(n_runs: int) -> SweepSpec:
+    """``n_runs`` DEM runs (outer/inner fault x speed x load), 0.5 s at 12 kHz."""
+    n_load = max(1, n_runs // 16)
+    return SweepSpec.from_dict(
+        {
+            "sweep": {"channels": ["acc_x", "acc_y"], "label": "fault"},
+            "base": {"model": "dem", "duration_s": 0.5, "fs_hz": 12000.0},
+            "axes": {
+                "fault": ["outer", "inner"],
+                "rpm": {"start": 1700.0, "stop": 1800.0, "num": 8},
+                "fy_n": {"start": 50.0, "stop": 200.0, "num": n_load},
+            },
+        },
+        origin="bench",
+    )
+
+
+def load() -> str:
+    return "{:.2f}".format(os.getloadavg()[0])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--runs", type=int, default=64)
+    ap.add_argument("--runs-per-task", type=int, default=None)
+    args = ap.parse_args()
+    spec = make_spec(args.runs)
+    n = spec.n_runs
+    print(f"sweep: {n} runs of DEM, 0.5 s at 12 kHz (6000 samples), channels acc_x, acc_y")
+    print(f"machine: {os.cpu_count()} cores; load average at start {load()}")
+    scen = spec.scenarios()
+    simulate(scen[0])  # compile or load the Numba cache before timing
+    base = []
+    for _ in range(args.repeats):
+        t0 = time.perf_counter()
+        for sc in scen:
+            simulate(sc)
+        base.append(time.perf_counter() - t0)
+    serial = min(base)
+    print(
+        f"serial baseline (this process, no Dask, no writing): {serial:.3f} s = "
+        f"{1e3 * serial / n:.2f} ms per run (best of {args.repeats}; all "
+        + ", ".join(f"{b:.3f}" for b in base)
+        + f"); load {load()}"
+    )
+    tmp = Path(tempfile.mkdtemp(prefix="bench_sweep_"))
+    results: dict[int, list] = {}
+    try:
+        for w in (1, 2):
+            t0 = time.perf_counter()
+            with connect(workers=w) as (client, _):
+                t_start = time.perf_counter() - t0
+                client.run(worker_hello)  # kernels loaded on every worker
+                print(f"\n{w} worker(s): cluster start {t_start:.2f} s")
+                results[w] = []
+                for r in range(args.repeats):
+                    out = tmp / f"w{w}_r{r}.zarr"
+                    la = load()
+                    rep = run_sweep(spec, out, client=client, runs_per_task=args.runs_per_task)
+                    assert rep.n_ok == n, rep
+                    results[w].append(rep)
+                    ov = (w * rep.wall_s - rep.compute_s) / n
+                    ov_base = (w * rep.wall_s - serial) / n
+                    print(
+                        f"  repeat {r}: wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} runs/s, "
+                        f"compute {1e3 * rep.compute_s / n:.2f} ms/run, commit "
+                        f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
+                        f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
+                        f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
+                        f"setup {rep.setup_s:.2f} s; load {la} -> {load()}"
+                    )
+                    shutil.rmtree(out)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    print("\nsummary (median over repeats):")
+    thr = {w: statistics.median(n / r.wall_s for r in reps) for w, reps in results.items()}
+    for w, reps in results.items():
+        ov = statistics.median(
+            (w * r.wall_s - r.compute_s) / r.compute_s for r in reps
+        )  # per-run overhead / per-run compute
+        print(
+            f"  {w} worker(s): {thr[w]:.1f} runs/s, overhead {100 * ov:.1f} % of compute per run"
+        )
+    print(f"  2-worker / 1-worker throughput: {thr[2] / thr[1]:.2f} (target >= 1.8)")
+    print(f"load average at end {load()}")
+
+
+if __name__ == "__main__":
+    main()
