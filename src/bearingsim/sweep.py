@@ -140,10 +140,10 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     """Execute a group of runs on a worker and commit each one (see the module docstring).
 
     ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
-    ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``runs`` (list of (run, scenario
-    dict)). Returns one record per run: ``run``, ``status`` (1 ok, 2 failed, or ``"skipped"``
-    when already committed), ``compute_s``, ``error``, ``commit_s``, and when the client must
-    commit: ``record_json`` and ``channels``.
+    ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
+    (list of (run, scenario dict)). Returns one record per run: ``run``, ``status`` (1 ok,
+    2 failed, or ``"skipped"`` when already committed), ``compute_s``, ``error``, ``commit_s``,
+    and when the client must commit: ``record_json`` and ``channels``.
     """
     import time as _t
 
@@ -159,9 +159,11 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     names = task["channels"]
     out: list[dict[str, Any]] = []
     for i, sd in task["runs"]:
-        if writer is not None and writer.committed(i):
-            out.append({"run": i, "status": "skipped"})
-            continue
+        if writer is not None:
+            st = writer.status_of(i)
+            if st == OK or (st == FAILED and not task["retry_failed"]):
+                out.append({"run": i, "status": "skipped"})  # a rerun of a task: done before
+                continue
         t0 = _t.perf_counter()
         res, err = None, version_error
         if not err:
@@ -681,7 +683,18 @@ def run_sweep(
             cw = RunWriter(path, uid)
             rep.setup_s = time.perf_counter() - t_start
             _execute(
-                cl, spec, scenarios, todo, str(path), uid, cw, rep, runs_per_task, writer, progress
+                cl,
+                spec,
+                scenarios,
+                todo,
+                str(path),
+                uid,
+                cw,
+                rep,
+                runs_per_task,
+                writer,
+                progress,
+                retry_failed,
             )
     _final_counts(rep, read_status(path))
     return rep
@@ -716,6 +729,7 @@ def _execute(
     runs_per_task: int | None,
     writer: str,
     progress: bool | Callable[[SweepReport], None],
+    retry_failed: bool,
 ) -> None:
     """The submission loop: feed tasks, commit what the workers send back, count."""
     from distributed import as_completed
@@ -756,6 +770,7 @@ def _execute(
             "version": __version__,
             "channels": channels,
             "writer": writer,
+            "retry_failed": retry_failed,
             "runs": [(i, dicts.pop(i)) for i in runs],
         }
         key = f"bearingsim-sweep-run{runs[0]}-{uuidlib.uuid4().hex[:12]}"

@@ -194,15 +194,19 @@ class RunWriter:
         names = list(RUN_ARRAYS) + list(self.wide) + (["signal"] if self.series else [])
         self.codecs = {name: _ChunkCodec(self.path, g[name]) for name in names}
 
-    def committed(self, i: int) -> bool:
-        """Whether run ``i`` has its commit marker (status ok or failed)."""
+    def status_of(self, i: int) -> int:
+        """Status of run ``i`` from its marker file (:data:`PENDING` when absent)."""
         c = self.codecs["status"]
         try:
             with open(os.path.join(c.dir, c.encode_key((i,))), "rb") as fh:
                 b = fh.read()
         except FileNotFoundError:
-            return False
-        return len(b) == 1 and b[0] in (OK, FAILED)
+            return PENDING
+        return b[0] if len(b) == 1 and b[0] in (OK, FAILED) else PENDING
+
+    def committed(self, i: int) -> bool:
+        """Whether run ``i`` has its commit marker (status ok or failed)."""
+        return self.status_of(i) != PENDING
 
     def _signal(self, channels: dict[str, NDArray]) -> NDArray[np.float64]:
         """The (1, n_channel, n_time) chunk of the time series (NaN where absent or short)."""
