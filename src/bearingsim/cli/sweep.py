@@ -114,6 +114,13 @@ def plan_cmd(
     default=None,
     help="Address of a running Dask scheduler (tcp://HOST:PORT) instead of a local cluster.",
 )
+@click.option(
+    "--connect-timeout-s",
+    type=float,
+    default=20.0,
+    show_default=True,
+    help="How long to try reaching --scheduler [s].",
+)
 @click.option("--force-new", is_flag=True, help="Replace an existing dataset of a different spec.")
 @click.option("--retry-failed", is_flag=True, help="Compute the failed runs again.")
 @click.option("--runs-per-task", type=int, default=None, help="Runs per Dask task [automatic].")
