@@ -8,16 +8,20 @@ Definitions (printed):
 - throughput = runs / wall, wall from the first submitted task to the last commit (cluster
   start, kernel loading on the workers, probes and dataset creation are ``setup``, printed apart);
 - compute = the wall time of ``simulate()`` of each run inside the worker;
-- overhead per run = (workers x wall - sum of compute) / runs: everything that is not
-  ``simulate`` (Dask scheduling and transfer, Zarr commits, idle workers at the end), and the
-  same against a serial baseline measured in this process without Dask or writing.
+- overhead per run (wall) = (workers x wall - sum of compute) / runs: everything that is not
+  ``simulate`` (Dask scheduling and transfer, Zarr commits, idle workers at the end), also
+  against a serial baseline measured in this process without Dask or writing;
+- overhead per run (CPU) = (CPU time of the worker processes over the whole sweep call + CPU
+  time of this client process, which also hosts the local scheduler, during the wall interval
+  above - CPU time inside ``simulate``) / runs. Unlike the wall-clock figures it hardly depends
+  on what else runs on the machine.
 
-Other jobs on the machine inflate every figure: the load average is printed before and after
-each measurement; run it when ``uptime`` shows a low load.
+Other jobs on the machine inflate every wall-clock figure: the load average is printed with each
+measurement; ``--max-load`` waits (up to ``--wait-s``) for a 1-minute load average below it.
 
 Run::
 
-    PYTHONPATH=src python benchmarks/bench_sweep.py [--repeats 3] [--runs 64]
+    PYTHONPATH=src python benchmarks/bench_sweep.py [--repeats 3] [--runs 64] [--max-load 1.0]
 """
 
 from __future__ import annotations
@@ -29,6 +33,8 @@ import statistics
 import tempfile
 import time
 from pathlib import Path
+
+import psutil
 
 from bearingsim.simulate import simulate
 from bearingsim.sweep import connect, run_sweep, worker_hello
@@ -53,7 +59,19 @@ def make_spec(n_runs: int) -> SweepSpec:
 
 
 def load() -> str:
-    return "{:.2f}".format(os.getloadavg()[0])
+    return f"{os.getloadavg()[0]:.2f}"
+
+
+def proc_cpu() -> float:
+    """CPU time (user + system) of this process and its threads [s]."""
+    t = psutil.Process().cpu_times()
+    return t.user + t.system
+
+
+def wait_load(max_load: float, wait_s: float) -> None:
+    t0 = time.monotonic()
+    while os.getloadavg()[0] > max_load and time.monotonic() - t0 < wait_s:
+        time.sleep(5.0)
 
 
 def main() -> None:
@@ -61,6 +79,9 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--runs", type=int, default=64)
     ap.add_argument("--runs-per-task", type=int, default=None)
+    ap.add_argument("--max-load", type=float, default=float("inf"))
+    ap.add_argument("--wait-s", type=float, default=600.0)
+    ap.add_argument("--dir", default=None, help="Where the datasets go [a new temporary dir].")
     args = ap.parse_args()
     spec = make_spec(args.runs)
     n = spec.n_runs
@@ -68,6 +89,7 @@ def main() -> None:
     print(f"machine: {os.cpu_count()} cores; load average at start {load()}")
     scen = spec.scenarios()
     simulate(scen[0])  # compile or load the Numba cache before timing
+    wait_load(args.max_load, args.wait_s)
     base = []
     for _ in range(args.repeats):
         t0 = time.perf_counter()
@@ -81,7 +103,8 @@ def main() -> None:
         + ", ".join(f"{b:.3f}" for b in base)
         + f"); load {load()}"
     )
-    tmp = Path(tempfile.mkdtemp(prefix="bench_sweep_"))
+    tmp = Path(tempfile.mkdtemp(prefix="bench_sweep_", dir=args.dir))
+    print(f"datasets in {tmp}")
     results: dict[int, list] = {}
     try:
         for w in (1, 2):
@@ -92,20 +115,30 @@ def main() -> None:
                 print(f"\n{w} worker(s): cluster start {t_start:.2f} s")
                 results[w] = []
                 for r in range(args.repeats):
+                    wait_load(args.max_load, args.wait_s)
                     out = tmp / f"w{w}_r{r}.zarr"
                     la = load()
+                    cw0 = sum(client.run(proc_cpu).values())
                     rep = run_sweep(spec, out, client=client, runs_per_task=args.runs_per_task)
+                    cpu_w = sum(client.run(proc_cpu).values()) - cw0
+                    cpu_all = cpu_w + rep.client_cpu_s
                     assert rep.n_ok == n, rep
-                    results[w].append(rep)
                     ov = (w * rep.wall_s - rep.compute_s) / n
                     ov_base = (w * rep.wall_s - serial) / n
+                    ov_cpu = (cpu_all - rep.compute_cpu_s) / n
+                    rep.ov_cpu = ov_cpu / (rep.compute_cpu_s / n)  # type: ignore[attr-defined]
+                    results[w].append(rep)
                     print(
                         f"  repeat {r}: wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} runs/s, "
-                        f"compute {1e3 * rep.compute_s / n:.2f} ms/run, commit "
+                        f"compute {1e3 * rep.compute_s / n:.2f} ms/run (CPU "
+                        f"{1e3 * rep.compute_cpu_s / n:.2f}), commit "
                         f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
                         f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
                         f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
-                        f"setup {rep.setup_s:.2f} s; load {la} -> {load()}"
+                        f"CPU overhead {1e3 * ov_cpu:.2f} ms/run = {100 * rep.ov_cpu:.1f} % of "
+                        f"CPU compute (workers {1e3 * (cpu_w - rep.compute_cpu_s) / n:.2f}, "
+                        f"client {1e3 * rep.client_cpu_s / n:.2f}); setup {rep.setup_s:.2f} s; "
+                        f"load {la} -> {load()}"
                     )
                     shutil.rmtree(out)
     finally:
@@ -116,8 +149,10 @@ def main() -> None:
         ov = statistics.median(
             (w * r.wall_s - r.compute_s) / r.compute_s for r in reps
         )  # per-run overhead / per-run compute
+        ovc = statistics.median(r.ov_cpu for r in reps)
         print(
-            f"  {w} worker(s): {thr[w]:.1f} runs/s, overhead {100 * ov:.1f} % of compute per run"
+            f"  {w} worker(s): {thr[w]:.1f} runs/s, overhead {100 * ov:.1f} % of compute per run "
+            f"(wall), {100 * ovc:.1f} % (CPU)"
         )
     print(f"  2-worker / 1-worker throughput: {thr[2] / thr[1]:.2f} (target >= 1.8)")
     print(f"load average at end {load()}")

@@ -112,6 +112,7 @@ def test_zarr_layout_readable_by_xarray(noisy):
         for key in ("fault", "rpm", "seed"):
             assert key in d.coords
         assert_array_equal(d["rpm"].values, [NOISY.scenario(i).rpm for i in range(6)])
+        assert d["status"].dtype == np.int8
         assert_array_equal(d["status"].values, np.full(6, OK))
         sc = json.loads(str(d["scenario_json"].values[3]))
         assert sc == NOISY.scenario(3).to_dict()
@@ -151,9 +152,9 @@ def test_resume_computes_only_missing(client, noisy, tmp_path):
     # nothing left: returns without a cluster
     rep = run_sweep(NOISY, out)
     assert (rep.n_skipped, rep.n_computed, rep.tasks) == (6, 0, 0)
-    # forget runs 1 and 4 (remove their commit markers) as if killed before committing them
+    # forget runs 1 and 4 (zero their commit markers) as if killed before committing them
     for i in (1, 4):
-        (out / "status" / str(i)).unlink()
+        (out / "status" / str(i)).write_bytes(b"\x00")
     keep = {i: (out / "status" / str(i)).stat().st_mtime_ns for i in (0, 2, 3, 5)}
     keep_sig = {i: (out / "signal" / f"{i}.0.0").stat().st_mtime_ns for i in (0, 2, 3, 5)}
     assert_array_equal(read_status(out), [OK, PENDING, OK, OK, PENDING, OK])
@@ -254,27 +255,26 @@ def test_commit_marker_is_last(noisy, tmp_path, monkeypatch):
     """A writer killed after the data and before the marker leaves the run pending."""
     import shutil
 
-    from bearingsim import sweep_dataset
-
     src, _ = noisy
     out = tmp_path / "marker.zarr"
     shutil.copytree(src, out)
-    (out / "status" / "0").unlink()
+    (out / "status" / "0").write_bytes(b"\x00")
     w = RunWriter(out)
-    real = sweep_dataset._ChunkCodec.write
+    sig = out / "signal" / "0.0.0"
+    before = sig.read_bytes()
 
-    def crash_on_status(self, i, chunk):
-        if self.dir.endswith("status"):
-            raise KeyboardInterrupt("killed")
-        real(self, i, chunk)
+    def killed(self, i, status):
+        raise KeyboardInterrupt("killed before the marker")
 
-    monkeypatch.setattr(sweep_dataset._ChunkCodec, "write", crash_on_status)
+    monkeypatch.setattr(RunWriter, "_mark", killed)
     x = np.ones(200)
     with pytest.raises(KeyboardInterrupt):
         w.commit(0, OK, {"compute_s": 0.0, "meta": {}}, "", {"acc_x": x, "acc_y": x})
-    assert read_status(out)[0] == PENDING and not w.committed(0)
+    assert sig.read_bytes() != before  # the data chunk was replaced ...
+    assert read_status(out)[0] == PENDING and not w.committed(0)  # ... but the run is pending
+    assert open_dataset(out).summary()["n_pending"] == 1
     assert not list((out / "signal").glob(".*.tmp"))
-    monkeypatch.setattr(sweep_dataset._ChunkCodec, "write", real)
+    monkeypatch.undo()
     w.commit(0, OK, {"compute_s": 0.0, "meta": {}}, "", {"acc_x": x, "acc_y": x})
     assert read_status(out)[0] == OK and w.committed(0)
 

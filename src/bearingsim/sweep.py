@@ -18,18 +18,18 @@ workers give the channels, units and shapes; the client then creates the Zarr da
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
 Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
-tasks hold one run each; then the size follows the measured run time (tasks of ~0.5 s, so
-Dask's ~1–3 ms per task stays below 1 %) and shrinks towards the end (at most the remaining runs
-/ (2 x threads)) so that the workers finish together. At most two tasks per worker thread are in
-flight; the client submits the next one as each finishes, which keeps memory bounded for any
-number of runs. Each run is committed on its own as soon as it finishes: by the worker when it
-sees the dataset directory (same machine or a shared file system; checked with the dataset's
-uuid), otherwise its arrays are sent back and the client commits them. A run that raises is
-committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A worker that dies
-loses at most its running run: Dask reruns the task elsewhere and the runs already committed by
-it are skipped; a task lost more than ``distributed.scheduler.allowed-failures`` times is recorded
-as failed (``KilledWorker``). Killing the client loses nothing committed; running the same
-command again resumes.
+tasks hold one run each; then the size follows the measured run time (tasks of ~0.5 s, so Dask's
+~1–3 ms per task stays below 1 %) and shrinks towards the end (at most the remaining runs /
+worker threads: guided self-scheduling) so that the workers finish together. At most two tasks
+per worker thread are in flight; the client submits the next one as each finishes, which keeps
+memory bounded for any number of runs. Each run is committed on its own as soon as it finishes:
+by the worker when it sees the dataset directory (same machine or a shared file system; checked
+with the dataset's uuid), otherwise its arrays are sent back and the client commits them. A run
+that raises is committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A
+worker that dies loses at most its running run: Dask reruns the task elsewhere and the runs
+already committed by it are skipped; a task lost more than ``distributed.scheduler.allowed-
+failures`` times is recorded as failed (``KilledWorker``). Killing the client loses nothing
+committed; running the same command again resumes.
 """
 
 from __future__ import annotations
@@ -81,6 +81,13 @@ TARGET_TASK_S = 0.5
 INFLIGHT_PER_THREAD = 2
 #: scheduler connection timeout [s]
 CONNECT_TIMEOUT_S = 20.0
+#: Dask settings of the local cluster: no statistical profiler (it samples the running thread
+#: every 10 ms, for a dashboard that is not started) and a 1 s event-loop tick instead of 20 ms;
+#: together they saved ~0.5 ms of CPU per run in ``benchmarks/bench_sweep.py``
+LOCAL_CLUSTER_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+}
 _ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
 
 
@@ -108,9 +115,16 @@ def _writer_for(path: str, uuid: str) -> RunWriter | None:
 
 
 def worker_hello() -> dict[str, Any]:
-    """Run on each worker before the sweep: loads the compiled kernels, reports identity."""
-    from . import simulate  # noqa: F401  (imports and loads the cached Numba kernels)
+    """Run on each worker before the sweep: loads the compiled kernels (a two-sample run of
+    every registered model), reports identity."""
+    import numcodecs  # noqa: F401  (the commit path's imports, outside the timed runs)
+    import zarr  # noqa: F401
 
+    from .simulate import MODEL_RUNNERS, simulate
+
+    for model in list(MODEL_RUNNERS):
+        with contextlib.suppress(BearingsimError):
+            simulate(Scenario(model=model, duration_s=2.0 / 4000.0, fs_hz=4000.0))
     return {"version": __version__, "host": socket.gethostname(), "pid": os.getpid()}
 
 
@@ -165,6 +179,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
                 out.append({"run": i, "status": "skipped"})  # a rerun of a task: done before
                 continue
         t0 = _t.perf_counter()
+        c0 = _t.thread_time()
         res, err = None, version_error
         if not err:
             try:
@@ -172,11 +187,18 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             except Exception as exc:  # every failure is recorded; the sweep goes on
                 err = _error_text(exc)
         compute = _t.perf_counter() - t0
+        cpu = _t.thread_time() - c0
         chans = None
         if res is not None:
             chans = {k: v for k, v in res.channels.items() if names is None or k in names}
         status = OK if res is not None else FAILED
-        rec: dict[str, Any] = {"run": i, "status": status, "compute_s": compute, "error": err}
+        rec: dict[str, Any] = {
+            "run": i,
+            "status": status,
+            "compute_s": compute,
+            "cpu_s": cpu,
+            "error": err,
+        }
         rj = json.dumps(
             to_jsonable(
                 {
@@ -443,8 +465,13 @@ class SweepReport:
         Wall time before that: cluster start, kernel loading, probes, dataset creation [s].
     compute_s : float
         Sum of the runs' ``simulate`` wall times [s].
+    compute_cpu_s : float
+        Sum of the runs' ``simulate`` CPU times (thread time on the worker) [s].
     commit_s : float
         Sum of the per-run commit times on the workers and the client [s].
+    client_cpu_s : float
+        CPU time of this process during ``wall_s`` (with a local cluster it hosts the Dask
+        scheduler too) [s].
     workers : int
         Worker threads at the end [-].
     tasks : int
@@ -464,7 +491,9 @@ class SweepReport:
     wall_s: float = 0.0
     setup_s: float = 0.0
     compute_s: float = 0.0
+    compute_cpu_s: float = 0.0
     commit_s: float = 0.0
+    client_cpu_s: float = 0.0
     workers: int = 0
     tasks: int = 0
     cluster: str = ""
@@ -505,8 +534,10 @@ def connect(
         finally:
             client.close()
         return
+    import dask
+
     n = workers if workers is not None else (os.cpu_count() or 1)
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), dask.config.set(LOCAL_CLUSTER_CONFIG):
         # distributed warns when creating its scratch directory is slow on a busy disk
         warnings.filterwarnings("ignore", message="Creating scratch directories")
         cluster = LocalCluster(
@@ -735,6 +766,7 @@ def _execute(
     from distributed import as_completed
 
     n_todo = len(todo)
+    cpu0 = time.process_time()
     bar = None
     if progress is True:
         from tqdm import tqdm
@@ -759,7 +791,8 @@ def _execute(
             size = 1
         else:
             per_run = max(float(np.mean(run_time[-64:])), 1e-6)
-            size = min(max(1, int(TARGET_TASK_S / per_run)), max(1, len(todo) // (2 * threads)))
+            # guided self-scheduling: at most remaining / threads, so workers end together
+            size = min(max(1, int(TARGET_TASK_S / per_run)), max(1, len(todo) // threads))
         runs = [todo.popleft() for _ in range(min(size, len(todo)))]
         for i in runs:
             if i not in dicts:
@@ -810,6 +843,7 @@ def _execute(
                     run_time.append(r["compute_s"])
                 rep.n_computed += 1
                 rep.compute_s += r["compute_s"]
+                rep.compute_cpu_s += r.get("cpu_s", 0.0)
                 if r["status"] == FAILED:
                     rep.n_failed_now += 1
             if bar is not None:
@@ -837,6 +871,7 @@ def _execute(
             bar.close()
         rep.workers = threads
         rep.wall_s = time.perf_counter() - t0
+        rep.client_cpu_s = time.process_time() - cpu0
 
 
 def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[dict[str, Any]]:

@@ -13,30 +13,31 @@ Layout (Zarr format 2 with consolidated metadata: ``xarray.open_zarr(path)`` rea
       signal (run, channel, time)   the stored time series, float64 (SI), one chunk per run;
                             NaN where not (yet) written
       <name> (run, time, ball)   each stored per-ball channel, one chunk per run
-      status (run)          int8 commit marker: 0 pending (the fill value, no chunk yet), 1 ok,
-                            2 failed (xarray decodes the fill value 0 as NaN)
+      status (run)          int8 commit marker: 0 pending, 1 ok, 2 failed (one uncompressed
+                            byte per run, every chunk written at creation)
       error (run)           "ErrorType: message" of a failed run ("" otherwise)
       record_json (run)     {"compute_s": wall time of simulate [s], "host", "pid",
                             "meta": SimulationResult.meta}
 
 Commit protocol
 ---------------
-All metadata (every ``.zarray``/``.zattrs``, the coordinates and ``scenario_json``) is written
-once, into a temporary directory beside ``DATASET`` that is then renamed into place
-(``os.rename`` of a directory is atomic); afterwards only chunks are written, never metadata,
-so the consolidated metadata stays valid. Run ``i`` owns chunk ``i`` of every per-run array, so
-concurrent writers never touch the same file. Committing run ``i`` writes its data chunks
-(``signal``, per-ball arrays), its ``error`` (failed runs) and ``record_json`` first and its
-``status`` chunk last. Every chunk file is written under a temporary name in its array directory
-and renamed onto its key (``os.replace``, atomic on POSIX), so a reader sees either no chunk or a
-complete one. A run counts as done only when its ``status`` chunk says ok (1) or failed (2): a
-process killed at any instant leaves every earlier commit intact and at most one run per writer
-whose data chunks exist without its marker; that run is still pending and is computed again on
-resume (rewriting the same chunks). Chunks are encoded with the codecs recorded in each array's
-own ``.zarray`` (the numcodecs objects zarr uses; a test checks the bytes equal zarr-python's)
-and written with plain file operations: ~0.1 ms per chunk here instead of ~1 ms for a one-chunk
-write through zarr-python's asynchronous store — a run costs three files (signal, record,
-status). Durability against a power cut would need ``fsync``; against killed processes it does
+All metadata (every ``.zarray``/``.zattrs``, the coordinates, ``scenario_json`` and a zero
+``status`` chunk for every run) is written once, into a temporary directory beside ``DATASET``
+that is then renamed into place (``os.rename`` of a directory is atomic); afterwards only chunks
+are written, never metadata, so the consolidated metadata stays valid. Run ``i`` owns chunk ``i``
+of every per-run array, so concurrent writers never touch the same file. Committing run ``i``
+writes its data chunks (``signal``, per-ball arrays), its ``error`` (failed runs) and its
+``record_json`` first, each under a temporary name in its array directory renamed onto its key
+(``os.replace``, atomic on POSIX: a reader sees no chunk or a complete one), and last overwrites
+the single byte of its ``status`` chunk in place (a one-byte write cannot be torn). A run counts
+as done only when its ``status`` byte says ok (1) or failed (2): a process killed at any instant
+leaves every earlier commit intact and at most one run per writer whose data chunks exist
+without its marker; that run is still pending and is computed again on resume (rewriting the
+same chunks). Chunks are encoded with the codecs recorded in each array's own ``.zarray`` (the
+numcodecs objects zarr uses; a test checks the bytes equal zarr-python's) and written with plain
+file operations, because a one-chunk write through zarr-python's asynchronous store costs ~1 ms
+and creating a file on the test machine's ext4 ~0.3 ms: a commit creates two files and writes
+one byte. Durability against a power cut would need ``fsync``; against killed processes it does
 not.
 """
 
@@ -158,6 +159,10 @@ class _ChunkCodec:
             buf = self.compressor.encode(buf)
         return buf if isinstance(buf, bytes) else memoryview(buf).tobytes()
 
+    def path(self, i: int) -> str:
+        """File of the per-run chunk ``i``."""
+        return os.path.join(self.dir, self.encode_key((i,) + (0,) * (self.ndim - 1)))
+
     def write(self, i: int, chunk: Any) -> None:
         key = self.encode_key((i,) + (0,) * (self.ndim - 1))
         _atomic_write(os.path.join(self.dir, key), self.encode(chunk))
@@ -196,9 +201,8 @@ class RunWriter:
 
     def status_of(self, i: int) -> int:
         """Status of run ``i`` from its marker file (:data:`PENDING` when absent)."""
-        c = self.codecs["status"]
         try:
-            with open(os.path.join(c.dir, c.encode_key((i,))), "rb") as fh:
+            with open(self.codecs["status"].path(i), "rb") as fh:
                 b = fh.read()
         except FileNotFoundError:
             return PENDING
@@ -266,7 +270,16 @@ class RunWriter:
             c["error"].write(i, np.array([error], dtype=object))
         rj = record if isinstance(record, str) else json.dumps(to_jsonable(record))
         c["record_json"].write(i, np.array([rj], dtype=object))
-        c["status"].write(i, np.array([status], dtype=np.int8))  # the commit marker, last
+        self._mark(i, status)  # the commit marker, last
+
+    def _mark(self, i: int, status: int) -> None:
+        """Overwrite the one byte of run ``i``'s ``status`` chunk (created with the dataset) in
+        place: a one-byte write cannot be torn; no file is created, nothing is renamed."""
+        fd = os.open(self.codecs["status"].path(i), os.O_WRONLY)
+        try:
+            os.pwrite(fd, bytes((status,)), 0)
+        finally:
+            os.close(fd)
 
 
 # ---------------------------------------------------------------------------- creation
@@ -386,7 +399,7 @@ def create_dataset(
             a.attrs["units"] = ch.units
             a.attrs["coordinates"] = " ".join(coord_names)
         st = g.create_array(
-            "status", shape=(n,), chunks=(1,), dtype="int8", fill_value=PENDING, compressors=None
+            "status", shape=(n,), chunks=(1,), dtype="int8", fill_value=None, compressors=None
         )
         _dims(st, ["run"])
         st.attrs["flag_values"] = [PENDING, OK, FAILED]
@@ -397,6 +410,13 @@ def create_dataset(
                 name, shape=(n,), chunks=(1,), dtype=str, fill_value=None, compressors=None
             )
             _dims(a, ["run"])
+        # every status chunk exists from the start, holding 0 (pending): a commit then only
+        # overwrites its byte in place
+        codec = _ChunkCodec(tmp, st)
+        zero = codec.encode(np.zeros(1, dtype=np.int8))
+        for i in range(n):
+            with open(codec.path(i), "xb") as fh:
+                fh.write(zero)
         g.attrs.update(
             to_jsonable(
                 {
