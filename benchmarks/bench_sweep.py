@@ -11,9 +11,9 @@ Definitions (printed):
 - overhead per run (wall) = (workers x wall - sum of compute) / runs: everything that is not
   ``simulate`` (Dask scheduling and transfer, Zarr commits, idle workers at the end), also
   against a serial baseline measured in this process without Dask or writing;
-- overhead per run (CPU) = (CPU time of the worker processes over the whole sweep call + CPU
-  time of this client process, which also hosts the local scheduler, during the wall interval
-  above - CPU time inside ``simulate``) / runs. Unlike the wall-clock figures it hardly depends
+- overhead per run (CPU) = (CPU time of the worker processes and of this client process, which
+  also hosts the local scheduler, during the wall interval above - CPU time inside
+  ``simulate``) / runs. Unlike the wall-clock figures it hardly depends
   on what else runs on the machine.
 
 Other jobs on the machine inflate every wall-clock figure: the load average is printed with each
@@ -33,8 +33,6 @@ import statistics
 import tempfile
 import time
 from pathlib import Path
-
-import psutil
 
 from bearingsim.simulate import simulate
 from bearingsim.sweep import connect, run_sweep, worker_hello
@@ -60,12 +58,6 @@ def make_spec(n_runs: int) -> SweepSpec:
 
 def load() -> str:
     return f"{os.getloadavg()[0]:.2f}"
-
-
-def proc_cpu() -> float:
-    """CPU time (user + system) of this process and its threads [s]."""
-    t = psutil.Process().cpu_times()
-    return t.user + t.system
 
 
 def wait_load(max_load: float, wait_s: float) -> None:
@@ -118,9 +110,8 @@ def main() -> None:
                     wait_load(args.max_load, args.wait_s)
                     out = tmp / f"w{w}_r{r}.zarr"
                     la = load()
-                    cw0 = sum(client.run(proc_cpu).values())
                     rep = run_sweep(spec, out, client=client, runs_per_task=args.runs_per_task)
-                    cpu_w = sum(client.run(proc_cpu).values()) - cw0
+                    cpu_w = rep.worker_cpu_s
                     cpu_all = cpu_w + rep.client_cpu_s
                     assert rep.n_ok == n, rep
                     ov = (w * rep.wall_s - rep.compute_s) / n

@@ -123,10 +123,17 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
     """The fast commit path writes exactly the bytes zarr-python writes for the same data."""
     import zarr
 
+    from bearingsim.sweep_dataset import _ChunkCodec
+
     out, _ = noisy
     g = zarr.open_group(str(out), mode="r", zarr_format=2)
     twin = zarr.open_group(str(tmp_path / "twin.zarr"), mode="w", zarr_format=2)
-    for name in ("signal", "status", "record_json"):
+    data = {
+        "signal": g["signal"][2:3],
+        "status": np.array([FAILED], dtype=np.int8),
+        "error": np.array(["SolverError: dt_s = 0.0005 s is too large"], dtype=object),
+    }
+    for name, d in data.items():
         src = g[name]
         a = twin.create_array(
             name,
@@ -136,11 +143,13 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
             fill_value=src.fill_value,
             compressors=src.metadata.compressor,
         )
-        a[2] = src[2]
-        key = src.metadata.encode_chunk_key((2,) + (0,) * (src.ndim - 1))
-        ours = (out / name / key).read_bytes()
-        theirs = (tmp_path / "twin.zarr" / name / key).read_bytes()
+        a[2:3] = d
+        ours = _ChunkCodec(out, src).encode(d)
+        theirs = Path(_ChunkCodec(tmp_path / "twin.zarr", a).path(2)).read_bytes()
         assert ours == theirs, name
+    assert (out / "signal" / "2.0.0").read_bytes() == _ChunkCodec(out, g["signal"]).encode(
+        data["signal"]
+    )
 
 
 def test_resume_computes_only_missing(client, noisy, tmp_path):
@@ -282,20 +291,20 @@ def test_commit_marker_is_last(noisy, tmp_path, monkeypatch):
 def test_client_lock(noisy):
     out, _ = noisy
     with client_lock(out):
-        (out / ".bearingsim-lock").write_text(json.dumps({"host": "elsewhere", "pid": 1}))
+        (out / "records" / ".lock").write_text(json.dumps({"host": "elsewhere", "pid": 1}))
         with pytest.raises(ConfigError, match=r"is in use by the sweep client elsewhere:1"):
             with client_lock(out):
                 pass
-        (out / ".bearingsim-lock").unlink()
+        (out / "records" / ".lock").unlink()
     # a lock of a dead process on this host is taken over
     import socket
 
-    (out / ".bearingsim-lock").write_text(
+    (out / "records" / ".lock").write_text(
         json.dumps({"host": socket.gethostname(), "pid": 2**22 + 12345})
     )
     with client_lock(out):
-        assert json.loads((out / ".bearingsim-lock").read_text())["pid"] == os.getpid()
-    assert not (out / ".bearingsim-lock").exists()
+        assert json.loads((out / "records" / ".lock").read_text())["pid"] == os.getpid()
+    assert not (out / "records" / ".lock").exists()
 
 
 def test_dataset_creation_is_atomic(client, tmp_path, monkeypatch):
@@ -308,3 +317,44 @@ def test_dataset_creation_is_atomic(client, tmp_path, monkeypatch):
     with pytest.raises(OSError, match="disk full"):
         run_sweep(make_spec({"rpm": [1700.0]}), tmp_path / "x.zarr", client=client)
     assert list(Path(tmp_path).iterdir()) == []  # neither the dataset nor its temporary
+
+
+def test_records_retry_and_torn_lines(noisy, tmp_path):
+    """Records are JSON lines: a line cut by a kill is skipped; a rerun's newest line whose
+    status matches the committed one wins; a retried run that succeeds drops its error."""
+    import shutil
+
+    src, _ = noisy
+    out = tmp_path / "rec.zarr"
+    shutil.copytree(src, out)
+    w = RunWriter(out)
+    w.commit(0, FAILED, {"compute_s": 1.0, "meta": None}, "SolverError: boom")
+    ds = open_dataset(out)
+    assert ds.summary()["failures"][0]["error"] == "SolverError: boom"
+    assert ds.records()[0]["compute_s"] == 1.0
+    x = np.ones(200)
+    w.commit(0, OK, {"compute_s": 2.0, "meta": {"model": "dem"}}, "", {"acc_x": x, "acc_y": x})
+    logs = list((out / "records").glob("*.jsonl"))
+    with open(logs[0], "a") as fh:
+        fh.write('{"run": 1, "sta')  # a writer killed mid-line
+    with open(logs[-1], "a") as fh:  # a newer attempt killed before its marker
+        fh.write(json.dumps({"run": 0, "status": FAILED, "t": 1e12, "compute_s": 9.0}) + "\n")
+    w.close()
+    ds = open_dataset(out)
+    r0 = ds.records()[0]
+    assert (r0["status"], r0["compute_s"], r0["meta"]) == (OK, 2.0, {"model": "dem"})
+    assert ds.summary()["failures"] == [] and str(ds.xr["error"].values[0]) == ""
+    assert ds.records()[1]["meta"] == json.loads(json.dumps(open_dataset(src).records()[1]["meta"]))
+
+
+def test_zarr_hierarchy_walk_without_warnings(noisy):
+    """zarr's own hierarchy walk (no consolidated metadata) accepts the dataset, also while a
+    client holds the lock (warnings are errors in the tests)."""
+    import zarr
+
+    out, _ = noisy
+    g = zarr.open_group(str(out), mode="r", use_consolidated=False)
+    names = sorted(n for n, _ in g.members())
+    assert {"signal", "status", "error", "records", "scenario_json"} <= set(names)
+    with client_lock(out):
+        zarr.open_group(str(out), mode="r", use_consolidated=False).members()

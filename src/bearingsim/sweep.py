@@ -157,7 +157,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
     (list of (run, scenario dict)). Returns one record per run: ``run``, ``status`` (1 ok,
     2 failed, or ``"skipped"`` when already committed), ``compute_s``, ``error``, ``commit_s``,
-    and when the client must commit: ``record_json`` and ``channels``.
+    and when the client must commit: ``record`` and ``channels``.
     """
     import time as _t
 
@@ -199,23 +199,20 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             "cpu_s": cpu,
             "error": err,
         }
-        rj = json.dumps(
-            to_jsonable(
-                {
-                    "compute_s": compute,
-                    "host": socket.gethostname(),
-                    "pid": os.getpid(),
-                    "bearingsim_version": __version__,
-                    "meta": None if res is None else res.meta,
-                }
-            )
-        )
+        record = {
+            "compute_s": compute,
+            "cpu_s": cpu,
+            "host": socket.gethostname(),
+            "pid": os.getpid(),
+            "bearingsim_version": __version__,
+            "meta": None if res is None else res.meta,
+        }
         if writer is not None:
             t1 = _t.perf_counter()
-            writer.commit(i, status, rj, err, chans)
+            writer.commit(i, status, record, err, chans)
             rec["commit_s"] = _t.perf_counter() - t1
         else:
-            rec["record_json"] = rj
+            rec["record"] = to_jsonable(record)
             rec["channels"] = chans
         out.append(rec)
     return out
@@ -472,6 +469,9 @@ class SweepReport:
     client_cpu_s : float
         CPU time of this process during ``wall_s`` (with a local cluster it hosts the Dask
         scheduler too) [s].
+    worker_cpu_s : float
+        CPU time of the worker processes during ``wall_s`` (all their threads; on a shared
+        cluster also other clients' work) [s].
     workers : int
         Worker threads at the end [-].
     tasks : int
@@ -494,6 +494,7 @@ class SweepReport:
     compute_cpu_s: float = 0.0
     commit_s: float = 0.0
     client_cpu_s: float = 0.0
+    worker_cpu_s: float = 0.0
     workers: int = 0
     tasks: int = 0
     cluster: str = ""
@@ -573,6 +574,21 @@ def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
                 f"workers = {workers} applies to a local cluster only; with scheduler = "
                 f"{scheduler!r} the cluster's own workers run the sweep"
             )
+
+
+def process_cpu_s() -> float:
+    """CPU time (user + system, every thread) of the calling process [s]."""
+    import psutil
+
+    t = psutil.Process().cpu_times()
+    return t.user + t.system
+
+
+def _workers_cpu(client) -> dict[str, float]:
+    try:
+        return client.run(process_cpu_s)
+    except Exception:  # bookkeeping only; a lost scheduler shows up in the task results
+        return {}
 
 
 def _threads(client) -> int:
@@ -713,20 +729,23 @@ def run_sweep(
             rep.n_skipped = len(scenarios) - len(todo)
             cw = RunWriter(path, uid)
             rep.setup_s = time.perf_counter() - t_start
-            _execute(
-                cl,
-                spec,
-                scenarios,
-                todo,
-                str(path),
-                uid,
-                cw,
-                rep,
-                runs_per_task,
-                writer,
-                progress,
-                retry_failed,
-            )
+            try:
+                _execute(
+                    cl,
+                    spec,
+                    scenarios,
+                    todo,
+                    str(path),
+                    uid,
+                    cw,
+                    rep,
+                    runs_per_task,
+                    writer,
+                    progress,
+                    retry_failed,
+                )
+            finally:
+                cw.close()
     _final_counts(rep, read_status(path))
     return rep
 
@@ -766,6 +785,7 @@ def _execute(
     from distributed import as_completed
 
     n_todo = len(todo)
+    wcpu0 = _workers_cpu(cl)
     cpu0 = time.process_time()
     bar = None
     if progress is True:
@@ -835,9 +855,7 @@ def _execute(
                     run_time.append(r["compute_s"] + r["commit_s"])
                 else:
                     tc = time.perf_counter()
-                    cw.commit(
-                        r["run"], r["status"], r["record_json"], r["error"], r.get("channels")
-                    )
+                    cw.commit(r["run"], r["status"], r["record"], r["error"], r.get("channels"))
                     rep.commit_s += time.perf_counter() - tc
                     rep.committed_by["client"] += 1
                     run_time.append(r["compute_s"])
@@ -872,6 +890,8 @@ def _execute(
         rep.workers = threads
         rep.wall_s = time.perf_counter() - t0
         rep.client_cpu_s = time.process_time() - cpu0
+        wcpu = _workers_cpu(cl)
+        rep.worker_cpu_s = sum(v - wcpu0[a] for a, v in wcpu.items() if a in wcpu0)
 
 
 def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[dict[str, Any]]:
@@ -883,7 +903,7 @@ def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[
             "status": FAILED,
             "compute_s": 0.0,
             "error": err,
-            "record_json": json.dumps({"compute_s": None, "meta": None}),
+            "record": {"compute_s": None, "host": None, "pid": None, "meta": None},
         }
         if not cw.committed(i)
         else {"run": i, "status": "skipped"}

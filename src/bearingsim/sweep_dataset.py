@@ -16,7 +16,10 @@ Layout (Zarr format 2 with consolidated metadata: ``xarray.open_zarr(path)`` rea
       status (run)          int8 commit marker: 0 pending, 1 ok, 2 failed (one uncompressed
                             byte per run, every chunk written at creation)
       error (run)           "ErrorType: message" of a failed run ("" otherwise)
-      record_json (run)     {"compute_s": wall time of simulate [s], "host", "pid",
+      records               0-d placeholder array; its directory holds records/*.jsonl, one
+                            line per committed run, one file per writer process:
+                            {"run", "status", "t", "compute_s": wall time of simulate [s],
+                            "cpu_s", "host", "pid", "bearingsim_version",
                             "meta": SimulationResult.meta}
 
 Commit protocol
@@ -26,19 +29,21 @@ All metadata (every ``.zarray``/``.zattrs``, the coordinates, ``scenario_json`` 
 that is then renamed into place (``os.rename`` of a directory is atomic); afterwards only chunks
 are written, never metadata, so the consolidated metadata stays valid. Run ``i`` owns chunk ``i``
 of every per-run array, so concurrent writers never touch the same file. Committing run ``i``
-writes its data chunks (``signal``, per-ball arrays), its ``error`` (failed runs) and its
-``record_json`` first, each under a temporary name in its array directory renamed onto its key
-(``os.replace``, atomic on POSIX: a reader sees no chunk or a complete one), and last overwrites
-the single byte of its ``status`` chunk in place (a one-byte write cannot be torn). A run counts
+writes its data chunks (``signal``, per-ball arrays) and its ``error`` (failed runs), each under
+a temporary name in its array directory renamed onto its key (``os.replace``, atomic on POSIX: a
+reader sees no chunk or a complete one), then appends its record as one line to the writer's
+``records/*.jsonl`` file, and last overwrites the single byte of its ``status`` chunk in place (a
+one-byte write cannot be torn). A run counts
 as done only when its ``status`` byte says ok (1) or failed (2): a process killed at any instant
 leaves every earlier commit intact and at most one run per writer whose data chunks exist
 without its marker; that run is still pending and is computed again on resume (rewriting the
 same chunks). Chunks are encoded with the codecs recorded in each array's own ``.zarray`` (the
 numcodecs objects zarr uses; a test checks the bytes equal zarr-python's) and written with plain
 file operations, because a one-chunk write through zarr-python's asynchronous store costs ~1 ms
-and creating a file on the test machine's ext4 ~0.3 ms: a commit creates two files and writes
-one byte. Durability against a power cut would need ``fsync``; against killed processes it does
-not.
+and creating a file on the test machine's ext4 ~0.3 ms: a commit creates one file (the signal
+chunk), appends one line and writes one byte. A line cut by a kill belongs to a run that is
+still pending; the reader skips it. Durability against a power cut would need ``fsync``; against
+killed processes it does not.
 """
 
 from __future__ import annotations
@@ -70,9 +75,11 @@ FORMAT = "bearingsim.Sweep/1"
 PENDING, OK, FAILED = 0, 1, 2
 STATUS_NAMES = {PENDING: "pending", OK: "ok", FAILED: "failed"}
 #: per-run bookkeeping arrays (besides the channels)
-RUN_ARRAYS = ("status", "error", "record_json")
+RUN_ARRAYS = ("status", "error")
+#: directory (inside the dataset) of the per-run records, one JSON-lines file per writer process
+RECORDS_DIR = "records"
 #: lock file of the client running a sweep on the dataset
-LOCK_NAME = ".bearingsim-lock"
+LOCK_NAME = "records/.lock"
 #: at most this many axis values are listed per axis in a summary
 SUMMARY_MAX_VALUES = 50
 
@@ -198,6 +205,25 @@ class RunWriter:
         self.wide = {c["name"]: int(c["n_extra"]) for c in chans if c["extra_dim"]}
         names = list(RUN_ARRAYS) + list(self.wide) + (["signal"] if self.series else [])
         self.codecs = {name: _ChunkCodec(self.path, g[name]) for name in names}
+        self._log: int | None = None  # this process's records file (opened on first commit)
+
+    def _log_fd(self) -> int:
+        if self._log is None:
+            name = f"{socket.gethostname()}-{os.getpid()}-{uuidlib.uuid4().hex[:8]}.jsonl"
+            self._log = os.open(
+                self.path / RECORDS_DIR / name, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644
+            )
+        return self._log
+
+    def close(self) -> None:
+        """Close this process's records file."""
+        if self._log is not None:
+            os.close(self._log)
+            self._log = None
+
+    def __del__(self) -> None:
+        with contextlib.suppress(Exception):
+            self.close()
 
     def status_of(self, i: int) -> int:
         """Status of run ``i`` from its marker file (:data:`PENDING` when absent)."""
@@ -236,11 +262,11 @@ class RunWriter:
         self,
         i: int,
         status: int,
-        record: dict[str, Any] | str,
+        record: dict[str, Any],
         error: str = "",
         channels: dict[str, NDArray] | None = None,
     ) -> None:
-        """Commit run ``i``: data chunks, record (and error), then the ``status`` marker last.
+        """Commit run ``i``: data chunks, error, record, then the ``status`` marker last.
 
         Parameters
         ----------
@@ -248,8 +274,8 @@ class RunWriter:
             Run number.
         status : int
             :data:`OK` or :data:`FAILED`.
-        record : dict or str
-            ``{"compute_s": [s], "host", "meta": SimulationResult.meta}`` (or its JSON).
+        record : dict
+            ``{"compute_s": [s], "host", "pid", "meta": SimulationResult.meta, ...}``.
         error : str
             ``"ErrorType: message"`` of a failed run.
         channels : dict, optional
@@ -268,8 +294,11 @@ class RunWriter:
                     c[name].write(i, self._wide(name, channels[name]))
         if error:
             c["error"].write(i, np.array([error], dtype=object))
-        rj = record if isinstance(record, str) else json.dumps(to_jsonable(record))
-        c["record_json"].write(i, np.array([rj], dtype=object))
+        else:  # a retried run that succeeds drops its old error
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(c["error"].path(i))
+        line = {"run": i, "status": status, "t": time.time(), **record}
+        os.write(self._log_fd(), (json.dumps(to_jsonable(line)) + "\n").encode())
         self._mark(i, status)  # the commit marker, last
 
     def _mark(self, i: int, status: int) -> None:
@@ -405,11 +434,19 @@ def create_dataset(
         st.attrs["flag_values"] = [PENDING, OK, FAILED]
         st.attrs["flag_meanings"] = "pending ok failed"
         st.attrs["coordinates"] = " ".join(coord_names)
-        for name in ("error", "record_json"):
-            a = g.create_array(
-                name, shape=(n,), chunks=(1,), dtype=str, fill_value=None, compressors=None
-            )
-            _dims(a, ["run"])
+        a = g.create_array(
+            "error", shape=(n,), chunks=(1,), dtype=str, fill_value=None, compressors=None
+        )
+        _dims(a, ["run"])
+        # the records directory is a 0-d placeholder array, so that zarr's hierarchy walkers
+        # accept it; the JSON-lines files (and the client lock) beside its chunk are ignored
+        rec = g.create_array(RECORDS_DIR, shape=(), dtype="int8", fill_value=None, compressors=None)
+        _dims(rec, [])
+        rec.attrs["content"] = (
+            "records/*.jsonl in this directory: one JSON line per committed run (status, "
+            "compute_s, host, pid, bearingsim_version, meta = SimulationResult.meta)"
+        )
+        rec[...] = 0
         # every status chunk exists from the start, holding 0 (pending): a commit then only
         # overwrites its byte in place
         codec = _ChunkCodec(tmp, st)
@@ -484,7 +521,7 @@ def remove_stale_temporaries(path: str | Path) -> int:
 # ---------------------------------------------------------------------------- lock
 @contextlib.contextmanager
 def client_lock(path: str | Path):
-    """Hold ``DATASET/.bearingsim-lock`` while a sweep client writes (one client at a time).
+    """Hold ``DATASET/records/.lock`` while a sweep client writes (one client at a time).
 
     A lock left by a dead process on this host is taken over; a live one (or one from another
     host) is an error naming its owner.
@@ -588,9 +625,27 @@ class SweepDataset:
         return [c["name"] for c in self.attrs["channels"] if not c["extra_dim"]]
 
     def records(self) -> list[dict[str, Any]]:
-        """``record_json`` of the selected runs (``{}`` for pending runs)."""
-        rj = np.asarray(self._ds["record_json"].values).astype(object)[self.runs]
-        return [json.loads(str(r)) if str(r) else {} for r in rj]
+        """Record of each selected run (``{}`` for a pending run): ``status``, ``compute_s``
+        [s], ``host``, ``pid``, ``bearingsim_version``, ``meta`` (``SimulationResult.meta``).
+
+        Read from the JSON-lines files in ``DATASET/records/``; when a run was computed more
+        than once (a resume after a kill, ``--retry-failed``) the newest line whose status
+        equals the committed status wins.
+        """
+        status = read_status(self.path)
+        best: dict[int, dict[str, Any]] = {}
+        for f in sorted((self.path / RECORDS_DIR).glob("*.jsonl")):
+            with open(f, encoding="utf-8") as fh:
+                for line in fh:
+                    try:
+                        r = json.loads(line)
+                        i = int(r["run"])
+                    except (ValueError, KeyError, TypeError):
+                        continue  # a line cut by a killed writer
+                    if 0 <= i < status.size and r.get("status") == status[i]:
+                        if i not in best or r.get("t", 0.0) >= best[i].get("t", 0.0):
+                            best[i] = r
+        return [best.get(int(i), {}) for i in self.runs]
 
     @property
     def label_keys(self) -> list[str]:
@@ -725,7 +780,7 @@ class SweepDataset:
                 x = sig[series.index(c["name"]), :n]
             chans[c["name"]] = x
             units[c["name"]] = c["units"]
-        meta = json.loads(str(self._ds["record_json"].values[run]))["meta"]
+        meta = self._view(np.array([run])).records()[0].get("meta") or {}
         return SimulationResult(np.arange(n) / sc["fs_hz"], chans, units, sc, meta, dims)
 
     def summary(self, label: str | list[str] | None = None) -> dict[str, Any]:
