@@ -39,13 +39,13 @@ from bearingsim.sweep import connect, run_sweep, worker_hello
 from bearingsim.sweep_spec import SweepSpec
 
 
-def make_spec(n_runs: int) -> SweepSpec:
-    """``n_runs`` DEM runs (outer/inner fault x speed x load), 0.5 s at 12 kHz."""
+def make_spec(n_runs: int, duration_s: float = 0.5) -> SweepSpec:
+    """``n_runs`` DEM runs (outer/inner fault x speed x load), ``duration_s`` at 12 kHz."""
     n_load = max(1, n_runs // 16)
     return SweepSpec.from_dict(
         {
             "sweep": {"channels": ["acc_x", "acc_y"], "label": "fault"},
-            "base": {"model": "dem", "duration_s": 0.5, "fs_hz": 12000.0},
+            "base": {"model": "dem", "duration_s": duration_s, "fs_hz": 12000.0},
             "axes": {
                 "fault": ["outer", "inner"],
                 "rpm": {"start": 1700.0, "stop": 1800.0, "num": 8},
@@ -73,11 +73,15 @@ def main() -> None:
     ap.add_argument("--runs-per-task", type=int, default=None)
     ap.add_argument("--max-load", type=float, default=float("inf"))
     ap.add_argument("--wait-s", type=float, default=600.0)
+    ap.add_argument("--duration-s", type=float, default=0.5, help="Simulated time per run [s].")
     ap.add_argument("--dir", default=None, help="Where the datasets go [a new temporary dir].")
     args = ap.parse_args()
-    spec = make_spec(args.runs)
+    spec = make_spec(args.runs, args.duration_s)
     n = spec.n_runs
-    print(f"sweep: {n} runs of DEM, 0.5 s at 12 kHz (6000 samples), channels acc_x, acc_y")
+    print(
+        f"sweep: {n} runs of DEM, {args.duration_s:g} s at 12 kHz "
+        f"({round(args.duration_s * 12000)} samples), channels acc_x, acc_y"
+    )
     print(f"machine: {os.cpu_count()} cores; load average at start {load()}")
     scen = spec.scenarios()
     simulate(scen[0])  # compile or load the Numba cache before timing
@@ -110,7 +114,9 @@ def main() -> None:
                     wait_load(args.max_load, args.wait_s)
                     out = tmp / f"w{w}_r{r}.zarr"
                     la = load()
-                    rep = run_sweep(spec, out, client=client, runs_per_task=args.runs_per_task)
+                    rep = run_sweep(
+                        spec, out, client=client, runs_per_task=args.runs_per_task, measure_cpu=True
+                    )
                     cpu_w = rep.worker_cpu_s
                     cpu_all = cpu_w + rep.client_cpu_s
                     assert rep.n_ok == n, rep

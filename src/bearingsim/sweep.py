@@ -18,17 +18,18 @@ workers give the channels, units and shapes; the client then creates the Zarr da
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
 Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
-tasks hold one run each; then the size follows the measured run time (tasks of ~0.5 s, so Dask's
-~1–3 ms per task stays below 1 %) and shrinks towards the end (at most the remaining runs /
-worker threads: guided self-scheduling) so that the workers finish together. At most two tasks
-per worker thread are in flight; the client submits the next one as each finishes, which keeps
-memory bounded for any number of runs. Each run is committed on its own as soon as it finishes:
-by the worker when it sees the dataset directory (same machine or a shared file system; checked
-with the dataset's uuid), otherwise its arrays are sent back and the client commits them. A run
-that raises is committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A
-worker that dies loses at most its running run: Dask reruns the task elsewhere and the runs
-already committed by it are skipped; a task lost more than ``distributed.scheduler.allowed-
-failures`` times is recorded as failed (``KilledWorker``). Killing the client loses nothing
+tasks hold one run each; then the size follows the measured run time (tasks of ~1 s, so Dask's
+~1–4 ms of CPU per task stays below 0.5 %) and shrinks towards the end (at most the remaining runs /
+tasks in flight: guided self-scheduling, allowing for a task queued behind another) so that the
+workers finish together. At most two tasks per worker thread are in flight; the client submits
+the next one as each finishes, which keeps memory bounded for any number of runs. Each run is
+committed on its own as soon as it finishes: by the worker when it sees the dataset directory
+(same machine or a shared file system; checked with the dataset's uuid), otherwise its arrays
+are sent back and the client commits them. A run that raises is committed as *failed* with
+``"ErrorType: message"`` and the sweep goes on. A worker that dies loses at most its running
+run: Dask reruns the task elsewhere and the runs already committed by it are skipped; a task
+lost more than ``distributed.scheduler.allowed-failures`` times is recorded as failed
+(``KilledWorker``). Killing the client loses nothing
 committed; running the same command again resumes.
 """
 
@@ -76,7 +77,7 @@ from .sweep_dataset import (
 from .sweep_spec import SweepSpec, canonical_hash, spec_differences
 
 #: automatic task size: aim at this much compute per task [s]
-TARGET_TASK_S = 0.5
+TARGET_TASK_S = 1.0
 #: tasks in flight per worker thread
 INFLIGHT_PER_THREAD = 2
 #: scheduler connection timeout [s]
@@ -211,7 +212,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         }
         if writer is not None:
             t1 = _t.perf_counter()
-            writer.commit(i, status, record, err, chans)
+            writer.commit(i, status, record, err, chans, rerun=task["retry_failed"])
             rec["commit_s"] = _t.perf_counter() - t1
         else:
             rec["record"] = to_jsonable(record)
@@ -473,7 +474,7 @@ class SweepReport:
         scheduler too) [s].
     worker_cpu_s : float
         CPU time of the worker processes during ``wall_s`` (all their threads; on a shared
-        cluster also other clients' work) [s].
+        cluster also other clients' work), with ``measure_cpu`` [s].
     workers : int
         Worker threads at the end [-].
     tasks : int
@@ -613,6 +614,7 @@ def run_sweep(
     writer: str = "auto",
     progress: bool | Callable[[SweepReport], None] = False,
     connect_timeout_s: float = CONNECT_TIMEOUT_S,
+    measure_cpu: bool = False,
 ) -> SweepReport:
     """Run (or resume) a sweep into the Zarr dataset ``out``.
 
@@ -641,6 +643,9 @@ def run_sweep(
         after every finished task.
     connect_timeout_s : float
         How long to try reaching ``scheduler`` [s].
+    measure_cpu : bool
+        Also measure the workers' CPU time during the sweep (``SweepReport.worker_cpu_s``; two
+        extra calls to every worker).
 
     Returns
     -------
@@ -749,6 +754,7 @@ def run_sweep(
                     writer,
                     progress,
                     retry_failed,
+                    measure_cpu,
                 )
             finally:
                 cw.close()
@@ -786,12 +792,13 @@ def _execute(
     writer: str,
     progress: bool | Callable[[SweepReport], None],
     retry_failed: bool,
+    measure_cpu: bool,
 ) -> None:
     """The submission loop: feed tasks, commit what the workers send back, count."""
     from distributed import as_completed
 
     n_todo = len(todo)
-    wcpu0 = _workers_cpu(cl)
+    wcpu0 = _workers_cpu(cl) if measure_cpu else {}
     cpu0 = time.process_time()
     bar = None
     if progress is True:
@@ -817,8 +824,12 @@ def _execute(
             size = 1
         else:
             per_run = max(float(np.mean(run_time[-64:])), 1e-6)
-            # guided self-scheduling: at most remaining / threads, so workers end together
-            size = min(max(1, int(TARGET_TASK_S / per_run)), max(1, len(todo) // threads))
+            # guided self-scheduling: a new task may wait behind one already queued on its
+            # worker, so at most remaining / (tasks in flight), for the workers to end together
+            # (a single worker has nothing to balance)
+            size = max(1, int(TARGET_TASK_S / per_run))
+            if threads > 1:
+                size = min(size, max(2, len(todo) // (INFLIGHT_PER_THREAD * threads)))
         runs = [todo.popleft() for _ in range(min(size, len(todo)))]
         for i in runs:
             if i not in dicts:
@@ -839,7 +850,7 @@ def _execute(
         rep.tasks += 1
 
     try:
-        while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
+        while todo and len(inflight) < threads:  # one timing run per thread first
             submit()
         for fut in ac:
             runs = inflight.pop(fut)
@@ -896,8 +907,9 @@ def _execute(
         rep.workers = threads
         rep.wall_s = time.perf_counter() - t0
         rep.client_cpu_s = time.process_time() - cpu0
-        wcpu = _workers_cpu(cl)
-        rep.worker_cpu_s = sum(v - wcpu0[a] for a, v in wcpu.items() if a in wcpu0)
+        if measure_cpu:
+            wcpu = _workers_cpu(cl)
+            rep.worker_cpu_s = sum(v - wcpu0[a] for a, v in wcpu.items() if a in wcpu0)
 
 
 def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[dict[str, Any]]:

@@ -265,6 +265,7 @@ class RunWriter:
         record: dict[str, Any],
         error: str = "",
         channels: dict[str, NDArray] | None = None,
+        rerun: bool = True,
     ) -> None:
         """Commit run ``i``: data chunks, error, record, then the ``status`` marker last.
 
@@ -280,6 +281,9 @@ class RunWriter:
             ``"ErrorType: message"`` of a failed run.
         channels : dict, optional
             The run's arrays by channel name (stored ones are picked).
+        rerun : bool
+            The run may have been committed as failed before (``False`` skips removing a stale
+            error chunk).
         """
         if status not in (OK, FAILED):
             raise ConfigError(
@@ -294,7 +298,7 @@ class RunWriter:
                     c[name].write(i, self._wide(name, channels[name]))
         if error:
             c["error"].write(i, np.array([error], dtype=object))
-        else:  # a retried run that succeeds drops its old error
+        elif rerun:  # a retried run that succeeds drops its old error
             with contextlib.suppress(FileNotFoundError):
                 os.unlink(c["error"].path(i))
         line = {"run": i, "status": status, "t": time.time(), **record}
