@@ -1,10 +1,10 @@
 """Parameter sweeps on Dask: a local cluster by default, a cluster by address, resumable.
 
-:func:`plan_sweep` counts the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` and estimates
-time and disk from short timing runs; :func:`run_sweep` executes them, each run being
-``bearingsim.simulate(scenario_i)`` — exactly the single-run API, so a sweep result equals the
-same scenario run on its own, bit for bit (the nominal ``time`` coordinate ``k/fs`` differs from
-the integrator's accumulated time by < 1e-16 s).
+:func:`run_sweep` executes the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` (which
+:func:`~bearingsim.sweep_plan.plan_sweep`, also importable from here, counts and estimates),
+each run being ``bearingsim.simulate(scenario_i)`` — exactly the single-run API, so a sweep
+result equals the same scenario run on its own, bit for bit (the nominal ``time`` coordinate
+``k/fs`` differs from the integrator's accumulated time by < 1e-16 s).
 
 Execution
 ---------
@@ -40,7 +40,6 @@ import concurrent.futures
 import contextlib
 import json
 import logging
-import math
 import os
 import re
 import shutil
@@ -65,8 +64,6 @@ from .sweep_dataset import (
     FAILED,
     OK,
     PENDING,
-    ChannelLayout,
-    Layout,
     RunWriter,
     client_lock,
     create_dataset,
@@ -74,6 +71,7 @@ from .sweep_dataset import (
     read_status,
     remove_stale_temporaries,
 )
+from .sweep_plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
 from .sweep_spec import SweepSpec, canonical_hash, spec_differences
 
 #: automatic task size: aim at this much compute per task [s]
@@ -129,24 +127,6 @@ def worker_hello() -> dict[str, Any]:
         with contextlib.suppress(BearingsimError):
             simulate(Scenario(model=model, duration_s=2.0 / 4000.0, fs_hz=4000.0))
     return {"version": __version__, "host": socket.gethostname(), "pid": os.getpid()}
-
-
-def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
-    """Two-sample run of ``scenario``: channel names, units and trailing shapes."""
-    from .simulate import simulate
-
-    sc = Scenario.from_dict(scenario)
-    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, noise_rms_m_s2=0.0))
-    out = {}
-    for name, x in res.channels.items():
-        a = np.asarray(x)
-        dims = res._dims(name, a)
-        out[name] = {
-            "units": res.units.get(name, ""),
-            "extra_dim": dims[1] if a.ndim == 2 else None,
-            "n_extra": int(a.shape[1]) if a.ndim == 2 else 0,
-        }
-    return out
 
 
 def _error_text(exc: BaseException) -> str:
@@ -219,225 +199,6 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             rec["channels"] = chans
         out.append(rec)
     return out
-
-
-# ------------------------------------------------------------------------------ layout
-def _group_key(sd: dict[str, Any]) -> tuple:
-    return (sd["model"], sd["per_ball"], sd.get("bearing"), sd.get("bearing_file"))
-
-
-def probe_groups(scenarios: list[Scenario]) -> dict[tuple, list[int]]:
-    """Runs grouped by what decides the channel set (model, per_ball, bearing): up to three
-    candidate runs per group."""
-    groups: dict[tuple, list[int]] = {}
-    for i, sc in enumerate(scenarios):
-        g = groups.setdefault(_group_key(sc.to_dict()), [])
-        if len(g) < 3:
-            g.append(i)
-    return groups
-
-
-def make_layout(
-    spec: SweepSpec, scenarios: list[Scenario], probes: dict[tuple, dict[str, Any]]
-) -> Layout:
-    """Dataset layout from the probe results of every group (see :func:`probe_groups`)."""
-    order: list[str] = []
-    info: dict[str, dict[str, Any]] = {}
-    for p in probes.values():
-        for name, d in p.items():
-            if name not in info:
-                order.append(name)
-                info[name] = dict(d)
-            else:
-                info[name]["n_extra"] = max(info[name]["n_extra"], d["n_extra"])
-    if spec.channels is None:
-        names = order
-    else:
-        names = list(spec.channels)
-        for name in names:
-            for key, p in probes.items():
-                if name not in p:
-                    valid = [k for k in order if all(k in q for q in probes.values())]
-                    raise ConfigError(
-                        f"{spec.origin}: channel {name!r} is not produced by the runs with "
-                        f"model = {key[0]!r}, per_ball = {key[1]}; valid: " + ", ".join(valid)
-                    )
-    chans = tuple(
-        ChannelLayout(n, info[n]["units"], info[n]["extra_dim"], info[n]["n_extra"]) for n in names
-    )
-    lengths = {(sc.fs_hz, sc.n_samples) for sc in scenarios}
-    n_time = max(sc.n_samples for sc in scenarios)
-    fs = next(iter(lengths))[0] if len(lengths) == 1 else None
-    return Layout(len(scenarios), n_time, fs, chans)
-
-
-def _coords(spec: SweepSpec, scenarios: list[Scenario]) -> dict[str, list[Any]]:
-    dicts = [sc.to_dict() for sc in scenarios]
-    return {k: [d[k] for d in dicts] for k in spec.coordinate_keys}
-
-
-# ------------------------------------------------------------------------------ plan
-@dataclass
-class SweepPlan:
-    """Run count and estimates of a sweep.
-
-    Attributes
-    ----------
-    n_runs : int
-        Number of runs.
-    axes : dict
-        Number of values per axis.
-    channels : list of str
-        Stored channels.
-    n_samples : tuple of int
-        Smallest and largest samples per run.
-    compute_s_per_run : float
-        Estimated mean compute time of one run on one worker [s].
-    compute_s_total : float
-        Estimated compute time of every run on one worker [s].
-    workers : int
-        Worker count of ``wall_s`` [-].
-    wall_s : float
-        ``compute_s_total / workers`` (ideal scaling) [s].
-    bytes_raw, bytes_estimate : int
-        Size of the stored arrays uncompressed, and the estimate after compression [byte].
-    timing : list of dict
-        The timing runs (run, duration [s], wall [s]).
-    spec_hash : str
-        SHA-256 of the canonical spec.
-    """
-
-    n_runs: int
-    combine: str
-    axes: dict[str, int]
-    channels: list[str]
-    n_samples: tuple[int, int]
-    compute_s_per_run: float
-    compute_s_total: float
-    workers: int
-    wall_s: float
-    bytes_raw: int
-    bytes_estimate: int
-    timing: list[dict[str, Any]] = field(default_factory=list)
-    spec_hash: str = ""
-
-    def as_dict(self) -> dict[str, Any]:
-        """Plain dict (JSON)."""
-        return to_jsonable(asdict(self))
-
-
-def plan_sweep(
-    spec: SweepSpec,
-    *,
-    timing_runs: int = 3,
-    timing_duration_s: float = 0.1,
-    workers: int | None = None,
-    seed: int = 0,
-) -> SweepPlan:
-    """Count the runs and estimate compute time and disk from short timing runs (in this
-    process).
-
-    Each timing run is a randomly chosen run (``seed``), at least one per model, simulated
-    twice: for 2 samples and for ``min(duration_s, timing_duration_s)``; the per-run cost is
-    extrapolated linearly in ``duration_s`` (fixed part + rate per simulated second, per model).
-    The disk estimate compresses the timing runs' channels with the dataset's codec.
-
-    Parameters
-    ----------
-    spec : SweepSpec
-        The sweep.
-    timing_runs : int
-        Number of timing runs (0: count only) [-].
-    timing_duration_s : float
-        Longest simulated time of a timing run [s].
-    workers : int, optional
-        Worker count for the wall-time estimate (default: CPU count).
-    seed : int
-        Choice of the timing runs.
-    """
-    import numcodecs
-
-    from .simulate import simulate
-
-    scenarios = spec.scenarios()
-    groups = probe_groups(scenarios)
-    probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
-    layout = make_layout(spec, scenarios, probes)
-    n = len(scenarios)
-    w = workers or os.cpu_count() or 1
-    raw_per_run = sum(8 * layout.n_time * max(1, c.n_extra) for c in layout.channels)
-    timing: list[dict[str, Any]] = []
-    ratio = 1.0
-    est = np.full(n, math.nan)
-    if timing_runs > 0:
-        rng = np.random.default_rng(seed)
-        models = sorted({sc.model.value for sc in scenarios})
-        picks = [next(i for i, sc in enumerate(scenarios) if sc.model.value == m) for m in models]
-        rest = [i for i in rng.permutation(n) if i not in picks]
-        picks = sorted(picks + rest[: max(0, timing_runs - len(picks))])
-        blosc = numcodecs.Blosc(cname="lz4", clevel=5, shuffle=numcodecs.Blosc.SHUFFLE)
-        enc = raw = 0
-        fit: dict[str, list[tuple[float, float]]] = {}
-        for i in picks:
-            sc = scenarios[i]
-            d0 = 2.0 / sc.fs_hz
-            d1 = max(min(sc.duration_s, timing_duration_s), 2 * d0)
-            t = []
-            res = None
-            for d in (d0, d1):
-                t0 = time.perf_counter()
-                try:
-                    res = simulate(sc.replace(duration_s=d))
-                except BearingsimError:
-                    res = None
-                    break
-                t.append(time.perf_counter() - t0)
-            if res is None:
-                timing.append({"run": i, "failed": True})
-                continue
-            rate = max(t[1] - t[0], 0.0) / (d1 - d0)
-            fit.setdefault(sc.model.value, []).append((t[0], rate))
-            timing.append({"run": i, "duration_s": d1, "wall_s": t[1], "fixed_s": t[0]})
-            for name in (c.name for c in layout.channels):
-                if name in res.channels:
-                    x = np.ascontiguousarray(res.channels[name], dtype=np.float64)
-                    raw += x.nbytes
-                    enc += len(blosc.encode(x))
-        ratio = enc / raw if raw else 1.0
-        allfit = [v for vs in fit.values() for v in vs]
-        for i, sc in enumerate(scenarios):
-            f = fit.get(sc.model.value) or allfit
-            if f:
-                a = float(np.mean([v[0] for v in f]))
-                r = float(np.mean([v[1] for v in f]))
-                est[i] = a + r * sc.duration_s
-    total = float(np.sum(est))
-    ns = [sc.n_samples for sc in scenarios]
-    return SweepPlan(
-        n_runs=n,
-        combine=spec.combine.value,
-        axes={a.name: len(a) for a in spec.axes},
-        channels=[c.name for c in layout.channels],
-        n_samples=(min(ns), max(ns)),
-        compute_s_per_run=total / n,
-        compute_s_total=total,
-        workers=w,
-        wall_s=total / w,
-        bytes_raw=raw_per_run * n,
-        bytes_estimate=int(raw_per_run * n * ratio + 600 * n),
-        timing=timing,
-        spec_hash=spec.spec_hash,
-    )
-
-
-def _probe_local(scenarios: list[Scenario], idx: list[int]) -> dict[str, Any]:
-    err: BearingsimError | None = None
-    for i in idx:
-        try:
-            return probe_run(scenarios[i].to_dict())
-        except BearingsimError as exc:
-            err = exc
-    raise ConfigError(f"run {idx[0]} cannot start: {' '.join(str(err).split())}")
 
 
 # ------------------------------------------------------------------------------ run
@@ -707,7 +468,7 @@ def run_sweep(
         if not path.exists() or replace_old:
             groups = probe_groups(scenarios)
             futs = {
-                k: cl.submit(_probe_first, [scenarios[i].to_dict() for i in idx], pure=False)
+                k: cl.submit(probe_first, [scenarios[i].to_dict() for i in idx], pure=False)
                 for k, idx in groups.items()
             }
             probes = {k: f.result() for k, f in futs.items()}
@@ -725,7 +486,11 @@ def run_sweep(
                 "name": spec.name,
             }
             uid = create_dataset(
-                path, layout, attrs_new, _coords(spec, scenarios), [s.to_dict() for s in scenarios]
+                path,
+                layout,
+                attrs_new,
+                coordinates(spec, scenarios),
+                [s.to_dict() for s in scenarios],
             )
             rep.created = True
         with client_lock(path):
@@ -766,17 +531,6 @@ def _final_counts(rep: SweepReport, st: np.ndarray) -> None:
     rep.n_ok = int(np.sum(st == OK))
     rep.n_failed = int(np.sum(st == FAILED))
     rep.n_pending = int(np.sum(st == PENDING))
-
-
-def _probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
-    """Probe the first candidate that starts; the last error text when none does."""
-    err = ""
-    for sd in candidates:
-        try:
-            return probe_run(sd)
-        except BearingsimError as exc:
-            err = " ".join(str(exc).split())
-    return err
 
 
 def _execute(
@@ -927,3 +681,16 @@ def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[
         else {"run": i, "status": "skipped"}
         for i in runs
     ]
+
+
+__all__ = [
+    "SweepInterrupted",
+    "SweepPlan",
+    "SweepReport",
+    "check_cluster_args",
+    "connect",
+    "plan_sweep",
+    "run_sweep",
+    "run_task",
+    "worker_hello",
+]
