@@ -217,3 +217,20 @@ def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
     assert set(s["by_axis"]["rpm"]) == {"1730.0", "1772.0"}
     r = run_cli("sweep", "summary", out, "--label", "speed")
     assert r.code == 2 and "label = 'speed' is not stored per run; valid: fault, rpm" in r.err
+
+
+def test_docs_python_example_runs(tmp_path, monkeypatch):
+    """The Python block of docs/sweeps.md runs as written (on a small sweep.toml)."""
+    import re
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "sweeps.md").read_text()
+    code = re.search(r"```python\n(.*?)```", doc, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "sweep.toml").write_text(SPEC)
+    ns = {"__name__": "__main__"}
+    exec(compile(code, "docs/sweeps.md", "exec"), ns)
+    assert ns["report"].n_ok == 4
+    assert ns["X"].shape == (2, 2, 200) and list(ns["y"]) == ["outer", "inner"]
+    assert len(ns["test"]) == 2 and ns["r"].fs_hz == 4000.0
+    assert ns["outer"].shape == (2, 200)
