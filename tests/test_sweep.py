@@ -358,3 +358,34 @@ def test_zarr_hierarchy_walk_without_warnings(noisy):
     assert {"signal", "status", "error", "records", "scenario_json"} <= set(names)
     with client_lock(out):
         zarr.open_group(str(out), mode="r", use_consolidated=False).members()
+
+
+def test_workers_that_cannot_write_hand_runs_to_the_client(client, tmp_path):
+    """A worker whose commit fails (e.g. a read-only mount) sends its runs back; the client
+    commits them, nothing is lost."""
+
+    def break_commit():  # runs in the worker processes (pickled by value)
+        from bearingsim import sweep_dataset
+
+        def commit(self, *a, **k):
+            raise PermissionError("read-only file system")
+
+        sweep_dataset.RunWriter._real_commit = sweep_dataset.RunWriter.commit
+        sweep_dataset.RunWriter.commit = commit
+
+    def restore():
+        from bearingsim import sweep, sweep_dataset
+
+        sweep_dataset.RunWriter.commit = sweep_dataset.RunWriter._real_commit
+        sweep._WRITERS.clear()
+
+    spec = make_spec({"fault": ["outer", "inner"], "rpm": [1730.0, 1797.0]})
+    client.run(break_commit)
+    try:
+        rep = run_sweep(spec, tmp_path / "ro.zarr", client=client)
+    finally:
+        client.run(restore)
+    assert rep.committed_by == {"worker": 0, "client": 4} and rep.n_ok == 4
+    X = open_dataset(tmp_path / "ro.zarr").arrays()[0]
+    for i in range(4):
+        assert_array_equal(X[i, 1], simulate(spec.scenario(i))["acc_y"], err_msg=f"run {i}")

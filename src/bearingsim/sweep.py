@@ -40,6 +40,7 @@ import concurrent.futures
 import contextlib
 import json
 import logging
+import math
 import os
 import re
 import shutil
@@ -101,18 +102,32 @@ class SweepInterrupted(BearingsimError):
 
 
 # ------------------------------------------------------------------------------ worker side
-#: per worker process: (dataset path, uuid) -> RunWriter, or None when not visible from here
-_WRITERS: dict[tuple[str, str], RunWriter | None] = {}
+#: per worker process: (dataset path, uuid) -> (RunWriter, or None when the dataset is not
+#: visible or not writable from here, time of the last attempt)
+_WRITERS: dict[tuple[str, str], tuple[RunWriter | None, float]] = {}
+#: a worker that could not open the dataset tries again after this long [s] (a shared file
+#: system may show a new directory late)
+RETRY_OPEN_S = 10.0
 
 
 def _writer_for(path: str, uuid: str) -> RunWriter | None:
     key = (path, uuid)
-    if key not in _WRITERS:
+    w, t = _WRITERS.get(key, (None, -math.inf))
+    if w is None and time.monotonic() - t > RETRY_OPEN_S:
         try:
-            _WRITERS[key] = RunWriter(path, uuid)
+            w = RunWriter(path, uuid)
         except (OSError, ValueError, KeyError):
-            _WRITERS[key] = None
-    return _WRITERS[key]
+            w = None
+        _WRITERS[key] = (w, time.monotonic())
+    return w
+
+
+def _writer_failed(path: str, uuid: str) -> None:
+    """Stop committing from this process (e.g. the dataset is read-only here)."""
+    w, _ = _WRITERS.get((path, uuid), (None, 0.0))
+    if w is not None:
+        w.close()
+    _WRITERS[(path, uuid)] = (None, time.monotonic())
 
 
 def worker_hello() -> dict[str, Any]:
@@ -192,9 +207,13 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         }
         if writer is not None:
             t1 = _t.perf_counter()
-            writer.commit(i, status, record, err, chans, rerun=task["retry_failed"])
-            rec["commit_s"] = _t.perf_counter() - t1
-        else:
+            try:
+                writer.commit(i, status, record, err, chans, rerun=task["retry_failed"])
+                rec["commit_s"] = _t.perf_counter() - t1
+            except OSError:  # not writable from here after all: the client commits
+                _writer_failed(task["dataset"], task["uuid"])
+                writer = None
+        if writer is None:
             rec["record"] = to_jsonable(record)
             rec["channels"] = chans
         out.append(rec)
