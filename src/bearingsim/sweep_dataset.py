@@ -778,6 +778,8 @@ class SweepDataset:
             if c["extra_dim"]:
                 x = np.asarray(self._ds[c["name"]].variable[run].values)[:n]
                 z = int(np.sum(~np.all(np.isnan(x), axis=0)))
+                if z == 0:
+                    continue  # not produced by this run (e.g. per_ball = false)
                 x = x[:, :z]
                 dims[c["name"]] = ("time", c["extra_dim"])
             else:
