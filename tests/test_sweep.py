@@ -409,3 +409,34 @@ def test_mixed_models_rates_and_per_ball(client, tmp_path):
         for k, x in s.channels.items():
             assert_array_equal(r[k], x, err_msg=f"run {i} {k} vs simulate")
         assert_allclose(r.time, s.time, rtol=0, atol=1e-15)
+
+
+def test_a_task_that_raises_is_recorded(client, tmp_path):
+    """A task that dies as a whole (here it raises; a task lost with its worker too often gives
+    ``KilledWorker`` the same way) records its runs as failed; the sweep finishes."""
+
+    def break_task():  # runs in the worker processes (pickled by value)
+        from bearingsim import sweep
+
+        def run_task(task):
+            raise RuntimeError("worker lost its disk")
+
+        sweep._real_run_task = sweep.run_task
+        sweep.run_task = run_task
+
+    def restore():
+        from bearingsim import sweep
+
+        sweep.run_task = sweep._real_run_task
+
+    spec = make_spec({"rpm": [1730.0, 1750.0, 1797.0]})
+    client.run(break_task)
+    try:
+        rep = run_sweep(spec, tmp_path / "t.zarr", client=client, runs_per_task=2)
+    finally:
+        client.run(restore)
+    assert (rep.n_failed, rep.n_pending, rep.tasks) == (3, 0, 2)
+    s = open_dataset(tmp_path / "t.zarr").summary()
+    assert [f["error"] for f in s["failures"]] == ["RuntimeError: worker lost its disk"] * 3
+    rep = run_sweep(spec, tmp_path / "t.zarr", client=client, retry_failed=True)
+    assert (rep.n_ok, rep.n_failed) == (3, 0)
