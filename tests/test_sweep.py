@@ -123,7 +123,7 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
     """The fast commit path writes exactly the bytes zarr-python writes for the same data."""
     import zarr
 
-    from bearingsim.sweep_dataset import _ChunkCodec
+    from bearingsim.sweep_store import _ChunkCodec
 
     out, _ = noisy
     g = zarr.open_group(str(out), mode="r", zarr_format=2)

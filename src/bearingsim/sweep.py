@@ -13,7 +13,7 @@ The client (this process) validates every run's scenario, connects to Dask — a
 Numba kernels hold the GIL, so threads would serialise), or an existing scheduler by address —
 and imports the compiled kernels on every worker. A few probe runs (two samples each) on the
 workers give the channels, units and shapes; the client then creates the Zarr dataset
-(:mod:`bearingsim.sweep_dataset`), or checks that an existing one was created by the same spec
+(:mod:`bearingsim.sweep_store`), or checks that an existing one was created by the same spec
 (same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
@@ -61,7 +61,9 @@ from ._version import __version__
 from .config import Scenario
 from .errors import BearingsimError, ConfigError, check_range
 from .io import to_jsonable
-from .sweep_dataset import (
+from .sweep_plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
+from .sweep_spec import SweepSpec, canonical_hash, spec_differences
+from .sweep_store import (
     FAILED,
     OK,
     PENDING,
@@ -72,8 +74,6 @@ from .sweep_dataset import (
     read_status,
     remove_stale_temporaries,
 )
-from .sweep_plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
-from .sweep_spec import SweepSpec, canonical_hash, spec_differences
 
 #: automatic task size: aim at this much compute per task [s]
 TARGET_TASK_S = 1.0

@@ -3,7 +3,7 @@
 :func:`plan_sweep` counts the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` and estimates
 compute time and disk from short timing runs in this process. :func:`probe_run` (a two-sample
 run) gives the channels, units and shapes a model produces; :func:`make_layout` turns the probes
-of every group of runs into the :class:`~bearingsim.sweep_dataset.Layout` of the dataset.
+of every group of runs into the :class:`~bearingsim.sweep_store.Layout` of the dataset.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ import numpy as np
 from .config import Scenario
 from .errors import BearingsimError, ConfigError
 from .io import to_jsonable
-from .sweep_dataset import ChannelLayout, Layout
 from .sweep_spec import SweepSpec
+from .sweep_store import ChannelLayout, Layout
 
 
 def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
