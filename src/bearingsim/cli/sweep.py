@@ -1,0 +1,231 @@
+"""``bearingsim sweep plan|run|summary``: parameter sweeps on Dask into one Zarr dataset."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+
+from ..errors import ConfigError, check_range
+from .common import cli, emit_json, json_option
+
+
+def _count(name: str, value: int | None, lo: int = 1) -> int | None:
+    if value is None:
+        return None
+    check_range(name, value, lo)
+    return int(value)
+
+
+def _human_bytes(n: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if abs(n) < 1000 or unit == "TB":
+            return f"{n:.3g} {unit}"
+        n /= 1000.0
+    return f"{n:.3g} TB"
+
+
+def _human_s(s: float) -> str:
+    if s != s:  # nan
+        return "?"
+    if s < 120:
+        return f"{s:.3g} s"
+    if s < 7200:
+        return f"{s / 60:.3g} min"
+    return f"{s / 3600:.3g} h"
+
+
+@cli.group("sweep")
+def sweep_group() -> None:
+    """Parameter sweeps: plan, run (local Dask cluster or --scheduler), summary."""
+
+
+@sweep_group.command("plan")
+@click.argument("spec_file", metavar="SWEEP.toml", type=click.Path(dir_okay=False))
+@click.option(
+    "--timing-runs",
+    type=int,
+    default=3,
+    show_default=True,
+    help="Short timing runs for the estimate (0: count only).",
+)
+@click.option(
+    "--timing-duration-s",
+    type=float,
+    default=0.1,
+    show_default=True,
+    help="Longest simulated time of a timing run [s].",
+)
+@click.option("--workers", type=int, default=None, help="Workers for the wall-time estimate.")
+@json_option
+def plan_cmd(
+    spec_file: str,
+    timing_runs: int,
+    timing_duration_s: float,
+    workers: int | None,
+    as_json: bool,
+) -> None:
+    """Number of runs and an estimate of compute time and disk from short timing runs."""
+    from ..sweep import plan_sweep
+    from ..sweep_spec import SweepSpec
+
+    _count("timing_runs", timing_runs, 0)
+    check_range("timing_duration_s", timing_duration_s, 0.0, lo_open=True, unit="s")
+    workers = _count("workers", workers)
+    spec = SweepSpec.from_toml(spec_file)
+    plan = plan_sweep(
+        spec, timing_runs=timing_runs, timing_duration_s=timing_duration_s, workers=workers
+    )
+    d = plan.as_dict()
+    d["spec"] = str(spec_file)
+    if as_json:
+        emit_json(d)
+        return
+    axes = " x ".join(f"{k} {v}" for k, v in plan.axes.items()) or "no axes"
+    ns = plan.n_samples
+    samples = f"{ns[0]}" if ns[0] == ns[1] else f"{ns[0]}-{ns[1]}"
+    click.echo(f"{spec_file}: {plan.n_runs} runs ({plan.combine}: {axes})")
+    click.echo(f"  channels {', '.join(plan.channels)}; {samples} samples per run")
+    if timing_runs:
+        click.echo(
+            f"  estimate from {len(plan.timing)} timing runs: {_human_s(plan.compute_s_per_run)} "
+            f"per run, {_human_s(plan.compute_s_total)} on 1 worker, "
+            f"~{_human_s(plan.wall_s)} on {plan.workers} workers (ideal scaling)"
+        )
+    click.echo(
+        f"  disk ~{_human_bytes(plan.bytes_estimate)} ({_human_bytes(plan.bytes_raw)} uncompressed)"
+    )
+
+
+@sweep_group.command("run")
+@click.argument("spec_file", metavar="SWEEP.toml", type=click.Path(dir_okay=False))
+@click.option(
+    "-o", "--out", required=True, type=click.Path(), help="Dataset directory (Zarr store)."
+)
+@click.option(
+    "--workers",
+    type=int,
+    default=None,
+    help="Process workers of the local Dask cluster [CPU count].",
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    help="Address of a running Dask scheduler (tcp://HOST:PORT) instead of a local cluster.",
+)
+@click.option(
+    "--connect-timeout-s",
+    type=float,
+    default=20.0,
+    show_default=True,
+    help="How long to try reaching --scheduler [s].",
+)
+@click.option("--force-new", is_flag=True, help="Replace an existing dataset of a different spec.")
+@click.option("--retry-failed", is_flag=True, help="Compute the failed runs again.")
+@click.option("--runs-per-task", type=int, default=None, help="Runs per Dask task [automatic].")
+@click.option(
+    "--writer",
+    type=click.Choice(["auto", "client"]),
+    default="auto",
+    show_default=True,
+    help="auto: workers that see the dataset commit their runs; client: the client commits.",
+)
+@json_option
+def run_cmd(
+    spec_file: str,
+    out: str,
+    workers: int | None,
+    scheduler: str | None,
+    connect_timeout_s: float,
+    force_new: bool,
+    retry_failed: bool,
+    runs_per_task: int | None,
+    writer: str,
+    as_json: bool,
+) -> None:
+    """Run the sweep (or resume it: only runs not yet committed are computed)."""
+    from ..sweep import SweepInterrupted, check_cluster_args, run_sweep
+    from ..sweep_spec import SweepSpec
+
+    workers = _count("workers", workers)
+    runs_per_task = _count("runs_per_task", runs_per_task)
+    check_cluster_args(workers, scheduler)
+    check_range("connect_timeout_s", connect_timeout_s, 0.0, lo_open=True, unit="s")
+    p = Path(out)
+    if p.exists() and not p.is_dir():
+        raise ConfigError(f"out = {out!r} is a file; valid: a dataset directory")
+    if p.is_dir() and not any(p.iterdir()):
+        p.rmdir()  # an empty directory is taken as a new dataset
+    spec = SweepSpec.from_toml(spec_file)
+    try:
+        rep = run_sweep(
+            spec,
+            out,
+            workers=workers,
+            scheduler=scheduler,
+            force_new=force_new,
+            retry_failed=retry_failed,
+            runs_per_task=runs_per_task,
+            writer=writer,
+            progress=not as_json,
+            connect_timeout_s=connect_timeout_s,
+        )
+    except SweepInterrupted as exc:
+        click.echo(f"error: {exc}", err=True)
+        raise click.exceptions.Exit(130) from None
+    d = rep.as_dict()
+    if as_json:
+        emit_json(d)
+        return
+    thr = d["throughput_runs_per_s"]
+    click.echo(
+        f"{out}: {rep.n_runs} runs; {rep.n_skipped} already committed, {rep.n_computed} computed "
+        f"({rep.n_computed - rep.n_failed_now} ok, {rep.n_failed_now} failed) in "
+        f"{_human_s(rep.wall_s)}" + (f" ({thr:.3g} runs/s)" if thr else "") + f" on {rep.cluster}"
+    )
+    click.echo(f"  dataset: {rep.n_ok} ok, {rep.n_failed} failed, {rep.n_pending} pending")
+
+
+@sweep_group.command("summary")
+@click.argument("dataset", metavar="DATASET", type=click.Path())
+@click.option("--label", default=None, help="Label key(s), comma-separated [the dataset's].")
+@click.option(
+    "--max-failures", type=int, default=10, show_default=True, help="Failures listed (text)."
+)
+@json_option
+def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: bool) -> None:
+    """Counts by label and axis value, failures with their errors."""
+    from ..sweep_dataset import open_dataset
+
+    _count("max_failures", max_failures, 0)
+    ds = open_dataset(dataset)
+    keys = None if label is None else [k.strip() for k in label.split(",") if k.strip()]
+    if keys is not None:
+        for k in keys:
+            if k not in ds.attrs["coordinate_keys"]:
+                raise ConfigError(
+                    f"label = {k!r} is not stored per run; valid: "
+                    + ", ".join(ds.attrs["coordinate_keys"])
+                )
+    s = ds.summary(keys)
+    if as_json:
+        emit_json(s)
+        return
+    click.echo(
+        f"{dataset}: {s['n_runs']} runs: {s['n_ok']} ok, {s['n_failed']} failed, "
+        f"{s['n_pending']} pending" + ("" if s["complete"] else " (incomplete: resume with run)")
+    )
+    if s["label"]:
+        click.echo(f"  by {'|'.join(s['label'])}:")
+        for v, c in s["by_label"].items():
+            click.echo(f"    {v:<24} {_counts(c)}")
+    for f in s["failures"][:max_failures]:
+        params = ", ".join(f"{k}={v}" for k, v in f["params"].items())
+        click.echo(f"  failed run {f['run']} ({params}): {f['error']}")
+    if len(s["failures"]) > max_failures:
+        click.echo(f"  ... {len(s['failures']) - max_failures} more failures (--json lists all)")
+
+
+def _counts(c: dict[str, Any]) -> str:
+    return ", ".join(f"{v} {k}" for k, v in c.items() if v or k == "ok")

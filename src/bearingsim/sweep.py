@@ -1,0 +1,715 @@
+"""Parameter sweeps on Dask: a local cluster by default, a cluster by address, resumable.
+
+:func:`run_sweep` executes the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` (which
+:func:`~bearingsim.sweep_plan.plan_sweep`, also importable from here, counts and estimates),
+each run being ``bearingsim.simulate(scenario_i)`` — exactly the single-run API, so a sweep
+result equals the same scenario run on its own, bit for bit (the nominal ``time`` coordinate
+``k/fs`` differs from the integrator's accumulated time by < 1e-16 s).
+
+Execution
+---------
+The client (this process) validates every run's scenario, connects to Dask — a
+:class:`distributed.LocalCluster` of *process* workers with one thread each by default (the
+Numba kernels hold the GIL, so threads would serialise), or an existing scheduler by address —
+and imports the compiled kernels on every worker. A few probe runs (two samples each) on the
+workers give the channels, units and shapes; the client then creates the Zarr dataset
+(:mod:`bearingsim.sweep_store`), or checks that an existing one was created by the same spec
+(same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
+runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
+
+Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
+tasks hold one run each; then the size follows the measured run time (tasks of ~1 s, so Dask's
+~1–4 ms of CPU per task stays below 0.5 %) and shrinks towards the end (at most the remaining runs /
+tasks in flight: guided self-scheduling, allowing for a task queued behind another) so that the
+workers finish together. At most two tasks per worker thread are in flight; the client submits
+the next one as each finishes, which keeps memory bounded for any number of runs. Each run is
+committed on its own as soon as it finishes: by the worker when it sees the dataset directory
+(same machine or a shared file system; checked with the dataset's uuid), otherwise its arrays
+are sent back and the client commits them. A run that raises is committed as *failed* with
+``"ErrorType: message"`` and the sweep goes on. A worker that dies loses at most its running
+run: Dask reruns the task elsewhere and the runs already committed by it are skipped; a task
+lost more than ``distributed.scheduler.allowed-failures`` times is recorded as failed
+(``KilledWorker``). Killing the client loses nothing
+committed; running the same command again resumes.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures
+import contextlib
+import json
+import logging
+import math
+import os
+import re
+import shutil
+import socket
+import sys
+import time
+import uuid as uuidlib
+import warnings
+from collections import deque
+from collections.abc import Callable, Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._version import __version__
+from .config import Scenario
+from .errors import BearingsimError, ConfigError, check_range
+from .io import to_jsonable
+from .sweep_plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
+from .sweep_spec import SweepSpec, canonical_hash, spec_differences
+from .sweep_store import (
+    FAILED,
+    OK,
+    PENDING,
+    RunWriter,
+    client_lock,
+    create_dataset,
+    read_attrs,
+    read_status,
+    remove_stale_temporaries,
+)
+
+#: automatic task size: aim at this much compute per task [s]
+TARGET_TASK_S = 1.0
+#: tasks in flight per worker thread
+INFLIGHT_PER_THREAD = 2
+#: scheduler connection timeout [s]
+CONNECT_TIMEOUT_S = 20.0
+#: Dask settings of the local cluster, all diagnostics for a dashboard nobody looks at: no
+#: statistical profiler (it samples the running thread every 10 ms), a 1 s event-loop tick
+#: instead of 20 ms, system monitoring every 5 s instead of 0.5 s. Together they cut the
+#: cluster's own CPU use by ~0.5-1 ms per run in ``benchmarks/bench_sweep.py``.
+LOCAL_CLUSTER_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.admin.system-monitor.interval": "5s",
+}
+_ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
+
+
+class SweepInterrupted(BearingsimError):
+    """The sweep was interrupted (Ctrl-C); committed runs are kept (``report`` has counts)."""
+
+    def __init__(self, message: str, report: SweepReport) -> None:
+        super().__init__(message)
+        self.report = report
+
+
+# ------------------------------------------------------------------------------ worker side
+#: per worker process: (dataset path, uuid) -> (RunWriter, or None when the dataset is not
+#: visible or not writable from here, time of the last attempt)
+_WRITERS: dict[tuple[str, str], tuple[RunWriter | None, float]] = {}
+#: a worker that could not open the dataset tries again after this long [s] (a shared file
+#: system may show a new directory late)
+RETRY_OPEN_S = 10.0
+
+
+def _writer_for(path: str, uuid: str) -> RunWriter | None:
+    key = (path, uuid)
+    w, t = _WRITERS.get(key, (None, -math.inf))
+    if w is None and time.monotonic() - t > RETRY_OPEN_S:
+        try:
+            w = RunWriter(path, uuid)
+        except (OSError, ValueError, KeyError):
+            w = None
+        _WRITERS[key] = (w, time.monotonic())
+    return w
+
+
+def _writer_failed(path: str, uuid: str) -> None:
+    """Stop committing from this process (e.g. the dataset is read-only here)."""
+    w, _ = _WRITERS.get((path, uuid), (None, 0.0))
+    if w is not None:
+        w.close()
+    _WRITERS[(path, uuid)] = (None, time.monotonic())
+
+
+def worker_hello() -> dict[str, Any]:
+    """Run on each worker before the sweep: loads the compiled kernels (a two-sample run of
+    every registered model), reports identity."""
+    import numcodecs  # noqa: F401  (the commit path's imports, outside the timed runs)
+    import zarr  # noqa: F401
+
+    from .simulate import MODEL_RUNNERS, simulate
+
+    for model in list(MODEL_RUNNERS):
+        with contextlib.suppress(BearingsimError):
+            simulate(Scenario(model=model, duration_s=2.0 / 4000.0, fs_hz=4000.0))
+    return {"version": __version__, "host": socket.gethostname(), "pid": os.getpid()}
+
+
+def _error_text(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+
+
+def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
+    """Execute a group of runs on a worker and commit each one (see the module docstring).
+
+    ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
+    ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
+    (list of (run, scenario dict)). Returns one record per run: ``run``, ``status`` (1 ok,
+    2 failed, or ``"skipped"`` when already committed), ``compute_s``, ``error``, ``commit_s``,
+    and when the client must commit: ``record`` and ``channels``.
+    """
+    import time as _t
+
+    from .simulate import simulate
+
+    writer = None if task["writer"] == "client" else _writer_for(task["dataset"], task["uuid"])
+    version_error = (
+        ""
+        if task["version"] == __version__
+        else f"ConfigError: worker {socket.gethostname()}:{os.getpid()} runs bearingsim "
+        f"{__version__}, the client {task['version']}; install the same version on every worker"
+    )
+    names = task["channels"]
+    out: list[dict[str, Any]] = []
+    for i, sd in task["runs"]:
+        if writer is not None:
+            st = writer.status_of(i)
+            if st == OK or (st == FAILED and not task["retry_failed"]):
+                out.append({"run": i, "status": "skipped"})  # a rerun of a task: done before
+                continue
+        t0 = _t.perf_counter()
+        c0 = _t.thread_time()
+        res, err = None, version_error
+        if not err:
+            try:
+                res = simulate(Scenario.from_dict(sd, origin=f"run {i}"))
+            except Exception as exc:  # every failure is recorded; the sweep goes on
+                err = _error_text(exc)
+        compute = _t.perf_counter() - t0
+        cpu = _t.thread_time() - c0
+        chans = None
+        if res is not None:
+            chans = {k: v for k, v in res.channels.items() if names is None or k in names}
+        status = OK if res is not None else FAILED
+        rec: dict[str, Any] = {
+            "run": i,
+            "status": status,
+            "compute_s": compute,
+            "cpu_s": cpu,
+            "error": err,
+        }
+        record = {
+            "compute_s": compute,
+            "cpu_s": cpu,
+            "host": socket.gethostname(),
+            "pid": os.getpid(),
+            "bearingsim_version": __version__,
+            "meta": None if res is None else res.meta,
+        }
+        if writer is not None:
+            t1 = _t.perf_counter()
+            try:
+                writer.commit(i, status, record, err, chans, rerun=task["retry_failed"])
+                rec["commit_s"] = _t.perf_counter() - t1
+            except OSError:  # not writable from here after all: the client commits
+                _writer_failed(task["dataset"], task["uuid"])
+                writer = None
+        if writer is None:
+            rec["record"] = to_jsonable(record)
+            rec["channels"] = chans
+        out.append(rec)
+    return out
+
+
+# ------------------------------------------------------------------------------ run
+@dataclass
+class SweepReport:
+    """Outcome of one :func:`run_sweep` call.
+
+    Attributes
+    ----------
+    out : str
+        Dataset path.
+    n_runs : int
+        Runs in the spec.
+    n_skipped : int
+        Runs already committed when this call started (not recomputed).
+    n_computed : int
+        Runs computed and committed by this call.
+    n_ok, n_failed, n_pending : int
+        Status counts of the whole dataset at the end.
+    n_failed_now : int
+        Runs of this call that failed.
+    wall_s : float
+        Wall time from the first submitted task to the last commit [s].
+    setup_s : float
+        Wall time before that: cluster start, kernel loading, probes, dataset creation [s].
+    compute_s : float
+        Sum of the runs' ``simulate`` wall times [s].
+    compute_cpu_s : float
+        Sum of the runs' ``simulate`` CPU times (thread time on the worker) [s].
+    commit_s : float
+        Sum of the per-run commit times on the workers and the client [s].
+    client_cpu_s : float
+        CPU time of this process during ``wall_s`` (with a local cluster it hosts the Dask
+        scheduler too) [s].
+    worker_cpu_s : float
+        CPU time of the worker processes during ``wall_s`` (all their threads; on a shared
+        cluster also other clients' work), with ``measure_cpu`` [s].
+    workers : int
+        Worker threads at the end [-].
+    tasks : int
+        Dask tasks submitted [-].
+    committed_by : dict
+        Runs committed by workers and by the client.
+    """
+
+    out: str
+    n_runs: int
+    n_skipped: int = 0
+    n_computed: int = 0
+    n_ok: int = 0
+    n_failed: int = 0
+    n_pending: int = 0
+    n_failed_now: int = 0
+    wall_s: float = 0.0
+    setup_s: float = 0.0
+    compute_s: float = 0.0
+    compute_cpu_s: float = 0.0
+    commit_s: float = 0.0
+    client_cpu_s: float = 0.0
+    worker_cpu_s: float = 0.0
+    workers: int = 0
+    tasks: int = 0
+    cluster: str = ""
+    created: bool = False
+    committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
+    interrupted: bool = False
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON)."""
+        d = to_jsonable(asdict(self))
+        d["throughput_runs_per_s"] = self.n_computed / self.wall_s if self.wall_s > 0 else None
+        return d
+
+
+@contextlib.contextmanager
+def connect(
+    workers: int | None = None,
+    scheduler: str | None = None,
+    timeout_s: float = CONNECT_TIMEOUT_S,
+) -> Iterator[tuple[Any, str]]:
+    """A :class:`distributed.Client` on a new local cluster of ``workers`` process workers
+    (one thread each), or on the scheduler at ``scheduler``; closed on exit."""
+    from distributed import Client, LocalCluster
+
+    check_cluster_args(workers, scheduler)
+    check_range("connect_timeout_s", timeout_s, 0.0, lo_open=True, unit="s")
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout=timeout_s, set_as_default=False)
+        except (OSError, TimeoutError) as exc:
+            raise ConfigError(
+                f"scheduler = {scheduler!r} is not reachable within {timeout_s:g} s "
+                f"({type(exc).__name__}); valid: the address printed by a running "
+                "'dask scheduler'"
+            ) from None
+        try:
+            yield client, scheduler
+        finally:
+            client.close()
+        return
+    import dask
+
+    n = workers if workers is not None else (os.cpu_count() or 1)
+    with warnings.catch_warnings(), dask.config.set(LOCAL_CLUSTER_CONFIG):
+        # distributed warns when creating its scratch directory is slow on a busy disk
+        warnings.filterwarnings("ignore", message="Creating scratch directories")
+        cluster = LocalCluster(
+            n_workers=n,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",  # the scheduler's HTTP server on a free port: no clash
+            silence_logs=logging.ERROR,
+        )
+    try:
+        client = Client(cluster, set_as_default=False)
+        try:
+            yield client, f"local cluster, {n} process worker(s)"
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
+    """Validate ``workers`` (>= 1) and ``scheduler`` (``tcp://HOST:PORT``; not both)."""
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or workers < 1
+    ):
+        raise ConfigError(f"workers = {workers!r} is out of range; valid range [1, inf) integer")
+    if scheduler is not None:
+        if not isinstance(scheduler, str) or not _ADDRESS.match(scheduler):
+            raise ConfigError(
+                f"scheduler = {scheduler!r} is invalid; valid: an address like tcp://HOST:PORT"
+            )
+        if workers is not None:
+            raise ConfigError(
+                f"workers = {workers} applies to a local cluster only; with scheduler = "
+                f"{scheduler!r} the cluster's own workers run the sweep"
+            )
+
+
+def process_cpu_s() -> float:
+    """CPU time (user + system, every thread) of the calling process [s]."""
+    import psutil
+
+    t = psutil.Process().cpu_times()
+    return t.user + t.system
+
+
+def _workers_cpu(client) -> dict[str, float]:
+    try:
+        return client.run(process_cpu_s)
+    except Exception:  # bookkeeping only; a lost scheduler shows up in the task results
+        return {}
+
+
+def _threads(client) -> int:
+    try:
+        return int(sum(client.nthreads().values()))
+    except Exception:  # a lost scheduler shows up in the task results
+        return 0
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    client: Any = None,
+    force_new: bool = False,
+    retry_failed: bool = False,
+    runs_per_task: int | None = None,
+    writer: str = "auto",
+    progress: bool | Callable[[SweepReport], None] = False,
+    connect_timeout_s: float = CONNECT_TIMEOUT_S,
+    measure_cpu: bool = False,
+) -> SweepReport:
+    """Run (or resume) a sweep into the Zarr dataset ``out``.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    out : str or Path
+        Dataset directory; created, or resumed when it holds the same spec.
+    workers : int, optional
+        Process workers of the local cluster (default: CPU count).
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://HOST:PORT``) instead of a local cluster.
+    client : distributed.Client, optional
+        An existing client to use (neither cluster is created nor closed).
+    force_new : bool
+        Replace an existing dataset made by a different spec (deleted first).
+    retry_failed : bool
+        Compute the runs recorded as failed again.
+    runs_per_task : int, optional
+        Fixed number of runs per Dask task (default: automatic, see the module docstring).
+    writer : {"auto", "client"}
+        ``auto``: workers commit when they see the dataset; ``client``: always the client.
+    progress : bool or callable
+        ``True``: a tqdm bar on stderr (runs done, failed, ETA); a callable gets the report
+        after every finished task.
+    connect_timeout_s : float
+        How long to try reaching ``scheduler`` [s].
+    measure_cpu : bool
+        Also measure the workers' CPU time during the sweep (``SweepReport.worker_cpu_s``; two
+        extra calls to every worker).
+
+    Returns
+    -------
+    SweepReport
+        Counts and timings. Raises :class:`SweepInterrupted` on Ctrl-C (committed runs kept).
+    """
+    t_start = time.perf_counter()
+    if writer not in ("auto", "client"):
+        raise ConfigError(f"writer = {writer!r} is invalid; valid: auto, client")
+    if runs_per_task is not None and (
+        isinstance(runs_per_task, bool) or not isinstance(runs_per_task, int) or runs_per_task < 1
+    ):
+        raise ConfigError(
+            f"runs_per_task = {runs_per_task!r} is out of range; valid range [1, inf) integer"
+        )
+    if client is None:
+        check_cluster_args(workers, scheduler)
+    scenarios = spec.scenarios()
+    canonical = spec.canonical()
+    h = canonical_hash(canonical)
+    path = Path(out).absolute()
+    replace_old = False
+    rep = SweepReport(out=str(out), n_runs=len(scenarios))
+    if path.exists():
+        attrs = read_attrs(path)
+        if attrs.get("spec_hash") != h:
+            if not force_new:
+                old = json.loads(attrs.get("spec_json", "{}"))
+                new = json.loads(json.dumps(to_jsonable(canonical)))
+                diff = ", ".join(spec_differences(old, new)[:6]) or "content"
+                raise ConfigError(
+                    f"out = {str(out)!r} holds a dataset of a different sweep spec (differs in: "
+                    f"{diff}); use another --out, or --force-new to replace it"
+                )
+            replace_old = True
+        else:
+            st = read_status(path)
+            if not np.any((st == PENDING) | ((st == FAILED) & retry_failed)):
+                rep.n_skipped = len(scenarios)  # nothing to compute: no cluster needed
+                _final_counts(rep, st)
+                rep.setup_s = time.perf_counter() - t_start
+                return rep
+    ctx = contextlib.nullcontext((client, "given client")) if client is not None else None
+    with ctx or connect(workers, scheduler, connect_timeout_s) as (cl, desc):
+        rep.cluster = desc
+        if not cl.nthreads():
+            if progress is True:
+                print(f"sweep: waiting for a worker to join {desc}", file=sys.stderr)
+            cl.wait_for_workers(1)
+        hello = cl.run(worker_hello)
+        bad = {a: v for a, v in hello.items() if v["version"] != __version__}
+        if bad:
+            a, v = next(iter(bad.items()))
+            raise ConfigError(
+                f"worker {a} runs bearingsim {v['version']}, this client {__version__}; install "
+                "the same version on every worker"
+            )
+        uid = None
+        if not path.exists() or replace_old:
+            groups = probe_groups(scenarios)
+            futs = {
+                k: cl.submit(probe_first, [scenarios[i].to_dict() for i in idx], pure=False)
+                for k, idx in groups.items()
+            }
+            probes = {k: f.result() for k, f in futs.items()}
+            for k, p in probes.items():
+                if isinstance(p, str):
+                    raise ConfigError(f"run {groups[k][0]} cannot start: {p}")
+            layout = make_layout(spec, scenarios, probes)
+            if replace_old:  # read_attrs() above proved it is a sweep dataset
+                shutil.rmtree(path)
+            attrs_new = {
+                "spec_hash": h,
+                "spec_json": json.dumps(to_jsonable(canonical)),
+                "label": list(spec.label),
+                "axes": list(spec.axis_names),
+                "name": spec.name,
+            }
+            uid = create_dataset(
+                path,
+                layout,
+                attrs_new,
+                coordinates(spec, scenarios),
+                [s.to_dict() for s in scenarios],
+            )
+            rep.created = True
+        with client_lock(path):
+            attrs = read_attrs(path)
+            uid = attrs["uuid"]
+            remove_stale_temporaries(path)
+            status = read_status(path)
+            todo_mask = status == PENDING
+            if retry_failed:
+                todo_mask |= status == FAILED
+            todo = deque(int(i) for i in np.flatnonzero(todo_mask))
+            rep.n_skipped = len(scenarios) - len(todo)
+            cw = RunWriter(path, uid)
+            rep.setup_s = time.perf_counter() - t_start
+            try:
+                _execute(
+                    cl,
+                    spec,
+                    scenarios,
+                    todo,
+                    str(path),
+                    uid,
+                    cw,
+                    rep,
+                    runs_per_task,
+                    writer,
+                    progress,
+                    retry_failed,
+                    measure_cpu,
+                )
+            finally:
+                cw.close()
+    _final_counts(rep, read_status(path))
+    return rep
+
+
+def _final_counts(rep: SweepReport, st: np.ndarray) -> None:
+    rep.n_ok = int(np.sum(st == OK))
+    rep.n_failed = int(np.sum(st == FAILED))
+    rep.n_pending = int(np.sum(st == PENDING))
+
+
+def _execute(
+    cl,
+    spec: SweepSpec,
+    scenarios: list[Scenario],
+    todo: deque,
+    path: str,
+    uid: str,
+    cw: RunWriter,
+    rep: SweepReport,
+    runs_per_task: int | None,
+    writer: str,
+    progress: bool | Callable[[SweepReport], None],
+    retry_failed: bool,
+    measure_cpu: bool,
+) -> None:
+    """The submission loop: feed tasks, commit what the workers send back, count."""
+    from distributed import as_completed
+
+    n_todo = len(todo)
+    wcpu0 = _workers_cpu(cl) if measure_cpu else {}
+    cpu0 = time.process_time()
+    bar = None
+    if progress is True:
+        from tqdm import tqdm
+
+        bar = tqdm(total=n_todo, desc="sweep", unit="run", file=sys.stderr, smoothing=0.1)
+    channels = None if spec.channels is None else list(spec.channels)
+    dicts = {}
+    t0 = time.perf_counter()
+    run_time: list[float] = []  # per-run compute + commit on the workers
+    threads = max(1, _threads(cl))
+    t_threads = time.perf_counter()
+    ac = as_completed(loop=cl.loop)
+    inflight: dict[Any, list[int]] = {}
+
+    def submit() -> None:
+        nonlocal threads, t_threads
+        if time.perf_counter() - t_threads > 2.0:
+            threads, t_threads = max(1, _threads(cl)), time.perf_counter()
+        if runs_per_task is not None:
+            size = runs_per_task
+        elif not run_time:
+            size = 1
+        else:
+            per_run = max(float(np.mean(run_time[-64:])), 1e-6)
+            # guided self-scheduling: a new task may wait behind one already queued on its
+            # worker, so at most remaining / (tasks in flight), for the workers to end together
+            # (a single worker has nothing to balance)
+            size = max(1, int(TARGET_TASK_S / per_run))
+            if threads > 1:
+                size = min(size, max(2, len(todo) // (INFLIGHT_PER_THREAD * threads)))
+        runs = [todo.popleft() for _ in range(min(size, len(todo)))]
+        for i in runs:
+            if i not in dicts:
+                dicts[i] = scenarios[i].to_dict()
+        task = {
+            "dataset": path,
+            "uuid": uid,
+            "version": __version__,
+            "channels": channels,
+            "writer": writer,
+            "retry_failed": retry_failed,
+            "runs": [(i, dicts.pop(i)) for i in runs],
+        }
+        key = f"bearingsim-sweep-run{runs[0]}-{uuidlib.uuid4().hex[:12]}"
+        fut = cl.submit(run_task, task, pure=False, key=key)
+        inflight[fut] = runs
+        ac.add(fut)
+        rep.tasks += 1
+
+    try:
+        while todo and len(inflight) < threads:  # one timing run per thread first
+            submit()
+        for fut in ac:
+            runs = inflight.pop(fut)
+            try:
+                records = fut.result()
+            except (asyncio.CancelledError, concurrent.futures.CancelledError) as exc:
+                raise ConfigError(
+                    f"lost the Dask scheduler ({_error_text(exc)}); committed runs are kept: run "
+                    "the same command again to resume"
+                ) from None
+            except Exception as exc:  # KilledWorker, a bug in a task: recorded, sweep goes on
+                records = _failed_records(cw, runs, exc)
+            for r in records:
+                if r["status"] == "skipped":
+                    continue
+                if "commit_s" in r:
+                    rep.committed_by["worker"] += 1
+                    rep.commit_s += r["commit_s"]
+                    run_time.append(r["compute_s"] + r["commit_s"])
+                else:
+                    tc = time.perf_counter()
+                    cw.commit(r["run"], r["status"], r["record"], r["error"], r.get("channels"))
+                    rep.commit_s += time.perf_counter() - tc
+                    rep.committed_by["client"] += 1
+                    run_time.append(r["compute_s"])
+                rep.n_computed += 1
+                rep.compute_s += r["compute_s"]
+                rep.compute_cpu_s += r.get("cpu_s", 0.0)
+                if r["status"] == FAILED:
+                    rep.n_failed_now += 1
+            if bar is not None:
+                bar.update(len(runs))
+                bar.set_postfix_str(
+                    f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
+                    refresh=False,
+                )
+            if callable(progress):
+                progress(rep)
+            del fut
+            while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
+                submit()
+    except KeyboardInterrupt:
+        rep.interrupted = True
+        cl.cancel(list(inflight))
+        rep.wall_s = time.perf_counter() - t0
+        raise SweepInterrupted(
+            f"interrupted: {rep.n_skipped + rep.n_computed} of {rep.n_runs} runs committed; run "
+            "the same command again to resume",
+            rep,
+        ) from None
+    finally:
+        if bar is not None:
+            bar.close()
+        rep.workers = threads
+        rep.wall_s = time.perf_counter() - t0
+        rep.client_cpu_s = time.process_time() - cpu0
+        if measure_cpu:
+            wcpu = _workers_cpu(cl)
+            rep.worker_cpu_s = sum(v - wcpu0[a] for a, v in wcpu.items() if a in wcpu0)
+
+
+def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[dict[str, Any]]:
+    """Failure records for the runs of a task that raised, except those it committed."""
+    err = _error_text(exc)
+    return [
+        {
+            "run": i,
+            "status": FAILED,
+            "compute_s": 0.0,
+            "error": err,
+            "record": {"compute_s": None, "host": None, "pid": None, "meta": None},
+        }
+        if not cw.committed(i)
+        else {"run": i, "status": "skipped"}
+        for i in runs
+    ]
+
+
+__all__ = [
+    "SweepInterrupted",
+    "SweepPlan",
+    "SweepReport",
+    "check_cluster_args",
+    "connect",
+    "plan_sweep",
+    "run_sweep",
+    "run_task",
+    "worker_hello",
+]

@@ -1,0 +1,442 @@
+"""Sweeps on a local Dask cluster (two process workers shared by this module): results equal
+``simulate`` run by run, the Zarr layout and its commit protocol, resume, spec changes,
+recorded failures, the client-side writer, and the ML loader."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose, assert_array_equal
+
+from bearingsim.errors import ConfigError
+from bearingsim.simulate import simulate
+from bearingsim.sweep import connect, run_sweep
+from bearingsim.sweep_dataset import (
+    FAILED,
+    OK,
+    PENDING,
+    RunWriter,
+    client_lock,
+    open_dataset,
+    read_status,
+)
+from bearingsim.sweep_spec import SweepSpec
+
+#: short DEM runs at a low sample rate keep the module fast
+BASE = {"model": "dem", "duration_s": 0.05, "fs_hz": 4000.0}
+
+
+def make_spec(axes, sweep=None, base=None) -> SweepSpec:
+    return SweepSpec.from_dict(
+        {"sweep": sweep or {}, "base": {**BASE, **(base or {})}, "axes": axes}, origin="t.toml"
+    )
+
+
+NOISY = make_spec(
+    {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1797.0]},
+    {"per_run_seed": True},
+    {"noise_rms_m_s2": 0.5, "seed": 11},
+)
+
+
+@pytest.fixture(scope="module")
+def client():
+    with connect(workers=2) as (cl, _):
+        yield cl
+
+
+@pytest.fixture(scope="module")
+def noisy(client, tmp_path_factory):
+    out = tmp_path_factory.mktemp("sweep") / "noisy.zarr"
+    rep = run_sweep(NOISY, out, client=client)
+    return out, rep
+
+
+def strip_wall(meta: dict) -> dict:
+    return {k: v for k, v in meta.items() if k != "wall_s"}
+
+
+def test_sweep_equals_simulate_run_by_run(noisy):
+    out, rep = noisy
+    assert (rep.n_runs, rep.n_computed, rep.n_ok, rep.n_failed, rep.n_pending) == (6, 6, 6, 0, 0)
+    assert rep.committed_by == {"worker": 6, "client": 0}
+    ds = open_dataset(out)
+    X, y = ds.arrays()
+    assert X.shape == (6, 2, 200)
+    recs = ds.records()
+    for i in range(NOISY.n_runs):
+        res = simulate(NOISY.scenario(i))
+        # bitwise: the same compiled kernels and the same seeded noise (seed = 11 + i)
+        assert_array_equal(X[i, 0], res["acc_x"], err_msg=f"run {i} acc_x vs simulate")
+        assert_array_equal(X[i, 1], res["acc_y"], err_msg=f"run {i} acc_y vs simulate")
+        assert recs[i]["meta"]["noise"]["seed"] == 11 + i
+        assert strip_wall(recs[i]["meta"]) == json.loads(json.dumps(strip_wall(res.meta)))
+        # the nominal time coordinate k/fs vs the integrator's accumulated time
+        assert_allclose(ds.xr["time"].values, res.time, rtol=0, atol=1e-15)
+        r = ds.result(i)
+        assert_array_equal(r["acc_y"], res["acc_y"])
+        assert r.scenario == res.scenario
+    assert list(y) == [NOISY.scenario(i).fault for i in range(6)]
+
+
+def test_all_channels_and_per_ball_equal_simulate(client, tmp_path):
+    spec = make_spec({"fault": ["outer", "inner"]}, {"channels": "all"}, {"per_ball": True})
+    out = tmp_path / "all.zarr"
+    rep = run_sweep(spec, out, client=client, writer="client")
+    assert rep.committed_by == {"worker": 0, "client": 2}
+    ds = open_dataset(out)
+    assert "ball_load" in ds.channels and "k_load" in ds.series
+    for i in range(2):
+        res = simulate(spec.scenario(i))
+        r = ds.result(i)
+        assert set(r.channels) == set(res.channels)
+        for name, x in res.channels.items():
+            assert_array_equal(r[name], x, err_msg=f"run {i} {name} vs simulate")
+        assert r.units == res.units
+    assert ds.xr["ball_load"].dims == ("run", "time", "ball")
+    assert list(ds.xr["units"].values) == [res.units[c] for c in ds.series]
+
+
+def test_zarr_layout_readable_by_xarray(noisy):
+    import xarray as xr
+
+    out, _ = noisy
+    with xr.open_zarr(out) as d:  # consolidated metadata: no warning (warnings are errors)
+        assert d["signal"].dims == ("run", "channel", "time")
+        assert list(d["channel"].values) == ["acc_x", "acc_y"]
+        assert list(d["units"].values) == ["m/s^2", "m/s^2"]
+        for key in ("fault", "rpm", "seed"):
+            assert key in d.coords
+        assert_array_equal(d["rpm"].values, [NOISY.scenario(i).rpm for i in range(6)])
+        assert d["status"].dtype == np.int8
+        assert_array_equal(d["status"].values, np.full(6, OK))
+        sc = json.loads(str(d["scenario_json"].values[3]))
+        assert sc == NOISY.scenario(3).to_dict()
+        assert d.attrs["spec_hash"] == NOISY.spec_hash
+
+
+def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
+    """The fast commit path writes exactly the bytes zarr-python writes for the same data."""
+    import zarr
+
+    from bearingsim.sweep_store import _ChunkCodec
+
+    out, _ = noisy
+    g = zarr.open_group(str(out), mode="r", zarr_format=2)
+    twin = zarr.open_group(str(tmp_path / "twin.zarr"), mode="w", zarr_format=2)
+    data = {
+        "signal": g["signal"][2:3],
+        "status": np.array([FAILED], dtype=np.int8),
+        "error": np.array(["SolverError: dt_s = 0.0005 s is too large"], dtype=object),
+    }
+    for name, d in data.items():
+        src = g[name]
+        a = twin.create_array(
+            name,
+            shape=src.shape,
+            chunks=src.chunks,
+            dtype=src.dtype,
+            fill_value=src.fill_value,
+            compressors=src.metadata.compressor,
+        )
+        a[2:3] = d
+        ours = _ChunkCodec(out, src).encode(d)
+        theirs = Path(_ChunkCodec(tmp_path / "twin.zarr", a).path(2)).read_bytes()
+        assert ours == theirs, name
+    assert (out / "signal" / "2.0.0").read_bytes() == _ChunkCodec(out, g["signal"]).encode(
+        data["signal"]
+    )
+
+
+def test_resume_computes_only_missing(client, noisy, tmp_path):
+    import shutil
+
+    src, _ = noisy
+    out = tmp_path / "resume.zarr"
+    shutil.copytree(src, out)
+    # nothing left: returns without a cluster
+    rep = run_sweep(NOISY, out)
+    assert (rep.n_skipped, rep.n_computed, rep.tasks) == (6, 0, 0)
+    # forget runs 1 and 4 (zero their commit markers) as if killed before committing them
+    for i in (1, 4):
+        (out / "status" / str(i)).write_bytes(b"\x00")
+    keep = {i: (out / "status" / str(i)).stat().st_mtime_ns for i in (0, 2, 3, 5)}
+    keep_sig = {i: (out / "signal" / f"{i}.0.0").stat().st_mtime_ns for i in (0, 2, 3, 5)}
+    assert_array_equal(read_status(out), [OK, PENDING, OK, OK, PENDING, OK])
+    rep = run_sweep(NOISY, out, client=client)
+    assert (rep.n_skipped, rep.n_computed, rep.n_ok) == (4, 2, 6)
+    for i in keep:  # committed runs were not rewritten
+        assert (out / "status" / str(i)).stat().st_mtime_ns == keep[i]
+        assert (out / "signal" / f"{i}.0.0").stat().st_mtime_ns == keep_sig[i]
+    assert_array_equal(open_dataset(out).arrays()[0], open_dataset(src).arrays()[0])
+
+
+def test_spec_change_refused_or_replaced(client, noisy, tmp_path):
+    import shutil
+
+    src, _ = noisy
+    out = tmp_path / "change.zarr"
+    shutil.copytree(src, out)
+    other = make_spec(
+        {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1750.0]},
+        {"per_run_seed": True},
+        {"noise_rms_m_s2": 0.5, "seed": 11},
+    )
+    with pytest.raises(
+        ConfigError,
+        match=r"holds a dataset of a different sweep spec \(differs in: axes.rpm\); use another "
+        r"--out, or --force-new to replace it",
+    ):
+        run_sweep(other, out, client=client)
+    assert open_dataset(out).attrs["spec_hash"] == NOISY.spec_hash  # untouched
+    uid = open_dataset(out).attrs["uuid"]
+    rep = run_sweep(other, out, client=client, force_new=True)
+    assert rep.created and rep.n_ok == 6
+    ds = open_dataset(out)
+    assert ds.attrs["spec_hash"] == other.spec_hash and ds.attrs["uuid"] != uid
+    assert_array_equal(ds.param("rpm"), [1730.0, 1750.0] * 3)
+
+
+def test_failures_recorded_sweep_goes_on(client, tmp_path):
+    # dt_s = 5e-4 s at fs = 2000 Hz is beyond RK4's stability limit: SolverError (see
+    # tests/test_simulate.py::test_divergence_is_reported); dt_s = 1e-5 s runs
+    spec = make_spec(
+        {"dt_s": [1e-5, 5e-4], "fault": ["outer", "inner"]},
+        base={"fs_hz": 2000.0},
+    )
+    out = tmp_path / "fail.zarr"
+    rep = run_sweep(spec, out, client=client)
+    assert (rep.n_ok, rep.n_failed, rep.n_failed_now) == (2, 2, 2)
+    ds = open_dataset(out)
+    assert_array_equal(ds.status, [OK, OK, FAILED, FAILED])
+    s = ds.summary()
+    assert s["by_label"] == {
+        "inner": {"ok": 1, "failed": 1, "pending": 0},
+        "outer": {"ok": 1, "failed": 1, "pending": 0},
+    }
+    assert [f["run"] for f in s["failures"]] == [2, 3]
+    assert s["failures"][0]["params"] == {"dt_s": 5e-4, "fault": "outer"}
+    assert s["failures"][0]["error"].startswith("SolverError: dt_s = 0.0005 s is too large")
+    assert np.isnan(ds.arrays()[0][2]).all()
+    assert len(ds.completed()) == 2
+    # a resume leaves failed runs alone; --retry-failed computes them again
+    assert run_sweep(spec, out).n_computed == 0
+    rep = run_sweep(spec, out, client=client, retry_failed=True)
+    assert (rep.n_computed, rep.n_failed_now, rep.n_failed) == (2, 2, 2)
+
+
+def test_task_sizes_and_progress(client, tmp_path):
+    spec = make_spec({"rpm": [1700.0 + 10 * k for k in range(7)]})
+    seen = []
+    rep = run_sweep(spec, tmp_path / "p.zarr", client=client, runs_per_task=3, progress=seen.append)
+    assert rep.tasks == 3 and rep.n_ok == 7  # ceil(7 / 3) tasks
+    assert len(seen) == 3 and seen[-1].n_computed == 7
+
+
+def test_loader_for_ml(noisy):
+    out, _ = noisy
+    ds = open_dataset(out)
+    train, test = ds.split("rpm", test=1797.0)
+    assert_array_equal(train.runs, [0, 2, 4]) and assert_array_equal(test.runs, [1, 3, 5])
+    Xt, yt = test.arrays(["acc_y"])
+    assert Xt.shape == (3, 1, 200) and list(yt) == ["none", "outer", "inner"]
+    assert_array_equal(Xt[:, 0], ds.arrays()[0][[1, 3, 5], 1])
+    # stratified: each class (2 runs) puts round(0.5 * 2) = 1 run in the test set
+    a, b = ds.random_split(0.5, seed=1)
+    assert len(a) == 3 and sorted(b.labels()) == ["inner", "none", "outer"]
+    assert sorted(np.concatenate([a.runs, b.runs])) == list(range(6))
+    assert_array_equal(ds.random_split(0.5, seed=1)[1].runs, b.runs)  # seeded
+    assert sorted(ds.select(fault=["outer", "inner"]).runs) == [2, 3, 4, 5]
+    assert_array_equal(ds.labels(["fault", "rpm"])[:2], ["none|1730.0", "none|1797.0"])
+    with pytest.raises(ConfigError, match=r"key = 'speed' is not stored per run; valid: fault"):
+        ds.param("speed")
+    with pytest.raises(ConfigError, match=r"test = \[1.0\] matches no run for 'rpm'"):
+        ds.split("rpm", test=[1.0])
+    with pytest.raises(ConfigError, match=r"channel = 'k_load' is not a stored time series"):
+        ds.arrays(["k_load"])
+
+
+def test_commit_marker_is_last(noisy, tmp_path, monkeypatch):
+    """A writer killed after the data and before the marker leaves the run pending."""
+    import shutil
+
+    src, _ = noisy
+    out = tmp_path / "marker.zarr"
+    shutil.copytree(src, out)
+    (out / "status" / "0").write_bytes(b"\x00")
+    w = RunWriter(out)
+    sig = out / "signal" / "0.0.0"
+    before = sig.read_bytes()
+
+    def killed(self, i, status):
+        raise KeyboardInterrupt("killed before the marker")
+
+    monkeypatch.setattr(RunWriter, "_mark", killed)
+    x = np.ones(200)
+    with pytest.raises(KeyboardInterrupt):
+        w.commit(0, OK, {"compute_s": 0.0, "meta": {}}, "", {"acc_x": x, "acc_y": x})
+    assert sig.read_bytes() != before  # the data chunk was replaced ...
+    assert read_status(out)[0] == PENDING and not w.committed(0)  # ... but the run is pending
+    assert open_dataset(out).summary()["n_pending"] == 1
+    assert not list((out / "signal").glob(".*.tmp"))
+    monkeypatch.undo()
+    w.commit(0, OK, {"compute_s": 0.0, "meta": {}}, "", {"acc_x": x, "acc_y": x})
+    assert read_status(out)[0] == OK and w.committed(0)
+
+
+def test_client_lock(noisy):
+    out, _ = noisy
+    with client_lock(out):
+        (out / "records" / ".lock").write_text(json.dumps({"host": "elsewhere", "pid": 1}))
+        with pytest.raises(ConfigError, match=r"is in use by the sweep client elsewhere:1"):
+            with client_lock(out):
+                pass
+        (out / "records" / ".lock").unlink()
+    # a lock of a dead process on this host is taken over
+    import socket
+
+    (out / "records" / ".lock").write_text(
+        json.dumps({"host": socket.gethostname(), "pid": 2**22 + 12345})
+    )
+    with client_lock(out):
+        assert json.loads((out / "records" / ".lock").read_text())["pid"] == os.getpid()
+    assert not (out / "records" / ".lock").exists()
+
+
+def test_dataset_creation_is_atomic(client, tmp_path, monkeypatch):
+    import zarr
+
+    def boom(*a, **k):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(zarr, "consolidate_metadata", boom)
+    with pytest.raises(OSError, match="disk full"):
+        run_sweep(make_spec({"rpm": [1700.0]}), tmp_path / "x.zarr", client=client)
+    assert list(Path(tmp_path).iterdir()) == []  # neither the dataset nor its temporary
+
+
+def test_records_retry_and_torn_lines(noisy, tmp_path):
+    """Records are JSON lines: a line cut by a kill is skipped; a rerun's newest line whose
+    status matches the committed one wins; a retried run that succeeds drops its error."""
+    import shutil
+
+    src, _ = noisy
+    out = tmp_path / "rec.zarr"
+    shutil.copytree(src, out)
+    w = RunWriter(out)
+    w.commit(0, FAILED, {"compute_s": 1.0, "meta": None}, "SolverError: boom")
+    ds = open_dataset(out)
+    assert ds.summary()["failures"][0]["error"] == "SolverError: boom"
+    assert ds.records()[0]["compute_s"] == 1.0
+    x = np.ones(200)
+    w.commit(0, OK, {"compute_s": 2.0, "meta": {"model": "dem"}}, "", {"acc_x": x, "acc_y": x})
+    logs = list((out / "records").glob("*.jsonl"))
+    with open(logs[0], "a") as fh:
+        fh.write('{"run": 1, "sta')  # a writer killed mid-line
+    with open(logs[-1], "a") as fh:  # a newer attempt killed before its marker
+        fh.write(json.dumps({"run": 0, "status": FAILED, "t": 1e12, "compute_s": 9.0}) + "\n")
+    w.close()
+    ds = open_dataset(out)
+    r0 = ds.records()[0]
+    assert (r0["status"], r0["compute_s"], r0["meta"]) == (OK, 2.0, {"model": "dem"})
+    assert ds.summary()["failures"] == [] and str(ds.xr["error"].values[0]) == ""
+    assert ds.records()[1]["meta"] == json.loads(json.dumps(open_dataset(src).records()[1]["meta"]))
+
+
+def test_zarr_hierarchy_walk_without_warnings(noisy):
+    """zarr's own hierarchy walk (no consolidated metadata) accepts the dataset, also while a
+    client holds the lock (warnings are errors in the tests)."""
+    import zarr
+
+    out, _ = noisy
+    g = zarr.open_group(str(out), mode="r", use_consolidated=False)
+    names = sorted(n for n, _ in g.members())
+    assert {"signal", "status", "error", "records", "scenario_json"} <= set(names)
+    with client_lock(out):
+        zarr.open_group(str(out), mode="r", use_consolidated=False).members()
+
+
+def test_workers_that_cannot_write_hand_runs_to_the_client(client, tmp_path):
+    """A worker whose commit fails (e.g. a read-only mount) sends its runs back; the client
+    commits them, nothing is lost."""
+
+    def break_commit():  # runs in the worker processes (pickled by value)
+        from bearingsim import sweep_dataset
+
+        def commit(self, *a, **k):
+            raise PermissionError("read-only file system")
+
+        sweep_dataset.RunWriter._real_commit = sweep_dataset.RunWriter.commit
+        sweep_dataset.RunWriter.commit = commit
+
+    def restore():
+        from bearingsim import sweep, sweep_dataset
+
+        sweep_dataset.RunWriter.commit = sweep_dataset.RunWriter._real_commit
+        sweep._WRITERS.clear()
+
+    spec = make_spec({"fault": ["outer", "inner"], "rpm": [1730.0, 1797.0]})
+    client.run(break_commit)
+    try:
+        rep = run_sweep(spec, tmp_path / "ro.zarr", client=client)
+    finally:
+        client.run(restore)
+    assert rep.committed_by == {"worker": 0, "client": 4} and rep.n_ok == 4
+    X = open_dataset(tmp_path / "ro.zarr").arrays()[0]
+    for i in range(4):
+        assert_array_equal(X[i, 1], simulate(spec.scenario(i))["acc_y"], err_msg=f"run {i}")
+
+
+def test_mixed_models_rates_and_per_ball(client, tmp_path):
+    """Three models, per-ball on/off and two sample rates in one dataset (dimension ``sample``,
+    NaN padding): every run reads back equal to ``simulate``, channel set included."""
+    spec = make_spec(
+        {"model": ["vsm", "dem", "tvsm"], "per_ball": [False, True], "fs_hz": [4000.0, 8000.0]},
+        {"channels": "all"},
+        {"fault": "outer", "duration_s": 0.02},
+    )
+    out = tmp_path / "mixed.zarr"
+    assert run_sweep(spec, out, client=client).n_ok == 12
+    ds = open_dataset(out)
+    assert ds.attrs["time_dim"] == "sample" and ds.xr["signal"].shape == (12, 13, 160)
+    for i in range(12):
+        r, s = ds.result(i), simulate(spec.scenario(i))
+        assert set(r.channels) == set(s.channels), i
+        for k, x in s.channels.items():
+            assert_array_equal(r[k], x, err_msg=f"run {i} {k} vs simulate")
+        assert_allclose(r.time, s.time, rtol=0, atol=1e-15)
+
+
+def test_a_task_that_raises_is_recorded(client, tmp_path):
+    """A task that dies as a whole (here it raises; a task lost with its worker too often gives
+    ``KilledWorker`` the same way) records its runs as failed; the sweep finishes."""
+
+    def break_task():  # runs in the worker processes (pickled by value)
+        from bearingsim import sweep
+
+        def run_task(task):
+            raise RuntimeError("worker lost its disk")
+
+        sweep._real_run_task = sweep.run_task
+        sweep.run_task = run_task
+
+    def restore():
+        from bearingsim import sweep
+
+        sweep.run_task = sweep._real_run_task
+
+    spec = make_spec({"rpm": [1730.0, 1750.0, 1797.0]})
+    client.run(break_task)
+    try:
+        rep = run_sweep(spec, tmp_path / "t.zarr", client=client, runs_per_task=2)
+    finally:
+        client.run(restore)
+    assert (rep.n_failed, rep.n_pending, rep.tasks) == (3, 0, 2)
+    s = open_dataset(tmp_path / "t.zarr").summary()
+    assert [f["error"] for f in s["failures"]] == ["RuntimeError: worker lost its disk"] * 3
+    rep = run_sweep(spec, tmp_path / "t.zarr", client=client, retry_failed=True)
+    assert (rep.n_ok, rep.n_failed) == (3, 0)

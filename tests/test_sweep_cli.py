@@ -1,0 +1,236 @@
+"""``bearingsim sweep plan|run|summary``: JSON contracts, text output and bad input (one line on
+stderr, exit code 2, no dataset left behind)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from bearingsim.sweep_spec import SweepSpec
+
+SPEC = """
+[sweep]
+label = "fault"
+[base]
+model = "dem"
+duration_s = 0.05
+fs_hz = 4000.0
+[axes]
+fault = ["outer", "inner"]
+rpm = [1730.0, 1797.0]
+"""
+
+
+@pytest.fixture
+def spec_file(tmp_path):
+    p = tmp_path / "sweep.toml"
+    p.write_text(SPEC)
+    return p
+
+
+def test_plan_json_and_text(run_cli, spec_file):
+    r = run_cli("sweep", "plan", spec_file, "--json", "--workers", "2")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert (d["n_runs"], d["axes"], d["channels"]) == (
+        4,
+        {"fault": 2, "rpm": 2},
+        ["acc_x", "acc_y"],
+    )
+    assert d["n_samples"] == [200, 200] and d["workers"] == 2
+    # 4 runs x 2 channels x 200 samples x 8 bytes
+    assert d["bytes_raw"] == 4 * 2 * 200 * 8
+    assert 0 < d["bytes_estimate"] < 2 * d["bytes_raw"]
+    assert d["compute_s_per_run"] > 0 and len(d["timing"]) == 3
+    assert d["compute_s_total"] == pytest.approx(4 * d["compute_s_per_run"], rel=1e-12)
+    assert d["spec_hash"] == SweepSpec.from_toml(spec_file).spec_hash
+    r = run_cli("sweep", "plan", spec_file, "--timing-runs", "0")
+    assert r.code == 0 and "4 runs (cartesian: fault 2 x rpm 2)" in r.out
+    assert "disk ~" in r.out and "timing runs" not in r.out
+
+
+def test_run_summary_resume(run_cli, spec_file, tmp_path):
+    out = tmp_path / "ds.zarr"
+    r = run_cli("sweep", "run", spec_file, "--out", out, "--workers", "1", "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert (d["n_runs"], d["n_computed"], d["n_ok"], d["n_pending"], d["created"]) == (
+        4,
+        4,
+        4,
+        0,
+        True,
+    )
+    assert d["throughput_runs_per_s"] > 0 and d["cluster"].startswith("local cluster, 1")
+    r = run_cli("sweep", "summary", out, "--json")
+    assert r.code == 0
+    s = r.json()
+    assert s["by_label"] == {
+        "inner": {"ok": 2, "failed": 0, "pending": 0},
+        "outer": {"ok": 2, "failed": 0, "pending": 0},
+    }
+    assert s["by_axis"]["rpm"]["1797.0"]["ok"] == 2 and s["complete"] and s["failures"] == []
+    r = run_cli("sweep", "summary", out, "--label", "rpm")
+    assert r.code == 0 and "4 runs: 4 ok, 0 failed, 0 pending" in r.out and "1730.0" in r.out
+    r = run_cli("sweep", "run", spec_file, "--out", out)
+    assert r.code == 0 and "4 already committed, 0 computed" in r.out
+    # the same spec file, reformatted, is the same sweep
+    spec_file.write_text(SPEC.replace('["outer", "inner"]', '{ values = ["outer", "inner"] }'))
+    assert run_cli("sweep", "run", spec_file, "--out", out, "--json").json()["n_skipped"] == 4
+
+
+def _dataset_spec(tmp_path):
+    p = tmp_path / "other.toml"
+    p.write_text(SPEC.replace("1797.0", "1772.0"))
+    return p
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (["sweep", "run", "{missing}", "--out", "{out}"], r"sweep file '.*nope.toml' cannot be"),
+        (["sweep", "run", "{bad_toml}", "--out", "{out}"], r"is not valid TOML"),
+        (
+            ["sweep", "run", "{bad_axis}", "--out", "{out}"],
+            r"axis 'rmp' is not a scenario key; valid: model",
+        ),
+        (
+            ["sweep", "run", "{bad_value}", "--out", "{out}"],
+            r"run 1: rpm = -5 r/min is out of range; valid range \(0, inf\) r/min",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{out}", "--workers", "0"],
+            r"workers = 0 is out of range; valid range \[1, inf\)",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{out}", "--runs-per-task", "0"],
+            r"runs_per_task = 0 is out of range; valid range \[1, inf\)",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{out}", "--scheduler", "my-laptop"],
+            r"scheduler = 'my-laptop' is invalid; valid: an address like tcp://HOST:PORT",
+        ),
+        (
+            [
+                "sweep",
+                "run",
+                "{spec}",
+                "--out",
+                "{out}",
+                "--scheduler",
+                "tcp://127.0.0.1:9",
+                "--workers",
+                "2",
+            ],
+            r"workers = 2 applies to a local cluster only; with scheduler = 'tcp://127.0.0.1:9'",
+        ),
+        (
+            [
+                "sweep",
+                "run",
+                "{spec}",
+                "--out",
+                "{out}",
+                "--scheduler",
+                "tcp://127.0.0.1:9",
+                "--connect-timeout-s",
+                "1",
+            ],
+            r"scheduler = 'tcp://127.0.0.1:9' is not reachable within 1 s \(.*\); valid: the "
+            r"address printed by a running 'dask scheduler'",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{out}", "--connect-timeout-s", "0"],
+            r"connect_timeout_s = 0 s is out of range; valid range \(0, inf\) s",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{afile}"],
+            r"out = '.*afile.txt' is a file; valid: a dataset directory",
+        ),
+        (
+            ["sweep", "run", "{spec}", "--out", "{notds}"],
+            r"dataset = '.*notds' is not a bearingsim sweep dataset \(no readable .zattrs\)",
+        ),
+        (
+            ["sweep", "run", "{bad_channel}", "--out", "{out}", "--workers", "1"],
+            r"channel 'acc_z' is not produced by the runs with model = 'dem', per_ball = False; "
+            r"valid: disp_x",
+        ),
+        (
+            ["sweep", "plan", "{spec}", "--timing-runs", "-1"],
+            r"timing_runs = -1 is out of range; valid range \[0, inf\)",
+        ),
+        (
+            ["sweep", "plan", "{spec}", "--timing-duration-s", "0"],
+            r"timing_duration_s = 0 s is out of range; valid range \(0, inf\) s",
+        ),
+        (["sweep", "summary", "{notds}"], r"is not a bearingsim sweep dataset"),
+        (
+            ["sweep", "summary", "{missing}"],
+            r"dataset = '.*nope.toml' is not a bearingsim sweep dataset",
+        ),
+    ],
+)
+def test_bad_input(args, match, run_cli, spec_file, tmp_path):
+    files = {
+        "spec": spec_file,
+        "out": tmp_path / "new.zarr",
+        "missing": tmp_path / "nope.toml",
+        "afile": tmp_path / "afile.txt",
+        "notds": tmp_path / "notds",
+    }
+    files["afile"].write_text("x")
+    files["notds"].mkdir()
+    (files["notds"] / "data.csv").write_text("1,2\n")
+    for name, text in {
+        "bad_toml": "[axes\nrpm = 1",
+        "bad_axis": SPEC.replace("rpm = [", "rmp = ["),
+        "bad_value": SPEC.replace("1797.0", "-5.0"),
+        "bad_channel": SPEC.replace('label = "fault"', 'channels = ["acc_x", "acc_z"]'),
+    }.items():
+        files[name] = tmp_path / f"{name}.toml"
+        files[name].write_text(text)
+    r = run_cli(*[a.format(**files) for a in args])
+    assert r.code == 2, (r.out, r.err)
+    assert r.out == ""
+    lines = r.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
+    assert pytest.importorskip("re").search(match, lines[0]), lines[0]
+    assert not files["out"].exists()  # nothing written
+    assert sorted(p.name for p in files["notds"].iterdir()) == ["data.csv"]
+
+
+def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
+    out = tmp_path / "ds.zarr"
+    assert run_cli("sweep", "run", spec_file, "--out", out, "--workers", "1", "--json").code == 0
+    other = _dataset_spec(tmp_path)
+    r = run_cli("sweep", "run", other, "--out", out, "--workers", "1")
+    assert r.code == 2 and r.out == ""
+    assert r.err.strip() == (
+        f"error: out = '{out}' holds a dataset of a different sweep spec (differs in: axes.rpm); "
+        "use another --out, or --force-new to replace it"
+    )
+    r = run_cli("sweep", "run", other, "--out", out, "--workers", "1", "--force-new", "--json")
+    assert r.code == 0 and r.json()["created"] and r.json()["n_ok"] == 4
+    s = json.loads(run_cli("sweep", "summary", out, "--json").out)
+    assert set(s["by_axis"]["rpm"]) == {"1730.0", "1772.0"}
+    r = run_cli("sweep", "summary", out, "--label", "speed")
+    assert r.code == 2 and "label = 'speed' is not stored per run; valid: fault, rpm" in r.err
+
+
+def test_docs_python_example_runs(tmp_path, monkeypatch):
+    """The Python block of docs/sweeps.md runs as written (on a small sweep.toml)."""
+    import re
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "sweeps.md").read_text()
+    code = re.search(r"```python\n(.*?)```", doc, re.S).group(1)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "sweep.toml").write_text(SPEC)
+    ns = {"__name__": "__main__"}
+    exec(compile(code, "docs/sweeps.md", "exec"), ns)
+    assert ns["report"].n_ok == 4
+    assert ns["X"].shape == (2, 2, 200) and list(ns["y"]) == ["outer", "inner"]
+    assert len(ns["test"]) == 2 and ns["r"].fs_hz == 4000.0
+    assert ns["outer"].shape == (2, 200)
