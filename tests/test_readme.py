@@ -24,6 +24,9 @@ def test_readme_setup_commands_are_first_and_two():
 
 
 def test_readme_cli_examples_run(run_cli, tmp_path, monkeypatch):
+    import shutil
+
+    shutil.copytree(README.parent / "examples", tmp_path / "examples")
     monkeypatch.chdir(tmp_path)
     (tmp_path / "my_bearing.toml").write_text(
         'id = "mine"\ntype = "ball"\nn_elements = 9\nelement_diameter_m = 7.94e-3\n'
