@@ -378,6 +378,11 @@ def diagnose(
     evidence: dict[str, float] = {}
     supported: list[str] = []
     best_fault_snr = -math.inf
+
+    def _result(label: str, confidence: float) -> Diagnosis:
+        return Diagnosis(label, confidence, band_t, shaft_hz, peaks, scores, supported, kurt, es,
+                         kg, notes, domain)  # fmt: skip
+
     any_detected = False
     for fam in FAMILIES:
         labels = [_label(base[fam], h) for h in range(1, rule.n_harmonics + 1)]
@@ -408,55 +413,14 @@ def diagnose(
         rival = max((evidence[f] for f in FAMILIES if f != top), default=0.0)
         if rule.dominance * rival > evidence[top]:
             notes.append("another fault family has comparable harmonic amplitudes")
-            return Diagnosis(
-                "uncertain",
-                0.0,
-                band_t,
-                shaft_hz,
-                peaks,
-                scores,
-                supported,
-                kurt,
-                es,
-                kg,
-                notes,
-                domain,
-            )
+            return _result("uncertain", 0.0)
         conf = scores[top] * (1.0 - rival / evidence[top])
-        return Diagnosis(
-            top,
-            float(max(conf, 0.0)),
-            band_t,
-            shaft_hz,
-            peaks,
-            scores,
-            supported,
-            kurt,
-            es,
-            kg,
-            notes,
-            domain,
-        )
+        return _result(top, float(max(conf, 0.0)))
     if any_detected:
         notes.append("isolated fault lines without a harmonic series")
-        return Diagnosis(
-            "uncertain",
-            0.0,
-            band_t,
-            shaft_hz,
-            peaks,
-            scores,
-            supported,
-            kurt,
-            es,
-            kg,
-            notes,
-            domain,
-        )
+        return _result("uncertain", 0.0)
     conf = min(max((rule.threshold_db - best_fault_snr) / 10.0, 0.0), 1.0)
-    return Diagnosis(
-        "none", float(conf), band_t, shaft_hz, peaks, scores, supported, kurt, es, kg, notes, domain
-    )
+    return _result("none", float(conf))
 
 
 # --------------------------------------------------------------------------- signal files
