@@ -82,7 +82,7 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
          "disk_position_m = 0.25 m is out of range; valid range (0, 0.2032) m"),
         (["--disk-positions-mm", "0,100"], "disk_position_m = 0 m is out of range"),
         (["--housing-mass-kg", "0"], "housing_mass_kg = 0 kg is out of range; valid range (0,"),
-        (["--housing-frequency-hz", "-3"], "housing_frequency_hz = -3 Hz is out of range"),
+        (["--housing-stiffness-n-m", "-3"], "housing_stiffness_n_m = -3 N/m is out of range"),
         (["--contact-damping", "-1"], "contact_damping_n_s_m = -1 N s/m is out of range"),
         (["--disks", "9", "--elements", "4"], "n_elements = 4 is too few; valid range [10, inf)"),
         (["--disks", "0"], "disks = 0 is invalid; valid range [1, inf) integer"),

@@ -54,9 +54,10 @@ key                           default         meaning
 ``distributed_rotor``         false           rotor mass spread along the shaft instead of disks
 ``n_elements``                auto            minimum number of beam elements
 ``shaft_mass_model``          ``"lumped"``    lumped (half at each bearing, seed) | distributed
-``housing_mass_kg``           1.0             mass of each housing [kg]
-``housing_frequency_hz``      3300.0          housing mount natural frequency [Hz] (sets k = m w^2)
-``housing_damping_ratio``     0.05            housing mount damping ratio [-]
+``housing_mass_kg``           6.638           mass of each housing [kg] (Sawalhi & Randall 2008
+                                              pedestal, as used for CWRU by Ruan et al. 2022)
+``housing_stiffness_n_m``     1.51e7          housing mount stiffness, X and Y [N/m] (same source)
+``housing_damping_n_s_m``     2210.7          housing mount damping, X and Y [N s/m] (same source)
 ``contact_damping_n_s_m``     50.0            damping of each ball-race contact [N s/m]
 ``gravity``                   true            gravity (-y) on every mass
 ``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
@@ -138,9 +139,9 @@ class Scenario:
     distributed_rotor: bool = False
     n_elements: int | None = None
     shaft_mass_model: str = "lumped"
-    housing_mass_kg: float = 1.0
-    housing_frequency_hz: float = 3300.0
-    housing_damping_ratio: float = 0.05
+    housing_mass_kg: float = 6.638
+    housing_stiffness_n_m: float = 1.51e7
+    housing_damping_n_s_m: float = 2210.7
     contact_damping_n_s_m: float = 50.0
     gravity: bool = True
     unbalance_kg_m: float = 0.0
@@ -291,13 +292,13 @@ class Scenario:
         s(self, "housing_mass_kg", check_positive("housing_mass_kg", self.housing_mass_kg, "kg"))
         s(
             self,
-            "housing_frequency_hz",
-            check_positive("housing_frequency_hz", self.housing_frequency_hz, "Hz"),
+            "housing_stiffness_n_m",
+            check_positive("housing_stiffness_n_m", self.housing_stiffness_n_m, "N/m"),
         )
         s(
             self,
-            "housing_damping_ratio",
-            check_range("housing_damping_ratio", self.housing_damping_ratio, 0.0),
+            "housing_damping_n_s_m",
+            check_range("housing_damping_n_s_m", self.housing_damping_n_s_m, 0.0, unit="N s/m"),
         )
         s(
             self,

@@ -83,15 +83,20 @@ def rotor_simulate_options(f: Callable) -> Callable:
             default=None,
             help="Half the shaft mass at each bearing (seed) or distributed [lumped].",
         ),
-        click.option("--housing-mass-kg", type=float, default=None, help="Housing mass [kg] (1)."),
         click.option(
-            "--housing-frequency-hz",
-            type=float,
-            default=None,
-            help="Housing mount natural frequency [Hz] (3300).",
+            "--housing-mass-kg", type=float, default=None, help="Housing mass [kg] (6.638)."
         ),
         click.option(
-            "--housing-damping-ratio", type=float, default=None, help="Housing damping [-] (0.05)."
+            "--housing-stiffness-n-m",
+            type=float,
+            default=None,
+            help="Housing mount stiffness, X and Y [N/m] (1.51e7).",
+        ),
+        click.option(
+            "--housing-damping-n-s-m",
+            type=float,
+            default=None,
+            help="Housing mount damping, X and Y [N s/m] (2210.7).",
         ),
         click.option(
             "--contact-damping",

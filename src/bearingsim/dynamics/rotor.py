@@ -47,6 +47,7 @@ from .rotor_config import (
     config_summary,
     cwru_rotor_config,
     default_housing,
+    housing_from_frequency,
 )
 from .rotor_fe import (
     DOF_NAMES,
@@ -79,6 +80,7 @@ __all__ = [
     "build_rotor",
     "cwru_rotor_config",
     "default_housing",
+    "housing_from_frequency",
     "fault_geometry",
     "rotor_modes",
     "simulate_rotor",

@@ -52,7 +52,9 @@ def rotor_config_from_scenario(sc: Scenario) -> RotorConfig:
     arm = Armature(
         n_disks=len(pos) if pos else sc.disks, positions=pos, distributed=sc.distributed_rotor
     )
-    housing = default_housing(sc.housing_mass_kg, sc.housing_frequency_hz, sc.housing_damping_ratio)
+    housing = default_housing(
+        sc.housing_mass_kg, sc.housing_stiffness_n_m, sc.housing_damping_n_s_m
+    )
     return RotorConfig(
         de=_support(sc.de_bearing, sc.de_fault, sc.de_defect_angle_deg, sc),
         fe=_support(sc.fe_bearing, sc.fe_fault, sc.fe_defect_angle_deg, sc),
