@@ -80,6 +80,8 @@ RUN_ARRAYS = ("status", "error")
 RECORDS_DIR = "records"
 #: lock file of the client running a sweep on the dataset
 LOCK_NAME = "records/.lock"
+#: claim files (``records/.claim-<task id>``): the client hands the tail of a task to a helper
+CLAIM_PREFIX = ".claim-"
 
 
 @dataclass(frozen=True)
@@ -536,12 +538,36 @@ def read_status(path: str | Path) -> NDArray[np.int8]:
     return np.asarray(a[:], dtype=np.int8)
 
 
+def claim_path(dataset: str | Path, task_id: str) -> str:
+    """File by which the client hands the tail of task ``task_id`` to a helper task."""
+    return os.path.join(dataset, RECORDS_DIR, CLAIM_PREFIX + task_id)
+
+
+def write_claim(dataset: str | Path, task_id: str, keep: int) -> str:
+    """Tell task ``task_id`` to stop before its run number ``keep`` (its position in the task);
+    written atomically. Returns the claim file."""
+    p = claim_path(dataset, task_id)
+    _atomic_write(p, str(keep).encode())
+    return p
+
+
+def read_claim(path: str) -> int | None:
+    """The ``keep`` of a claim file, ``None`` when there is none (a missing file: one failed
+    ``stat``)."""
+    try:
+        with open(path, encoding="ascii") as fh:
+            return int(fh.read())
+    except (OSError, ValueError):
+        return None
+
+
 def remove_stale_temporaries(path: str | Path) -> int:
-    """Delete temporary chunk files left by killed writers; returns how many."""
+    """Delete temporary chunk files and claim files left by killed writers and clients; returns
+    how many."""
     n = 0
     for d in Path(path).iterdir():
         if d.is_dir():
-            for f in d.glob(".*.tmp"):
+            for f in itertools.chain(d.glob(".*.tmp"), d.glob(CLAIM_PREFIX + "*")):
                 with contextlib.suppress(OSError):
                     f.unlink()
                     n += 1
