@@ -87,7 +87,7 @@ INFLIGHT_PER_THREAD = 2
 SECOND_TASK_RUNS = 2
 #: a helper task takes over half of a running task's remaining runs only when that half holds at
 #: least this much compute [s]
-MIN_HELP_S = 0.05
+MIN_HELP_S = 0.015
 #: scheduler connection timeout [s]
 CONNECT_TIMEOUT_S = 20.0
 #: Dask settings of the local cluster, all diagnostics for a dashboard nobody looks at: no
