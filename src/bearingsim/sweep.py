@@ -17,20 +17,28 @@ workers give the channels, units and shapes; the client then creates the Zarr da
 (same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
-Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
-tasks hold one run each; then the size follows the measured run time (tasks of ~1 s, so Dask's
-~1–4 ms of CPU per task stays below 0.5 %) and shrinks towards the end (at most the remaining runs /
-tasks in flight: guided self-scheduling, allowing for a task queued behind another) so that the
-workers finish together. At most two tasks per worker thread are in flight; the client submits
-the next one as each finishes, which keeps memory bounded for any number of runs. Each run is
-committed on its own as soon as it finishes: by the worker when it sees the dataset directory
-(same machine or a shared file system; checked with the dataset's uuid), otherwise its arrays
-are sent back and the client commits them. A run that raises is committed as *failed* with
-``"ErrorType: message"`` and the sweep goes on. A worker that dies loses at most its running
-run: Dask reruns the task elsewhere and the runs already committed by it are skipped; a task
-lost more than ``distributed.scheduler.allowed-failures`` times is recorded as failed
-(``KilledWorker``). Killing the client loses nothing
-committed; running the same command again resumes.
+Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) every
+worker thread first gets a one-run timing task and a two-run task at once (so it never idles while
+the client waits for the first run time); then the size follows the measured run time (tasks of
+~1 s, so Dask's ~7 ms of CPU per task, client, scheduler and worker together, stays below 1 %).
+With several threads the sizes come in batches of one task per thread, each an equal share of the
+runs left (factoring), so a short sweep needs few tasks. The client places each task on the worker
+with the fewest tasks in flight (loose restrictions: a task whose worker is gone goes to another;
+the scheduler itself sees all tasks as equally long). When a worker runs out of tasks while
+another task still has at least ``MIN_HELP_S`` of runs left, the client hands the second half of
+them to a *helper* task on that worker: a claim file (:func:`~bearingsim.sweep_store.write_claim`)
+tells the running task to stop before them, and the helper runs them in reverse, skipping
+committed runs, so that the two meet at most at one run. At most two tasks per worker thread are
+in flight; the client submits the next one as each finishes, which keeps memory bounded for any
+number of runs. Each run is committed on its own as soon as it finishes: by the worker when it
+sees the dataset directory (same machine or a shared file system; checked with the dataset's
+uuid), otherwise its arrays are sent back and the client commits them (no helpers then). A run
+that raises is committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A
+worker that dies loses at most its running run: Dask reruns the task elsewhere and the runs
+already committed by it are skipped; a task lost more than
+``distributed.scheduler.allowed-failures`` times is recorded as failed (``KilledWorker``).
+Killing the client loses nothing committed (claim files left behind are removed when the dataset
+is opened again); running the same command again resumes.
 """
 
 from __future__ import annotations

@@ -20,7 +20,9 @@ Layout (Zarr format 2 with consolidated metadata: ``xarray.open_zarr(path)`` rea
                             line per committed run, one file per writer process:
                             {"run", "status", "t", "compute_s": wall time of simulate [s],
                             "cpu_s", "host", "pid", "bearingsim_version",
-                            "meta": SimulationResult.meta}
+                            "meta": SimulationResult.meta}; while a sweep runs also the
+                            client's lock and claim files (``.claim-<task>``: the position in
+                            that task from which a helper task has taken over its runs)
 
 Commit protocol
 ---------------
@@ -38,7 +40,8 @@ as done only when its ``status`` byte says ok (1) or failed (2): a process kille
 leaves every earlier commit intact and at most one run per writer whose data chunks exist
 without its marker; that run is still pending and is computed again on resume (rewriting the
 same chunks). Chunks are encoded with the codecs recorded in each array's own ``.zarray`` (the
-numcodecs objects zarr uses; a test checks the bytes equal zarr-python's) and written with plain
+numcodecs objects zarr uses, built from the consolidated metadata read once by each writer; a
+test checks the bytes equal zarr-python's) and written with plain
 file operations, because a one-chunk write through zarr-python's asynchronous store costs ~1 ms
 and creating a file on the test machine's ext4 ~0.3 ms: a commit creates one file (the signal
 chunk), appends one line and writes one byte. A line cut by a kill belongs to a run that is
