@@ -20,7 +20,7 @@ runs whose commit marker is missing (plus the failed ones with ``retry_failed``)
 Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) every
 worker thread first gets a one-run timing task and a two-run task at once (so it never idles while
 the client waits for the first run time); then the size follows the measured run time (tasks of
-~1 s, so Dask's ~7 ms of CPU per task, client, scheduler and worker together, stays below 1 %).
+~1 s, so Dask's ~5-7 ms of CPU per task, client, scheduler and worker together, stays below 1 %).
 With several threads the sizes come in batches of one task per thread, each an equal share of the
 runs left (factoring), so a short sweep needs few tasks. The client places each task on the worker
 with the fewest tasks in flight (loose restrictions: a task whose worker is gone goes to another;
