@@ -144,12 +144,72 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
             compressors=src.metadata.compressor,
         )
         a[2:3] = d
-        ours = _ChunkCodec(out, src).encode(d)
-        theirs = Path(_ChunkCodec(tmp_path / "twin.zarr", a).path(2)).read_bytes()
+        ours = _ChunkCodec.from_store(out, name).encode(d)
+        theirs = Path(_ChunkCodec.from_store(tmp_path / "twin.zarr", name).path(2)).read_bytes()
         assert ours == theirs, name
-    assert (out / "signal" / "2.0.0").read_bytes() == _ChunkCodec(out, g["signal"]).encode(
+    assert (out / "signal" / "2.0.0").read_bytes() == _ChunkCodec.from_store(out, "signal").encode(
         data["signal"]
     )
+
+
+def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path):
+    """A claim file makes a task stop before the runs it hands over; the helper task computes
+    them in reverse, skips what is committed; every run once, equal to ``simulate``."""
+    import shutil
+
+    from bearingsim.sweep import run_task
+    from bearingsim.sweep_store import claim_path, read_attrs, remove_stale_temporaries, write_claim
+
+    src, _ = noisy
+    out = tmp_path / "helped.zarr"
+    shutil.copytree(src, out)
+    for i in range(6):
+        (out / "status" / str(i)).write_bytes(b"\x00")
+    base = {
+        "dataset": str(out),
+        "uuid": read_attrs(out)["uuid"],
+        "version": __import__("bearingsim").__version__,
+        "channels": None,
+        "writer": "auto",
+        "retry_failed": False,
+    }
+    runs = [(i, NOISY.scenario(i).to_dict()) for i in range(6)]
+    write_claim(out, "t1", 2)  # the task keeps runs[:2]
+    first = run_task({**base, "runs": runs, "id": "t1"})
+    assert [(r["run"], r["status"]) for r in first] == [(0, OK), (1, OK)] + [
+        (i, "handed") for i in range(2, 6)
+    ]
+    (out / "status" / "3").write_bytes(bytes((OK,)))  # as if the original had overrun into run 3
+    helper = run_task({**base, "runs": runs[2:][::-1], "id": "t2"})
+    assert [(r["run"], r["status"]) for r in helper] == [(5, OK), (4, OK), (3, "skipped"), (2, OK)]
+    rerun = run_task({**base, "runs": runs, "id": "t1"})  # Dask reruns the original: nothing new
+    assert [r["status"] for r in rerun] == ["skipped"] * 2 + ["handed"] * 4
+    assert_array_equal(read_status(out), [OK] * 6)
+    X, _ = open_dataset(out).arrays()
+    for i in (2, 4, 5):
+        assert_array_equal(X[i, 0], simulate(NOISY.scenario(i))["acc_x"], err_msg=f"run {i}")
+    assert remove_stale_temporaries(out) == 1 and not os.path.exists(claim_path(out, "t1"))
+
+
+def test_uneven_runs_are_balanced_by_helpers(client, tmp_path, monkeypatch):
+    """Long runs at the end of the run order: the worker that runs out of tasks first takes over
+    half of the other's remaining runs; every run is computed and counted once."""
+    from bearingsim import sweep
+
+    monkeypatch.setattr(sweep, "MIN_HELP_S", 0.0)
+    rpm = {"start": 1730.0, "stop": 1797.0, "num": 8}
+    spec = make_spec({"duration_s": [0.01, 0.6], "rpm": rpm})
+    assert [spec.scenario(i).duration_s for i in (7, 8)] == [0.01, 0.6]
+    out = tmp_path / "uneven.zarr"
+    rep = run_sweep(spec, out, client=client)
+    assert (rep.n_ok, rep.n_computed, rep.n_pending) == (16, 16, 0)
+    assert rep.helper_tasks >= 1, rep
+    assert rep.n_computed + rep.n_recomputed == len(open_dataset(out).records())
+    assert not list((out / "records").glob(".claim-*"))
+    X, _ = open_dataset(out).arrays()
+    for i in range(16):
+        res = simulate(spec.scenario(i))
+        assert_array_equal(X[i, 0, : res["acc_x"].size], res["acc_x"], err_msg=f"run {i}")
 
 
 def test_resume_computes_only_missing(client, noisy, tmp_path):

@@ -17,20 +17,28 @@ workers give the channels, units and shapes; the client then creates the Zarr da
 (same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
-Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the first
-tasks hold one run each; then the size follows the measured run time (tasks of ~1 s, so Dask's
-~1–4 ms of CPU per task stays below 0.5 %) and shrinks towards the end (at most the remaining runs /
-tasks in flight: guided self-scheduling, allowing for a task queued behind another) so that the
-workers finish together. At most two tasks per worker thread are in flight; the client submits
-the next one as each finishes, which keeps memory bounded for any number of runs. Each run is
-committed on its own as soon as it finishes: by the worker when it sees the dataset directory
-(same machine or a shared file system; checked with the dataset's uuid), otherwise its arrays
-are sent back and the client commits them. A run that raises is committed as *failed* with
-``"ErrorType: message"`` and the sweep goes on. A worker that dies loses at most its running
-run: Dask reruns the task elsewhere and the runs already committed by it are skipped; a task
-lost more than ``distributed.scheduler.allowed-failures`` times is recorded as failed
-(``KilledWorker``). Killing the client loses nothing
-committed; running the same command again resumes.
+Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) every
+worker thread first gets a one-run timing task and a two-run task at once (so it never idles while
+the client waits for the first run time); then the size follows the measured run time (tasks of
+~1 s, so Dask's ~5-7 ms of CPU per task, client, scheduler and worker together, stays below 1 %).
+With several threads the sizes come in batches of one task per thread, each an equal share of the
+runs left (factoring), so a short sweep needs few tasks. The client places each task on the worker
+with the fewest tasks in flight (loose restrictions: a task whose worker is gone goes to another;
+the scheduler itself sees all tasks as equally long). When a worker runs out of tasks while
+another task still has at least ``MIN_HELP_S`` of runs left, the client hands the second half of
+them to a *helper* task on that worker: a claim file (:func:`~bearingsim.sweep_store.write_claim`)
+tells the running task to stop before them, and the helper runs them in reverse, skipping
+committed runs, so that the two meet at most at one run. At most two tasks per worker thread are
+in flight; the client submits the next one as each finishes, which keeps memory bounded for any
+number of runs. Each run is committed on its own as soon as it finishes: by the worker when it
+sees the dataset directory (same machine or a shared file system; checked with the dataset's
+uuid), otherwise its arrays are sent back and the client commits them (no helpers then). A run
+that raises is committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A
+worker that dies loses at most its running run: Dask reruns the task elsewhere and the runs
+already committed by it are skipped; a task lost more than
+``distributed.scheduler.allowed-failures`` times is recorded as failed (``KilledWorker``).
+Killing the client loses nothing committed (claim files left behind are removed when the dataset
+is opened again); running the same command again resumes.
 """
 
 from __future__ import annotations
@@ -68,27 +76,40 @@ from .sweep_store import (
     OK,
     PENDING,
     RunWriter,
+    claim_path,
     client_lock,
     create_dataset,
     read_attrs,
+    read_claim,
     read_status,
     remove_stale_temporaries,
+    write_claim,
 )
 
 #: automatic task size: aim at this much compute per task [s]
 TARGET_TASK_S = 1.0
 #: tasks in flight per worker thread
 INFLIGHT_PER_THREAD = 2
+#: runs of each thread's second task, submitted together with its one-run timing task, so that
+#: the worker has its next task while the client waits for the first run time [-]
+SECOND_TASK_RUNS = 2
+#: a helper task takes over half of a running task's remaining runs only when that half holds at
+#: least this much compute [s]
+MIN_HELP_S = 0.015
 #: scheduler connection timeout [s]
 CONNECT_TIMEOUT_S = 20.0
 #: Dask settings of the local cluster, all diagnostics for a dashboard nobody looks at: no
 #: statistical profiler (it samples the running thread every 10 ms), a 1 s event-loop tick
-#: instead of 20 ms, system monitoring every 5 s instead of 0.5 s. Together they cut the
-#: cluster's own CPU use by ~0.5-1 ms per run in ``benchmarks/bench_sweep.py``.
+#: instead of 20 ms, system monitoring every 5 s instead of 0.5 s; and the memory monitor of the
+#: workers and nannies every 0.5 s instead of 0.1 s (it still pauses, spills or restarts a worker
+#: near its memory limit, within 0.5 s: a sweep task holds a few runs' arrays at a time). Together
+#: they cut the idle cluster's CPU use from ~30 to ~15 ms per second (client with scheduler and
+#: nannies ~15 -> 8, each worker ~7 -> 3.5) and the overhead of ``benchmarks/bench_sweep.py``.
 LOCAL_CLUSTER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
     "distributed.admin.system-monitor.interval": "5s",
+    "distributed.worker.memory.monitor-interval": "500ms",
 }
 _ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
 
@@ -153,28 +174,39 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
 
     ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
     ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
-    (list of (run, scenario dict)). Returns one record per run: ``run``, ``status`` (1 ok,
-    2 failed, or ``"skipped"`` when already committed), ``compute_s``, ``error``, ``commit_s``,
-    and when the client must commit: ``record`` and ``channels``.
+    (list of (run, scenario dict)), optionally ``id`` (the name of its claim file). Returns one
+    record per run: ``run``, ``status`` (1 ok, 2 failed, ``"skipped"`` when already committed,
+    ``"handed"`` when left to a helper task), ``compute_s``, ``error``, ``commit_s``, and when
+    the client must commit: ``record`` and ``channels``.
     """
     import time as _t
 
     from .simulate import simulate
 
     writer = None if task["writer"] == "client" else _writer_for(task["dataset"], task["uuid"])
+    host, pid = socket.gethostname(), os.getpid()
     version_error = (
         ""
         if task["version"] == __version__
-        else f"ConfigError: worker {socket.gethostname()}:{os.getpid()} runs bearingsim "
-        f"{__version__}, the client {task['version']}; install the same version on every worker"
+        else f"ConfigError: worker {host}:{pid} runs bearingsim {__version__}, the client "
+        f"{task['version']}; install the same version on every worker"
     )
+    claim = claim_path(task["dataset"], task["id"]) if task.get("id") else None
+    keep: int | None = None  # runs[keep:] were handed to a helper task
     names = task["channels"]
+    retry = task["retry_failed"]
     out: list[dict[str, Any]] = []
-    for i, sd in task["runs"]:
+    runs = task["runs"]
+    for k, (i, sd) in enumerate(runs):
         if writer is not None:
+            if keep is None and claim is not None:
+                keep = read_claim(claim)
+            if keep is not None and k >= keep:
+                out.extend({"run": j, "status": "handed"} for j, _ in runs[k:])
+                break
             st = writer.status_of(i)
-            if st == OK or (st == FAILED and not task["retry_failed"]):
-                out.append({"run": i, "status": "skipped"})  # a rerun of a task: done before
+            if st == OK or (st == FAILED and not retry):
+                out.append({"run": i, "status": "skipped"})  # done before (a rerun, a helper)
                 continue
         t0 = _t.perf_counter()
         c0 = _t.thread_time()
@@ -188,7 +220,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         cpu = _t.thread_time() - c0
         chans = None
         if res is not None:
-            chans = {k: v for k, v in res.channels.items() if names is None or k in names}
+            chans = {c: v for c, v in res.channels.items() if names is None or c in names}
         status = OK if res is not None else FAILED
         rec: dict[str, Any] = {
             "run": i,
@@ -200,15 +232,15 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         record = {
             "compute_s": compute,
             "cpu_s": cpu,
-            "host": socket.gethostname(),
-            "pid": os.getpid(),
+            "host": host,
+            "pid": pid,
             "bearingsim_version": __version__,
             "meta": None if res is None else res.meta,
         }
         if writer is not None:
             t1 = _t.perf_counter()
             try:
-                writer.commit(i, status, record, err, chans, rerun=task["retry_failed"])
+                writer.commit(i, status, record, err, chans, rerun=retry)
                 rec["commit_s"] = _t.perf_counter() - t1
             except OSError:  # not writable from here after all: the client commits
                 _writer_failed(task["dataset"], task["uuid"])
@@ -239,6 +271,9 @@ class SweepReport:
         Status counts of the whole dataset at the end.
     n_failed_now : int
         Runs of this call that failed.
+    n_recomputed : int
+        Runs computed a second time in this call (a helper task and the task it helps both
+        started the run where they met; counted once in ``n_computed`` and ``compute_s``).
     wall_s : float
         Wall time from the first submitted task to the last commit [s].
     setup_s : float
@@ -259,6 +294,8 @@ class SweepReport:
         Worker threads at the end [-].
     tasks : int
         Dask tasks submitted [-].
+    helper_tasks : int
+        Of these, tasks that took over the second half of a running task's runs [-].
     committed_by : dict
         Runs committed by workers and by the client.
     """
@@ -271,6 +308,7 @@ class SweepReport:
     n_failed: int = 0
     n_pending: int = 0
     n_failed_now: int = 0
+    n_recomputed: int = 0
     wall_s: float = 0.0
     setup_s: float = 0.0
     compute_s: float = 0.0
@@ -280,6 +318,7 @@ class SweepReport:
     worker_cpu_s: float = 0.0
     workers: int = 0
     tasks: int = 0
+    helper_tasks: int = 0
     cluster: str = ""
     created: bool = False
     committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
@@ -374,11 +413,12 @@ def _workers_cpu(client) -> dict[str, float]:
         return {}
 
 
-def _threads(client) -> int:
+def _worker_threads(client) -> dict[str, int]:
+    """Threads of each worker by address (empty when the scheduler cannot be asked)."""
     try:
-        return int(sum(client.nthreads().values()))
+        return {str(a): int(n) for a, n in client.nthreads().items()}
     except Exception:  # a lost scheduler shows up in the task results
-        return 0
+        return {}
 
 
 def run_sweep(
@@ -552,6 +592,17 @@ def _final_counts(rep: SweepReport, st: np.ndarray) -> None:
     rep.n_pending = int(np.sum(st == PENDING))
 
 
+@dataclass
+class _Task:
+    """A submitted task as the client sees it."""
+
+    id: str
+    runs: list[int]
+    helper: bool = False
+    worker: str | None = None  # where the client placed it
+    keep: int | None = None  # runs[keep:] handed to a helper (claim written)
+
+
 def _execute(
     cl,
     spec: SweepSpec,
@@ -572,41 +623,53 @@ def _execute(
 
     n_todo = len(todo)
     wcpu0 = _workers_cpu(cl) if measure_cpu else {}
-    cpu0 = time.process_time()
     bar = None
     if progress is True:
         from tqdm import tqdm
 
         bar = tqdm(total=n_todo, desc="sweep", unit="run", file=sys.stderr, smoothing=0.1)
     channels = None if spec.channels is None else list(spec.channels)
-    dicts = {}
-    t0 = time.perf_counter()
     run_time: list[float] = []  # per-run compute + commit on the workers
-    threads = max(1, _threads(cl))
+    workers = _worker_threads(cl)
+    threads = max(1, sum(workers.values()))
     t_threads = time.perf_counter()
+    placed: dict[str, int] = {}  # tasks in flight on each worker, as placed by this loop
     ac = as_completed(loop=cl.loop)
-    inflight: dict[Any, list[int]] = {}
+    inflight: dict[Any, _Task] = {}
+    counted: set[int] = set()  # runs counted in rep (a run computed twice counts once)
+    claims: list[str] = []
+    batch = [0, 0]  # size and tasks left of the current batch (several threads)
 
-    def submit() -> None:
-        nonlocal threads, t_threads
+    def per_run() -> float:
+        return max(float(np.mean(run_time[-64:])), 1e-6)
+
+    def refresh() -> None:
+        nonlocal workers, threads, t_threads
         if time.perf_counter() - t_threads > 2.0:
-            threads, t_threads = max(1, _threads(cl)), time.perf_counter()
+            workers = _worker_threads(cl) or workers
+            threads, t_threads = max(1, sum(workers.values())), time.perf_counter()
+
+    def next_size() -> int:
         if runs_per_task is not None:
-            size = runs_per_task
-        elif not run_time:
-            size = 1
-        else:
-            per_run = max(float(np.mean(run_time[-64:])), 1e-6)
-            # guided self-scheduling: a new task may wait behind one already queued on its
-            # worker, so at most remaining / (tasks in flight), for the workers to end together
-            # (a single worker has nothing to balance)
-            size = max(1, int(TARGET_TASK_S / per_run))
-            if threads > 1:
-                size = min(size, max(2, len(todo) // (INFLIGHT_PER_THREAD * threads)))
-        runs = [todo.popleft() for _ in range(min(size, len(todo)))]
-        for i in runs:
-            if i not in dicts:
-                dicts[i] = scenarios[i].to_dict()
+            return runs_per_task
+        if not run_time:  # per thread a one-run timing task, then a small second one
+            return 1 if rep.tasks < threads else SECOND_TASK_RUNS
+        size = max(1, int(TARGET_TASK_S / per_run()))
+        if threads == 1:  # nothing to balance: no short task at the end
+            return len(todo) if len(todo) < 1.5 * size else size
+        # factoring: batches of one task per thread, each an equal share of what is left; a
+        # worker that runs out of tasks before the others takes over half of a running task
+        if batch[1] == 0:
+            batch[:] = [max(1, math.ceil(len(todo) / threads)), threads]
+        batch[1] -= 1
+        return min(size, batch[0])
+
+    def least_loaded() -> str | None:
+        return min(workers, key=lambda a: placed.get(a, 0) / workers[a], default=None)
+
+    def submit(runs: list[int], helper: bool = False, worker: str | None = None) -> None:
+        worker = worker or least_loaded()
+        tid = f"bearingsim-sweep-run{runs[0]}-{uuidlib.uuid4().hex[:12]}"
         task = {
             "dataset": path,
             "uuid": uid,
@@ -614,19 +677,64 @@ def _execute(
             "channels": channels,
             "writer": writer,
             "retry_failed": retry_failed,
-            "runs": [(i, dicts.pop(i)) for i in runs],
+            "runs": [(i, scenarios[i].to_dict()) for i in runs],
+            "id": tid,
         }
-        key = f"bearingsim-sweep-run{runs[0]}-{uuidlib.uuid4().hex[:12]}"
-        fut = cl.submit(run_task, task, pure=False, key=key)
-        inflight[fut] = runs
+        # placed by this loop (the scheduler does not know how long a task is), loosely: a task
+        # whose worker is gone goes to another
+        where = {} if worker is None else {"workers": [worker], "allow_other_workers": True}
+        fut = cl.submit(run_task, task, pure=False, key=tid, **where)
+        inflight[fut] = _Task(tid, runs, helper, worker)
+        if worker is not None:
+            placed[worker] = placed.get(worker, 0) + 1
         ac.add(fut)
         rep.tasks += 1
+        rep.helper_tasks += helper
 
+    def submit_next() -> None:
+        size = next_size()
+        submit([todo.popleft() for _ in range(min(size, len(todo)))])
+
+    def done(i: int) -> bool:
+        st = cw.status_of(i)
+        return st == OK or (st == FAILED and not retry_failed)
+
+    def help_one(worker: str) -> bool:
+        """Hand the second half of the remaining runs of the longest task in flight to a new
+        task on the idle ``worker`` (reversed, so that the two meet at most at one run)."""
+        best, best_share = None, 0
+        for t in inflight.values():
+            if t.keep is not None:
+                continue
+            first = next((k for k, i in enumerate(t.runs) if not done(i)), len(t.runs))
+            share = (len(t.runs) - first) // 2
+            if share > best_share:
+                best, best_share = t, share
+        if best is None or best_share * per_run() < MIN_HELP_S:
+            return False
+        best.keep = len(best.runs) - best_share
+        claims.append(write_claim(path, best.id, best.keep))
+        submit(best.runs[best.keep :][::-1], helper=True, worker=worker)
+        return True
+
+    def may_help() -> bool:
+        return (
+            runs_per_task is None
+            and writer == "auto"
+            and bool(run_time)
+            and rep.committed_by["client"] == 0
+            and rep.committed_by["worker"] > 0
+        )
+
+    cpu0 = time.process_time()
+    t0 = time.perf_counter()
     try:
-        while todo and len(inflight) < threads:  # one timing run per thread first
-            submit()
+        while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
+            submit_next()
         for fut in ac:
-            runs = inflight.pop(fut)
+            task = inflight.pop(fut)
+            if task.worker is not None:
+                placed[task.worker] -= 1
             try:
                 records = fut.result()
             except (asyncio.CancelledError, concurrent.futures.CancelledError) as exc:
@@ -635,9 +743,11 @@ def _execute(
                     "the same command again to resume"
                 ) from None
             except Exception as exc:  # KilledWorker, a bug in a task: recorded, sweep goes on
-                records = _failed_records(cw, runs, exc)
+                mine = task.runs if task.keep is None else task.runs[: task.keep]
+                records = _failed_records(cw, mine, exc)
+            n_new = 0
             for r in records:
-                if r["status"] == "skipped":
+                if r["status"] not in (OK, FAILED):  # skipped or handed over
                     continue
                 if "commit_s" in r:
                     rep.committed_by["worker"] += 1
@@ -649,13 +759,18 @@ def _execute(
                     rep.commit_s += time.perf_counter() - tc
                     rep.committed_by["client"] += 1
                     run_time.append(r["compute_s"])
+                if r["run"] in counted:  # computed twice (a helper met its task): wasted
+                    rep.n_recomputed += 1
+                    continue
+                counted.add(r["run"])
+                n_new += 1
                 rep.n_computed += 1
                 rep.compute_s += r["compute_s"]
                 rep.compute_cpu_s += r.get("cpu_s", 0.0)
                 if r["status"] == FAILED:
                     rep.n_failed_now += 1
             if bar is not None:
-                bar.update(len(runs))
+                bar.update(n_new)
                 bar.set_postfix_str(
                     f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
                     refresh=False,
@@ -663,8 +778,13 @@ def _execute(
             if callable(progress):
                 progress(rep)
             del fut
+            refresh()
             while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
-                submit()
+                submit_next()
+            if not todo and may_help():
+                for a, n in list(workers.items()):
+                    while placed.get(a, 0) < n and help_one(a):
+                        pass
     except KeyboardInterrupt:
         rep.interrupted = True
         cl.cancel(list(inflight))
@@ -680,6 +800,9 @@ def _execute(
         rep.workers = threads
         rep.wall_s = time.perf_counter() - t0
         rep.client_cpu_s = time.process_time() - cpu0
+        for c in claims:
+            with contextlib.suppress(OSError):
+                os.unlink(c)
         if measure_cpu:
             wcpu = _workers_cpu(cl)
             rep.worker_cpu_s = sum(v - wcpu0[a] for a, v in wcpu.items() if a in wcpu0)
