@@ -152,9 +152,11 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
     )
 
 
-def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path):
+@pytest.mark.parametrize("overlap", [False, True], ids=["commit-inline", "commit-thread"])
+def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path, overlap):
     """A claim file makes a task stop before the runs it hands over; the helper task computes
-    them in reverse, skips what is committed; every run once, equal to ``simulate``."""
+    them in reverse, skips what is committed; every run once, equal to ``simulate`` — with each
+    commit inline or in the commit thread overlapping the next run."""
     import shutil
 
     from bearingsim.sweep import run_task
@@ -172,6 +174,7 @@ def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path):
         "channels": None,
         "writer": "auto",
         "retry_failed": False,
+        "overlap_commit": overlap,
     }
     runs = [(i, NOISY.scenario(i).to_dict()) for i in range(6)]
     write_claim(out, "t1", 2)  # the task keeps runs[:2]
@@ -500,3 +503,17 @@ def test_a_task_that_raises_is_recorded(client, tmp_path):
     assert [f["error"] for f in s["failures"]] == ["RuntimeError: worker lost its disk"] * 3
     rep = run_sweep(spec, tmp_path / "t.zarr", client=client, retry_failed=True)
     assert (rep.n_ok, rep.n_failed) == (3, 0)
+
+
+def test_commit_overlaps_only_where_a_core_is_free():
+    from bearingsim.sweep import spare_core_workers
+
+    hello = {
+        "tcp://a:1": {"host": "a", "cores": 2},
+        "tcp://a:2": {"host": "a", "cores": 2},
+        "tcp://b:1": {"host": "b", "cores": 4},
+        "tcp://c:1": {"host": "c", "cores": 2},
+    }
+    nthreads = {"tcp://a:1": 1, "tcp://a:2": 1, "tcp://b:1": 2, "tcp://c:1": 1}
+    # host a: 2 threads on 2 cores (busy); b: 2 threads on 4 cores; c: 1 thread on 2 cores
+    assert spare_core_workers(hello, nthreads) == {"tcp://b:1", "tcp://c:1"}

@@ -32,9 +32,12 @@ committed runs, so that the two meet at most at one run. At most two tasks per w
 in flight; the client submits the next one as each finishes, which keeps memory bounded for any
 number of runs. Each run is committed on its own as soon as it finishes: by the worker when it
 sees the dataset directory (same machine or a shared file system; checked with the dataset's
-uuid), otherwise its arrays are sent back and the client commits them (no helpers then). A run
-that raises is committed as *failed* with ``"ErrorType: message"`` and the sweep goes on. A
-worker that dies loses at most its running run: Dask reruns the task elsewhere and the runs
+uuid) — in the worker's commit thread, while the next run computes (the compiled integrators
+release the GIL, so the write overlaps the computation when a core is free; at most one commit is
+outstanding and a task returns only after its commits) — otherwise its arrays are sent back and
+the client commits them (no helpers then). A run that raises is committed as *failed* with
+``"ErrorType: message"`` and the sweep goes on. A worker that dies loses at most its running run
+and the one being committed: Dask reruns the task elsewhere and the runs
 already committed by it are skipped; a task lost more than
 ``distributed.scheduler.allowed-failures`` times is recorded as failed (``KilledWorker``).
 Killing the client loses nothing committed (claim files left behind are removed when the dataset
@@ -54,6 +57,7 @@ import re
 import shutil
 import socket
 import sys
+import threading
 import time
 import uuid as uuidlib
 import warnings
@@ -162,15 +166,56 @@ def worker_hello() -> dict[str, Any]:
     for model in list(MODEL_RUNNERS):
         with contextlib.suppress(BearingsimError):
             simulate(Scenario(model=model, duration_s=2.0 / 4000.0, fs_hz=4000.0))
-    return {"version": __version__, "host": socket.gethostname(), "pid": os.getpid()}
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return {
+        "version": __version__,
+        "host": socket.gethostname(),
+        "pid": os.getpid(),
+        "cores": cores or 1,
+    }
+
+
+def spare_core_workers(hello: dict[str, dict[str, Any]], nthreads: dict[str, int]) -> set[str]:
+    """Workers whose host has more cores than worker threads (``hello`` from
+    :func:`worker_hello`, ``nthreads`` by address): there a run's commit can overlap the next
+    run on a free core; elsewhere it would only compete with the computing runs."""
+    per_host: dict[str, int] = {}
+    for a, v in hello.items():
+        per_host[v["host"]] = per_host.get(v["host"], 0) + int(nthreads.get(a, 1))
+    return {a for a, v in hello.items() if per_host[v["host"]] < int(v.get("cores", 1))}
 
 
 def _error_text(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {' '.join(str(exc).split())}"
 
 
+_COMMIT_POOL: concurrent.futures.ThreadPoolExecutor | None = None
+_COMMIT_POOL_LOCK = threading.Lock()
+
+
+def _commit_pool() -> concurrent.futures.ThreadPoolExecutor:
+    """This process's single commit thread (created on first use)."""
+    global _COMMIT_POOL
+    with _COMMIT_POOL_LOCK:
+        if _COMMIT_POOL is None:
+            _COMMIT_POOL = concurrent.futures.ThreadPoolExecutor(1, "bearingsim-commit")
+        return _COMMIT_POOL
+
+
+def _timed_commit(writer: RunWriter, *args: Any, rerun: bool) -> float:
+    t = time.perf_counter()
+    writer.commit(*args, rerun=rerun)
+    return time.perf_counter() - t
+
+
 def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     """Execute a group of runs on a worker and commit each one (see the module docstring).
+
+    With ``overlap_commit`` (the client sets it where the host has a core to spare, see
+    :func:`spare_core_workers`) run ``k`` is committed by the process's commit thread while run
+    ``k + 1`` computes (the compiled integrators release the GIL); at most one commit is
+    outstanding, and all are finished before the task returns, so the task's result reports only
+    committed runs. Otherwise each run is committed before the next one starts.
 
     ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
     ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
@@ -192,11 +237,30 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         f"{task['version']}; install the same version on every worker"
     )
     claim = claim_path(task["dataset"], task["id"]) if task.get("id") else None
+    overlap = bool(task.get("overlap_commit", False))
     keep: int | None = None  # runs[keep:] were handed to a helper task
     names = task["channels"]
     retry = task["retry_failed"]
     out: list[dict[str, Any]] = []
     runs = task["runs"]
+    # the previous run's commit in flight: (future, its result record, record, channels)
+    pending: tuple[Any, dict[str, Any], dict[str, Any], Any] | None = None
+
+    def settle() -> None:
+        """Wait for the outstanding commit; if it could not write, the client commits it."""
+        nonlocal writer, pending
+        if pending is None:
+            return
+        fut, r, record, chans = pending
+        pending = None
+        try:
+            r["commit_s"] = fut.result()
+        except OSError:  # not writable from here after all: the client commits
+            _writer_failed(task["dataset"], task["uuid"])
+            writer = None
+            r["record"] = to_jsonable(record)
+            r["channels"] = chans
+
     for k, (i, sd) in enumerate(runs):
         if writer is not None:
             if keep is None and claim is not None:
@@ -237,11 +301,15 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             "bearingsim_version": __version__,
             "meta": None if res is None else res.meta,
         }
-        if writer is not None:
-            t1 = _t.perf_counter()
+        settle()  # the previous run's commit (it ran while this run computed)
+        if writer is not None and overlap:
+            fut = _commit_pool().submit(
+                _timed_commit, writer, i, status, record, err, chans, rerun=retry
+            )
+            pending = (fut, rec, record, chans)
+        elif writer is not None:
             try:
-                writer.commit(i, status, record, err, chans, rerun=retry)
-                rec["commit_s"] = _t.perf_counter() - t1
+                rec["commit_s"] = _timed_commit(writer, i, status, record, err, chans, rerun=retry)
             except OSError:  # not writable from here after all: the client commits
                 _writer_failed(task["dataset"], task["uuid"])
                 writer = None
@@ -249,6 +317,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             rec["record"] = to_jsonable(record)
             rec["channels"] = chans
         out.append(rec)
+    settle()
     return out
 
 
@@ -579,6 +648,7 @@ def run_sweep(
                     progress,
                     retry_failed,
                     measure_cpu,
+                    spare_core_workers(hello, cl.nthreads()),
                 )
             finally:
                 cw.close()
@@ -617,6 +687,7 @@ def _execute(
     progress: bool | Callable[[SweepReport], None],
     retry_failed: bool,
     measure_cpu: bool,
+    overlap: set[str] = frozenset(),  # type: ignore[assignment]
 ) -> None:
     """The submission loop: feed tasks, commit what the workers send back, count."""
     from distributed import as_completed
@@ -679,6 +750,7 @@ def _execute(
             "retry_failed": retry_failed,
             "runs": [(i, scenarios[i].to_dict()) for i in runs],
             "id": tid,
+            "overlap_commit": worker in overlap,
         }
         # placed by this loop (the scheduler does not know how long a task is), loosely: a task
         # whose worker is gone goes to another

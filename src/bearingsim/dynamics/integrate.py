@@ -6,6 +6,8 @@ optionally an auxiliary-output function with the same signature ``aux(t, y, p, o
 extra per-sample outputs (stiffness, contact forces, ...). Because the signature is fixed, the
 integrators below are compiled once and cached on disk (``cache=True``): a second process does
 not recompile them, and the whole stepping loop runs in machine code with no Python call per step.
+They release the GIL (``nogil=True``) while they step, so another thread of the same process
+(e.g. a sweep worker committing the previous run) runs at the same time.
 
 Integrators
 -----------
@@ -50,7 +52,7 @@ def _bad(y, bound):
     return STATUS_OK
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound):
     """Fixed-step RK4; returns ``(t_out, y_out, aux_out, status, n_done)``.
 
@@ -112,7 +114,7 @@ _B5 = _A[6].copy()
 _B4 = np.array([5179 / 57600, 0.0, 7571 / 16695, 393 / 640, -92097 / 339200, 187 / 2100, 1 / 40])
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def _dopri(rhs, aux, y0, t_eval, p, n_aux, rtol, atol, h0, hmax, bound, C, A, B5, B4):
     ny = y0.size
     n_out = t_eval.size
