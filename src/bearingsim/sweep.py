@@ -202,6 +202,23 @@ def _commit_pool() -> concurrent.futures.ThreadPoolExecutor:
         return _COMMIT_POOL
 
 
+class _Inline:
+    """Executor-like: runs the call at once and returns its outcome as a done future (the
+    commit without overlap, handled like an overlapped one)."""
+
+    @staticmethod
+    def submit(fn: Callable[..., Any], *args: Any, **kw: Any) -> concurrent.futures.Future:
+        fut: concurrent.futures.Future = concurrent.futures.Future()
+        try:
+            fut.set_result(fn(*args, **kw))
+        except Exception as exc:
+            fut.set_exception(exc)
+        return fut
+
+
+_INLINE = _Inline()
+
+
 def _timed_commit(writer: RunWriter, *args: Any, rerun: bool) -> float:
     t = time.perf_counter()
     writer.commit(*args, rerun=rerun)
@@ -302,18 +319,13 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             "meta": None if res is None else res.meta,
         }
         settle()  # the previous run's commit (it ran while this run computed)
-        if writer is not None and overlap:
-            fut = _commit_pool().submit(
-                _timed_commit, writer, i, status, record, err, chans, rerun=retry
-            )
+        if writer is not None:
+            pool = _commit_pool() if overlap else _INLINE
+            fut = pool.submit(_timed_commit, writer, i, status, record, err, chans, rerun=retry)
             pending = (fut, rec, record, chans)
-        elif writer is not None:
-            try:
-                rec["commit_s"] = _timed_commit(writer, i, status, record, err, chans, rerun=retry)
-            except OSError:  # not writable from here after all: the client commits
-                _writer_failed(task["dataset"], task["uuid"])
-                writer = None
-        if writer is None:
+            if not overlap:
+                settle()
+        else:
             rec["record"] = to_jsonable(record)
             rec["channels"] = chans
         out.append(rec)
