@@ -87,7 +87,12 @@ def dem_force(t, ux, uy, p, point):
 @cfunc(RHS_SIG, cache=True)
 def dem_rhs(t, y, p, dydt):
     """DEM right-hand side: nonlinear Hertz forces at the dynamic displacement (written out
-    with scalar helpers only, so that nothing but arithmetic runs per call)."""
+    with scalar helpers only, so that nothing but arithmetic runs per call).
+
+    The ball-frame block below is a hand-inlined copy of ``bl.frame_cached`` (the same
+    arithmetic: results are bitwise equal); calling ``frame_cached`` or :func:`dem_force`
+    instead made DEM 15-20 % slower in ``benchmarks/bench_dynamics.py`` (2026-11-21), so keep
+    the two in step when either changes."""
     if t == p[bl.P_CT]:  # the ball frame at this instant was computed for the previous stage
         s0 = p[bl.P_CS0]
         c0 = p[bl.P_CC0]
