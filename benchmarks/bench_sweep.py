@@ -68,7 +68,7 @@ def wait_load(max_load: float, wait_s: float) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--runs", type=int, default=64)
     ap.add_argument("--runs-per-task", type=int, default=None)
     ap.add_argument("--max-load", type=float, default=float("inf"))
@@ -101,43 +101,46 @@ def main() -> None:
     )
     tmp = Path(tempfile.mkdtemp(prefix="bench_sweep_", dir=args.dir))
     print(f"datasets in {tmp}")
-    results: dict[int, list] = {}
+    results: dict[int, list] = {1: [], 2: []}
     try:
-        for w in (1, 2):
-            t0 = time.perf_counter()
-            with connect(workers=w) as (client, _):
-                t_start = time.perf_counter() - t0
-                client.run(worker_hello)  # kernels loaded on every worker
-                print(f"\n{w} worker(s): cluster start {t_start:.2f} s")
-                results[w] = []
-                for r in range(args.repeats):
+        # 1 and 2 workers alternate, each repeat on a new cluster, so that a slow drift of the
+        # machine's speed (other jobs, the VM's host) does not fall on one worker count only
+        for r in range(args.repeats):
+            for w in (1, 2):
+                t0 = time.perf_counter()
+                with connect(workers=w) as (client, _):
+                    t_start = time.perf_counter() - t0
+                    client.run(worker_hello)  # kernels loaded on every worker
                     wait_load(args.max_load, args.wait_s)
                     out = tmp / f"w{w}_r{r}.zarr"
                     la = load()
                     rep = run_sweep(
                         spec, out, client=client, runs_per_task=args.runs_per_task, measure_cpu=True
                     )
-                    cpu_w = rep.worker_cpu_s
-                    cpu_all = cpu_w + rep.client_cpu_s
-                    assert rep.n_ok == n, rep
-                    ov = (w * rep.wall_s - rep.compute_s) / n
-                    ov_base = (w * rep.wall_s - serial) / n
-                    ov_cpu = (cpu_all - rep.compute_cpu_s) / n
-                    rep.ov_cpu = ov_cpu / (rep.compute_cpu_s / n)  # type: ignore[attr-defined]
-                    results[w].append(rep)
-                    print(
-                        f"  repeat {r}: wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} runs/s, "
-                        f"compute {1e3 * rep.compute_s / n:.2f} ms/run (CPU "
-                        f"{1e3 * rep.compute_cpu_s / n:.2f}), commit "
-                        f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
-                        f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
-                        f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
-                        f"CPU overhead {1e3 * ov_cpu:.2f} ms/run = {100 * rep.ov_cpu:.1f} % of "
-                        f"CPU compute (workers {1e3 * (cpu_w - rep.compute_cpu_s) / n:.2f}, "
-                        f"client {1e3 * rep.client_cpu_s / n:.2f}); setup {rep.setup_s:.2f} s; "
-                        f"load {la} -> {load()}"
-                    )
-                    shutil.rmtree(out)
+                cpu_w = rep.worker_cpu_s
+                cpu_all = cpu_w + rep.client_cpu_s
+                assert rep.n_ok == n, rep
+                ov = (w * rep.wall_s - rep.compute_s) / n
+                ov_base = (w * rep.wall_s - serial) / n
+                ov_cpu = (cpu_all - rep.compute_cpu_s) / n
+                rep.ov_cpu = ov_cpu / (rep.compute_cpu_s / n)  # type: ignore[attr-defined]
+                results[w].append(rep)
+                est = "-" if rep.estimate_s is None else f"{1e3 * rep.estimate_s:.1f}"
+                print(
+                    f"repeat {r}, {w} worker(s): wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} "
+                    f"runs/s, compute {1e3 * rep.compute_s / n:.2f} ms/run (CPU "
+                    f"{1e3 * rep.compute_cpu_s / n:.2f}; estimated {est}), commit "
+                    f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
+                    f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
+                    f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
+                    f"CPU overhead {1e3 * ov_cpu:.2f} ms/run = {100 * rep.ov_cpu:.1f} % of "
+                    f"CPU compute (workers {1e3 * (cpu_w - rep.compute_cpu_s) / n:.2f}, "
+                    f"client {1e3 * rep.client_cpu_s / n:.2f}); cluster start {t_start:.2f} s, "
+                    f"setup {rep.setup_s:.2f} s; load {la} -> {load()}"
+                )
+                shutil.rmtree(out)
+            a, b = results[1][-1], results[2][-1]
+            print(f"repeat {r}: 2-worker / 1-worker throughput {a.wall_s / b.wall_s:.2f}")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     print("\nsummary (median over repeats):")
@@ -151,7 +154,11 @@ def main() -> None:
             f"  {w} worker(s): {thr[w]:.1f} runs/s, overhead {100 * ov:.1f} % of compute per run "
             f"(wall), {100 * ovc:.1f} % (CPU)"
         )
-    print(f"  2-worker / 1-worker throughput: {thr[2] / thr[1]:.2f} (target >= 1.8)")
+    pairs = sorted(a.wall_s / b.wall_s for a, b in zip(results[1], results[2], strict=True))
+    print(
+        f"  2-worker / 1-worker throughput: {thr[2] / thr[1]:.2f} (ratio of the medians; target "
+        f">= 1.8); per repeat {', '.join(f'{p:.2f}' for p in pairs)}"
+    )
     print(f"load average at end {load()}")
 
 

@@ -17,12 +17,16 @@ workers give the channels, units and shapes; the client then creates the Zarr da
 (same :attr:`SweepSpec.spec_hash`, otherwise refused unless ``force_new``), and submits only the
 runs whose commit marker is missing (plus the failed ones with ``retry_failed``).
 
-Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) every
-worker thread first gets a one-run timing task and a two-run task at once (so it never idles while
-the client waits for the first run time); then the size follows the measured run time (tasks of
-~1 s, so Dask's ~5-7 ms of CPU per task, client, scheduler and worker together, stays below 1 %).
-With several threads the sizes come in batches of one task per thread, each an equal share of the
-runs left (factoring), so a short sweep needs few tasks. The client places each task on the worker
+Runs travel in Dask tasks of one or more runs. With ``runs_per_task=None`` (automatic) the task
+size follows the run time: before the first task, a timing probe on a worker per model
+(:func:`~bearingsim.sweep_plan.timing_probe`: a two-sample run and one of at most
+``TIMING_PROBE_S`` simulated, extrapolated in ``duration_s``) estimates it; the run times measured
+in the finished tasks replace the estimate. Tasks hold ~``TARGET_TASK_S`` of runs, so Dask's
+~5-7 ms of CPU per task (client, scheduler and worker together) stays below 1 %. With several
+threads the sizes come in batches of one task per thread, each an equal share of the runs left
+(factoring), so a short sweep needs one task per thread. When the probe fails (the run raises;
+the sweep records its error), every thread first gets a one-run timing task and a two-run task at
+once instead. The client places each task on the worker
 with the fewest tasks in flight (loose restrictions: a task whose worker is gone goes to another;
 the scheduler itself sees all tasks as equally long). When a worker runs out of tasks while
 another task still has at least ``MIN_HELP_S`` of runs left, the client hands the second half of
@@ -94,12 +98,17 @@ from .sweep_store import (
 TARGET_TASK_S = 1.0
 #: tasks in flight per worker thread
 INFLIGHT_PER_THREAD = 2
-#: runs of each thread's second task, submitted together with its one-run timing task, so that
-#: the worker has its next task while the client waits for the first run time [-]
+#: longest simulated time of the timing probe that estimates the run time before the first
+#: task [s]
+TIMING_PROBE_S = 0.1
+#: without an estimate (the probe failed): runs of each thread's second task, submitted together
+#: with its one-run timing task, so that the worker has its next task while the client waits for
+#: the first run time [-]
 SECOND_TASK_RUNS = 2
 #: a helper task takes over half of a running task's remaining runs only when that half holds at
-#: least this much compute [s]
-MIN_HELP_S = 0.015
+#: least this much compute [s]: about what a helper costs (a Dask task, ~5-7 ms of CPU, and
+#: ~4 ms from the end of the finished task to the helper's start, measured on 2 cores)
+MIN_HELP_S = 0.010
 #: scheduler connection timeout [s]
 CONNECT_TIMEOUT_S = 20.0
 #: Dask settings of the local cluster, all diagnostics for a dashboard nobody looks at: no
@@ -114,6 +123,7 @@ LOCAL_CLUSTER_CONFIG = {
     "distributed.admin.tick.interval": "1s",
     "distributed.admin.system-monitor.interval": "5s",
     "distributed.worker.memory.monitor-interval": "500ms",
+    "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
 }
 _ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
 
@@ -280,8 +290,9 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
 
     for k, (i, sd) in enumerate(runs):
         if writer is not None:
-            if keep is None and claim is not None:
-                keep = read_claim(claim)
+            if claim is not None:  # a claim can only move the end earlier (a helper, a stop)
+                c = read_claim(claim)
+                keep = c if keep is None or (c is not None and c < keep) else keep
             if keep is not None and k >= keep:
                 out.extend({"run": j, "status": "handed"} for j, _ in runs[k:])
                 break
@@ -377,6 +388,9 @@ class SweepReport:
         Dask tasks submitted [-].
     helper_tasks : int
         Of these, tasks that took over the second half of a running task's runs [-].
+    estimate_s : float or None
+        Per-run compute time estimated by the timing probes before the first task (``None``:
+        fixed ``runs_per_task``, nothing to compute, or every probe failed) [s].
     committed_by : dict
         Runs committed by workers and by the client.
     """
@@ -400,6 +414,7 @@ class SweepReport:
     workers: int = 0
     tasks: int = 0
     helper_tasks: int = 0
+    estimate_s: float | None = None
     cluster: str = ""
     created: bool = False
     committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
@@ -452,7 +467,7 @@ def connect(
             silence_logs=logging.ERROR,
         )
     try:
-        client = Client(cluster, set_as_default=False)
+        client = Client(cluster, set_as_default=False, direct_to_workers=True)
         try:
             yield client, f"local cluster, {n} process worker(s)"
         finally:
@@ -565,6 +580,7 @@ def run_sweep(
     if client is None:
         check_cluster_args(workers, scheduler)
     scenarios = spec.scenarios()
+    sdicts = [s.to_dict() for s in scenarios]  # what the tasks carry (and the dataset stores)
     canonical = spec.canonical()
     h = canonical_hash(canonical)
     path = Path(out).absolute()
@@ -605,10 +621,11 @@ def run_sweep(
                 "the same version on every worker"
             )
         uid = None
+        futs: dict[Any, Any] = {}  # setup tasks, released at the end (see _estimate_run_s)
         if not path.exists() or replace_old:
             groups = probe_groups(scenarios)
             futs = {
-                k: cl.submit(probe_first, [scenarios[i].to_dict() for i in idx], pure=False)
+                k: cl.submit(probe_first, [sdicts[i] for i in idx], pure=False)
                 for k, idx in groups.items()
             }
             probes = {k: f.result() for k, f in futs.items()}
@@ -630,7 +647,7 @@ def run_sweep(
                 layout,
                 attrs_new,
                 coordinates(spec, scenarios),
-                [s.to_dict() for s in scenarios],
+                sdicts,
             )
             rep.created = True
         with client_lock(path):
@@ -644,12 +661,14 @@ def run_sweep(
             todo = deque(int(i) for i in np.flatnonzero(todo_mask))
             rep.n_skipped = len(scenarios) - len(todo)
             cw = RunWriter(path, uid)
+            if runs_per_task is None and todo:
+                rep.estimate_s = _estimate_run_s(cl, [scenarios[i] for i in todo], futs)
             rep.setup_s = time.perf_counter() - t_start
             try:
                 _execute(
                     cl,
                     spec,
-                    scenarios,
+                    sdicts,
                     todo,
                     str(path),
                     uid,
@@ -666,6 +685,26 @@ def run_sweep(
                 cw.close()
     _final_counts(rep, read_status(path))
     return rep
+
+
+def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any]) -> float | None:
+    """Mean compute time of the runs ``todo`` [s] from one timing probe per model on the
+    workers (:func:`~bearingsim.sweep_plan.timing_probe`); ``None`` when every probe raises.
+    The probes' futures go into ``keep``: releasing them right before the first tasks would
+    delay those by the client's message batching (up to 10 ms)."""
+    from .sweep_plan import extrapolate, timing_probe
+
+    first: dict[str, Scenario] = {}
+    for sc in todo:
+        first.setdefault(sc.model.value, sc)
+    futs = {
+        m: cl.submit(timing_probe, sc.to_dict(), TIMING_PROBE_S, pure=False)
+        for m, sc in first.items()
+    }
+    fit = {m: [r] for m, f in futs.items() if (r := f.result()) is not None}
+    keep.update({("timing", m): f for m, f in futs.items()})
+    est = extrapolate(todo, fit)
+    return float(np.mean(est)) if fit else None
 
 
 def _final_counts(rep: SweepReport, st: np.ndarray) -> None:
@@ -688,7 +727,7 @@ class _Task:
 def _execute(
     cl,
     spec: SweepSpec,
-    scenarios: list[Scenario],
+    sdicts: list[dict[str, Any]],
     todo: deque,
     path: str,
     uid: str,
@@ -717,14 +756,17 @@ def _execute(
     threads = max(1, sum(workers.values()))
     t_threads = time.perf_counter()
     placed: dict[str, int] = {}  # tasks in flight on each worker, as placed by this loop
-    ac = as_completed(loop=cl.loop)
+    # results are fetched in the background as tasks finish (not when this loop asks for them)
+    ac = as_completed(loop=cl.loop, with_results=True, raise_errors=False)
     inflight: dict[Any, _Task] = {}
     counted: set[int] = set()  # runs counted in rep (a run computed twice counts once)
     claims: list[str] = []
     batch = [0, 0]  # size and tasks left of the current batch (several threads)
 
     def per_run() -> float:
-        return max(float(np.mean(run_time[-64:])), 1e-6)
+        """Per-run time [s]: measured in the finished tasks, else the probes' estimate."""
+        t = float(np.mean(run_time[-64:])) if run_time else rep.estimate_s
+        return max(t or 0.0, 1e-6)
 
     def refresh() -> None:
         nonlocal workers, threads, t_threads
@@ -735,8 +777,8 @@ def _execute(
     def next_size() -> int:
         if runs_per_task is not None:
             return runs_per_task
-        if not run_time:  # per thread a one-run timing task, then a small second one
-            return 1 if rep.tasks < threads else SECOND_TASK_RUNS
+        if not run_time and rep.estimate_s is None:  # per thread a one-run timing task, then
+            return 1 if rep.tasks < threads else SECOND_TASK_RUNS  # a small second one
         size = max(1, int(TARGET_TASK_S / per_run()))
         if threads == 1:  # nothing to balance: no short task at the end
             return len(todo) if len(todo) < 1.5 * size else size
@@ -760,7 +802,7 @@ def _execute(
             "channels": channels,
             "writer": writer,
             "retry_failed": retry_failed,
-            "runs": [(i, scenarios[i].to_dict()) for i in runs],
+            "runs": [(i, sdicts[i]) for i in runs],
             "id": tid,
             "overlap_commit": worker in overlap,
         }
@@ -815,20 +857,20 @@ def _execute(
     try:
         while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
             submit_next()
-        for fut in ac:
+        for fut, result in ac:
             task = inflight.pop(fut)
             if task.worker is not None:
                 placed[task.worker] -= 1
-            try:
-                records = fut.result()
-            except (asyncio.CancelledError, concurrent.futures.CancelledError) as exc:
+            if isinstance(result, asyncio.CancelledError | concurrent.futures.CancelledError):
                 raise ConfigError(
-                    f"lost the Dask scheduler ({_error_text(exc)}); committed runs are kept: run "
-                    "the same command again to resume"
-                ) from None
-            except Exception as exc:  # KilledWorker, a bug in a task: recorded, sweep goes on
+                    f"lost the Dask scheduler ({_error_text(result)}); committed runs are kept: "
+                    "run the same command again to resume"
+                )
+            if fut.status == "error":  # KilledWorker, a bug in a task: recorded, sweep goes on
                 mine = task.runs if task.keep is None else task.runs[: task.keep]
-                records = _failed_records(cw, mine, exc)
+                records = _failed_records(cw, mine, result[1])
+            else:
+                records = result
             n_new = 0
             for r in records:
                 if r["status"] not in (OK, FAILED):  # skipped or handed over
@@ -861,7 +903,6 @@ def _execute(
                 )
             if callable(progress):
                 progress(rep)
-            del fut
             refresh()
             while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
                 submit_next()
@@ -869,9 +910,16 @@ def _execute(
                 for a, n in list(workers.items()):
                     while placed.get(a, 0) < n and help_one(a):
                         pass
+            # released after the submissions above: its release message would otherwise hold
+            # them back in the client's message batching (up to 10 ms)
+            del fut, result
     except KeyboardInterrupt:
         rep.interrupted = True
         cl.cancel(list(inflight))
+        for t in inflight.values():  # running tasks stop after their current run
+            with contextlib.suppress(OSError):
+                write_claim(path, t.id, 0)
+        claims.clear()  # left for the tasks still running (removed when the dataset is reopened)
         rep.wall_s = time.perf_counter() - t0
         raise SweepInterrupted(
             f"interrupted: {rep.n_skipped + rep.n_computed} of {rep.n_runs} runs committed; run "

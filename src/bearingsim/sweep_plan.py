@@ -15,6 +15,7 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .config import Scenario
 from .errors import BearingsimError, ConfigError
@@ -50,6 +51,53 @@ def probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
         except BearingsimError as exc:
             err = " ".join(str(exc).split())
     return err
+
+
+# ------------------------------------------------------------------------------ timing
+def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | None:
+    """Time ``scenario`` for 2 samples and for ``min(duration_s, max_duration_s)`` (in this
+    process): ``fixed_s`` [s] (the two-sample run), ``rate_s_per_s`` (wall time per simulated
+    second beyond it) [s/s], ``duration_s`` and ``wall_s`` of the longer run [s], and ``result``
+    (its :class:`~bearingsim.simulate.SimulationResult`); ``None`` when the run raises."""
+    from .simulate import simulate
+
+    d0 = 2.0 / scenario.fs_hz
+    d1 = max(min(scenario.duration_s, max_duration_s), 2 * d0)
+    t = []
+    res = None
+    for d in (d0, d1):
+        t0 = time.perf_counter()
+        try:
+            res = simulate(scenario.replace(duration_s=d))
+        except BearingsimError:
+            return None
+        t.append(time.perf_counter() - t0)
+    rate = max(t[1] - t[0], 0.0) / (d1 - d0)
+    return {"duration_s": d1, "wall_s": t[1], "fixed_s": t[0], "rate_s_per_s": rate, "result": res}
+
+
+def extrapolate(
+    scenarios: list[Scenario], fit: dict[str, list[tuple[float, float]]]
+) -> NDArray[np.float64]:
+    """Per-run compute estimate [s]: fixed part + rate x ``duration_s``, averaged over the
+    ``fit`` entries ``(fixed_s, rate_s_per_s)`` of the run's model (of all models when its own
+    has none; NaN when there are none)."""
+    allfit = [v for vs in fit.values() for v in vs]
+    est = np.full(len(scenarios), math.nan)
+    for i, sc in enumerate(scenarios):
+        f = fit.get(sc.model.value) or allfit
+        if f:
+            a = float(np.mean([v[0] for v in f]))
+            r = float(np.mean([v[1] for v in f]))
+            est[i] = a + r * sc.duration_s
+    return est
+
+
+def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float, float] | None:
+    """On a worker: ``(fixed_s, rate_s_per_s)`` of ``scenario`` from :func:`timing_run`, or
+    ``None`` when it raises."""
+    tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+    return None if tr is None else (tr["fixed_s"], tr["rate_s_per_s"])
 
 
 # ------------------------------------------------------------------------------ layout
@@ -188,8 +236,6 @@ def plan_sweep(
     """
     import numcodecs
 
-    from .simulate import simulate
-
     scenarios = spec.scenarios()
     groups = probe_groups(scenarios)
     probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
@@ -211,37 +257,20 @@ def plan_sweep(
         fit: dict[str, list[tuple[float, float]]] = {}
         for i in picks:
             sc = scenarios[i]
-            d0 = 2.0 / sc.fs_hz
-            d1 = max(min(sc.duration_s, timing_duration_s), 2 * d0)
-            t = []
-            res = None
-            for d in (d0, d1):
-                t0 = time.perf_counter()
-                try:
-                    res = simulate(sc.replace(duration_s=d))
-                except BearingsimError:
-                    res = None
-                    break
-                t.append(time.perf_counter() - t0)
-            if res is None:
+            tr = timing_run(sc, timing_duration_s)
+            if tr is None:
                 timing.append({"run": i, "failed": True})
                 continue
-            rate = max(t[1] - t[0], 0.0) / (d1 - d0)
-            fit.setdefault(sc.model.value, []).append((t[0], rate))
-            timing.append({"run": i, "duration_s": d1, "wall_s": t[1], "fixed_s": t[0]})
+            res = tr.pop("result")
+            fit.setdefault(sc.model.value, []).append((tr["fixed_s"], tr["rate_s_per_s"]))
+            timing.append({"run": i, **tr})
             for name in (c.name for c in layout.channels):
                 if name in res.channels:
                     x = np.ascontiguousarray(res.channels[name], dtype=np.float64)
                     raw += x.nbytes
                     enc += len(blosc.encode(x))
         ratio = enc / raw if raw else 1.0
-        allfit = [v for vs in fit.values() for v in vs]
-        for i, sc in enumerate(scenarios):
-            f = fit.get(sc.model.value) or allfit
-            if f:
-                a = float(np.mean([v[0] for v in f]))
-                r = float(np.mean([v[1] for v in f]))
-                est[i] = a + r * sc.duration_s
+        est = extrapolate(scenarios, fit)
     total = float(np.sum(est))
     ns = [sc.n_samples for sc in scenarios]
     return SweepPlan(
