@@ -12,16 +12,20 @@ Definitions (printed):
   ``simulate`` (Dask scheduling and transfer, Zarr commits, idle workers at the end), also
   against a serial baseline measured in this process without Dask or writing;
 - overhead per run (CPU) = (CPU time of the worker processes and of this client process, which
-  also hosts the local scheduler, during the wall interval above - CPU time inside
-  ``simulate``) / runs. Unlike the wall-clock figures it hardly depends
+  also hosts the local schedulers and nannies of both clusters, during the wall interval above -
+  CPU time inside ``simulate``) / runs. Unlike the wall-clock figures it hardly depends
   on what else runs on the machine.
+
+The two clusters (1 and 2 workers) stay up side by side and the measurements alternate between
+them, so that a drift of the machine's speed during the benchmark falls on both; the ratio is
+that of the median throughputs (the per-repeat ratios are printed too).
 
 Other jobs on the machine inflate every wall-clock figure: the load average is printed with each
 measurement; ``--max-load`` waits (up to ``--wait-s``) for a 1-minute load average below it.
 
 Run::
 
-    PYTHONPATH=src python benchmarks/bench_sweep.py [--repeats 3] [--runs 64] [--max-load 1.0]
+    PYTHONPATH=src python benchmarks/bench_sweep.py [--repeats 5] [--runs 64] [--max-load 1.0]
 """
 
 from __future__ import annotations
@@ -66,6 +70,30 @@ def wait_load(max_load: float, wait_s: float) -> None:
         time.sleep(5.0)
 
 
+def report(rep, w: int, r: int, n: int, serial: float, la: str) -> None:
+    """Print one measurement and keep its CPU overhead ratio on ``rep``."""
+    cpu_w = rep.worker_cpu_s
+    cpu_all = cpu_w + rep.client_cpu_s
+    assert rep.n_ok == n, rep
+    ov = (w * rep.wall_s - rep.compute_s) / n
+    ov_base = (w * rep.wall_s - serial) / n
+    ov_cpu = (cpu_all - rep.compute_cpu_s) / n
+    rep.ov_cpu = ov_cpu / (rep.compute_cpu_s / n)  # type: ignore[attr-defined]
+    est = "-" if rep.estimate_s is None else f"{1e3 * rep.estimate_s:.1f}"
+    print(
+        f"repeat {r}, {w} worker(s): wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} "
+        f"runs/s, compute {1e3 * rep.compute_s / n:.2f} ms/run (CPU "
+        f"{1e3 * rep.compute_cpu_s / n:.2f}; estimated {est}), commit "
+        f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
+        f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
+        f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
+        f"CPU overhead {1e3 * ov_cpu:.2f} ms/run = {100 * rep.ov_cpu:.1f} % of "
+        f"CPU compute (workers {1e3 * (cpu_w - rep.compute_cpu_s) / n:.2f}, "
+        f"client {1e3 * rep.client_cpu_s / n:.2f}); setup {rep.setup_s:.2f} s; "
+        f"load {la} -> {load()}"
+    )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeats", type=int, default=5)
@@ -103,44 +131,27 @@ def main() -> None:
     print(f"datasets in {tmp}")
     results: dict[int, list] = {1: [], 2: []}
     try:
-        # 1 and 2 workers alternate, each repeat on a new cluster, so that a slow drift of the
-        # machine's speed (other jobs, the VM's host) does not fall on one worker count only
-        for r in range(args.repeats):
-            for w in (1, 2):
-                t0 = time.perf_counter()
-                with connect(workers=w) as (client, _):
-                    t_start = time.perf_counter() - t0
-                    client.run(worker_hello)  # kernels loaded on every worker
+        # both clusters stay up and the worker counts alternate, so that a slow drift of the
+        # machine's speed (other jobs, the VM's host) does not fall on one worker count only;
+        # the idle cluster's heartbeats (~1 % of a core) burden both measurements
+        t0 = time.perf_counter()
+        with connect(workers=1) as (c1, _), connect(workers=2) as (c2, _):
+            print(f"two clusters (1 and 2 workers) started in {time.perf_counter() - t0:.2f} s")
+            for c in (c1, c2):
+                c.run(worker_hello)  # kernels loaded on every worker
+            for r in range(args.repeats):
+                for w, client in ((1, c1), (2, c2)):
                     wait_load(args.max_load, args.wait_s)
                     out = tmp / f"w{w}_r{r}.zarr"
                     la = load()
                     rep = run_sweep(
                         spec, out, client=client, runs_per_task=args.runs_per_task, measure_cpu=True
                     )
-                cpu_w = rep.worker_cpu_s
-                cpu_all = cpu_w + rep.client_cpu_s
-                assert rep.n_ok == n, rep
-                ov = (w * rep.wall_s - rep.compute_s) / n
-                ov_base = (w * rep.wall_s - serial) / n
-                ov_cpu = (cpu_all - rep.compute_cpu_s) / n
-                rep.ov_cpu = ov_cpu / (rep.compute_cpu_s / n)  # type: ignore[attr-defined]
-                results[w].append(rep)
-                est = "-" if rep.estimate_s is None else f"{1e3 * rep.estimate_s:.1f}"
-                print(
-                    f"repeat {r}, {w} worker(s): wall {rep.wall_s:.3f} s, {n / rep.wall_s:6.1f} "
-                    f"runs/s, compute {1e3 * rep.compute_s / n:.2f} ms/run (CPU "
-                    f"{1e3 * rep.compute_cpu_s / n:.2f}; estimated {est}), commit "
-                    f"{1e3 * rep.commit_s / n:.3f} ms/run, {rep.tasks} tasks; overhead "
-                    f"{1e3 * ov:.2f} ms/run = {100 * ov / (rep.compute_s / n):.1f} % of "
-                    f"compute ({100 * ov_base / (serial / n):.1f} % vs serial baseline); "
-                    f"CPU overhead {1e3 * ov_cpu:.2f} ms/run = {100 * rep.ov_cpu:.1f} % of "
-                    f"CPU compute (workers {1e3 * (cpu_w - rep.compute_cpu_s) / n:.2f}, "
-                    f"client {1e3 * rep.client_cpu_s / n:.2f}); cluster start {t_start:.2f} s, "
-                    f"setup {rep.setup_s:.2f} s; load {la} -> {load()}"
-                )
-                shutil.rmtree(out)
-            a, b = results[1][-1], results[2][-1]
-            print(f"repeat {r}: 2-worker / 1-worker throughput {a.wall_s / b.wall_s:.2f}")
+                    report(rep, w, r, n, serial, la)
+                    results[w].append(rep)
+                    shutil.rmtree(out)
+                a, b = results[1][-1], results[2][-1]
+                print(f"repeat {r}: 2-worker / 1-worker throughput {a.wall_s / b.wall_s:.2f}")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     print("\nsummary (median over repeats):")
