@@ -854,9 +854,19 @@ def _execute(
 
     cpu0 = time.process_time()
     t0 = time.perf_counter()
-    try:
+
+    def fill() -> None:
         while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
             submit_next()
+
+    async def fill_at_once() -> None:
+        fill()
+
+    try:
+        # the first tasks are submitted from one callback of the client's event loop, so that
+        # they leave in one message (submitted one by one from here, the second would wait for
+        # the client's next message batch, up to 10 ms later)
+        cl.sync(fill_at_once)
         for fut, result in ac:
             task = inflight.pop(fut)
             if task.worker is not None:
@@ -904,8 +914,7 @@ def _execute(
             if callable(progress):
                 progress(rep)
             refresh()
-            while todo and len(inflight) < INFLIGHT_PER_THREAD * threads:
-                submit_next()
+            fill()
             if not todo and may_help():
                 for a, n in list(workers.items()):
                     while placed.get(a, 0) < n and help_one(a):
