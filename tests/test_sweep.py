@@ -517,3 +517,84 @@ def test_commit_overlaps_only_where_a_core_is_free():
     nthreads = {"tcp://a:1": 1, "tcp://a:2": 1, "tcp://b:1": 2, "tcp://c:1": 1}
     # host a: 2 threads on 2 cores (busy); b: 2 threads on 4 cores; c: 1 thread on 2 cores
     assert spare_core_workers(hello, nthreads) == {"tcp://b:1", "tcp://c:1"}
+
+
+def test_claims_are_reread_and_only_move_the_end_earlier(noisy, tmp_path, monkeypatch):
+    """A task reads its claim before every run: a lower one (Ctrl-C writes 0 for every running
+    task) stops it before its next run; a higher one never extends it."""
+    import shutil
+
+    import bearingsim.simulate
+    from bearingsim.sweep import run_task
+    from bearingsim.sweep_store import read_attrs, write_claim
+
+    src, _ = noisy
+    out = tmp_path / "claims.zarr"
+    base = {
+        "version": __import__("bearingsim").__version__,
+        "channels": None,
+        "writer": "auto",
+        "retry_failed": False,
+        "runs": [(i, NOISY.scenario(i).to_dict()) for i in range(6)],
+    }
+    real = bearingsim.simulate.simulate
+    for first, during, ran in ((4, 0, [0]), (2, 5, [0, 1])):
+        shutil.rmtree(out, ignore_errors=True)
+        shutil.copytree(src, out)
+        for i in range(6):
+            (out / "status" / str(i)).write_bytes(b"\x00")
+        write_claim(out, "t1", first)
+        calls = []
+
+        def sim(sc, during=during, calls=calls):
+            calls.append(sc)
+            if len(calls) == 1:
+                write_claim(out, "t1", during)
+            return real(sc)
+
+        monkeypatch.setattr(bearingsim.simulate, "simulate", sim)
+        task = {**base, "dataset": str(out), "uuid": read_attrs(out)["uuid"], "id": "t1"}
+        recs = run_task(task)
+        assert [r["run"] for r in recs if r["status"] == OK] == ran, (first, during)
+        assert [r["status"] for r in recs[len(ran) :]] == ["handed"] * (6 - len(ran))
+        assert list(np.flatnonzero(read_status(out) == OK)) == ran
+
+
+def test_first_tasks_sized_from_the_timing_probe(client, tmp_path):
+    """The timing probe estimates the run time before the first task: a sweep much shorter than
+    TARGET_TASK_S per thread goes out as one task per worker thread (plus helpers)."""
+    spec = make_spec({"rpm": [1700.0 + 10 * k for k in range(8)]})
+    rep = run_sweep(spec, tmp_path / "e.zarr", client=client)
+    assert rep.n_ok == 8
+    assert rep.estimate_s is not None and 0.0 < rep.estimate_s < 0.5, rep.estimate_s
+    assert rep.tasks - rep.helper_tasks == 2, rep
+
+
+def test_without_an_estimate_timing_tasks_come_first(client, tmp_path):
+    """When the timing probe fails (the first run cannot start: dt_s beyond RK4's limit), each
+    thread first gets a one-run timing task and a two-run task; the failure is recorded."""
+    spec = make_spec({"dt_s": [5e-4, 1e-5], "fault": ["outer", "inner"]}, base={"fs_hz": 2000.0})
+    rep = run_sweep(spec, tmp_path / "f.zarr", client=client)
+    assert rep.estimate_s is None
+    assert (rep.n_ok, rep.n_failed) == (2, 2)
+    assert rep.tasks - rep.helper_tasks == 3, rep  # runs 1 + 1 + 2
+
+
+def test_timing_probe():
+    from bearingsim.sweep_plan import timing_probe
+
+    # 0.2 s at 12 kHz: the integration (~5 ms) outweighs the fixed part (~1 ms)
+    sc = NOISY.scenario(0).replace(duration_s=0.2, fs_hz=12000.0)
+    fixed, rate = timing_probe(sc.to_dict(), 0.2)
+    assert fixed > 0.0 and rate > 0.0
+    assert timing_probe({"model": "no-such-model"}, 0.02) is None  # any error: no estimate
+
+
+def test_local_workers_keep_glibc_dynamic_mmap_threshold(client):
+    """Dask's nanny sets MALLOC_TRIM_THRESHOLD_=65536 in every worker, which turns off glibc's
+    dynamic mmap threshold (each run's arrays then come from fresh pages, ~13 % slower); the
+    local cluster leaves it unset."""
+    if "MALLOC_TRIM_THRESHOLD_" in os.environ:
+        pytest.skip("MALLOC_TRIM_THRESHOLD_ is set in this environment (the workers inherit it)")
+    got = client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_")
+    assert len(got) == 2 and set(got.values()) == {None}

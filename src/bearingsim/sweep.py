@@ -701,7 +701,11 @@ def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any]) -> float | N
         m: cl.submit(timing_probe, sc.to_dict(), TIMING_PROBE_S, pure=False)
         for m, sc in first.items()
     }
-    fit = {m: [r] for m, f in futs.items() if (r := f.result()) is not None}
+    fit = {}
+    for m, f in futs.items():
+        with contextlib.suppress(Exception):  # a lost worker: the estimate only sizes tasks
+            if (r := f.result()) is not None:
+                fit[m] = [r]
     keep.update({("timing", m): f for m, f in futs.items()})
     est = extrapolate(todo, fit)
     return float(np.mean(est)) if fit else None

@@ -56,24 +56,26 @@ def probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
 # ------------------------------------------------------------------------------ timing
 def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | None:
     """Time ``scenario`` for 2 samples and for ``min(duration_s, max_duration_s)`` (in this
-    process): ``fixed_s`` [s] (the two-sample run), ``rate_s_per_s`` (wall time per simulated
-    second beyond it) [s/s], ``duration_s`` and ``wall_s`` of the longer run [s], and ``result``
-    (its :class:`~bearingsim.simulate.SimulationResult`); ``None`` when the run raises."""
+    process): ``fixed_s`` [s] (the two-sample run, the faster of two: the first call of a
+    configuration fills caches), ``rate_s_per_s`` (wall time per simulated second beyond it)
+    [s/s], ``duration_s`` and ``wall_s`` of the longer run [s], and ``result`` (its
+    :class:`~bearingsim.simulate.SimulationResult`); ``None`` when the run raises."""
     from .simulate import simulate
 
     d0 = 2.0 / scenario.fs_hz
     d1 = max(min(scenario.duration_s, max_duration_s), 2 * d0)
     t = []
     res = None
-    for d in (d0, d1):
+    for d in (d0, d0, d1):
         t0 = time.perf_counter()
         try:
             res = simulate(scenario.replace(duration_s=d))
         except BearingsimError:
             return None
         t.append(time.perf_counter() - t0)
-    rate = max(t[1] - t[0], 0.0) / (d1 - d0)
-    return {"duration_s": d1, "wall_s": t[1], "fixed_s": t[0], "rate_s_per_s": rate, "result": res}
+    fixed = min(t[0], t[1])
+    rate = max(t[2] - fixed, 0.0) / (d1 - d0)
+    return {"duration_s": d1, "wall_s": t[2], "fixed_s": fixed, "rate_s_per_s": rate, "result": res}
 
 
 def extrapolate(
@@ -95,8 +97,11 @@ def extrapolate(
 
 def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float, float] | None:
     """On a worker: ``(fixed_s, rate_s_per_s)`` of ``scenario`` from :func:`timing_run`, or
-    ``None`` when it raises."""
-    tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+    ``None`` when it raises anything (the run itself then records its error in the sweep)."""
+    try:
+        tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+    except Exception:
+        return None
     return None if tr is None else (tr["fixed_s"], tr["rate_s_per_s"])
 
 
