@@ -71,12 +71,11 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .errors import ConfigError, check_positive, check_range
+from .errors import ConfigError, check_positive, check_range, read_toml
 
 
 class Model(enum.Enum):
@@ -365,13 +364,7 @@ class Scenario:
     def from_toml(cls, path: str | Path) -> Scenario:
         """Read a scenario TOML file (keys as in the module docstring)."""
         p = Path(path)
-        try:
-            with open(p, "rb") as fh:
-                data = tomllib.load(fh)
-        except OSError as exc:
-            raise ConfigError(f"scenario file {str(p)!r} cannot be read ({exc.strerror})") from None
-        except tomllib.TOMLDecodeError as exc:
-            raise ConfigError(f"scenario file {str(p)!r} is not valid TOML ({exc})") from None
+        data = read_toml(p, "scenario file")
         if "bearing_file" in data and isinstance(data["bearing_file"], str):
             bf = Path(data["bearing_file"])
             if not bf.is_absolute():

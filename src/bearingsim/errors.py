@@ -7,6 +7,8 @@ the offending field, its value and the valid range, so the CLI can print it unch
 from __future__ import annotations
 
 import math
+import tomllib
+from pathlib import Path
 from typing import Any
 
 
@@ -76,3 +78,16 @@ def check_range(
     if bad:
         raise ConfigError(f"{name} = {_fmt(x)}{u} is out of range; valid range {rng}")
     return x
+
+
+def read_toml(path: str | Path, what: str) -> dict[str, Any]:
+    """The parsed TOML file ``path``; a file that cannot be read or parsed raises a one-line
+    :class:`ConfigError` that names it as ``what`` (e.g. ``"sweep file"``, ``"scenario ="``)."""
+    p = Path(path)
+    try:
+        with open(p, "rb") as fh:
+            return tomllib.load(fh)
+    except OSError as exc:
+        raise ConfigError(f"{what} {str(p)!r} cannot be read ({exc.strerror})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{what} {str(p)!r} is not valid TOML ({exc})") from None

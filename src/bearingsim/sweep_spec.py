@@ -49,7 +49,6 @@ import hashlib
 import itertools
 import json
 import math
-import tomllib
 import zlib
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,7 +57,7 @@ from typing import Any
 import numpy as np
 
 from .config import Scenario
-from .errors import ConfigError, check_range
+from .errors import ConfigError, check_range, read_toml
 
 #: identifies the canonical spec
 SPEC_FORMAT = "bearingsim.SweepSpec/1"
@@ -614,14 +613,7 @@ class SweepSpec:
     def from_toml(cls, path: str | Path) -> SweepSpec:
         """Read a sweep TOML file."""
         p = Path(path)
-        try:
-            with open(p, "rb") as fh:
-                data = tomllib.load(fh)
-        except OSError as exc:
-            raise ConfigError(f"sweep file {str(p)!r} cannot be read ({exc.strerror})") from None
-        except tomllib.TOMLDecodeError as exc:
-            raise ConfigError(f"sweep file {str(p)!r} is not valid TOML ({exc})") from None
-        return cls.from_dict(data, origin=p.name, base_dir=p.parent)
+        return cls.from_dict(read_toml(p, "sweep file"), origin=p.name, base_dir=p.parent)
 
 
 def canonical_hash(canonical: dict[str, Any]) -> str:

@@ -34,7 +34,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from ..errors import ConfigError
+from ..errors import ConfigError, read_toml
 from ..geometry import BallBearing, Bearing, RollerBearing
 from ..materials import Material
 
@@ -140,15 +140,7 @@ def bearing_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Bearing:
 def load_bearing_file(path: str | Path) -> Bearing:
     """Read a user bearing TOML file (keys in the module docstring) [SI units]."""
     p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise ConfigError(f"bearing_file = {str(p)!r} cannot be read: {exc.strerror}") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"bearing_file = {str(p)!r} is not valid TOML: {exc}") from None
-    return bearing_from_dict(data, origin=p.name)
+    return bearing_from_dict(read_toml(p, "bearing_file ="), origin=p.name)
 
 
 @functools.lru_cache(maxsize=1)

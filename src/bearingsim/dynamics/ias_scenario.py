@@ -32,12 +32,11 @@ key                             meaning
 from __future__ import annotations
 
 import math
-import tomllib
 from pathlib import Path
 from typing import Any
 
 from ..catalog import resolve_bearing
-from ..errors import ConfigError, check_positive, check_range
+from ..errors import ConfigError, check_positive, check_range, read_toml
 from .ias import ContactLaw, IasParams, SpallLoad
 
 #: scenario key -> (IasParams field or run option, type)
@@ -85,13 +84,7 @@ RUN_DEFAULTS = {"duration_s": 10.0, "dt_s": 1e-6, "output_rate_hz": 48_000.0, "m
 def read_scenario(path: str | Path) -> dict[str, Any]:
     """Read and type-check a scenario TOML; ``bearing_file`` is made absolute."""
     p = Path(path)
-    try:
-        with open(p, "rb") as fh:
-            data = tomllib.load(fh)
-    except OSError as exc:
-        raise ConfigError(f"scenario = {str(p)!r} cannot be read ({exc.strerror})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"scenario = {str(p)!r} is not valid TOML ({exc})") from None
+    data = read_toml(p, "scenario =")
     out: dict[str, Any] = {}
     for k, v in data.items():
         if k not in SCENARIO_KEYS:
