@@ -65,7 +65,6 @@ def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | No
     d0 = 2.0 / scenario.fs_hz
     d1 = max(min(scenario.duration_s, max_duration_s), 2 * d0)
     t = []
-    res = None
     for d in (d0, d0, d1):
         t0 = time.perf_counter()
         try:
