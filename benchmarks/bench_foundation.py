@@ -11,7 +11,7 @@ import time
 import numpy as np
 
 from bearingsim import get_bearing
-from bearingsim.hertz import ball_contact, ellipticity
+from bearingsim.contact.hertz import ball_contact, ellipticity
 from bearingsim.load_distribution import radial_load_distribution
 
 

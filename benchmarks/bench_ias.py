@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from bearingsim import get_bearing
-from bearingsim.dynamics.ias import (
+from bearingsim.dynamics.ias.model import (
     IasParams,
     _forces,
     derive_constants,
@@ -31,7 +31,7 @@ from bearingsim.dynamics.ias import (
     pack_parameters,
     simulate_ias,
 )
-from bearingsim.dynamics.ias_reference import ReferenceRhs, simulate_ias_scipy
+from bearingsim.dynamics.ias.reference import ReferenceRhs, simulate_ias_scipy
 
 
 @njit(cache=True)

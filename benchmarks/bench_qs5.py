@@ -12,9 +12,9 @@ import time
 import numpy as np
 
 from bearingsim.catalog import get_bearing
-from bearingsim.iso16281 import run_iso16281
-from bearingsim.quasi_static import Misalignment, run_quasi_static
-from bearingsim.stiffness import stiffness_vs_cage
+from bearingsim.quasistatic.iso16281 import run_iso16281
+from bearingsim.quasistatic.jones import Misalignment, run_quasi_static
+from bearingsim.quasistatic.stiffness import stiffness_vs_cage
 
 
 def timeit(fn, repeat: int = 7) -> tuple[float, float]:

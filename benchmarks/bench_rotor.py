@@ -14,9 +14,9 @@ import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
-from bearingsim.dynamics import rotor_kernel as rk  # noqa: E402
 from bearingsim.dynamics.integrate import run_fixed  # noqa: E402
-from bearingsim.dynamics.rotor import (  # noqa: E402
+from bearingsim.dynamics.rotor import kernel as rk  # noqa: E402
+from bearingsim.dynamics.rotor.model import (
     LocalFault,
     cwru_rotor_config,
     pack_model,

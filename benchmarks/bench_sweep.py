@@ -38,9 +38,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from bearingsim.simulate import simulate
-from bearingsim.sweep import connect, run_sweep, worker_hello
-from bearingsim.sweep_spec import SweepSpec
+from bearingsim.simulation import simulate
+from bearingsim.sweep.execute import connect, run_sweep, worker_hello
+from bearingsim.sweep.spec import SweepSpec
 
 
 def make_spec(n_runs: int, duration_s: float = 0.5) -> SweepSpec:

@@ -15,8 +15,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
-from bearingsim.dynamics.common import ModelInputs
-from bearingsim.dynamics.defects import FaultLocation, defect_geometry
+from bearingsim.dynamics.ring.base import ModelInputs
+from bearingsim.dynamics.ring.defects import FaultLocation, defect_geometry
 
 
 class Reference:

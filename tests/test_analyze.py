@@ -10,10 +10,10 @@ from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
 from bearingsim.config import Scenario
-from bearingsim.diagnosis import diagnose
 from bearingsim.geometry import characteristic_frequencies
-from bearingsim.signal import envelope_spectrum, fast_kurtogram
-from bearingsim.simulate import simulate
+from bearingsim.signal.core import envelope_spectrum, fast_kurtogram
+from bearingsim.signal.diagnosis import diagnose
+from bearingsim.simulation import simulate
 
 ALLOWED = {"outer", "inner", "ball", "none", "uncertain"}
 #: RMS of the drive-end acceleration of the CWRU normal baseline 97 [m/s^2] (0.0727 g):
@@ -149,7 +149,7 @@ def test_plot_and_text_output(run_cli, tmp_path):
 def test_csv_input_time_and_speed_columns(run_cli, tmp_path):
     """CSV with a time column (fs from it) and, in a second file, a per-sample speed column
     (order tracking: the spectrum is in orders)."""
-    from bearingsim.io import read_cwru_mat
+    from bearingsim.io.cwru import read_cwru_mat
 
     rec = read_cwru_mat(_cwru("135"))
     x = rec.acceleration("DE")[:96000]

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim import ConfigError
-from bearingsim.angle_domain import (
+from bearingsim.signal.angle import (
     SpallEstimator,
     analyze_speed_signal,
     angle_from_speed,
@@ -74,7 +74,7 @@ def test_synchronous_average_recovers_waveform():
     period = TWO_PI / BPFO
     ang = np.arange(0, 40 * TWO_PI, TWO_PI / 2048)
     wave = lambda x: np.sin(TWO_PI * x / period) + 0.3 * np.cos(3 * TWO_PI * x / period)  # noqa: E731
-    from bearingsim.angle_domain import AngleSignal
+    from bearingsim.signal.angle import AngleSignal
 
     sig = AngleSignal(ang, wave(ang) + 1.0, 2048)
     ph, avg, k = synchronous_average(sig, period, 512)

@@ -10,10 +10,10 @@ from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
 from bearingsim.config import Scenario
-from bearingsim.dynamics.common import ModelInputs
-from bearingsim.dynamics.defects import Defect, FaultLocation
-from bearingsim.dynamics.vsm import stiffness_trace
-from bearingsim.simulate import simulate
+from bearingsim.dynamics.ring.base import ModelInputs
+from bearingsim.dynamics.ring.defects import Defect, FaultLocation
+from bearingsim.dynamics.ring.trace import stiffness_trace
+from bearingsim.simulation import simulate
 
 OUTER = {"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}
 

@@ -10,8 +10,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.catalog import get_bearing
+from bearingsim.contact.hertz import line_contact, line_subsurface_stresses
 from bearingsim.errors import ConfigError
-from bearingsim.hertz import line_contact, line_subsurface_stresses
 from bearingsim.life.analytic import mcewen_stresses
 from bearingsim.life.fatigue import inner_contact
 from bearingsim.life.fe import (

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
-from bearingsim.hertz import (
+from bearingsim.contact.hertz import (
     EllipticMethod,
     Race,
     ball_contact,

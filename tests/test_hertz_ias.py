@@ -9,8 +9,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim import ConfigError, get_bearing
-from bearingsim.hertz import Race, combined_stiffness, element_stiffness, roller_contact
-from bearingsim.hertz_ias import (
+from bearingsim.contact.hertz import Race, combined_stiffness, element_stiffness, roller_contact
+from bearingsim.contact.pereira import (
     A1,
     A2,
     C1,

@@ -16,14 +16,14 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_less
 
 from bearingsim import ConfigError, get_bearing
-from bearingsim.dynamics.ias import (
+from bearingsim.dynamics.ias.model import (
     IasParams,
     IasResult,
     derive_constants,
     impact_force,
     simulate_ias,
 )
-from bearingsim.dynamics.ias_reference import simulate_ias_scipy
+from bearingsim.dynamics.ias.reference import simulate_ias_scipy
 from bearingsim.load_distribution import radial_load_distribution
 
 B = get_bearing("NU204-ECP")

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.cli import main
-from bearingsim.dynamics.ias import IasResult
+from bearingsim.dynamics.ias.model import IasResult
 
 #: short runs: dt 1e-5 s (valid, see tests/test_ias.py), 1.5 s simulated, 10 kHz output
 FAST = ["--duration-s", "1.5", "--dt-s", "1e-5", "--output-rate-hz", "10000"]
@@ -77,7 +77,7 @@ def test_ias_text_output(run_cli, tmp_path):
 def encoder_csv(tmp_path_factory):
     """Encoder timestamps (1024 lines/rev) of a simulated 1 mm spall, as a measured IAS file."""
     from bearingsim import get_bearing
-    from bearingsim.dynamics.ias import IasParams, simulate_ias
+    from bearingsim.dynamics.ias.model import IasParams, simulate_ias
 
     r = simulate_ias(IasParams(get_bearing("NU204-ECP")), 2.0, 1e-5, 20_000.0)
     m = r.t > 0.2

@@ -10,9 +10,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.catalog import get_bearing
+from bearingsim.contact.hertz import Race, ball_contact
 from bearingsim.errors import ConfigError
 from bearingsim.geometry import characteristic_frequencies
-from bearingsim.hertz import Race, ball_contact
 from bearingsim.life.iso281 import (
     FC_BALL_TABLE,
     FC_ROLLER_TABLE,
@@ -26,7 +26,7 @@ from bearingsim.life.iso281 import (
     revolutions_to_hours,
     static_capacity,
 )
-from bearingsim.life.iso16281 import load_integrals, raceway_ratings, reference_rating_life
+from bearingsim.life.reference_life import load_integrals, raceway_ratings, reference_rating_life
 
 B6206 = get_bearing("6206")
 B6205 = get_bearing("6205")

@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim import ConfigError, get_bearing
-from bearingsim.hertz import ball_stiffness
+from bearingsim.contact.hertz import ball_stiffness
 from bearingsim.load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
 
 CAGE = np.radians(np.linspace(0.0, 360.0, 721))

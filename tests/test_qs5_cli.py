@@ -7,7 +7,7 @@ import json
 import pytest
 
 from bearingsim.cli import main
-from bearingsim.stiffness import StiffnessResult
+from bearingsim.quasistatic.stiffness import StiffnessResult
 
 BASE = ["stiffness", "6205", "--fy", "500", "--cage-revs", "2", "--points-per-rev", "90"]
 

@@ -12,15 +12,15 @@ from scipy.optimize import brentq
 from bearingsim.catalog import get_bearing
 from bearingsim.errors import ConfigError, SolverError
 from bearingsim.load_distribution import radial_load_distribution
-from bearingsim.quasi_static import (
+from bearingsim.quasistatic._kernels import _assemble, _assemble_speed
+from bearingsim.quasistatic.jones import (
     Misalignment,
     SpeedEffects,
     qs_geometry,
     run_quasi_static,
     solve_equilibrium,
 )
-from bearingsim.quasi_static_kernels import _assemble, _assemble_speed
-from bearingsim.stiffness import StiffnessResult, stiffness_vs_cage
+from bearingsim.quasistatic.stiffness import StiffnessResult, stiffness_vs_cage
 
 B6205 = get_bearing("6205")
 #: seed-QS5-style cases (the seed's own values are cut off; SPEC §5): 6205, radial load 500 N,
@@ -366,7 +366,7 @@ def test_stiffness_result_save_load_lossless(tmp_path):
     r2 = StiffnessResult.load(p)
     np.testing.assert_array_equal(r2.solution.stiffness_matrix, r.solution.stiffness_matrix)
     np.testing.assert_array_equal(r2.k_radial, r.k_radial)
-    from bearingsim.io import to_jsonable
+    from bearingsim.io.jsonable import to_jsonable
 
     assert to_jsonable(r2.to_dict()) == to_jsonable(r.to_dict())
 

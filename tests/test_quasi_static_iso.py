@@ -9,15 +9,15 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.catalog import get_bearing
+from bearingsim.contact.hertz import ball_stiffness
 from bearingsim.errors import ConfigError
-from bearingsim.hertz import ball_stiffness
-from bearingsim.iso16281 import (
+from bearingsim.quasistatic.iso16281 import (
     ISO_INNER_CONFORMITY,
     ISO_OUTER_CONFORMITY,
     iso_geometry,
     run_iso16281,
 )
-from bearingsim.quasi_static import Misalignment, run_quasi_static
+from bearingsim.quasistatic.jones import Misalignment, run_quasi_static
 
 B6205 = get_bearing("6205")
 CAGE = np.radians([0.0, 11.0, 25.0])
@@ -101,7 +101,7 @@ def test_iso_with_misalignment_runs_and_is_close_to_jones():
 
 
 def test_iso_rejects_inertia_loads():
-    from bearingsim.quasi_static import SpeedEffects
+    from bearingsim.quasistatic.jones import SpeedEffects
 
     with pytest.raises(ConfigError, match="not part of the ISO/TS 16281"):
         run_iso16281(B6205, 0.0, fy=100.0, speed=SpeedEffects(100.0, centrifugal=True))

@@ -15,9 +15,11 @@ from scipy.signal import butter, find_peaks, hilbert, sosfiltfilt
 
 from bearingsim.catalog import get_bearing
 from bearingsim.config import Scenario
-from bearingsim.dynamics import rotor_kernel as rk
+from bearingsim.contact.hertz import Race, ball_contact
 from bearingsim.dynamics.integrate import run_fixed
-from bearingsim.dynamics.rotor import (
+from bearingsim.dynamics.rotor import kernel as rk
+from bearingsim.dynamics.rotor.config import BAND_TUNED_HOUSING
+from bearingsim.dynamics.rotor.model import (
     Armature,
     BearingSupport,
     Housing,
@@ -36,11 +38,9 @@ from bearingsim.dynamics.rotor import (
     simulate_rotor,
     static_state,
 )
-from bearingsim.dynamics.rotor_config import BAND_TUNED_HOUSING
-from bearingsim.dynamics.rotor_scenario import rotor_config_from_scenario
+from bearingsim.dynamics.rotor.scenario import rotor_config_from_scenario
 from bearingsim.errors import ConfigError
-from bearingsim.hertz import Race, ball_contact
-from bearingsim.io import read_cwru_mat
+from bearingsim.io.cwru import read_cwru_mat
 
 G0 = 9.80665
 REC132 = CWRU / "12k_Drive_End_OR007@6_2_132.mat"

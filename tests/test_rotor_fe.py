@@ -10,7 +10,7 @@ import pytest
 import scipy.linalg as sla
 from numpy.testing import assert_allclose
 
-from bearingsim.dynamics.rotor_fe import (
+from bearingsim.dynamics.rotor.fe import (
     Disk,
     assemble_rotor,
     beam_element,

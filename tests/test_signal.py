@@ -10,7 +10,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.errors import ConfigError
-from bearingsim.signal import (
+from bearingsim.signal.core import (
     EnvelopeKind,
     amplitude_spectrum,
     angular_resample,
@@ -104,7 +104,7 @@ def test_match_peaks_tolerance_and_snr():
     a = np.full(f.size, 0.01)
     a[f == 108.0] = 1.0  # 0.65 % above the 107.3 Hz target
     a[f == 215.0] = 0.02  # weak line: 6 dB
-    from bearingsim.signal import Spectrum
+    from bearingsim.signal.core import Spectrum
 
     sp = Spectrum(f, a)
     pk = match_peaks(sp, [("BPFO", 107.3), ("2xBPFO", 214.6), ("far", 150.0)], 29.93, tol_rel=0.01)

@@ -17,7 +17,7 @@ from numpy.testing import assert_allclose
 from bearingsim.config import Scenario
 from bearingsim.errors import ConfigError, SolverError
 from bearingsim.results import SimulationResult
-from bearingsim.simulate import model_inputs, simulate
+from bearingsim.simulation import model_inputs, simulate
 
 #: seed VSM §2.5 / CWRU: 0.007 in outer defect at 1796 r/min, 0.014 in inner defect at 1748
 OUTER = {"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}
@@ -279,9 +279,10 @@ def test_second_process_does_not_recompile(tmp_path):
     """Numba's on-disk cache: a second process loads every kernel from the cache."""
     code = (
         "import json, numba\n"
-        "from bearingsim.simulate import simulate\n"
+        "from bearingsim.simulation import simulate\n"
         "from bearingsim.config import Scenario\n"
-        "from bearingsim.dynamics import vsm, tvsm, dem, balance, integrate\n"
+        "from bearingsim.dynamics import integrate\n"
+        "from bearingsim.dynamics.ring import vsm, tvsm, dem, balance\n"
         "for m in ('vsm', 'tvsm', 'dem'):\n"
         "    simulate(Scenario(model=m, fault='outer', duration_s=0.002))\n"
         "miss = sum(sum(d.stats.cache_misses.values()) for d in (integrate.rk4_fixed,\n"

@@ -12,10 +12,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import bearingsim  # noqa: E402
-from bearingsim.dynamics.common import ModelInputs  # noqa: E402
-from bearingsim.dynamics.defects import Defect, FaultLocation  # noqa: E402
-from bearingsim.dynamics.vsm import stiffness_trace  # noqa: E402
-from bearingsim.signal import fast_kurtogram  # noqa: E402
+from bearingsim.dynamics.ring.base import ModelInputs  # noqa: E402
+from bearingsim.dynamics.ring.defects import Defect, FaultLocation  # noqa: E402
+from bearingsim.dynamics.ring.trace import stiffness_trace  # noqa: E402
+from bearingsim.signal.core import fast_kurtogram  # noqa: E402
 
 
 def test_package_level_simulate_and_plots():

@@ -13,9 +13,8 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from bearingsim.errors import ConfigError
-from bearingsim.simulate import simulate
-from bearingsim.sweep import connect, run_sweep
-from bearingsim.sweep_dataset import (
+from bearingsim.simulation import simulate
+from bearingsim.sweep.dataset import (
     FAILED,
     OK,
     PENDING,
@@ -24,7 +23,8 @@ from bearingsim.sweep_dataset import (
     open_dataset,
     read_status,
 )
-from bearingsim.sweep_spec import SweepSpec
+from bearingsim.sweep.execute import connect, run_sweep
+from bearingsim.sweep.spec import SweepSpec
 
 #: short DEM runs at a low sample rate keep the module fast
 BASE = {"model": "dem", "duration_s": 0.05, "fs_hz": 4000.0}
@@ -123,7 +123,7 @@ def test_chunks_bytes_equal_zarr_python(noisy, tmp_path):
     """The fast commit path writes exactly the bytes zarr-python writes for the same data."""
     import zarr
 
-    from bearingsim.sweep_store import _ChunkCodec
+    from bearingsim.sweep.store import _ChunkCodec
 
     out, _ = noisy
     g = zarr.open_group(str(out), mode="r", zarr_format=2)
@@ -159,8 +159,13 @@ def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path, overlap):
     commit inline or in the commit thread overlapping the next run."""
     import shutil
 
-    from bearingsim.sweep import run_task
-    from bearingsim.sweep_store import claim_path, read_attrs, remove_stale_temporaries, write_claim
+    from bearingsim.sweep.execute import run_task
+    from bearingsim.sweep.store import (
+        claim_path,
+        read_attrs,
+        remove_stale_temporaries,
+        write_claim,
+    )
 
     src, _ = noisy
     out = tmp_path / "helped.zarr"
@@ -197,7 +202,7 @@ def test_helper_takes_over_the_tail_of_a_task(noisy, tmp_path, overlap):
 def test_uneven_runs_are_balanced_by_helpers(client, tmp_path, monkeypatch):
     """Long runs at the end of the run order: the worker that runs out of tasks first takes over
     half of the other's remaining runs; every run is computed and counted once."""
-    from bearingsim import sweep
+    from bearingsim.sweep import execute as sweep
 
     monkeypatch.setattr(sweep, "MIN_HELP_S", 0.0)
     rpm = {"start": 1730.0, "stop": 1797.0, "num": 8}
@@ -428,7 +433,7 @@ def test_workers_that_cannot_write_hand_runs_to_the_client(client, tmp_path):
     commits them, nothing is lost."""
 
     def break_commit():  # runs in the worker processes (pickled by value)
-        from bearingsim import sweep_dataset
+        from bearingsim.sweep import dataset as sweep_dataset
 
         def commit(self, *a, **k):
             raise PermissionError("read-only file system")
@@ -437,7 +442,8 @@ def test_workers_that_cannot_write_hand_runs_to_the_client(client, tmp_path):
         sweep_dataset.RunWriter.commit = commit
 
     def restore():
-        from bearingsim import sweep, sweep_dataset
+        from bearingsim.sweep import dataset as sweep_dataset
+        from bearingsim.sweep import execute as sweep
 
         sweep_dataset.RunWriter.commit = sweep_dataset.RunWriter._real_commit
         sweep._WRITERS.clear()
@@ -479,7 +485,7 @@ def test_a_task_that_raises_is_recorded(client, tmp_path):
     ``KilledWorker`` the same way) records its runs as failed; the sweep finishes."""
 
     def break_task():  # runs in the worker processes (pickled by value)
-        from bearingsim import sweep
+        from bearingsim.sweep import execute as sweep
 
         def run_task(task):
             raise RuntimeError("worker lost its disk")
@@ -488,7 +494,7 @@ def test_a_task_that_raises_is_recorded(client, tmp_path):
         sweep.run_task = run_task
 
     def restore():
-        from bearingsim import sweep
+        from bearingsim.sweep import execute as sweep
 
         sweep.run_task = sweep._real_run_task
 
@@ -506,7 +512,7 @@ def test_a_task_that_raises_is_recorded(client, tmp_path):
 
 
 def test_commit_overlaps_only_where_a_core_is_free():
-    from bearingsim.sweep import spare_core_workers
+    from bearingsim.sweep.execute import spare_core_workers
 
     hello = {
         "tcp://a:1": {"host": "a", "cores": 2},
@@ -524,9 +530,9 @@ def test_claims_are_reread_and_only_move_the_end_earlier(noisy, tmp_path, monkey
     task) stops it before its next run; a higher one never extends it."""
     import shutil
 
-    import bearingsim.simulate
-    from bearingsim.sweep import run_task
-    from bearingsim.sweep_store import read_attrs, write_claim
+    import bearingsim.simulation
+    from bearingsim.sweep.execute import run_task
+    from bearingsim.sweep.store import read_attrs, write_claim
 
     src, _ = noisy
     out = tmp_path / "claims.zarr"
@@ -537,7 +543,7 @@ def test_claims_are_reread_and_only_move_the_end_earlier(noisy, tmp_path, monkey
         "retry_failed": False,
         "runs": [(i, NOISY.scenario(i).to_dict()) for i in range(6)],
     }
-    real = bearingsim.simulate.simulate
+    real = bearingsim.simulation.simulate
     for first, during, ran in ((4, 0, [0]), (2, 5, [0, 1])):
         shutil.rmtree(out, ignore_errors=True)
         shutil.copytree(src, out)
@@ -552,7 +558,7 @@ def test_claims_are_reread_and_only_move_the_end_earlier(noisy, tmp_path, monkey
                 write_claim(out, "t1", during)
             return real(sc)
 
-        monkeypatch.setattr(bearingsim.simulate, "simulate", sim)
+        monkeypatch.setattr(bearingsim.simulation, "simulate", sim)
         task = {**base, "dataset": str(out), "uuid": read_attrs(out)["uuid"], "id": "t1"}
         recs = run_task(task)
         assert [r["run"] for r in recs if r["status"] == OK] == ran, (first, during)
@@ -581,7 +587,7 @@ def test_without_an_estimate_timing_tasks_come_first(client, tmp_path):
 
 
 def test_timing_probe():
-    from bearingsim.sweep_plan import timing_probe
+    from bearingsim.sweep.plan import timing_probe
 
     # 0.2 s at 12 kHz: the integration (~5 ms) outweighs the fixed part (~1 ms)
     sc = NOISY.scenario(0).replace(duration_s=0.2, fs_hz=12000.0)

@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from bearingsim.sweep_spec import SweepSpec
+from bearingsim.sweep.spec import SweepSpec
 
 SPEC = """
 [sweep]

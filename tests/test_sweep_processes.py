@@ -18,9 +18,9 @@ import pytest
 from numpy.testing import assert_array_equal
 
 import bearingsim
-from bearingsim.simulate import simulate
-from bearingsim.sweep_dataset import OK, open_dataset, read_status
-from bearingsim.sweep_spec import SweepSpec
+from bearingsim.simulation import simulate
+from bearingsim.sweep.dataset import OK, open_dataset, read_status
+from bearingsim.sweep.spec import SweepSpec
 
 #: runs of ~0.2 s each (DEM, 400 samples, 1250 RK4 steps per sample), so that a kill lands
 #: part-way through the sweep

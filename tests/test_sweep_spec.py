@@ -11,7 +11,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 
 from bearingsim.config import Scenario
 from bearingsim.errors import ConfigError
-from bearingsim.sweep_spec import SweepSpec, expand_axis, spec_differences
+from bearingsim.sweep.spec import SweepSpec, expand_axis, spec_differences
 
 BASE = {"model": "dem", "duration_s": 0.05, "fs_hz": 4000.0}
 

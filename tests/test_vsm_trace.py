@@ -11,15 +11,15 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 from bearingsim import get_bearing
-from bearingsim.dynamics.common import ModelInputs
-from bearingsim.dynamics.defects import (
+from bearingsim.dynamics.ring.base import ModelInputs
+from bearingsim.dynamics.ring.defects import (
     Defect,
     FaultLocation,
     defect_geometry,
     in_defect,
     retention_factor,
 )
-from bearingsim.dynamics.vsm import stiffness_trace
+from bearingsim.dynamics.ring.trace import stiffness_trace
 from bearingsim.errors import ConfigError
 from bearingsim.load_distribution import radial_load_distribution
 

@@ -16,9 +16,9 @@ def __getattr__(name: str):
     does not load the compiled kernels: ``bearingsim.simulate(scenario)``, ``Scenario``,
     ``SimulationResult``."""
     if name == "simulate":
-        import importlib
+        from .simulation import simulate
 
-        return importlib.import_module(".simulate", __name__)  # a callable module
+        return simulate
     if name == "Scenario":
         from .config import Scenario
 

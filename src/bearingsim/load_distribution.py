@@ -33,9 +33,9 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
+from .contact.hertz import element_stiffness
 from .errors import ConfigError, SolverError, check_range
 from .geometry import Bearing
-from .hertz import element_stiffness
 
 
 class RingMotion(enum.Enum):

@@ -21,7 +21,8 @@ from numpy.typing import NDArray
 
 from ._version import __version__
 from .errors import ConfigError
-from .io import atomic_path, to_jsonable
+from .io.atomic import atomic_path
+from .io.jsonable import to_jsonable
 
 #: identifies our files
 FORMAT = "bearingsim.SimulationResult/1"
@@ -197,7 +198,7 @@ class SimulationResult:
         self, channel: str = "acc_y", band: tuple[float, float] | None = None, f_max: float = 600.0
     ):
         """Envelope spectrum of ``channel`` (band from the kurtogram unless given)."""
-        from .signal import envelope_spectrum, fast_kurtogram
+        from .signal.core import envelope_spectrum, fast_kurtogram
 
         x = self[channel]
         if band is None:

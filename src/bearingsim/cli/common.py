@@ -12,7 +12,7 @@ import click
 from .._version import __version__
 from ..catalog import resolve_bearing
 from ..geometry import Bearing
-from ..io import to_jsonable
+from ..io.jsonable import to_jsonable
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})

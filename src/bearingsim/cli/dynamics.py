@@ -135,7 +135,7 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     """
     from tqdm import tqdm
 
-    from ..simulate import simulate, validate_scenario
+    from ..simulation import simulate, validate_scenario
 
     sc = _scenario(scenario_file, kw)
     validate_scenario(sc)  # everything checked before any output (no progress bar before an error)
@@ -232,8 +232,8 @@ def vsm_trace_cmd(
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
     import numpy as np
 
-    from ..dynamics.vsm import stiffness_trace
-    from ..simulate import model_inputs
+    from ..dynamics.ring.trace import stiffness_trace
+    from ..simulation import model_inputs
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o OUT.csv, --plot PNG and/or --json")
@@ -337,7 +337,7 @@ def analyze_cmd(
     "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous.
     """
     from ..catalog import resolve_bearing
-    from ..diagnosis import analyze_record, load_signal
+    from ..signal.diagnosis import analyze_record, load_signal
 
     path, band_v = _parse_band(inputs, band)
     if rpm is not None:

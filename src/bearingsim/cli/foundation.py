@@ -9,9 +9,7 @@ import click
 import numpy as np
 
 from ..catalog import list_bearings
-from ..errors import ConfigError, check_range
-from ..geometry import BallBearing, Bearing, characteristic_frequencies
-from ..hertz import (
+from ..contact.hertz import (
     EllipticMethod,
     Race,
     ball_contact,
@@ -20,6 +18,8 @@ from ..hertz import (
     roller_contact,
     subsurface_stresses,
 )
+from ..errors import ConfigError, check_range
+from ..geometry import BallBearing, Bearing, characteristic_frequencies
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
 from .common import bearing_options, bearing_summary, cli, emit_json, json_option
 

@@ -149,8 +149,8 @@ def ias_cmd(
 ) -> None:
     """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP with an outer-race spall) and analyse
     the instantaneous angular speed in the angle domain."""
-    from ..dynamics.ias import simulate_ias
-    from ..dynamics.ias_scenario import build_scenario, read_scenario
+    from ..dynamics.ias.model import simulate_ias
+    from ..dynamics.ias.scenario import build_scenario, read_scenario
 
     settings: dict[str, Any] = read_scenario(scenario) if scenario else {}
     if bearing_id is not None or bearing_file is not None:
@@ -287,7 +287,7 @@ def analyze_ias_cmd(
     ripple, order peaks and, with a roller bearing, the outer-race spall width (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
-    from ..angle_domain import analyze_speed_signal, resample_to_angle, speed_from_angle
+    from ..signal.angle import analyze_speed_signal, resample_to_angle, speed_from_angle
 
     bearing = None
     if bearing_id is not None or bearing_file is not None:
@@ -299,7 +299,7 @@ def analyze_ias_cmd(
             )
     p = Path(file)
     if p.suffix.lower() == ".nc":
-        from ..dynamics.ias_result import IasResult
+        from ..dynamics.ias.result import IasResult
 
         res = IasResult.load(p)
         bearing = bearing or res.params.bearing
@@ -315,7 +315,7 @@ def analyze_ias_cmd(
         if kind.startswith("angle"):
             angle, speed = v, speed_from_angle(t, v)
         else:
-            from ..angle_domain import angle_from_speed
+            from ..signal.angle import angle_from_speed
 
             angle, speed = angle_from_speed(t, v), v
         sig = resample_to_angle(angle, speed, samples_per_rev)

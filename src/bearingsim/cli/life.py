@@ -133,7 +133,7 @@ def life_cmd(
         inner_race_cycles_per_revolution,
         revolutions_to_hours,
     )
-    from ..life.iso16281 import reference_rating_life
+    from ..life.reference_life import reference_rating_life
 
     fr = check_positive("radial_load_n", radial_load, "N")
     if rpm is not None:

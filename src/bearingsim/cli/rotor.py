@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..dynamics.rotor_config import (
+from ..dynamics.rotor.config import (
     SEED_DISK_DIAMETER_M,
     SEED_ROTOR_MASS_KG,
     SEED_SHAFT_DIAMETER_M,
@@ -203,7 +203,7 @@ def rotor_modes_cmd(
     rotor_kw: dict[str, Any], supports: str, rpm: float, n_modes: int, as_json: bool
 ) -> None:
     """Natural frequencies of the CWRU rotor alone (seed ROTOR table 2 by default)."""
-    from ..dynamics.rotor import rotor_modes
+    from ..dynamics.rotor.model import rotor_modes
 
     if n_modes < 1:
         raise ConfigError(f"n_modes = {n_modes} is out of range; valid range [1, inf)")

@@ -8,8 +8,8 @@ import click
 
 from ..errors import ConfigError, check_range
 from ..geometry import Bearing
-from ..quasi_static import Method, Misalignment, SpeedEffects
-from ..stiffness import SERIES, stiffness_vs_cage
+from ..quasistatic.jones import Method, Misalignment, SpeedEffects
+from ..quasistatic.stiffness import SERIES, stiffness_vs_cage
 from .common import bearing_options, cli, emit_json, json_option
 
 

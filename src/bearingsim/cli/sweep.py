@@ -67,8 +67,8 @@ def plan_cmd(
     as_json: bool,
 ) -> None:
     """Number of runs and an estimate of compute time and disk from short timing runs."""
-    from ..sweep import plan_sweep
-    from ..sweep_spec import SweepSpec
+    from ..sweep.execute import plan_sweep
+    from ..sweep.spec import SweepSpec
 
     _count("timing_runs", timing_runs, 0)
     check_range("timing_duration_s", timing_duration_s, 0.0, lo_open=True, unit="s")
@@ -145,8 +145,8 @@ def run_cmd(
     as_json: bool,
 ) -> None:
     """Run the sweep (or resume it: only runs not yet committed are computed)."""
-    from ..sweep import SweepInterrupted, check_cluster_args, run_sweep
-    from ..sweep_spec import SweepSpec
+    from ..sweep.execute import SweepInterrupted, check_cluster_args, run_sweep
+    from ..sweep.spec import SweepSpec
 
     workers = _count("workers", workers)
     runs_per_task = _count("runs_per_task", runs_per_task)
@@ -196,7 +196,7 @@ def run_cmd(
 @json_option
 def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: bool) -> None:
     """Counts by label and axis value, failures with their errors."""
-    from ..sweep_dataset import open_dataset
+    from ..sweep.dataset import open_dataset
 
     _count("max_failures", max_failures, 0)
     ds = open_dataset(dataset)

@@ -5,7 +5,8 @@ Modules: :mod:`.damage` (damage law, S–N fit, torsion check), :mod:`.analytic`
 line-contact field), :mod:`.fe` (scikit-fem plane-strain section under a moving Hertz pressure),
 :mod:`.validation` (FE vs McEwen), :mod:`.fatigue` (semi-decoupled damage loop,
 :class:`LifeResult`), :mod:`.iso281` (ISO 281 rating, static capacity, cycle/revolution/hour
-conversions), :mod:`.iso16281` (reference rating life from the load distribution).
+conversions), :mod:`.reference_life` (ISO/TS 16281 reference rating life from the load
+distribution).
 """
 
 from .damage import GCR15_TORSION, DamageLaw, SNCurve, fit_sn_curve, torsion_check
@@ -18,7 +19,8 @@ from .iso281 import (
     inner_race_cycles_per_revolution,
     static_capacity,
 )
-from .iso16281 import reference_rating_life
+from .reference_life import reference_rating_life
+from .validation import validate_against_hertz
 
 __all__ = [
     "GCR15_TORSION",

@@ -83,7 +83,7 @@ def inner_contact(
     method : ElementLoadMethod
         Stribeck (seed) or the discrete distribution.
     """
-    from ..hertz import Race, ball_contact, roller_contact
+    from ..contact.hertz import Race, ball_contact, roller_contact
     from ..load_distribution import radial_load_distribution, stribeck_qmax
 
     fr = check_positive("radial_load_n", radial_load, "N")
@@ -173,7 +173,8 @@ class LifeResult:
 
     def save(self, path: str | Path) -> Path:
         """Write the result losslessly to a NumPy ``.npz`` file (atomic) and return the path."""
-        from ..io import atomic_path, to_jsonable
+        from ..io.atomic import atomic_path
+        from ..io.jsonable import to_jsonable
 
         p = Path(path)
         arrays = {k: getattr(self, k) for k in self._ARRAYS}

@@ -248,7 +248,7 @@ def static_capacity(bearing: Bearing) -> StaticCapacity:
     conformities enter)."""
     from scipy.optimize import brentq
 
-    from ..hertz import Race, ball_contact, roller_contact
+    from ..contact.hertz import Race, ball_contact, roller_contact
 
     ca = math.cos(bearing.contact_angle)
     Z = bearing.n_elements

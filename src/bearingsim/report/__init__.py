@@ -14,7 +14,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Literal
 
-from ..io import write_json
+from ..io.atomic import write_json
 
 Status = Literal["match", "explained", "mismatch"]
 

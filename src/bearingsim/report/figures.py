@@ -8,7 +8,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-from ..io import atomic_path  # noqa: E402
+from ..io.atomic import atomic_path  # noqa: E402
 
 
 def save_figure(fig, path: str | Path, dpi: int = 110) -> Path:

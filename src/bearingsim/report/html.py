@@ -6,7 +6,7 @@ import html
 from pathlib import Path
 
 from .._version import __version__
-from ..io import atomic_open
+from ..io.atomic import atomic_open
 
 
 def _fmt(v) -> str:

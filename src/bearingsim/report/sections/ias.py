@@ -9,7 +9,13 @@ from dataclasses import replace
 import numpy as np
 
 from ...catalog import get_bearing
-from ...dynamics.ias import ContactLaw, IasParams, derive_constants, impact_force, simulate_ias
+from ...dynamics.ias.model import (
+    ContactLaw,
+    IasParams,
+    derive_constants,
+    impact_force,
+    simulate_ias,
+)
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 

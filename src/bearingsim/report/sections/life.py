@@ -17,7 +17,7 @@ from ...life.iso281 import (
     dynamic_load_rating,
     inner_race_cycles_per_revolution,
 )
-from ...life.iso16281 import reference_rating_life
+from ...life.reference_life import reference_rating_life
 from ...life.validation import validate_against_hertz
 from .. import Context, Row, Section, compare
 from ..figures import save_figure

@@ -8,10 +8,10 @@ import math
 import numpy as np
 
 from ...catalog import get_bearing
-from ...iso16281 import iso_geometry, run_iso16281
 from ...load_distribution import radial_load_distribution
-from ...quasi_static import Misalignment, run_quasi_static
-from ...stiffness import stiffness_vs_cage
+from ...quasistatic.iso16281 import iso_geometry, run_iso16281
+from ...quasistatic.jones import Misalignment, run_quasi_static
+from ...quasistatic.stiffness import stiffness_vs_cage
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 

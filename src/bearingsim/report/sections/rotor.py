@@ -11,8 +11,14 @@ from pathlib import Path
 import numpy as np
 from scipy.signal import find_peaks
 
-from ...diagnosis import load_signal
-from ...dynamics.rotor import (
+from ...dynamics.rotor.config import (
+    BAND_TUNED_HOUSING,
+    DEFAULT_HOUSING_DAMPING_N_S_M,
+    DEFAULT_HOUSING_MASS_KG,
+    DEFAULT_HOUSING_STIFFNESS_N_M,
+)
+from ...dynamics.rotor.fe import Disk, assemble_rotor, complex_modes
+from ...dynamics.rotor.model import (
     Armature,
     LocalFault,
     Shaft,
@@ -22,14 +28,8 @@ from ...dynamics.rotor import (
     rotor_modes,
     simulate_rotor,
 )
-from ...dynamics.rotor_config import (
-    BAND_TUNED_HOUSING,
-    DEFAULT_HOUSING_DAMPING_N_S_M,
-    DEFAULT_HOUSING_MASS_KG,
-    DEFAULT_HOUSING_STIFFNESS_N_M,
-)
-from ...dynamics.rotor_fe import Disk, assemble_rotor, complex_modes
-from ...signal import amplitude_spectrum, envelope, envelope_spectrum
+from ...signal.core import amplitude_spectrum, envelope, envelope_spectrum
+from ...signal.diagnosis import load_signal
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 

@@ -12,14 +12,14 @@ from scipy.optimize import brentq
 
 from ...catalog import get_bearing
 from ...config import Scenario
-from ...diagnosis import analyze_record, diagnose, load_signal
-from ...dynamics.common import ModelInputs
-from ...dynamics.defects import Defect, FaultLocation
-from ...dynamics.vsm import stiffness_trace
+from ...dynamics.ring.base import ModelInputs
+from ...dynamics.ring.defects import Defect, FaultLocation
+from ...dynamics.ring.trace import stiffness_trace
 from ...geometry import characteristic_frequencies
 from ...load_distribution import radial_load_distribution
-from ...signal import envelope_spectrum, fast_kurtogram
-from ...simulate import simulate
+from ...signal.core import envelope_spectrum, fast_kurtogram
+from ...signal.diagnosis import analyze_record, diagnose, load_signal
+from ...simulation import simulate
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 

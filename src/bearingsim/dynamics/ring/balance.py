@@ -1,0 +1,568 @@
+"""Quasi-static force balance of the inner ring over the discrete balls with a local defect.
+
+This is the static core shared by the VSM, TVSM and DEM kernels (seed VSM eqs. (4)–(16)). At
+time ``t`` ball ``j`` sits at ``psi_j = w_cage t + alpha_0 + (j-1) 2 pi / Z`` (eq. (12)); a rigid
+inner-ring displacement ``u = (u_x, u_y)`` gives it the *nominal* deflection
+``delta_j = u_x sin psi_j + u_y cos psi_j - P_d/2`` (the Harris form of eqs. (4)–(7)) and the load
+
+    Q_j = f_j K (delta_j - o_j)_+^n,                                  (seed VSM eqs. (9), (11))
+
+with ``f_j = 1, o_j = 0`` for a ball on intact raceway and, for a ball over the defect
+(eq. (15)), either
+
+* the retention factor of eq. (11) evaluated implicitly: ``gamma_j = (1 - h_min/delta_j)^1.5``
+  so that ``gamma_j K delta_j^1.5 = K (delta_j - h_min)_+^1.5`` — i.e. ``o_j = h_min``,
+  ``f_j = 1`` (default, "physical"); or
+* a prescribed constant retention factor ``f_j = gamma`` (``o_j = 0``), which is how the seed
+  draws its figs. 6–7 (``gamma = 0.38``).
+
+The balance ``sum_j Q_j (sin psi_j, cos psi_j) = (F_x, F_y)`` — all three lines of eq. (16):
+both components, hence also the load-line one — is solved for ``u`` by Newton's method on the
+convex potential ``sum f K (delta - o)_+^(n+1)/(n+1) - F.u`` with backtracking, warm-started
+from the previous instant. In the fixed-step integration the defect indicator is averaged over
+each RK4 stage's quadrature cell and the ball load is the corresponding blend of the intact and
+the defective load (:func:`cell_halfwidth`, :func:`ball_load`); traces and the adaptive
+integrator use the point values. The load-zone flag ``lambda_j`` of eq. (14) is ``delta_j > 0`` (the
+contact decides, default) or, for the seed's literal rule, membership of the fixed window
+``[theta_0 - psi_L, theta_0 + psi_L]`` with a given ``psi_L`` (a ball outside it carries no
+load even when compressed).
+
+Stiffness matrices returned (2×2, symmetric, [N/m]):
+
+secant ``S = sum_j s_j e_j e_j^T``, ``s_j = Q_j / (u . e_j)``
+    Ball force over the ring approach measured from the concentric position, so that
+    ``S u = F`` holds exactly at the static solution. This is the dimensionally consistent form
+    of seed VSM eqs. (17)–(18) used by the VSM (SPEC §1.5). It requires ``P_d >= 0``.
+tangent ``T = sum_j n Q_j / (delta_j - o_j) e_j e_j^T``
+    ``-dF_bearing/du``, the bearing stiffness of Petersen et al. (2015), used by the TVSM.
+
+The compiled functions read their inputs from the flat model parameter vector ``p`` whose
+layout is given by the ``P_*`` offsets below (shared by every kernel in this package).
+
+Developer note: Numba's on-disk cache of a function is keyed on its own source file only, so
+the cached cfuncs of :mod:`.vsm`, :mod:`.tvsm` and :mod:`.dem` keep the constants of this
+module that were current when they were compiled. After editing this module delete the
+package's ``__pycache__/*.nbi`` and ``*.nbc`` files.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ...load_distribution import _solve_1d
+
+# ---------------------------------------------------------------- parameter vector layout
+P_MASS = 0  #: vibrating mass m [kg]
+P_DAMP = 1  #: equivalent damping c_eq [N s/m]
+P_FX = 2  #: applied force F_x [N]
+P_FY = 3  #: applied force F_y [N]
+P_Z = 4  #: number of balls Z [-]
+P_K = 5  #: ball load-deflection constant K [N/m^n]
+P_N = 6  #: load-deflection exponent n [-]
+P_CLR = 7  #: half diametral clearance P_d/2 [m]
+P_WCAGE = 8  #: cage angular speed 2 pi f_m [rad/s]
+P_WSHAFT = 9  #: shaft angular speed 2 pi f_s [rad/s]
+P_ALPHA0 = 10  #: first-ball azimuth alpha_0 [rad]
+P_FAULT = 11  #: 0 none, 1 outer, 2 inner
+P_BETA0 = 12  #: defect left edge at t = 0, beta_0 [rad]
+P_DBETA = 13  #: defect angular extent Delta_beta [rad]
+P_DFAC = 14  #: load factor of a ball over the defect (prescribed gamma, else 1) [-]
+P_DOFF = 15  #: deflection offset of a ball over the defect (h_min, else 0) [m]
+P_T0 = 16  #: time of the first table row [s]
+P_HTAB = 17  #: table spacing (half the RK4 step) [s]
+P_NTAB = 18  #: number of table rows [-]
+P_PERBALL = 19  #: 1 to fill per-ball auxiliary outputs [-]
+P_WARMX = 20  #: warm start u_x of the on-the-fly static solve (scratch) [m]
+P_WARMY = 21  #: warm start u_y (scratch) [m]
+P_TOL = 22  #: relative force tolerance of the static solve [-]
+P_PSIL = 23  #: fixed load-zone half angle psi_L of eq. (14) [rad]; 0 = contact-defined zone
+P_TH0 = 24  #: load direction theta_0 = atan2(F_x, F_y) [rad]
+P_SSTEP = 25  #: sin(2 pi / Z) [-]
+P_CSTEP = 26  #: cos(2 pi / Z) [-]
+P_CT = 27  #: time of the cached ball frame (scratch, NaN = empty) [s]
+P_CS0 = 28  #: cached sin of ball 1's azimuth (scratch) [-]
+P_CC0 = 29  #: cached cos of ball 1's azimuth (scratch) [-]
+P_CRD = 30  #: cached ball-1 angle past the defect edge (scratch) [rad]
+P_CRW = 31  #: cached ball-1 angle past the fixed-zone edge (scratch) [rad]
+P_CELL = 32  #: 1 = average the defect/zone indicators over the RK4 quadrature cell of t [-]
+P_CHD = 33  #: cached angular half-width of the defect cell (scratch) [rad]
+P_CHW = 34  #: cached angular half-width of the zone cell (scratch) [rad]
+HEADER = 40  #: first table entry
+
+#: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
+NCOL = 8
+C_UX, C_UY, C_SXX, C_SXY, C_SYY, C_TXX, C_TXY, C_TYY = range(NCOL)
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True, inline="always")
+def hertz(dj, n):
+    """``dj^n`` with the fast path ``dj sqrt(dj)`` for balls (n = 1.5)."""
+    return dj * math.sqrt(dj) if n == 1.5 else dj**n
+
+
+@njit(cache=True, inline="always")
+def hertz_and_slope(d, K, n):
+    """``K d^n`` [N] and ``n K d^(n-1)`` [N/m] for ``d > 0`` (no division for n = 1.5)."""
+    if n == 1.5:
+        sd = math.sqrt(d)
+        return K * d * sd, 1.5 * K * sd
+    q = K * d**n
+    return q, n * q / d
+
+
+@njit(cache=True, inline="always")
+def wrap(x):
+    """``x`` modulo 2 pi in [0, 2 pi) [rad]."""
+    r = x - TWO_PI * math.floor(x / TWO_PI)
+    return r if r < TWO_PI else 0.0
+
+
+@njit(cache=True, inline="always")
+def frame(t, p):
+    """Angles of ball 1 at time ``t``: its azimuth (eq. (12)), its angle past the defect's left
+    edge modulo 2 pi (eqs. (13), (15)) and past the lower edge of a fixed load-zone window
+    (eq. (14)) [rad]."""
+    th = p[P_WCAGE] * t + p[P_ALPHA0]  # seed VSM eq. (12)
+    fault = int(p[P_FAULT])
+    rel_d = 0.0
+    if fault == 2:
+        rel_d = wrap(th - p[P_WSHAFT] * t - p[P_BETA0])  # eq. (13): defect turns with the shaft
+    elif fault == 1:
+        rel_d = wrap(th - p[P_BETA0])
+    rel_w = 0.0
+    if p[P_PSIL] > 0.0:
+        rel_w = wrap(th - p[P_TH0] + p[P_PSIL])
+    return th, rel_d, rel_w
+
+
+@njit(cache=True, inline="always")
+def cell_halfwidth(t, p):
+    """Half-width [s] of the RK4 quadrature cell of stage time ``t`` (0 = point evaluation).
+
+    RK4 integrates a time-only forcing with Simpson's weights 1/6, 4/6, 1/6 at ``t``,
+    ``t + dt/2``, ``t + dt``; giving each stage time the cell ``[t - dt/6, t + dt/6]`` (step
+    boundaries, shared by two steps) or ``[t - dt/3, t + dt/3]`` (midpoints) tiles the time axis
+    with cells proportional to the weights. Averaging a step function (a ball entering the
+    defect) over these cells makes its time integral exact instead of first-order in dt.
+    """
+    if p[P_CELL] <= 0.0:
+        return 0.0
+    h = p[P_HTAB]  # dt / 2
+    k = int(math.floor((t - p[P_T0]) / h + 0.5))
+    return h / 3.0 if k % 2 == 0 else 2.0 * h / 3.0
+
+
+@njit(cache=True, inline="always")
+def frame_cached(t, p):
+    """``(sin, cos)`` of ball 1's azimuth, the two relative angles of :func:`frame` and the
+    angular half-widths of the defect and zone cells at ``t``, cached in the scratch slots of
+    ``p`` (RK4 evaluates each stage time twice)."""
+    if t == p[P_CT]:
+        return p[P_CS0], p[P_CC0], p[P_CRD], p[P_CRW], p[P_CHD], p[P_CHW]
+    th, rd, rw = frame(t, p)
+    s0 = math.sin(th)
+    c0 = math.cos(th)
+    ht = cell_halfwidth(t, p)
+    w_rel = p[P_WCAGE] - (p[P_WSHAFT] if int(p[P_FAULT]) == 2 else 0.0)
+    hd = abs(w_rel) * ht
+    hw = p[P_WCAGE] * ht
+    p[P_CT] = t
+    p[P_CS0] = s0
+    p[P_CC0] = c0
+    p[P_CRD] = rd
+    p[P_CRW] = rw
+    p[P_CHD] = hd
+    p[P_CHW] = hw
+    return s0, c0, rd, rw, hd, hw
+
+
+@njit(cache=True, inline="always")
+def _overlap(a0, a1, b0, b1):
+    lo = a0 if a0 > b0 else b0
+    hi = a1 if a1 < b1 else b1
+    return hi - lo if hi > lo else 0.0
+
+
+@njit(cache=True, inline="always")
+def cell_fraction(r, half, width):
+    """Fraction of the angle interval ``[r - half, r + half]`` (``r`` in [0, 2 pi)) lying in
+    ``[0, width)`` modulo 2 pi; the indicator ``r < width`` when ``half == 0``."""
+    if half <= 0.0:
+        return 1.0 if r < width else 0.0
+    if width + half <= r <= TWO_PI - half:
+        return 0.0  # the cell does not reach the window (the common case)
+    if half <= r <= width - half:
+        return 1.0
+    a0 = r - half
+    a1 = r + half
+    ov = (
+        _overlap(a0, a1, 0.0, width)
+        + _overlap(a0, a1, TWO_PI, TWO_PI + width)
+        + _overlap(a0, a1, -TWO_PI, width - TWO_PI)
+    )
+    return ov / (a1 - a0)
+
+
+@njit(cache=True, inline="always")
+def ball_flags(rd, rw, hd, hw, fault, psil2, dbeta):
+    """Defect fraction ``f_d`` (eq. (15): 1 = over the defect) and zone factor ``f_z``
+    (eq. (14) fixed window: 1 = inside) of one ball from its angle past the defect edge ``rd``
+    and past the window edge ``rw``, averaged over the quadrature cell [-]."""
+    fr = cell_fraction(rd, hd, dbeta) if fault != 0 else 0.0
+    zf = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
+    return fr, zf
+
+
+@njit(cache=True, inline="always")
+def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
+    """Load Q [N], stiffness dQ/d(u.e) [N/m] and contact potential [J] of one ball whose ring
+    approach is ``u.e`` [m]: the blend ``(1 - f_d) Q_intact + f_d Q_defect`` (times ``f_z``)
+    with ``Q_intact = K (u.e - P_d/2)_+^n`` and ``Q_defect = gamma K (u.e - P_d/2 - h)_+^n``
+    (seed VSM eqs. (9), (11))."""
+    q = 0.0
+    dq = 0.0
+    pot = 0.0
+    if zf > 0.0:
+        if fr < 1.0:
+            d = ue - clr
+            if d > 0.0:
+                w = (1.0 - fr) * zf
+                qo, ko = hertz_and_slope(d, K, n)
+                q += w * qo
+                dq += w * ko
+                pot += w * qo * d / (n + 1.0)
+        if fr > 0.0:
+            d = ue - clr - doff
+            if d > 0.0:
+                w = fr * zf * dfac
+                qi, ki = hertz_and_slope(d, K, n)
+                q += w * qi
+                dq += w * ki
+                pot += w * qi * d / (n + 1.0)
+    return q, dq, pot
+
+
+@njit(cache=True, inline="always")
+def advance(r, step):
+    """``r + step`` wrapped into [0, 2 pi) (``0 <= r < 2 pi``, ``0 < step < 2 pi``)."""
+    r += step
+    return r - TWO_PI if r >= TWO_PI else r
+
+
+@njit(cache=True, inline="always")
+def constants(p):
+    """``(P_d/2, h, gamma, K, n)`` of the ball load law from ``p``."""
+    return p[P_CLR], p[P_DOFF], p[P_DFAC], p[P_K], p[P_N]
+
+
+@njit(cache=True)
+def initial_guess(sn, cs, clr, K, n, fx, fy):
+    """Ring displacement of the intact bearing along the load line (start for Newton) [m]."""
+    F = math.hypot(fx, fy)
+    th0 = math.atan2(fx, fy)
+    s0 = math.sin(th0)
+    c0 = math.cos(th0)
+    cosl = np.empty(sn.size)
+    ones = np.ones(sn.size)
+    for j in range(sn.size):
+        cosl[j] = sn[j] * s0 + cs[j] * c0
+    dr = _solve_1d(cosl, ones, clr, K, n, F)
+    return dr * s0, dr * c0
+
+
+@njit(cache=True)
+def static_kernel(times, point, p, table, residual, ux, uy):
+    """Static solution of eq. (16) and the secant/tangent matrices at every time of ``times``.
+
+    Fills ``table`` (shape ``(len(times), NCOL)``) and ``residual`` (relative force residual
+    ``|sum Q e - F| / |F|``); ``(ux, uy)`` is the warm start (NaN = cold start) and Newton
+    starts from the linear extrapolation of the two previous solutions. The defect and zone
+    indicators are cell averages (``p[P_CELL]``) unless ``point``. Damped Newton: a step is
+    halved until the force residual decreases (the Newton direction of a convex potential's
+    gradient is a descent direction of the residual norm); a start that does not converge is
+    retried from the intact bearing's load-line solution. Returns the last ``(ux, uy)``.
+
+    Written as one loop over scalars (no array-argument helper calls in the hot path: each such
+    call costs reference-count updates that dominate a 9-ball sum).
+    """
+    Z = int(p[P_Z])
+    sn = np.empty(Z)
+    cs = np.empty(Z)
+    fr = np.empty(Z)
+    zf = np.empty(Z)
+    wc = p[P_WCAGE]
+    ws = p[P_WSHAFT]
+    a0 = p[P_ALPHA0]
+    fault = p[P_FAULT]
+    beta0 = p[P_BETA0]
+    dbeta = p[P_DBETA]
+    psil = p[P_PSIL]
+    psil2 = 2.0 * psil
+    th0 = p[P_TH0]
+    ss = p[P_SSTEP]
+    cc = p[P_CSTEP]
+    step = TWO_PI / Z
+    clr = p[P_CLR]
+    doff = p[P_DOFF]
+    dfac = p[P_DFAC]
+    K = p[P_K]
+    n = p[P_N]
+    fx = p[P_FX]
+    fy = p[P_FY]
+    scale = math.hypot(fx, fy)
+    if scale <= 0.0:
+        scale = 1.0
+    tol = p[P_TOL]
+    cell = p[P_CELL] > 0.0 and not point
+    hh = p[P_HTAB]
+    t0 = p[P_T0]
+    w_rel = abs(wc - (ws if fault == 2.0 else 0.0))
+    px = math.nan
+    py = math.nan
+    for i in range(times.size):
+        t = times[i]
+        # ---- ball positions and defect/zone indicators (eqs. 12-15)
+        th = wc * t + a0
+        rd = 0.0
+        if fault == 2.0:
+            rd = wrap(th - ws * t - beta0)
+        elif fault == 1.0:
+            rd = wrap(th - beta0)
+        rw = wrap(th - th0 + psil) if psil > 0.0 else 0.0
+        hd = 0.0
+        hw = 0.0
+        if cell:
+            k = int(math.floor((t - t0) / hh + 0.5))
+            ht = hh / 3.0 if k % 2 == 0 else 2.0 * hh / 3.0
+            hd = w_rel * ht
+            hw = wc * ht
+        s0 = math.sin(th)
+        c0 = math.cos(th)
+        for j in range(Z):
+            sn[j] = s0
+            cs[j] = c0
+            fr[j] = cell_fraction(rd, hd, dbeta) if fault != 0.0 else 0.0
+            zf[j] = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
+            rd = advance(rd, step)
+            rw = advance(rw, step)
+            s1 = s0 * cc + c0 * ss
+            c0 = c0 * cc - s0 * ss
+            s0 = s1
+        # ---- start
+        if not (math.isfinite(ux) and math.isfinite(uy)):
+            gx, gy = initial_guess(sn, cs, clr, K, n, fx, fy)
+        elif math.isfinite(px):
+            gx = 2.0 * ux - px
+            gy = 2.0 * uy - py
+        else:
+            gx = ux
+            gy = uy
+        px = ux
+        py = uy
+        bx = gx
+        by = gy
+        rbest = math.inf
+        sxx = sxy = syy = txx = txy = tyy = 0.0
+        for attempt in range(2):
+            if attempt == 1:
+                if rbest <= tol:
+                    break
+                gx, gy = initial_guess(sn, cs, clr, K, n, fx, fy)
+            vx = gx
+            vy = gy
+            rbest = math.inf
+            lam = 1.0
+            dx = 0.0
+            dy = 0.0
+            it = 0
+            while True:
+                # contact sums at (vx, vy)
+                qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
+                for j in range(Z):
+                    ue = vx * sn[j] + vy * cs[j]
+                    q, kk, _e = ball_load(ue, fr[j], zf[j], clr, doff, dfac, K, n)
+                    if q > 0.0:
+                        a = sn[j]
+                        b = cs[j]
+                        qx += q * a
+                        qy += q * b
+                        kxx += kk * a * a
+                        kxy += kk * a * b
+                        kyy += kk * b * b
+                        sk = q / ue  # secant from the concentric position
+                        lxx += sk * a * a
+                        lxy += sk * a * b
+                        lyy += sk * b * b
+                rx = qx - fx
+                ry = qy - fy
+                r = math.hypot(rx, ry) / scale
+                tr = kxx + kyy
+                if it > 0 and r >= rbest and tr > 0.0 and lam > 1e-12:
+                    lam *= 0.5  # damped Newton: halve the step until the residual decreases
+                    vx = bx + lam * dx
+                    vy = by + lam * dy
+                    continue
+                bx = vx
+                by = vy
+                rbest = r
+                sxx, sxy, syy, txx, txy, tyy = lxx, lxy, lyy, kxx, kxy, kyy
+                if r <= tol or it >= 100:
+                    break
+                it += 1
+                lam = 1.0
+                if tr <= 0.0:
+                    # no ball in contact: move along the force until contact
+                    dx = 1e-7 * fx / scale
+                    dy = 1e-7 * fy / scale
+                    rbest = math.inf
+                else:
+                    reg = 1e-12 * tr
+                    a11 = kxx + reg
+                    a22 = kyy + reg
+                    det = a11 * a22 - kxy * kxy
+                    if det <= 1e-14 * tr * tr or not math.isfinite(det):
+                        dx = -rx / tr  # one ball in contact: gradient step
+                        dy = -ry / tr
+                    else:
+                        dx = -(a22 * rx - kxy * ry) / det
+                        dy = -(-kxy * rx + a11 * ry) / det
+                vx = bx + dx
+                vy = by + dy
+        row = table[i]
+        row[C_UX] = bx
+        row[C_UY] = by
+        row[C_SXX] = sxx
+        row[C_SXY] = sxy
+        row[C_SYY] = syy
+        row[C_TXX] = txx
+        row[C_TXY] = txy
+        row[C_TYY] = tyy
+        residual[i] = rbest
+        ux = bx
+        uy = by
+    return ux, uy
+
+
+@njit(cache=True)
+def quasi_static_path(times, p, table, residual, ux, uy):
+    """Static solution and stiffness matrices at every time of ``times`` (indicators as
+    ``p[P_CELL]`` says); see :func:`static_kernel`. Returns the last ``(ux, uy)``."""
+    return static_kernel(times, False, p, table, residual, ux, uy)
+
+
+@njit(cache=True)
+def table_row(t, p):
+    """Index of the table row for time ``t`` (nearest half step)."""
+    j = int((t - p[P_T0]) / p[P_HTAB] + 0.5)
+    nt = int(p[P_NTAB])
+    if j < 0:
+        j = 0
+    elif j >= nt:
+        j = nt - 1
+    return HEADER + NCOL * j
+
+
+@njit(cache=True)
+def static_on_the_fly(t, p, row, point):
+    """Static solution at arbitrary ``t`` (warm start kept in ``p``), filling ``row``; the
+    defect/zone indicators are point values when ``point`` (else as ``p[P_CELL]`` says).
+
+    Used by the exact right-hand sides that the adaptive integrator calls at arbitrary times
+    and for the outputs at samples next to a defect edge.
+    """
+    times = np.empty(1)
+    times[0] = t
+    tab = np.empty((1, NCOL))
+    res = np.empty(1)
+    ux, uy = static_kernel(times, point, p, tab, res, p[P_WARMX], p[P_WARMY])
+    p[P_WARMX] = ux
+    p[P_WARMY] = uy
+    row[:] = tab[0]
+    return res[0]
+
+
+@njit(cache=True)
+def per_ball(t, p, ux, uy, out, k0, fill):
+    """Number of loaded balls at ring displacement ``u`` and time ``t``; when ``fill``, also
+    write the ball loads Q_j [N] at ``out[k0:k0+Z]`` and the contact deformations
+    ``(Q_j/K)^(1/n)`` [m] at ``out[k0+Z:k0+2Z]`` (point values at ``t``; no allocation)."""
+    Z = int(p[P_Z])
+    s0, c0, rd, rw, _hd, _hw = frame_cached(t, p)
+    hd = 0.0
+    hw = 0.0
+    step = TWO_PI / Z
+    fault = int(p[P_FAULT])
+    psil2 = 2.0 * p[P_PSIL]
+    ss = p[P_SSTEP]
+    cc = p[P_CSTEP]
+    dbeta = p[P_DBETA]
+    clr, doff, dfac, K, n = constants(p)
+    n_loaded = 0
+    for j in range(Z):
+        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
+        if q > 0.0:
+            n_loaded += 1
+        if fill:
+            out[k0 + j] = q
+            out[k0 + Z + j] = (q / K) ** (1.0 / n) if q > 0.0 else 0.0
+        rd = advance(rd, step)
+        rw = advance(rw, step)
+        s1 = s0 * cc + c0 * ss
+        c0 = c0 * cc - s0 * ss
+        s0 = s1
+    return n_loaded
+
+
+@njit(cache=True)
+def has_partial(t, p):
+    """Whether some ball's cell-averaged defect or zone indicator at ``t`` is fractional, i.e.
+    differs from its point value (a defect or window edge lies within the cell)."""
+    if p[P_CELL] <= 0.0:
+        return False
+    Z = int(p[P_Z])
+    _s0, _c0, rd, rw, hd, hw = frame_cached(t, p)
+    step = TWO_PI / Z
+    fault = int(p[P_FAULT])
+    psil2 = 2.0 * p[P_PSIL]
+    for _j in range(Z):
+        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, p[P_DBETA])
+        if 0.0 < fr < 1.0 or 0.0 < zf < 1.0:
+            return True
+        rd = advance(rd, step)
+        rw = advance(rw, step)
+    return False
+
+
+@njit(cache=True)
+def output_row(t, p, out_row):
+    """Row of quasi-static values for an *output* sample at ``t``: the table row, or a point
+    re-solve (warm-started from it) when a defect/zone edge lies within the cell. Returns the
+    offset ``r`` such that ``out_row[r + C_*]`` holds the values."""
+    r = table_row(t, p)
+    if not has_partial(t, p):
+        return p, r
+    p[P_WARMX] = p[r + C_UX]
+    p[P_WARMY] = p[r + C_UY]
+    static_on_the_fly(t, p, out_row, True)
+    return out_row, 0
+
+
+@njit(cache=True)
+def fill_aux_common(t, p, ux, uy, kxx, kxy, kyy, acc_x, acc_y, out):
+    """Fill the auxiliary outputs shared by all models (see :mod:`.common`)."""
+    out[0] = acc_x
+    out[1] = acc_y
+    out[2] = kxx
+    out[3] = kxy
+    out[4] = kyy
+    th0 = p[P_TH0]
+    s = math.sin(th0)
+    c = math.cos(th0)
+    out[5] = kxx * s * s + 2.0 * kxy * s * c + kyy * c * c
+    out[6] = per_ball(t, p, ux, uy, out, 7, p[P_PERBALL] > 0.5)

@@ -1,0 +1,411 @@
+"""Inputs, parameter packing and the chunked integration driver shared by the VSM, TVSM and DEM.
+
+Every model of this package is a 2-DOF ring (seed VSM eq. (19)) with state
+``y = (u_x, u_y, v_x, v_y)`` — displacement [m] and velocity [m/s] of the inner ring relative to
+the outer ring — whose right-hand side is a Numba ``cfunc`` (:data:`..integrate.RHS_SIG`)
+reading the flat parameter vector laid out in :mod:`.balance`. The VSM and TVSM need the
+quasi-static solution at every RK4 stage time; :func:`integrate_model` tabulates it on the
+half-step grid (compiled, warm-started) chunk by chunk, so that the whole stepping loop stays
+compiled and memory stays bounded for long runs.
+
+Auxiliary outputs per sample (all models), in this order: ``acc_x, acc_y`` [m/s^2],
+``k_xx, k_xy, k_yy`` [N/m], ``k_load`` (stiffness along the load direction ``theta_0``) [N/m],
+``n_loaded`` [-], then, when per-ball outputs are requested, ``Q_1..Q_Z`` [N] and the contact
+deformations ``(Q_j/K)^(1/n)`` [m].
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...contact.hertz import element_stiffness
+from ...errors import ConfigError, check_positive, check_range
+from ...geometry import BallBearing, Bearing, characteristic_frequencies
+from ..integrate import run_adaptive, run_fixed
+from . import balance as bl
+from .defects import FAULT_CODE, Defect, FaultLocation, defect_geometry
+
+#: number of fixed auxiliary outputs before the per-ball block
+N_AUX_FIXED = 7
+AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
+
+#: seed VSM table 1: vibrating mass [kg] for an outer-ring / inner-ring model
+SEED_MASS_OUTER_KG = 0.063
+SEED_MASS_INNER_KG = 0.045
+#: seed VSM table 1 / Petersen et al. (2015): equivalent damping [N s/m]
+SEED_DAMPING = 300.0
+
+
+@dataclass(frozen=True)
+class ModelInputs:
+    """Physical inputs common to the VSM, TVSM and DEM (SI units).
+
+    Parameters
+    ----------
+    bearing : BallBearing
+        Geometry and material (ball bearing).
+    fx, fy : float
+        Constant radial force on the inner ring [N] (seed table 1: 10 N and 50 N; include
+        the rotor weight).
+    shaft_hz : float
+        Inner-ring speed f_s [Hz]; the cage turns at the FTF.
+    defect : Defect
+        The local defect (``FaultLocation.NONE`` for a healthy bearing).
+    first_ball_angle : float
+        Azimuth of ball 1 at ``t = 0``, ``alpha_0`` [rad].
+    mass : float
+        Vibrating mass m of eq. (19) [kg].
+    damping : float
+        Equivalent damping c_eq [N s/m].
+    stiffness : float or None
+        Ball load–deflection constant K [N/m^1.5] overriding the Hertz value (seed eq. (10)).
+    clearance : float or None
+        Diametral clearance P_d [m] overriding the bearing's.
+    retention_factor : float or None
+        Prescribed constant ``gamma`` for a ball over the defect (seed figs. 6–7); ``None``
+        evaluates eq. (11) implicitly from the geometric drop ``h_min``.
+    load_zone_half_angle : float or None
+        ``None`` (default): a ball is in the load zone when its nominal deflection is positive
+        (contact decides). A value ``psi_L`` [rad] applies the seed's literal eq. (14): only
+        balls inside the fixed window ``theta_0 +/- psi_L`` carry load.
+    tol : float
+        Relative force tolerance of the static balance [-].
+    """
+
+    bearing: Bearing
+    fx: float
+    fy: float
+    shaft_hz: float
+    defect: Defect = Defect()
+    first_ball_angle: float = 0.0
+    mass: float = SEED_MASS_OUTER_KG
+    damping: float = SEED_DAMPING
+    stiffness: float | None = None
+    clearance: float | None = None
+    retention_factor: float | None = None
+    load_zone_half_angle: float | None = None
+    tol: float = 1e-12
+
+    def __post_init__(self) -> None:
+        b = self.bearing
+        if not isinstance(b, BallBearing):
+            raise ConfigError(
+                f"bearing = {getattr(b, 'id', b)!r} is not a ball bearing; the VSM/DEM/TVSM "
+                "models need a ball bearing"
+            )
+        fx = check_range("fx_n", self.fx, unit="N")
+        fy = check_range("fy_n", self.fy, unit="N")
+        if math.hypot(fx, fy) == 0.0:
+            raise ConfigError(
+                "radial load |(fx_n, fy_n)| = 0 N: the ring position is undetermined; "
+                "valid range (0, inf) N"
+            )
+        object.__setattr__(self, "fx", fx)
+        object.__setattr__(self, "fy", fy)
+        object.__setattr__(self, "shaft_hz", check_positive("shaft_hz", self.shaft_hz, "Hz"))
+        object.__setattr__(self, "mass", check_positive("mass_kg", self.mass, "kg"))
+        object.__setattr__(
+            self, "damping", check_range("damping_n_s_m", self.damping, 0.0, unit="N s/m")
+        )
+        object.__setattr__(
+            self,
+            "first_ball_angle",
+            check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad"),
+        )
+        if self.stiffness is not None:
+            object.__setattr__(
+                self, "stiffness", check_positive("stiffness_n_m15", self.stiffness, "N/m^1.5")
+            )
+        pd = b.diametral_clearance if self.clearance is None else self.clearance
+        pd = check_range("clearance_m", pd, 0.0, 0.5 * b.element_diameter, unit="m")
+        if self.clearance is not None:
+            object.__setattr__(self, "clearance", pd)
+        if self.retention_factor is not None:
+            object.__setattr__(
+                self,
+                "retention_factor",
+                check_range("retention_factor", self.retention_factor, 0.0, 1.0),
+            )
+        if self.load_zone_half_angle is not None:
+            object.__setattr__(
+                self,
+                "load_zone_half_angle",
+                check_range(
+                    "load_zone_half_angle_rad",
+                    self.load_zone_half_angle,
+                    0.0,
+                    math.pi,
+                    lo_open=True,
+                    hi_open=True,
+                    unit="rad",
+                ),
+            )
+        if not isinstance(self.defect, Defect):
+            raise ConfigError(f"defect = {self.defect!r} is not a Defect")
+        if self.defect.location is not FaultLocation.NONE:
+            defect_geometry(b, self.defect)  # validates the width against the ball
+        object.__setattr__(self, "tol", check_range("tol", self.tol, 0.0, 1e-6, lo_open=True))
+
+    @property
+    def diametral_clearance(self) -> float:
+        """P_d used [m]."""
+        return self.bearing.diametral_clearance if self.clearance is None else self.clearance
+
+    @property
+    def k_ball(self) -> float:
+        """Ball constant K used [N/m^1.5] (Hertz, seed eq. (10), unless overridden)."""
+        if self.stiffness is not None:
+            return self.stiffness
+        return element_stiffness(self.bearing)[0]
+
+    @property
+    def cage_hz(self) -> float:
+        """Cage frequency f_m = FTF [Hz]."""
+        return characteristic_frequencies(self.bearing, self.shaft_hz).ftf_hz
+
+    @property
+    def theta0(self) -> float:
+        """Load direction from +y towards +x [rad]."""
+        return math.atan2(self.fx, self.fy)
+
+    def header(self, per_ball: bool = False) -> NDArray[np.float64]:
+        """The parameter vector header (layout :mod:`.balance`), without a table."""
+        p = np.zeros(bl.HEADER)
+        p[bl.P_MASS] = self.mass
+        p[bl.P_DAMP] = self.damping
+        p[bl.P_FX] = self.fx
+        p[bl.P_FY] = self.fy
+        p[bl.P_Z] = self.bearing.n_elements
+        p[bl.P_K] = self.k_ball
+        p[bl.P_N] = 1.5
+        p[bl.P_CLR] = 0.5 * self.diametral_clearance
+        p[bl.P_WCAGE] = 2.0 * math.pi * self.cage_hz
+        p[bl.P_WSHAFT] = 2.0 * math.pi * self.shaft_hz
+        p[bl.P_ALPHA0] = self.first_ball_angle
+        p[bl.P_FAULT] = FAULT_CODE[self.defect.location]
+        p[bl.P_BETA0] = self.defect.angle
+        p[bl.P_DFAC] = 1.0
+        if self.defect.location is not FaultLocation.NONE:
+            g = defect_geometry(self.bearing, self.defect)
+            p[bl.P_DBETA] = g.delta_beta
+            if self.retention_factor is None:
+                p[bl.P_DOFF] = g.h_min  # eq. (11) implicit: gamma K delta^1.5 = K(delta-h)^1.5
+            else:
+                p[bl.P_DFAC] = self.retention_factor
+        p[bl.P_NTAB] = 0
+        p[bl.P_PERBALL] = 1.0 if per_ball else 0.0
+        p[bl.P_WARMX] = math.nan
+        p[bl.P_WARMY] = math.nan
+        p[bl.P_TOL] = self.tol
+        p[bl.P_PSIL] = self.load_zone_half_angle or 0.0
+        p[bl.P_TH0] = self.theta0
+        Z = self.bearing.n_elements
+        p[bl.P_SSTEP] = math.sin(2.0 * math.pi / Z)
+        p[bl.P_CSTEP] = math.cos(2.0 * math.pi / Z)
+        p[bl.P_CT] = math.nan
+        return p
+
+
+def static_path(inputs: ModelInputs, times: NDArray[np.float64]):
+    """Quasi-static solution at ``times`` [s]: ``(table (m, NCOL), residual (m,))``."""
+    p = inputs.header()
+    t = np.ascontiguousarray(times, dtype=float)
+    table = np.empty((t.size, bl.NCOL))
+    res = np.empty(t.size)
+    bl.quasi_static_path(t, p, table, res, math.nan, math.nan)
+    return table, res
+
+
+@dataclass(frozen=True)
+class ModelKernel:
+    """Compiled pieces of one model.
+
+    ``rhs``/``aux`` are the fixed-step versions (reading the tabulated quasi-static solution
+    when ``needs_table``); ``rhs_exact``/``aux_exact`` solve the static balance on the fly and
+    may be called at any time (adaptive integrator, checks). ``stiffness`` names which table
+    stiffness the model uses (``"secant"``, ``"tangent"`` or ``"state"``).
+    """
+
+    name: str
+    rhs: Callable
+    aux: Callable
+    rhs_exact: Callable
+    aux_exact: Callable
+    needs_table: bool
+    stiffness: str
+
+
+@dataclass(frozen=True)
+class RawRun:
+    """Output of :func:`integrate_model`: sample times [s], states, auxiliary outputs and
+    solver facts."""
+
+    t: NDArray[np.float64]
+    y: NDArray[np.float64]
+    aux: NDArray[np.float64]
+    dt: float
+    decim: int
+    solver: str
+    static_residual_max: float
+    n_steps: int
+
+
+def n_aux(inputs: ModelInputs, per_ball: bool) -> int:
+    """Number of auxiliary outputs per sample."""
+    return N_AUX_FIXED + (2 * inputs.bearing.n_elements if per_ball else 0)
+
+
+def max_frequency(inputs: ModelInputs, use: str = "tangent", n: int = 721) -> float:
+    """Largest natural angular frequency ``sqrt(lambda_max(K)/m)`` over one cage revolution of
+    the quasi-static path [rad/s] (for choosing the step)."""
+    t_cage = 1.0 / inputs.cage_hz
+    times = np.linspace(0.0, t_cage, n)
+    table, _ = static_path(inputs, times)
+    if use == "secant":
+        a, b, c = table[:, bl.C_SXX], table[:, bl.C_SXY], table[:, bl.C_SYY]
+    else:
+        a, b, c = table[:, bl.C_TXX], table[:, bl.C_TXY], table[:, bl.C_TYY]
+    lam = 0.5 * (a + c) + np.sqrt(0.25 * (a - c) ** 2 + b * b)
+    return float(math.sqrt(np.max(lam) / inputs.mass))
+
+
+def integrate_model(
+    kernel: ModelKernel,
+    inputs: ModelInputs,
+    y0: NDArray[np.float64],
+    fs: float,
+    n_out: int,
+    decim: int,
+    *,
+    per_ball: bool = False,
+    chunk: int = 4800,
+    bound: float = 1.0,
+    cell_average: bool = True,
+    progress: Callable[[int], None] | None = None,
+) -> RawRun:
+    """Fixed-step RK4 integration of ``kernel`` from ``y0`` at ``t = 0``.
+
+    Output every ``1/fs`` seconds (``n_out`` samples including ``t = 0``) with ``decim`` steps
+    per sample. Runs in chunks of ``chunk`` samples; for table models the quasi-static solution
+    is tabulated on the chunk's half-step grid first (compiled).
+
+    Parameters
+    ----------
+    kernel : ModelKernel
+        The model.
+    inputs : ModelInputs
+        Physical inputs.
+    y0 : ndarray, shape (4,)
+        Initial state [m, m, m/s, m/s].
+    fs : float
+        Output sample rate [Hz].
+    n_out : int
+        Number of output samples.
+    decim : int
+        RK4 steps per output sample.
+    per_ball : bool
+        Also output per-ball loads and deformations.
+    chunk : int
+        Output samples per chunk.
+    bound : float
+        Divergence guard on every state component (|u| [m], |v| [m/s]).
+    cell_average : bool
+        Average the defect and fixed-zone indicators over each RK4 stage's quadrature cell
+        (:func:`.balance.cell_halfwidth`), which resolves the instants a ball enters or leaves
+        the defect to second order; ``False`` = point evaluation (first order).
+    progress : callable, optional
+        Called with the number of samples done after each chunk.
+    """
+    header = inputs.header(per_ball)
+    na = n_aux(inputs, per_ball)
+    dt = 1.0 / (fs * decim)
+    h = 0.5 * dt
+    header[bl.P_CELL] = 1.0 if cell_average else 0.0
+    header[bl.P_HTAB] = h
+    t_all = np.empty(n_out)
+    y_all = np.empty((n_out, 4))
+    a_all = np.empty((n_out, na))
+    y = np.ascontiguousarray(y0, dtype=float).copy()
+    res_max = 0.0
+    ux = uy = math.nan
+    i0 = 0
+    while True:
+        i1 = min(i0 + chunk, n_out - 1)
+        m = i1 - i0 + 1
+        t_start = i0 / fs
+        header[bl.P_T0] = t_start
+        header[bl.P_CT] = math.nan
+        if kernel.needs_table:
+            n_tab = 2 * (m - 1) * decim + 1
+            times = t_start + h * np.arange(n_tab)
+            table = np.empty((n_tab, bl.NCOL))
+            res = np.empty(n_tab)
+            ux, uy = bl.quasi_static_path(times, header, table, res, ux, uy)
+            res_max = max(res_max, float(res.max()))
+            p = np.concatenate([header, table.ravel()])
+            p[bl.P_T0] = t_start
+            p[bl.P_HTAB] = h
+            p[bl.P_NTAB] = n_tab
+        else:
+            p = header.copy()
+        tr = run_fixed(
+            kernel.rhs,
+            kernel.aux,
+            y,
+            p,
+            dt=dt,
+            n_out=m,
+            decim=decim,
+            n_aux=na,
+            bound=bound,
+            t0=t_start,
+        )
+        s = 0 if i0 == 0 else 1
+        t_all[i0 + s : i1 + 1] = tr.t[s:]
+        y_all[i0 + s : i1 + 1] = tr.y[s:]
+        a_all[i0 + s : i1 + 1] = tr.aux[s:]
+        y = tr.y[-1].copy()
+        if progress is not None:
+            progress(i1 + 1)
+        if i1 >= n_out - 1:
+            break
+        i0 = i1
+    return RawRun(t_all, y_all, a_all, dt, decim, "rk4", res_max, (n_out - 1) * decim)
+
+
+def integrate_model_adaptive(
+    kernel: ModelKernel,
+    inputs: ModelInputs,
+    y0: NDArray[np.float64],
+    fs: float,
+    n_out: int,
+    *,
+    per_ball: bool = False,
+    rtol: float = 1e-9,
+    atol: float = 1e-15,
+    bound: float = 1.0,
+) -> RawRun:
+    """Dormand–Prince 5(4) integration with the exact (on-the-fly static solve) right-hand
+    side, output at ``k / fs`` [s]; for checking the fixed-step results."""
+    p = inputs.header(per_ball)
+    na = n_aux(inputs, per_ball)
+    t_eval = np.arange(n_out) / fs
+    tr = run_adaptive(
+        kernel.rhs_exact,
+        kernel.aux_exact,
+        y0,
+        p,
+        t_eval,
+        n_aux=na,
+        rtol=rtol,
+        atol=atol,
+        h0=1e-7,
+        hmax=1.0 / fs,
+        bound=bound,
+    )
+    return RawRun(tr.t, tr.y, tr.aux, math.nan, 0, "dopri5", math.nan, tr.n_steps)

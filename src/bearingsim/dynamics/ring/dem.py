@@ -1,0 +1,170 @@
+"""DEM: displacement-excitation model, the seed VSM's first baseline.
+
+The classic nonlinear 2-DOF ball-bearing model (Sawalhi & Randall 2008, MSSP 22(8) 1924–1951;
+Petersen et al. 2015, MSSP 50–51, 139–160): the geometric drop of a ball over the defect enters
+its deflection directly and the nonlinear Hertz forces of all balls are summed at the *dynamic*
+ring displacement ``u``:
+
+    m u'' + c_eq u' + sum_j f_j K (u . e_j - P_d/2 - o_j)_+^1.5 e_j = F,
+
+with ``o_j = h_min`` (seed VSM eqs. (1)–(2)) for a ball over the defect (eq. (15)) and 0
+otherwise (or ``f_j = gamma`` when a constant retention factor is prescribed). Same inputs,
+defect geometry and kinematics as the VSM (:mod:`.balance`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import cfunc, njit
+
+from ..integrate import RHS_SIG
+from . import balance as bl
+from .base import ModelKernel
+
+
+@njit(cache=True, inline="always")
+def ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, Z, fault, psil2, dbeta, ss, cc, clr, doff, dfac, K, n):
+    """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
+    ball 1's direction ``(s0, c0)`` and angles past the defect/zone edges (scalars only: this is
+    the DEM's hot loop)."""
+    step = bl.TWO_PI / Z
+    gx = 0.0
+    gy = 0.0
+    jxx = 0.0
+    jxy = 0.0
+    jyy = 0.0
+    for _j in range(Z):
+        # a ball over the defect loses the geometric drop h_min from its deflection
+        fr, zf = bl.ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
+        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
+        if q > 0.0:
+            gx += q * s0
+            gy += q * c0
+            jxx += kk * s0 * s0
+            jxy += kk * s0 * c0
+            jyy += kk * c0 * c0
+        rd = bl.advance(rd, step)
+        rw = bl.advance(rw, step)
+        s1 = s0 * cc + c0 * ss
+        c0 = c0 * cc - s0 * ss
+        s0 = s1
+    return gx, gy, jxx, jxy, jyy
+
+
+@njit(cache=True)
+def dem_force(t, ux, uy, p, point):
+    """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
+    displacement ``u`` and time ``t`` (cell-averaged defect indicator, or point values when
+    ``point``)."""
+    s0, c0, rd, rw, hd, hw = bl.frame_cached(t, p)  # seed VSM eqs. (12)-(15)
+    if point:
+        hd = 0.0
+        hw = 0.0
+    return ball_sum(
+        ux,
+        uy,
+        s0,
+        c0,
+        rd,
+        rw,
+        hd,
+        hw,
+        int(p[bl.P_Z]),
+        int(p[bl.P_FAULT]),
+        2.0 * p[bl.P_PSIL],
+        p[bl.P_DBETA],
+        p[bl.P_SSTEP],
+        p[bl.P_CSTEP],
+        p[bl.P_CLR],
+        p[bl.P_DOFF],
+        p[bl.P_DFAC],
+        p[bl.P_K],
+        p[bl.P_N],
+    )
+
+
+@cfunc(RHS_SIG, cache=True)
+def dem_rhs(t, y, p, dydt):
+    """DEM right-hand side: nonlinear Hertz forces at the dynamic displacement (written out
+    with scalar helpers only, so that nothing but arithmetic runs per call).
+
+    The ball-frame block below is a hand-inlined copy of ``bl.frame_cached`` (the same
+    arithmetic: results are bitwise equal); calling ``frame_cached`` or :func:`dem_force`
+    instead made DEM 15-20 % slower in ``benchmarks/bench_dynamics.py`` (2026-11-21), so keep
+    the two in step when either changes."""
+    if t == p[bl.P_CT]:  # the ball frame at this instant was computed for the previous stage
+        s0 = p[bl.P_CS0]
+        c0 = p[bl.P_CC0]
+        rd = p[bl.P_CRD]
+        rw = p[bl.P_CRW]
+        hd = p[bl.P_CHD]
+        hw = p[bl.P_CHW]
+    else:
+        wc = p[bl.P_WCAGE]
+        fault = p[bl.P_FAULT]
+        th = wc * t + p[bl.P_ALPHA0]  # seed VSM eq. (12)
+        rd = 0.0
+        if fault == 2.0:
+            rd = bl.wrap(th - p[bl.P_WSHAFT] * t - p[bl.P_BETA0])  # eqs. (13), (15)
+        elif fault == 1.0:
+            rd = bl.wrap(th - p[bl.P_BETA0])
+        rw = bl.wrap(th - p[bl.P_TH0] + p[bl.P_PSIL]) if p[bl.P_PSIL] > 0.0 else 0.0
+        hd = 0.0
+        hw = 0.0
+        if p[bl.P_CELL] > 0.0:
+            hh = p[bl.P_HTAB]
+            k = int(math.floor((t - p[bl.P_T0]) / hh + 0.5))
+            ht = hh / 3.0 if k % 2 == 0 else 2.0 * hh / 3.0
+            hd = abs(wc - (p[bl.P_WSHAFT] if fault == 2.0 else 0.0)) * ht
+            hw = wc * ht
+        s0 = math.sin(th)
+        c0 = math.cos(th)
+        p[bl.P_CT] = t
+        p[bl.P_CS0] = s0
+        p[bl.P_CC0] = c0
+        p[bl.P_CRD] = rd
+        p[bl.P_CRW] = rw
+        p[bl.P_CHD] = hd
+        p[bl.P_CHW] = hw
+    gx, gy, _a, _b, _c = ball_sum(
+        y[0],
+        y[1],
+        s0,
+        c0,
+        rd,
+        rw,
+        hd,
+        hw,
+        int(p[bl.P_Z]),
+        int(p[bl.P_FAULT]),
+        2.0 * p[bl.P_PSIL],
+        p[bl.P_DBETA],
+        p[bl.P_SSTEP],
+        p[bl.P_CSTEP],
+        p[bl.P_CLR],
+        p[bl.P_DOFF],
+        p[bl.P_DFAC],
+        p[bl.P_K],
+        p[bl.P_N],
+    )
+    m = p[bl.P_MASS]
+    c = p[bl.P_DAMP]
+    dydt[0] = y[2]
+    dydt[1] = y[3]
+    dydt[2] = (p[bl.P_FX] - gx - c * y[2]) / m  # DEM equation of motion
+    dydt[3] = (p[bl.P_FY] - gy - c * y[3]) / m
+
+
+@cfunc(RHS_SIG, cache=True)
+def dem_aux(t, y, p, out):
+    """DEM auxiliary outputs (point values at t); the stiffness is the tangent at the state."""
+    gx, gy, jxx, jxy, jyy = dem_force(t, y[0], y[1], p, True)
+    m = p[bl.P_MASS]
+    c = p[bl.P_DAMP]
+    ax = (p[bl.P_FX] - gx - c * y[2]) / m
+    ay = (p[bl.P_FY] - gy - c * y[3]) / m
+    bl.fill_aux_common(t, p, y[0], y[1], jxx, jxy, jyy, ax, ay, out)
+
+
+KERNEL = ModelKernel("dem", dem_rhs, dem_aux, dem_rhs, dem_aux, False, "state")

@@ -1,0 +1,333 @@
+"""Quasi-static VSM stiffness traces vs cage angle (seed VSM §2.2–2.4, figs. 5–12, tables 2–3).
+
+The static balance of seed VSM eq. (16) over the discrete balls (:mod:`.balance`) at a sequence
+of cage angles: per-ball contact forces, deformations and secant stiffnesses, the effective
+stiffness in the load direction and the load-zone events (a ball entering or leaving the zone
+or the defect).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import ConfigError
+from ...io.atomic import atomic_open
+from ...load_distribution import radial_load_distribution
+from . import balance as bl
+from .base import ModelInputs, static_path
+from .defects import FaultLocation, defect_geometry
+
+
+@dataclass(frozen=True)
+class StiffnessTrace:
+    """Quasi-static VSM quantities vs cage angle (seed VSM figs. 5–12, tables 2–3).
+
+    Per-ball effective stiffnesses are the secant-matrix contributions of ball ``j``:
+    ``k_j = s_j cos^2(psi_j - theta_0)`` (load direction), ``k_jx = s_j sin^2 psi_j``,
+    ``k_jy = s_j cos^2 psi_j`` with ``s_j = Q_j/(u . e_j)`` [N/m] (see module docstring).
+
+    Attributes
+    ----------
+    cage_angle : ndarray (m,)
+        Cage angle ``theta_m`` [rad].
+    shaft_angle : ndarray (m,)
+        Inner-ring rotation angle ``2 pi f_s t`` [rad].
+    displacement : ndarray (m, 2)
+        Static ring displacement (u_x, u_y) [m].
+    k_load, k_x, k_y, k_xy : ndarray (m,)
+        Total effective stiffness along the load, in x, in y and the coupling [N/m].
+    ball_load : ndarray (m, Z)
+        Contact force Q_j [N].
+    ball_deformation : ndarray (m, Z)
+        Contact deformation ``(Q_j/K)^(2/3)`` [m] (what remains after the drop).
+    ball_k_load, ball_k_x, ball_k_y : ndarray (m, Z)
+        Per-ball effective stiffness [N/m].
+    in_zone : ndarray (m, Z) of bool
+        Load-zone flag ``lambda_j`` (eq. (14)): nominal deflection > 0.
+    in_defect : ndarray (m, Z) of bool
+        Ball over the defect (eq. (15)).
+    residual : ndarray (m,)
+        Relative force residual of eq. (16) [-].
+    theta0 : float
+        Load direction [rad].
+    psi_l0 : float
+        Load-zone half angle ``arccos(P_d / (2 delta_r))`` of the intact bearing at cage angle
+        0 (eq. (8)) [rad].
+    label : str
+        Description (fault, retention factor, stiffness used).
+    """
+
+    cage_angle: NDArray[np.float64]
+    shaft_angle: NDArray[np.float64]
+    displacement: NDArray[np.float64]
+    k_load: NDArray[np.float64]
+    k_x: NDArray[np.float64]
+    k_y: NDArray[np.float64]
+    k_xy: NDArray[np.float64]
+    ball_load: NDArray[np.float64]
+    ball_deformation: NDArray[np.float64]
+    ball_k_load: NDArray[np.float64]
+    ball_k_x: NDArray[np.float64]
+    ball_k_y: NDArray[np.float64]
+    in_zone: NDArray[np.bool_]
+    in_defect: NDArray[np.bool_]
+    residual: NDArray[np.float64]
+    theta0: float
+    psi_l0: float
+    label: str = ""
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def n_loaded(self) -> NDArray[np.int64]:
+        """Number of balls in the load zone [-]."""
+        return self.in_zone.sum(axis=1)
+
+    def events(self) -> list[tuple[float, int, str]]:
+        """Load-zone and defect events ``(cage angle [deg], ball (1-based), kind)`` with kind in
+        ``enters_zone``, ``leaves_zone``, ``enters_defect``, ``leaves_defect``; angles by linear
+        interpolation of the nominal deflection (zone) or the sample of the change (defect,
+        refined to the exact kinematic crossing)."""
+        deg = np.degrees(self.cage_angle)
+        out: list[tuple[float, int, str]] = []
+        z = self.in_zone.astype(int)
+        dz = np.diff(z, axis=0)
+        for i, j in zip(*np.nonzero(dz), strict=True):
+            kind = "enters_zone" if dz[i, j] > 0 else "leaves_zone"
+            a0, a1 = self._margin[i, j], self._margin[i + 1, j]
+            f = a0 / (a0 - a1) if a0 != a1 else 0.5
+            out.append((float(deg[i] + f * (deg[i + 1] - deg[i])), int(j) + 1, kind))
+        dd = np.diff(self.in_defect.astype(int), axis=0)
+        for i, j in zip(*np.nonzero(dd), strict=True):
+            kind = "enters_defect" if dd[i, j] > 0 else "leaves_defect"
+            out.append((float(self._defect_crossing(i, j, kind)), int(j) + 1, kind))
+        return sorted(out)
+
+    @property
+    def _margin(self) -> NDArray[np.float64]:
+        return self.meta["zone_margin"]
+
+    def _defect_crossing(self, i: int, j: int, kind: str) -> float:
+        """Exact kinematic crossing of a defect edge between samples i and i+1 [deg]: the
+        ball-to-edge angle is linear in the cage angle. A ball enters an outer defect at its
+        left edge; the faster inner defect catches the ball with its right edge."""
+        m = self.meta
+        th = self.cage_angle[i : i + 2]
+        psi = th + m["alpha0"] + 2 * math.pi * j / m["Z"]
+        inner = m["fault"] == "inner"
+        edge = m["beta0"] + (th / m["cage_per_shaft"] if inner else 0.0)
+        enters = kind == "enters_defect"
+        target = m["delta_beta"] if enters == inner else 0.0
+        r = psi - edge - target
+        r = r - 2 * math.pi * np.round(r[0] / (2 * math.pi))
+        f = r[0] / (r[0] - r[1]) if r[0] != r[1] else 0.5
+        return math.degrees(th[0] + f * (th[1] - th[0]))
+
+    def to_csv(self, path: str | Path) -> None:
+        """Write the trace as CSV (one row per cage angle; SI units, angles in deg), atomically."""
+        Z = self.ball_load.shape[1]
+        cols = [
+            "cage_angle_deg",
+            "shaft_angle_deg",
+            "u_x_m",
+            "u_y_m",
+            "k_load_n_m",
+            "k_x_n_m",
+            "k_y_n_m",
+            "k_xy_n_m",
+            "n_loaded",
+            "residual",
+        ]
+        cols += [f"Q{j + 1}_n" for j in range(Z)]
+        cols += [f"delta{j + 1}_m" for j in range(Z)]
+        cols += [f"k{j + 1}_load_n_m" for j in range(Z)]
+        data = np.column_stack(
+            [
+                np.degrees(self.cage_angle),
+                np.degrees(self.shaft_angle),
+                self.displacement,
+                self.k_load,
+                self.k_x,
+                self.k_y,
+                self.k_xy,
+                self.n_loaded,
+                self.residual,
+                self.ball_load,
+                self.ball_deformation,
+                self.ball_k_load,
+            ]
+        )
+        with atomic_open(path, "w", encoding="utf-8") as fh:
+            fh.write(f"# bearingsim vsm-trace: {self.label}\n")
+            np.savetxt(fh, data, delimiter=",", header=",".join(cols), comments="", fmt="%.10g")
+
+    def plot_total(self, ax=None):
+        """Total effective stiffness vs cage angle (seed VSM figs. 5–8); returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            fig, axs = plt.subplots(3, 1, figsize=(7, 6), sharex=True)
+        else:
+            axs = ax
+            fig = axs[0].figure
+        deg = np.degrees(self.cage_angle)
+        for a, k, lab in zip(
+            axs,
+            (self.k_load, self.k_x, self.k_y),
+            ("k_eq,r (load dir.)", "k_eq,x", "k_eq,y"),
+            strict=True,
+        ):
+            a.plot(deg, k / 1e6, lw=1)
+            a.set_ylabel(f"{lab} [MN/m]")
+        axs[-1].set_xlabel("cage angle theta_m [deg]")
+        axs[0].set_title(f"VSM total effective stiffness: {self.label}")
+        return fig
+
+    def plot_ball(self, ball: int):
+        """Effective stiffness, contact force and deformation of one ball (seed figs. 9, 11)."""
+        import matplotlib.pyplot as plt
+
+        j = ball - 1
+        deg = np.degrees(self.cage_angle)
+        fig, axs = plt.subplots(3, 1, figsize=(7, 6), sharex=True)
+        axs[0].plot(deg, self.ball_k_load[:, j] / 1e6)
+        axs[0].set_ylabel("k_j [MN/m]")
+        axs[1].plot(deg, self.ball_load[:, j])
+        axs[1].set_ylabel("Q_j [N]")
+        axs[2].plot(deg, self.ball_deformation[:, j] * 1e6)
+        axs[2].set_ylabel("deformation [um]")
+        axs[2].set_xlabel("cage angle theta_m [deg]")
+        axs[0].set_title(f"ball {ball}: {self.label}")
+        return fig
+
+    def plot_balls(self, balls: list[int]):
+        """Contact force and deformation of several balls (seed figs. 10, 12)."""
+        import matplotlib.pyplot as plt
+
+        deg = np.degrees(self.cage_angle)
+        fig, axs = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+        for b in balls:
+            axs[0].plot(deg, self.ball_load[:, b - 1], label=f"ball {b}")
+            axs[1].plot(deg, self.ball_deformation[:, b - 1] * 1e6, label=f"ball {b}")
+        axs[0].set_ylabel("Q_j [N]")
+        axs[1].set_ylabel("deformation [um]")
+        axs[1].set_xlabel("cage angle theta_m [deg]")
+        axs[0].legend(fontsize=8)
+        axs[0].set_title(self.label)
+        return fig
+
+
+def stiffness_trace(
+    inputs: ModelInputs,
+    cage_angle: NDArray[np.float64] | None = None,
+    *,
+    cage_revs: float = 1.0,
+    n_points: int = 3601,
+) -> StiffnessTrace:
+    """Quasi-static VSM trace vs cage angle (seed VSM §2.2–2.4, figs. 5–12, tables 2–3).
+
+    Parameters
+    ----------
+    inputs : ModelInputs
+        Bearing, load, defect, speed (only the shaft/cage speed ratio matters here), optional
+        stiffness/clearance/retention overrides.
+    cage_angle : ndarray, optional
+        Cage angles [rad]; default ``n_points`` over ``cage_revs`` revolutions.
+    cage_revs : float
+        Number of cage revolutions [-] (used without ``cage_angle``).
+    n_points : int
+        Number of samples (used without ``cage_angle``).
+    """
+    if cage_angle is None:
+        if not (isinstance(n_points, int) and n_points >= 2):
+            raise ConfigError(f"n_points = {n_points!r} is invalid; valid range [2, inf) integer")
+        if not (0.0 < cage_revs <= 1000.0):
+            raise ConfigError(f"cage_revs = {cage_revs!r} is out of range; valid range (0, 1000]")
+        cage_angle = np.linspace(0.0, 2 * math.pi * cage_revs, n_points)
+    cage = np.ascontiguousarray(cage_angle, dtype=float)
+    w_cage = 2 * math.pi * inputs.cage_hz
+    times = cage / w_cage
+    table, res = static_path(inputs, times)
+    p = inputs.header()
+    Z = inputs.bearing.n_elements
+    psi = cage[:, None] + inputs.first_ball_angle + 2 * math.pi * np.arange(Z)[None, :] / Z
+    sn, cs = np.sin(psi), np.cos(psi)
+    ux, uy = table[:, bl.C_UX : bl.C_UX + 1], table[:, bl.C_UY : bl.C_UY + 1]
+    ue = ux * sn + uy * cs
+    nominal = ue - p[bl.P_CLR]
+    loc = inputs.defect.location
+    shaft = times * 2 * math.pi * inputs.shaft_hz
+    if loc is FaultLocation.NONE:
+        over = np.zeros_like(psi, dtype=bool)
+    else:
+        g = defect_geometry(inputs.bearing, inputs.defect)
+        edge = g.angle + (shaft[:, None] if loc is FaultLocation.INNER else 0.0)
+        over = np.mod(psi - edge, 2 * math.pi) < g.delta_beta
+    off = np.where(over, p[bl.P_DOFF], 0.0)
+    fac = np.where(over, p[bl.P_DFAC], 1.0)
+    th0 = inputs.theta0
+    if inputs.load_zone_half_angle is None:
+        margin = nominal  # eq. (14) decided by contact
+    else:  # seed's literal eq. (14): fixed window theta_0 +/- psi_L
+        rel = np.mod(psi - th0 + math.pi, 2 * math.pi) - math.pi
+        margin = inputs.load_zone_half_angle - np.abs(rel)
+        fac = np.where(margin >= 0, fac, 0.0)
+    comp = nominal - off
+    K = p[bl.P_K]
+    Q = np.where(comp > 0, fac * K * np.maximum(comp, 0.0) ** 1.5, 0.0)
+    s = np.where(Q > 0, Q / np.where(Q > 0, ue, 1.0), 0.0)
+    ldh = radial_load_distribution(
+        inputs.bearing,
+        inputs.fx,
+        inputs.fy,
+        0.0,
+        clearance=inputs.diametral_clearance,
+        stiffness=K,
+        first_element_angle=inputs.first_ball_angle,
+    )
+    label = f"fault {loc.value}"
+    if loc is not FaultLocation.NONE:
+        label += f", b {inputs.defect.width * 1e3:.3g} mm, " + (
+            f"gamma {inputs.retention_factor:g}"
+            if inputs.retention_factor is not None
+            else f"h_min {p[bl.P_DOFF] * 1e6:.3g} um (eq. 11 implicit)"
+        )
+    label += f", K {K:.3g} N/m^1.5, psi_L0 {math.degrees(float(ldh.psi_l[0])):.1f} deg"
+    if inputs.load_zone_half_angle is not None:
+        label += f", fixed zone +/-{math.degrees(inputs.load_zone_half_angle):.1f} deg"
+    meta = {
+        "zone_margin": margin,
+        "psi": psi,
+        "fault": loc.value,
+        "alpha0": inputs.first_ball_angle,
+        "beta0": inputs.defect.angle,
+        "Z": Z,
+        "delta_beta": p[bl.P_DBETA],
+        "cage_per_shaft": inputs.cage_hz / inputs.shaft_hz,
+        "stiffness": K,
+    }
+    return StiffnessTrace(
+        cage_angle=cage,
+        shaft_angle=shaft,
+        displacement=table[:, :2].copy(),
+        k_load=(s * np.cos(psi - th0) ** 2).sum(1),
+        k_x=table[:, bl.C_SXX].copy(),
+        k_y=table[:, bl.C_SYY].copy(),
+        k_xy=table[:, bl.C_SXY].copy(),
+        ball_load=Q,
+        ball_deformation=np.where(Q > 0, (Q / K) ** (2.0 / 3.0), 0.0),
+        ball_k_load=s * np.cos(psi - th0) ** 2,
+        ball_k_x=s * sn**2,
+        ball_k_y=s * cs**2,
+        in_zone=margin > 0,
+        in_defect=over,
+        residual=res,
+        theta0=th0,
+        psi_l0=float(ldh.psi_l[0]),
+        label=label,
+        meta=meta,
+    )

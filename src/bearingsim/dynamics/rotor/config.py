@@ -1,0 +1,472 @@
+"""Inputs of the bearing–rotor–housing model (seed ROTOR, Liu et al. 2021; SPEC §2).
+
+Frozen, validated dataclasses in SI units: :class:`Shaft`, :class:`Armature` (the rotor mass
+spread over ``n`` disks), :class:`BearingSupport` (a ball bearing with an optional
+:class:`LocalFault`), :class:`Housing` and the whole :class:`RotorConfig`;
+:func:`cwru_rotor_config` builds the seed's CWRU case. Every bad value raises a one-line
+:class:`~bearingsim.errors.ConfigError` naming the field, the value and the valid range.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ...catalog import get_bearing
+from ...errors import ConfigError, check_positive, check_range
+from ...geometry import BallBearing, KinematicFrequencies, characteristic_frequencies
+
+#: seed ROTOR table 2 (CWRU motor): shaft mass, rotor (armature) mass [kg], shaft length,
+#: shaft diameter, disk diameter [m], shaft modulus [Pa]
+SEED_SHAFT_MASS_KG = 0.68
+SEED_ROTOR_MASS_KG = 1.361
+SEED_SHAFT_LENGTH_M = 203.2e-3
+SEED_SHAFT_DIAMETER_M = 12.53e-3
+SEED_DISK_DIAMETER_M = 46.07e-3
+SEED_SHAFT_E_PA = 206e9
+#: CWRU seeded fault 0.007 in wide, EDM depth 0.011 in (CWRU "Fault Specifications";
+#: shared/data/cwru/SOURCES.md)
+CWRU_FAULT_WIDTH_M = 0.007 * 25.4e-3
+CWRU_FAULT_DEPTH_M = 0.011 * 25.4e-3
+#: standard gravity [m/s^2]
+G0 = 9.80665
+
+AUX_NAMES = ("acc_x_DE", "acc_y_DE", "acc_x_FE", "acc_y_FE")
+ENDS = ("DE", "FE")
+
+
+class ShaftMassModel(enum.Enum):
+    """How the shaft's own mass enters: ``LUMPED`` = half at each bearing on a massless beam
+    (seed ROTOR eq. 2); ``DISTRIBUTED`` = consistent beam mass and rotary inertia."""
+
+    LUMPED = "lumped"
+    DISTRIBUTED = "distributed"
+
+
+class DefectProfile(enum.Enum):
+    """Extra clearance under a ball crossing a local defect: ``GEOMETRIC`` (the ball rests on
+    the nearer edge; seed VSM eq. 2 evaluated along the path, continuous) or ``RECTANGULAR``
+    (the constant maximum drop ``h_min`` over the defect's extent, seed VSM eqs. 1–3)."""
+
+    GEOMETRIC = "geometric"
+    RECTANGULAR = "rectangular"
+
+
+class FaultRace(enum.Enum):
+    """Raceway carrying a local defect."""
+
+    OUTER = "outer"
+    INNER = "inner"
+
+
+def _enum(cls, value, name):
+    try:
+        return cls(value.value if isinstance(value, enum.Enum) else value)
+    except ValueError:
+        valid = ", ".join(m.value for m in cls)
+        raise ConfigError(f"{name} = {value!r} is invalid; valid: {valid}") from None
+
+
+@dataclass(frozen=True)
+class LocalFault:
+    """A localized raceway defect (rectangular slot across the raceway).
+
+    Parameters
+    ----------
+    race : FaultRace or {"outer", "inner"}
+        Raceway; the outer ring is fixed, the inner ring turns with the shaft.
+    width : float
+        Width b along the raceway [m], 0 < b < ball diameter (default 0.007 in, CWRU).
+    depth : float
+        Depth h_d [m] (default 0.011 in, CWRU EDM depth).
+    angle : float
+        Azimuth of the defect centre at t = 0 [rad], from +y towards +x; ``pi`` = 6 o'clock
+        (the CWRU ``OR@6`` position, in the load zone under gravity).
+    profile : DefectProfile
+        Drop profile across the defect.
+    """
+
+    race: FaultRace | str = FaultRace.OUTER
+    width: float = CWRU_FAULT_WIDTH_M
+    depth: float = CWRU_FAULT_DEPTH_M
+    angle: float = math.pi
+    profile: DefectProfile | str = DefectProfile.GEOMETRIC
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "race", _enum(FaultRace, self.race, "fault_race"))
+        object.__setattr__(self, "profile", _enum(DefectProfile, self.profile, "defect_profile"))
+        object.__setattr__(self, "width", check_positive("defect_width_m", self.width, "m"))
+        object.__setattr__(self, "depth", check_positive("defect_depth_m", self.depth, "m"))
+        object.__setattr__(self, "angle", check_range("defect_angle_rad", self.angle, unit="rad"))
+
+
+@dataclass(frozen=True)
+class BearingSupport:
+    """One ball bearing of the rotor.
+
+    Parameters
+    ----------
+    bearing : BallBearing
+        Geometry and material; the inner and outer Hertz constants come from
+        :func:`bearingsim.hertz.ball_contact`.
+    fault : LocalFault or None
+        Local defect (None = healthy).
+    contact_damping : float
+        Linear damping of each ball–race contact, acting along the compression while in
+        contact [N s/m] (seed ROTOR eq. 11 ``C_v``; value not given in the seed).
+    first_ball_angle : float
+        Azimuth of ball 1 at t = 0 [rad].
+    ball_density : float or None
+        Ball density [kg/m^3] (default: the bearing material's).
+    """
+
+    bearing: BallBearing
+    fault: LocalFault | None = None
+    contact_damping: float = 50.0
+    first_ball_angle: float = 0.0
+    ball_density: float | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.bearing, BallBearing):
+            raise ConfigError(
+                f"bearing = {getattr(self.bearing, 'id', self.bearing)!r} is not a ball "
+                "bearing; the rotor model needs ball bearings"
+            )
+        check_range("contact_damping_n_s_m", self.contact_damping, 0.0, unit="N s/m")
+        check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad")
+        if self.ball_density is not None:
+            check_positive("ball_density_kg_m3", self.ball_density, "kg/m^3")
+        if self.fault is not None and self.fault.width >= self.bearing.element_diameter:
+            raise ConfigError(
+                f"defect_width_m = {self.fault.width:.6g} m is out of range; valid range "
+                f"(0, {self.bearing.element_diameter:.6g}) m (the ball must span the defect)"
+            )
+
+    @property
+    def ball_mass(self) -> float:
+        """Ball mass ``rho pi d^3 / 6`` [kg]."""
+        rho = self.ball_density or self.bearing.material.density
+        return rho * math.pi * self.bearing.element_diameter**3 / 6.0
+
+
+@dataclass(frozen=True)
+class Housing:
+    """Bearing housing: a rigid mass on linear springs and dampers to the base in X and Y.
+
+    Parameters
+    ----------
+    mass : float
+        Housing mass m_h [kg] (the outer ring moves with it).
+    stiffness_x, stiffness_y : float
+        Mount stiffness [N/m].
+    damping_x, damping_y : float
+        Mount damping [N s/m].
+    """
+
+    mass: float
+    stiffness_x: float
+    stiffness_y: float
+    damping_x: float
+    damping_y: float
+
+    def __post_init__(self) -> None:
+        check_positive("housing_mass_kg", self.mass, "kg")
+        check_positive("housing_stiffness_x_n_m", self.stiffness_x, "N/m")
+        check_positive("housing_stiffness_y_n_m", self.stiffness_y, "N/m")
+        check_range("housing_damping_x_n_s_m", self.damping_x, 0.0, unit="N s/m")
+        check_range("housing_damping_y_n_s_m", self.damping_y, 0.0, unit="N s/m")
+
+    @property
+    def natural_frequency_hz(self) -> tuple[float, float]:
+        """Uncoupled mount frequencies ``sqrt(k/m)/(2 pi)`` in X and Y [Hz]."""
+        return tuple(math.sqrt(k / self.mass) / (2 * math.pi) for k in
+                     (self.stiffness_x, self.stiffness_y))  # fmt: skip
+
+
+#: Default housing, per end and per direction (X and Y): the bearing pedestal of the 5-DOF
+#: bearing model of Sawalhi & Randall (2008, *Mech. Syst. Signal Process.* 22, 1924–1951,
+#: "pedestal": outer race + housing on a spring and damper to the base), with the values used
+#: for the CWRU drive-end 6205 by Ruan, Chen, Gühmann, Yan & Li (2022), "Dynamics modeling of
+#: bearing with defect in Modelica and application in direct transfer learning from simulation
+#: to test bench for bearing fault diagnosis", *Electronics* 11(4), 622
+#: (doi:10.3390/electronics11040622; also Ruan, Li & Gühmann, Proc. 14th Modelica Conf. 2021,
+#: doi:10.3384/ecp21181373), whose simulated signals are compared with the CWRU records. The
+#: numbers were read from the authors' published model (test-bearing parameters mp, kp, cp);
+#: see docs/models.md (ROTOR, "Housings"). Mount frequency sqrt(k/m)/2pi = 240 Hz, damping
+#: ratio 0.110.
+DEFAULT_HOUSING_MASS_KG = 6.638
+DEFAULT_HOUSING_STIFFNESS_N_M = 1.51e7
+DEFAULT_HOUSING_DAMPING_N_S_M = 2210.7
+
+#: An alternative that is *not* from the literature: a 1 kg end shield whose mount alone rings
+#: at 3.3 kHz with 5 % damping, chosen from the measured resonance band of CWRU record 132
+#: (2.5–3.5 kHz, PSD maximum 3.36 kHz). Kept for comparison in the report (docs/validation.md);
+#: build it with ``housing_from_frequency(*BAND_TUNED_HOUSING)``.
+BAND_TUNED_HOUSING = (1.0, 3300.0, 0.05)
+
+
+def default_housing(
+    mass: float = DEFAULT_HOUSING_MASS_KG,
+    stiffness: float = DEFAULT_HOUSING_STIFFNESS_N_M,
+    damping: float = DEFAULT_HOUSING_DAMPING_N_S_M,
+) -> Housing:
+    """Isotropic housing: ``mass`` [kg] on a mount of ``stiffness`` [N/m] and ``damping``
+    [N s/m] in X and Y (defaults: Sawalhi & Randall 2008 pedestal as used for the CWRU rig by
+    Ruan et al. 2022)."""
+    return Housing(mass, stiffness, stiffness, damping, damping)
+
+
+def housing_from_frequency(mass: float, frequency_hz: float, damping_ratio: float) -> Housing:
+    """Isotropic housing of ``mass`` [kg] whose mount alone resonates at ``frequency_hz`` [Hz]
+    with damping ratio ``damping_ratio`` [-]: ``k = m w^2``, ``c = 2 zeta m w``."""
+    m = check_positive("housing_mass_kg", mass, "kg")
+    w = 2 * math.pi * check_positive("housing_frequency_hz", frequency_hz, "Hz")
+    z = check_range("housing_damping_ratio", damping_ratio, 0.0, unit="")
+    return Housing(m, m * w * w, m * w * w, 2 * z * m * w, 2 * z * m * w)
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """Uniform flexible shaft between the two bearings (bearings at z = 0 and z = length).
+
+    Parameters
+    ----------
+    length : float
+        Distance between the bearings [m] (seed table 2: 203.2 mm).
+    diameter : float
+        Diameter [m] (12.53 mm).
+    youngs_modulus : float
+        E [Pa] (206 GPa).
+    mass : float
+        Shaft mass [kg] (0.68 kg).
+    mass_model : ShaftMassModel
+        ``LUMPED`` (seed: half the mass at each bearing, massless beam) or ``DISTRIBUTED``.
+    """
+
+    length: float = SEED_SHAFT_LENGTH_M
+    diameter: float = SEED_SHAFT_DIAMETER_M
+    youngs_modulus: float = SEED_SHAFT_E_PA
+    mass: float = SEED_SHAFT_MASS_KG
+    mass_model: ShaftMassModel | str = ShaftMassModel.LUMPED
+
+    def __post_init__(self) -> None:
+        check_positive("shaft_length_m", self.length, "m")
+        check_positive("shaft_diameter_m", self.diameter, "m")
+        check_positive("shaft_youngs_modulus_pa", self.youngs_modulus, "Pa")
+        check_positive("shaft_mass_kg", self.mass, "kg")
+        object.__setattr__(
+            self, "mass_model", _enum(ShaftMassModel, self.mass_model, "shaft_mass_model")
+        )
+
+    @property
+    def ei(self) -> float:
+        """Bending stiffness E pi d^4 / 64 [N m^2]."""
+        return self.youngs_modulus * math.pi * self.diameter**4 / 64.0
+
+
+@dataclass(frozen=True)
+class Armature:
+    """The rotor (armature) mass, spread over ``n_disks`` rigid disks or distributed.
+
+    Parameters
+    ----------
+    mass : float
+        Total armature mass [kg] (seed table 2: 1.361 kg).
+    diameter : float
+        Disk diameter [m] (46.07 mm).
+    n_disks : int
+        Number of equal disks (ignored when ``distributed``).
+    positions : tuple of float or None
+        Disk positions from the DE bearing [m], strictly inside (0, shaft length); default
+        equally spaced ``L i / (n + 1)``.
+    density : float
+        Density used to infer the armature length ``m / (rho pi (D^2 - d_shaft^2)/4)`` [kg/m^3];
+        each disk is the slice ``length / n`` thick (this sets its diametral inertia).
+    distributed : bool
+        Spread the mass uniformly along the whole shaft instead (the limit of many equally
+        spaced disks; the "converged FE limit" of the disk study).
+    """
+
+    mass: float = SEED_ROTOR_MASS_KG
+    diameter: float = SEED_DISK_DIAMETER_M
+    n_disks: int = 1
+    positions: tuple[float, ...] | None = None
+    density: float = 7850.0
+    distributed: bool = False
+
+    def __post_init__(self) -> None:
+        check_positive("rotor_mass_kg", self.mass, "kg")
+        check_positive("disk_diameter_m", self.diameter, "m")
+        check_positive("rotor_density_kg_m3", self.density, "kg/m^3")
+        n = self.n_disks
+        if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
+            raise ConfigError(f"n_disks = {n!r} is out of range; valid range [1, inf) integer")
+        if self.positions is not None:
+            pos = tuple(float(x) for x in self.positions)
+            if len(pos) != n:
+                raise ConfigError(
+                    f"disk_positions has {len(pos)} values but n_disks = {n}; give one per disk"
+                )
+            object.__setattr__(self, "positions", pos)
+
+
+@dataclass(frozen=True)
+class RotorConfig:
+    """Every input of the bearing–rotor–housing model (SI units).
+
+    Parameters
+    ----------
+    de, fe : BearingSupport
+        Drive-end (z = 0) and fan-end (z = L) bearings.
+    housing_de, housing_fe : Housing
+        The two housings.
+    shaft : Shaft
+        Shaft data.
+    armature : Armature
+        Rotor mass distribution.
+    speed_rpm : float
+        Shaft speed [r/min] (> 0).
+    gravity : bool
+        Apply gravity (-y) to every mass.
+    unbalance : float
+        Static unbalance m e of the armature [kg m], at the armature's centre disk(s) (0 = none).
+    unbalance_phase : float
+        Azimuth of the unbalance at t = 0 [rad].
+    bearing_loads : tuple
+        Extra constant forces on the shaft at the DE and FE bearing nodes ``((fx, fy), (fx,
+        fy))`` [N] (e.g. a belt or coupling load; 0 by default).
+    n_elements : int or None
+        Minimum number of beam elements (default ``max(16, n_disks + 1)``); at least one per
+        interval between disks and bearings.
+    mode_cutoff_hz : float or None
+        Highest fixed-interface rotor mode kept by the Craig–Bampton reduction [Hz] (default
+        the output sample rate, i.e. twice the highest output frequency).
+    shaft_damping_ratio : float
+        Stiffness-proportional rotor damping: ratio of the first fixed-interface mode [-].
+    disk_damping : float
+        Absolute damping on each disk's x and y (seed ROTOR eq. 3 ``C_disk``) [N s/m].
+    """
+
+    de: BearingSupport
+    fe: BearingSupport
+    housing_de: Housing = field(default_factory=default_housing)
+    housing_fe: Housing = field(default_factory=default_housing)
+    shaft: Shaft = field(default_factory=Shaft)
+    armature: Armature = field(default_factory=Armature)
+    speed_rpm: float = 1750.0
+    gravity: bool = True
+    unbalance: float = 0.0
+    unbalance_phase: float = 0.0
+    bearing_loads: tuple[tuple[float, float], tuple[float, float]] = ((0.0, 0.0), (0.0, 0.0))
+    n_elements: int | None = None
+    mode_cutoff_hz: float | None = None
+    shaft_damping_ratio: float = 0.02
+    disk_damping: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_positive("speed_rpm", self.speed_rpm, "r/min")
+        check_range("unbalance_kg_m", self.unbalance, 0.0, unit="kg m")
+        check_range("unbalance_phase_rad", self.unbalance_phase, unit="rad")
+        check_range("shaft_damping_ratio", self.shaft_damping_ratio, 0.0, 1.0)
+        check_range("disk_damping_n_s_m", self.disk_damping, 0.0, unit="N s/m")
+        if self.mode_cutoff_hz is not None:
+            check_positive("mode_cutoff_hz", self.mode_cutoff_hz, "Hz")
+        for fx, fy in self.bearing_loads:
+            check_range("bearing_load_n", fx, unit="N")
+            check_range("bearing_load_n", fy, unit="N")
+        L = self.shaft.length
+        for z in self.disk_positions:
+            check_range("disk_position_m", z, 0.0, L, lo_open=True, hi_open=True, unit="m")
+        if len(set(np.round(self.disk_positions, 12))) != len(self.disk_positions):
+            raise ConfigError("disk_positions_m has repeated positions; give distinct values")
+        n_min = len(self.disk_positions) + 1
+        if self.n_elements is not None:
+            ne = self.n_elements
+            if isinstance(ne, bool) or not isinstance(ne, int | np.integer) or ne < n_min:
+                raise ConfigError(
+                    f"n_elements = {ne!r} is too few; valid range [{n_min}, inf) (one element "
+                    f"at least between consecutive disks and bearings)"
+                )
+
+    @property
+    def shaft_hz(self) -> float:
+        return self.speed_rpm / 60.0
+
+    @property
+    def omega(self) -> float:
+        """Shaft speed [rad/s]."""
+        return 2 * math.pi * self.shaft_hz
+
+    @property
+    def disk_positions(self) -> tuple[float, ...]:
+        """Disk positions [m] (none when the armature is distributed)."""
+        a = self.armature
+        if a.distributed:
+            return ()
+        if a.positions is not None:
+            return a.positions
+        L = self.shaft.length
+        return tuple(L * (i + 1) / (a.n_disks + 1) for i in range(a.n_disks))
+
+    def kinematics(self) -> dict[str, KinematicFrequencies]:
+        """Characteristic frequencies of the DE and FE bearings at the shaft speed [Hz]."""
+        return {
+            "DE": characteristic_frequencies(self.de.bearing, self.shaft_hz),
+            "FE": characteristic_frequencies(self.fe.bearing, self.shaft_hz),
+        }
+
+
+def cwru_rotor_config(
+    n_disks: int = 9,
+    de_fault: LocalFault | None = None,
+    fe_fault: LocalFault | None = None,
+    speed_rpm: float = 1750.0,
+    de_bearing: str = "6205-cwru",
+    fe_bearing: str = "6203-cwru",
+    **kw: Any,
+) -> RotorConfig:
+    """The seed's CWRU case: 6205 (DE) and 6203 (FE) on the seed table 2 rotor.
+
+    Parameters
+    ----------
+    n_disks : int
+        Number of armature disks (equally spaced).
+    de_fault, fe_fault : LocalFault or None
+        Defects (e.g. ``LocalFault("outer")``: 0.007 in x 0.011 in at 6 o'clock, record 132).
+    speed_rpm : float
+        Shaft speed [r/min] (CWRU record 132: 1750).
+    de_bearing, fe_bearing : str
+        Catalogue ids (``6205-cwru-rotor`` gives the seed table 1 values).
+    **kw
+        Any other :class:`RotorConfig` field (``armature=`` overrides ``n_disks``).
+    """
+    arm = kw.pop("armature", None) or Armature(n_disks=n_disks)
+    return RotorConfig(
+        de=BearingSupport(get_bearing(de_bearing), de_fault),
+        fe=BearingSupport(get_bearing(fe_bearing), fe_fault),
+        armature=arm,
+        speed_rpm=speed_rpm,
+        **kw,
+    )
+
+
+def config_summary(config: RotorConfig) -> dict[str, Any]:
+    """Plain, JSON-able description of ``config`` (SI units; enums as strings)."""
+
+    def conv(o: Any) -> Any:
+        if isinstance(o, enum.Enum):
+            return o.value
+        if isinstance(o, BallBearing):
+            return o.id
+        if dataclasses.is_dataclass(o):
+            return {f.name: conv(getattr(o, f.name)) for f in dataclasses.fields(o)}
+        if isinstance(o, tuple | list):
+            return [conv(v) for v in o]
+        return o
+
+    return conv(config)

@@ -1,0 +1,318 @@
+"""Compiled right-hand side of the bearing–rotor–housing model (seed ROTOR, Liu et al. 2021).
+
+State vector ``y`` (all SI), with ``n_r`` reduced rotor coordinates (the first four are the
+x, y displacements of the drive-end and fan-end bearing nodes, see
+:func:`bearingsim.dynamics.rotor_fe.craig_bampton`), 4 housing coordinates and ``n_b = Z_DE +
+Z_FE`` ball coordinates::
+
+    y = [q_r (n_r), x_hDE, y_hDE, x_hFE, y_hFE, s_1..s_nb,   # positions [m]
+         v_r (n_r), housing velocities (4), s'_1..s'_nb]       # velocities [m/s]
+
+``s_j`` is the radial coordinate of ball ``j``'s centre measured from the undeflected bearing axis
+along its azimuth ``psi_j`` (inertial frame), the ball's one degree of freedom (seed ROTOR eq. 8
+uses the radius relative to the inner ring; measuring it in the inertial frame gives a diagonal
+mass matrix and the same physics). Ball ``j`` of a bearing sits at
+``psi_j = psi_0 + omega_c t + (j-1) 2 pi/Z`` (rigid cage; azimuth from +y towards +x), with
+unit vector ``e_j = (sin psi_j, cos psi_j)``.
+
+Contact deflections (positive = compression), with the diametral clearance ``P_d`` put on the
+outer contact and the raceway groove bottoms at ``D/2 -/+ d/2``::
+
+    delta_in  = D/2 - s_j + u_s . e_j - h_in(psi_j, t)
+    delta_out = s_j - u_h . e_j - D/2 - P_d/2 - h_out(psi_j)
+
+(``u_s`` shaft displacement at the bearing node, ``u_h`` housing displacement, ``h`` the extra
+clearance a local defect opens under the ball). Contact force (seed ROTOR eqs. 10–11: Hertz
+potential ``2/5 k delta^2.5`` plus linear damping along the compression)::
+
+    Q = max(0, k delta^1.5 + c d(delta)/dt)  for delta > 0,   0 otherwise
+
+with ``k`` the Hertz constant of that contact (inner and outer separately). Equations of motion::
+
+    m_b (s_j'' - s_j omega_c^2) = Q_in - Q_out - m_b g cos(psi_j)
+    rotor:   q_r'' = -A_K q_r - A_C q_r' + B_b F_b + f_0 + u_c cos(Omega t) + u_s sin(Omega t)
+    housing: m_h x_h'' = -k_hx x_h - c_hx x_h' + sum_j Q_out,j sin(psi_j)   (and y, with -m_h g)
+
+where ``F_b = -sum_j Q_in,j e_j`` per bearing node and ``A_K, A_C, B_b, f_0, u_c, u_s`` are the
+reduced rotor matrices premultiplied by ``M_r^-1`` (built by :mod:`bearingsim.dynamics.rotor`).
+
+Parameter vector ``p`` layout: a header of :data:`HDR` values (indices ``H_*``) holding the
+sizes and the offsets of the blocks that follow; two bearing blocks of :data:`BRG_LEN` values
+(indices ``B_*``); one housing block of :data:`HOUS_LEN` values (indices ``HS_*``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import cfunc, njit
+
+from ..integrate import RHS_SIG
+
+# ----------------------------------------------------------------------------- p layout
+H_NR = 0  # number of reduced rotor coordinates
+H_Z_DE = 1  # balls in the drive-end bearing
+H_Z_FE = 2  # balls in the fan-end bearing
+H_OMEGA = 3  # shaft speed Omega [rad/s]
+H_GRAV = 4  # gravity acceleration on balls and housings [m/s^2] (0 = off), along -y
+H_AK = 5  # offset of A_K (n_r x n_r, row-major)
+H_AC = 6  # offset of A_C
+H_BB = 7  # offset of B_b (n_r x 4)
+H_F0 = 8  # offset of f_0 (n_r)
+H_UC = 9  # offset of u_c (n_r)
+H_US = 10  # offset of u_s (n_r)
+H_BRG_DE = 11  # offset of the drive-end bearing block
+H_BRG_FE = 12  # offset of the fan-end bearing block
+H_HOUS = 13  # offset of the housing block
+H_BALL_OUT = 14  # 1: auxiliary output includes per-ball contact forces
+HDR = 16
+
+B_Z = 0  # number of balls
+B_PSI0 = 1  # azimuth of ball 1 at t = 0 [rad]
+B_OMEGA_C = 2  # cage speed [rad/s]
+B_MBALL = 3  # ball mass [kg]
+B_KIN = 4  # Hertz constant, inner contact [N/m^1.5]
+B_KOUT = 5  # Hertz constant, outer contact [N/m^1.5]
+B_C = 6  # contact damping per contact [N s/m]
+B_RP = 7  # pitch radius D/2 [m]
+B_CH = 8  # half the diametral clearance [m]
+B_FAULT = 9  # 0 none, 1 outer race, 2 inner race
+B_FANG = 10  # defect centre azimuth at t = 0 [rad]
+B_FHALF = 11  # defect half angle on its raceway [rad]
+B_DEPTH = 12  # defect depth h_d [m]
+B_HALFW = 13  # defect half width b/2 [m]
+B_RBALL = 14  # ball radius [m]
+B_RRACE = 15  # radius of the faulty raceway [m]
+B_RSIGN = 16  # -1 outer (concave) race, +1 inner (convex) race (seed VSM eq. 2)
+B_PROFILE = 17  # 0 geometric ball path, 1 rectangular (constant h_min)
+B_HMAX = 18  # h_min = min(h_d, h_s) [m]
+B_FOMEGA = 19  # angular speed of the defect [rad/s] (0 outer, Omega inner)
+BRG_LEN = 20
+
+HS_M = 0  # DE housing mass [kg]; FE at +5
+HS_KX = 1
+HS_KY = 2
+HS_CX = 3
+HS_CY = 4
+HOUS_LEN = 10
+
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True, inline="always")
+def _wrap(a):
+    return a - TWO_PI * math.floor((a + math.pi) / TWO_PI)
+
+
+@njit(cache=True)
+def defect_drop(p, o, dpsi):
+    """Extra clearance ``h`` [m] and ``dh/d(dpsi)`` [m/rad] under a ball at angular distance
+    ``dpsi`` [rad] from the defect centre (bearing block at offset ``o``)."""
+    half = p[o + B_FHALF]
+    if abs(dpsi) >= half:
+        return 0.0, 0.0
+    hmax = p[o + B_HMAX]
+    if p[o + B_PROFILE] > 0.5:  # rectangular: the seed VSM h_min over the whole extent
+        return hmax, 0.0
+    # geometric: the ball rests on the nearer edge, at distance e from its centre line;
+    # seed VSM eq. (2) with b/2 replaced by e: d(e) = [r - sqrt(r^2-e^2)] +/- [R - sqrt(R^2-e^2)]
+    rr = p[o + B_RRACE]
+    rb = p[o + B_RBALL]
+    sg = p[o + B_RSIGN]
+    x = rr * abs(dpsi)
+    e = p[o + B_HALFW] - x
+    if e <= 0.0:
+        return 0.0, 0.0
+    sb = math.sqrt(rb * rb - e * e)
+    sr = math.sqrt(rr * rr - e * e)
+    d = (rb - sb) + sg * (rr - sr)
+    if d >= p[o + B_DEPTH]:  # the ball touches the bottom of the defect
+        return p[o + B_DEPTH], 0.0
+    dd_de = e / sb + sg * e / sr
+    sgn = 1.0 if dpsi > 0.0 else -1.0
+    return d, -dd_de * rr * sgn
+
+
+@njit(cache=True)
+def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav):
+    """Ball forces of one bearing; writes the ball accelerations and returns the forces on the
+    shaft node (fx, fy) and on the housing (fx, fy) [N]."""
+    z = int(p[o + B_Z])
+    npos = nr + 4 + int(p[H_Z_DE]) + int(p[H_Z_FE])
+    wc = p[o + B_OMEGA_C]
+    mb = p[o + B_MBALL]
+    kin = p[o + B_KIN]
+    kout = p[o + B_KOUT]
+    c = p[o + B_C]
+    rp = p[o + B_RP]
+    ch = p[o + B_CH]
+    fault = int(p[o + B_FAULT])
+    fang = p[o + B_FANG] + p[o + B_FOMEGA] * t
+    rel_speed = wc - p[o + B_FOMEGA]
+    xs = y[node]
+    ys = y[node + 1]
+    vxs = y[npos + node]
+    vys = y[npos + node + 1]
+    xh = y[nr + hous]
+    yh = y[nr + hous + 1]
+    vxh = y[npos + nr + hous]
+    vyh = y[npos + nr + hous + 1]
+    step = TWO_PI / z
+    ca = math.cos(step)
+    sa = math.sin(step)
+    psi = p[o + B_PSI0] + wc * t
+    sp = math.sin(psi)
+    cp = math.cos(psi)
+    fsx = 0.0
+    fsy = 0.0
+    fhx = 0.0
+    fhy = 0.0
+    for j in range(z):
+        k = nr + 4 + ib + j
+        s = y[k]
+        sd = y[npos + k]
+        h_in = 0.0
+        hd_in = 0.0
+        h_out = 0.0
+        hd_out = 0.0
+        if fault != 0:
+            dpsi = _wrap(psi + j * step - fang)
+            h, dh = defect_drop(p, o, dpsi)
+            if fault == 1:
+                h_out = h
+                hd_out = dh * rel_speed
+            else:
+                h_in = h
+                hd_in = dh * rel_speed
+        # e = (sp, cp); de/dt = wc (cp, -sp)
+        d_in = rp - s + xs * sp + ys * cp - h_in
+        d_out = s - xh * sp - yh * cp - rp - ch - h_out
+        q_in = 0.0
+        if d_in > 0.0:
+            dd = -sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in
+            q_in = kin * d_in * math.sqrt(d_in) + c * dd
+            if q_in < 0.0:
+                q_in = 0.0
+        q_out = 0.0
+        if d_out > 0.0:
+            dd = sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out
+            q_out = kout * d_out * math.sqrt(d_out) + c * dd
+            if q_out < 0.0:
+                q_out = 0.0
+        # seed ROTOR eq. (12) in the inertial radial coordinate: centrifugal and gravity terms
+        dydt[k] = sd
+        dydt[npos + k] = (q_in - q_out) / mb + s * wc * wc - grav * cp
+        fsx -= q_in * sp
+        fsy -= q_in * cp
+        fhx += q_out * sp
+        fhy += q_out * cp
+        if want_ball:
+            aux[aux_off + j] = q_in
+            aux[aux_off + z + j] = q_out
+        # rotate (sp, cp) by one ball pitch
+        sp, cp = sp * ca + cp * sa, cp * ca - sp * sa
+    return fsx, fsy, fhx, fhy
+
+
+@njit(cache=True)
+def rhs_core(t, y, p, dydt, aux, want_aux):
+    """Evaluate ``dy/dt``; when ``want_aux`` also fill ``aux`` (housing accelerations
+    [m/s^2], then per-ball inner and outer contact forces [N] if requested)."""
+    nr = int(p[H_NR])
+    zde = int(p[H_Z_DE])
+    zfe = int(p[H_Z_FE])
+    npos = nr + 4 + zde + zfe
+    grav = p[H_GRAV]
+    want_ball = want_aux and p[H_BALL_OUT] > 0.5
+    for i in range(npos):
+        dydt[i] = y[npos + i]
+    fde = _bearing(t, y, p, int(p[H_BRG_DE]), nr, 0, 0, 0, dydt, aux, 4, want_ball, grav)
+    ffe = _bearing(
+        t, y, p, int(p[H_BRG_FE]), nr, zde, 2, 2, dydt, aux, 4 + 2 * zde, want_ball, grav
+    )
+    # rotor: M_r^-1-premultiplied reduced equations
+    om = p[H_OMEGA]
+    cw = math.cos(om * t)
+    sw = math.sin(om * t)
+    oak = int(p[H_AK])
+    oac = int(p[H_AC])
+    obb = int(p[H_BB])
+    of0 = int(p[H_F0])
+    ouc = int(p[H_UC])
+    ous = int(p[H_US])
+    f0 = fde[0]
+    f1 = fde[1]
+    f2 = ffe[0]
+    f3 = ffe[1]
+    for i in range(nr):
+        acc = p[of0 + i] + p[ouc + i] * cw + p[ous + i] * sw
+        rk = oak + i * nr
+        rc = oac + i * nr
+        for j in range(nr):
+            acc -= p[rk + j] * y[j] + p[rc + j] * y[npos + j]
+        rb = obb + 4 * i
+        acc += p[rb] * f0 + p[rb + 1] * f1 + p[rb + 2] * f2 + p[rb + 3] * f3
+        dydt[npos + i] = acc
+    # housings
+    oh = int(p[H_HOUS])
+    for e in range(2):
+        fx = fde[2] if e == 0 else ffe[2]
+        fy = fde[3] if e == 0 else ffe[3]
+        b = oh + 5 * e
+        m = p[b + HS_M]
+        ix = nr + 2 * e
+        ax = (fx - p[b + HS_KX] * y[ix] - p[b + HS_CX] * y[npos + ix]) / m
+        ay = (fy - p[b + HS_KY] * y[ix + 1] - p[b + HS_CY] * y[npos + ix + 1]) / m - grav
+        dydt[npos + ix] = ax
+        dydt[npos + ix + 1] = ay
+        if want_aux:
+            aux[2 * e] = ax
+            aux[2 * e + 1] = ay
+
+
+@cfunc(RHS_SIG, cache=True)
+def rotor_rhs(t, y, p, dydt):
+    """Numba cfunc RHS (signature :data:`~bearingsim.dynamics.integrate.RHS_SIG`)."""
+    rhs_core(t, y, p, dydt, dydt, False)
+
+
+@cfunc(RHS_SIG, cache=True)
+def rotor_aux(t, y, p, out):
+    """Auxiliary outputs: housing accelerations ``a_xDE, a_yDE, a_xFE, a_yFE`` [m/s^2], then
+    (if enabled) ``Q_in`` and ``Q_out`` of every DE ball and of every FE ball [N]."""
+    n = y.size
+    tmp = y.copy()
+    for i in range(n):
+        tmp[i] = 0.0
+    rhs_core(t, y, p, tmp, out, True)
+
+
+@njit(cache=True)
+def settle_balls(t, y, p, dydt, n_iter):
+    """Put every ball at rest in radial equilibrium for the shaft and housing positions in
+    ``y`` (modified in place): vectorised bisection on the ball accelerations, each monotone
+    (decreasing) in its own ball's coordinate, within ``D/2 +/- 0.1 mm``."""
+    nr = int(p[H_NR])
+    zde = int(p[H_Z_DE])
+    zfe = int(p[H_Z_FE])
+    nb = zde + zfe
+    npos = nr + 4 + nb
+    lo = np.empty(nb)
+    hi = np.empty(nb)
+    for j in range(nb):
+        o = int(p[H_BRG_DE]) if j < zde else int(p[H_BRG_FE])
+        lo[j] = p[o + B_RP] - 1e-4
+        hi[j] = p[o + B_RP] + 1e-4
+        y[npos + nr + 4 + j] = 0.0
+    for _ in range(n_iter):
+        for j in range(nb):
+            y[nr + 4 + j] = 0.5 * (lo[j] + hi[j])
+        rhs_core(t, y, p, dydt, dydt, False)
+        for j in range(nb):
+            if dydt[npos + nr + 4 + j] > 0.0:
+                lo[j] = y[nr + 4 + j]
+            else:
+                hi[j] = y[nr + 4 + j]
+    for j in range(nb):
+        y[nr + 4 + j] = 0.5 * (lo[j] + hi[j])

@@ -1,0 +1,673 @@
+"""Bearing–rotor–housing model with a multi-disk rotor mass distribution (seed ROTOR).
+
+Liu, Gao, Zhang & Yan (2021), *Dynamic modeling and vibration response analysis of bearing–rotor
+system* (seed ``001``; SPEC §2), model the CWRU test motor: a flexible shaft carried by a
+drive-end (DE) 6205 and a fan-end (FE) 6203 ball bearing, the rotor (armature) mass spread over
+``n`` rigid disks with gyroscopic coupling, half the shaft mass lumped at each bearing, each
+ball a mass with a radial degree of freedom in Hertz contact with both races, and each bearing
+housing a mass on linear springs and dampers to the base in X and Y. The seed's equations
+(1)–(13) are garbled in the source; this module builds the same system from beam finite elements
+and lumped disks (:mod:`.rotor_fe`) and couples the nonlinear bearing forces
+(:mod:`.rotor_kernel`), as documented in ``docs/models.md`` (ROTOR).
+
+Public entry points: :class:`RotorConfig` (all inputs, SI), :func:`cwru_rotor_config` (the
+seed's CWRU case), :func:`build_rotor` (linear rotor, reduced), :func:`rotor_modes` (natural
+frequencies of the rotor alone) and :func:`simulate_rotor` -> :class:`RotorResponse`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import least_squares, root
+
+from ..._version import __version__
+from ...contact.hertz import Race, ball_contact
+from ...errors import ConfigError, SolverError, check_positive, check_range
+from ...geometry import BallBearing, characteristic_frequencies
+from ..integrate import run_adaptive, run_fixed
+from . import kernel as rk
+from .config import (
+    ENDS,
+    G0,
+    Armature,
+    BearingSupport,
+    DefectProfile,
+    FaultRace,
+    Housing,
+    LocalFault,
+    RotorConfig,
+    Shaft,
+    ShaftMassModel,
+    config_summary,
+    cwru_rotor_config,
+    default_housing,
+    housing_from_frequency,
+)
+from .fe import (
+    DOF_NAMES,
+    NDOF_NODE,
+    Disk,
+    Reduction,
+    RotorFE,
+    assemble_rotor,
+    complex_modes,
+    condense_massless,
+    craig_bampton,
+    mesh_nodes,
+)
+from .response import RotorResponse
+
+__all__ = [
+    "Armature",
+    "BearingSupport",
+    "DefectProfile",
+    "FaultRace",
+    "Housing",
+    "LocalFault",
+    "RotorAssembly",
+    "RotorConfig",
+    "RotorModes",
+    "RotorResponse",
+    "Shaft",
+    "ShaftMassModel",
+    "build_fe",
+    "build_rotor",
+    "cwru_rotor_config",
+    "default_housing",
+    "housing_from_frequency",
+    "fault_geometry",
+    "rotor_modes",
+    "simulate_rotor",
+]
+
+# ------------------------------------------------------------------------------ linear rotor
+
+
+@dataclass
+class RotorAssembly:
+    """The linear rotor of a :class:`RotorConfig`, full and reduced.
+
+    Attributes
+    ----------
+    fe : RotorFE
+        Full finite-element model (``M, K, G`` over all nodes).
+    reduction : Reduction
+        Craig–Bampton basis; reduced coordinates start with x, y of the DE and FE bearing
+        nodes.
+    M, K, C, G : ndarray
+        Reduced mass, stiffness, damping and gyroscopic-per-unit-speed matrices.
+    f_static : ndarray
+        Reduced constant load (gravity and ``bearing_loads``) [N].
+    f_unb_cos, f_unb_sin : ndarray
+        Reduced unbalance load coefficients of cos(Omega t) and sin(Omega t) [N].
+    boundary_dofs : ndarray
+        Full-model DOFs of the four boundary coordinates.
+    """
+
+    fe: RotorFE
+    reduction: Reduction
+    M: NDArray
+    K: NDArray
+    C: NDArray
+    G: NDArray
+    f_static: NDArray
+    f_unb_cos: NDArray
+    f_unb_sin: NDArray
+    boundary_dofs: NDArray
+
+    @property
+    def n(self) -> int:
+        return int(self.M.shape[0])
+
+
+def build_fe(config: RotorConfig) -> RotorFE:
+    """Finite-element rotor (no supports) of ``config``: shaft, disks, lumped shaft halves."""
+    sh, arm = config.shaft, config.armature
+    pos = config.disk_positions
+    ne = config.n_elements or max(16, len(pos) + 1)
+    z = mesh_nodes(sh.length, pos, ne)
+    L = sh.length
+    rho_a = rho_i = 0.0
+    lumped: dict[int, float] = {}
+    if sh.mass_model is ShaftMassModel.DISTRIBUTED:
+        rho_a = sh.mass / L
+        rho_i = rho_a * sh.diameter**2 / 16.0
+    else:  # seed ROTOR eq. (2): half the shaft mass at each bearing
+        lumped = {0: 0.5 * sh.mass, z.size - 1: 0.5 * sh.mass}
+    disks: list[Disk] = []
+    ro2 = (0.5 * arm.diameter) ** 2
+    ri2 = (0.5 * sh.diameter) ** 2
+    if arm.distributed:
+        rho_a += arm.mass / L
+        rho_i += arm.mass / L * (ro2 + ri2) / 4.0
+    else:
+        area = math.pi * (ro2 - ri2)
+        length = arm.mass / (arm.density * area)
+        m = arm.mass / len(pos)
+        for zp in pos:
+            disks.append(Disk.from_geometry(zp, m, arm.diameter, sh.diameter, length / len(pos)))
+    return assemble_rotor(z, sh.ei, rho_a, rho_i, disks, lumped)
+
+
+def build_rotor(config: RotorConfig, cutoff_hz: float = math.inf) -> RotorAssembly:
+    """Reduced linear rotor of ``config`` (Craig–Bampton, boundary = bearing-node x, y)."""
+    fe = build_fe(config)
+    last = fe.n_nodes - 1
+    bnd = np.array([fe.dof(0, "x"), fe.dof(0, "y"), fe.dof(last, "x"), fe.dof(last, "y")])
+    red = craig_bampton(fe.M, fe.K, bnd, cutoff_hz)
+    T = red.T
+    M = T.T @ fe.M @ T
+    K = T.T @ fe.K @ T
+    G = T.T @ fe.G @ T
+    M = 0.5 * (M + M.T)
+    K = 0.5 * (K + K.T)
+    # stiffness-proportional damping with ratio zeta at the first fixed-interface mode
+    C = np.zeros_like(K)
+    if red.mode_hz.size and config.shaft_damping_ratio > 0:
+        beta = 2 * config.shaft_damping_ratio / (2 * math.pi * red.mode_hz[0])
+        C += beta * K
+    if config.disk_damping > 0:
+        cd = np.zeros(fe.n_dof)
+        for node in fe.disk_nodes:
+            cd[fe.dof(node, "x")] = cd[fe.dof(node, "y")] = config.disk_damping
+        C += T.T @ (cd[:, None] * T)
+    # constant loads: gravity on the consistent mass, bearing loads at the bearing nodes
+    f = np.zeros(fe.n_dof)
+    if config.gravity:
+        ones_y = np.zeros(fe.n_dof)
+        ones_y[1::NDOF_NODE] = 1.0
+        f -= G0 * fe.M @ ones_y
+    (fx0, fy0), (fx1, fy1) = config.bearing_loads
+    f[bnd] += [fx0, fy0, fx1, fy1]
+    # unbalance m e Omega^2 (sin(Omega t + phi), cos(Omega t + phi)) shared by the disks
+    # nearest the armature centre (or the centre node when distributed)
+    fc = np.zeros(fe.n_dof)
+    fs = np.zeros(fe.n_dof)
+    if config.unbalance > 0:
+        zc = 0.5 * config.shaft.length
+        nodes = fe.disk_nodes or [int(np.argmin(np.abs(fe.z - zc)))]
+        dist = np.abs(fe.z[nodes] - zc)
+        sel = [n for n, dd in zip(nodes, dist, strict=True) if dd <= dist.min() + 1e-12]
+        me = config.unbalance * config.omega**2 / len(sel)
+        ph = config.unbalance_phase
+        for node in sel:
+            fc[fe.dof(node, "x")] += me * math.sin(ph)
+            fc[fe.dof(node, "y")] += me * math.cos(ph)
+            fs[fe.dof(node, "x")] += me * math.cos(ph)
+            fs[fe.dof(node, "y")] -= me * math.sin(ph)
+    return RotorAssembly(fe, red, M, K, C, G, T.T @ f, T.T @ fc, T.T @ fs, bnd)
+
+
+@dataclass(frozen=True)
+class RotorModes:
+    """Natural frequencies of the rotor alone.
+
+    Attributes
+    ----------
+    frequency_hz : ndarray
+        Natural frequencies [Hz], ascending.
+    whirl : ndarray of str
+        Whirl direction per mode (``forward``/``backward``/``planar``).
+    supports : str
+        ``"pinned"`` (bearing nodes held in x and y) or ``"free"``.
+    speed_rpm : float
+        Speed used for the gyroscopic terms [r/min].
+    n_dof : int
+        Number of DOFs of the full FE model.
+    """
+
+    frequency_hz: NDArray[np.float64]
+    whirl: NDArray[np.str_]
+    supports: str
+    speed_rpm: float
+    n_dof: int
+
+
+def rotor_modes(config: RotorConfig, supports: str = "pinned", speed_rpm: float = 0.0,
+                n_modes: int = 8) -> RotorModes:  # fmt: skip
+    """Natural frequencies of the rotor alone (no bearings, no housings).
+
+    Parameters
+    ----------
+    config : RotorConfig
+        Rotor data (shaft, armature, mesh).
+    supports : {"pinned", "free"}
+        Bearing nodes held in x and y (simply supported) or a free-free rotor.
+    speed_rpm : float
+        Spin speed for the gyroscopic coupling [r/min] (>= 0).
+    n_modes : int
+        Number of frequencies returned.
+    """
+    if supports not in ("pinned", "free"):
+        raise ConfigError(f"supports = {supports!r} is invalid; valid: pinned, free")
+    spin = check_range("speed_rpm", speed_rpm, 0.0, unit="r/min") * math.pi / 30.0
+    fe = build_fe(config)
+    last = fe.n_nodes - 1
+    fixed = []
+    if supports == "pinned":
+        fixed = [fe.dof(0, "x"), fe.dof(0, "y"), fe.dof(last, "x"), fe.dof(last, "y")]
+    free = np.setdiff1d(np.arange(fe.n_dof), fixed)
+    M = fe.M[np.ix_(free, free)]
+    K = fe.K[np.ix_(free, free)]
+    G = fe.G[np.ix_(free, free)]
+    master, Tg = condense_massless(M, K, [])
+    Mc, Kc, Gc = (Tg.T @ A @ Tg for A in (M, K, G))
+    names = np.array([DOF_NAMES[d % NDOF_NODE] for d in free])[master]
+    nodes = free[master] // NDOF_NODE
+    xd = [i for i, (nm, nd) in enumerate(zip(names, nodes, strict=True)) if nm == "x"]
+    yd = [
+        int(np.flatnonzero((names == "y") & (nodes == nodes[i]))[0]) if np.any(
+            (names == "y") & (nodes == nodes[i])) else i for i in xd
+    ]  # fmt: skip
+    modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=1e-3)
+    k = int(n_modes)
+    return RotorModes(modes.frequency_hz[:k], modes.whirl[:k], supports, float(speed_rpm),
+                      fe.n_dof)  # fmt: skip
+
+
+# ------------------------------------------------------------------------- parameter packing
+
+
+def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float64]:
+    """Kernel block (:data:`rotor_kernel.BRG_LEN` values) of one bearing."""
+    b = sup.bearing
+    blk = np.zeros(rk.BRG_LEN)
+    blk[rk.B_Z] = b.n_elements
+    blk[rk.B_PSI0] = sup.first_ball_angle
+    blk[rk.B_OMEGA_C] = 2 * math.pi * characteristic_frequencies(b, config.shaft_hz).ftf_hz
+    blk[rk.B_MBALL] = sup.ball_mass
+    blk[rk.B_KIN] = ball_contact(b, 1.0, Race.INNER).k_hertz
+    blk[rk.B_KOUT] = ball_contact(b, 1.0, Race.OUTER).k_hertz
+    blk[rk.B_C] = sup.contact_damping
+    blk[rk.B_RP] = 0.5 * b.pitch_diameter
+    blk[rk.B_CH] = 0.5 * b.diametral_clearance
+    f = sup.fault
+    if f is not None:
+        g = fault_geometry(b, f)
+        blk[rk.B_FAULT] = 1 if f.race is FaultRace.OUTER else 2
+        blk[rk.B_FANG] = f.angle
+        blk[rk.B_FHALF] = g["half_angle_rad"]
+        blk[rk.B_DEPTH] = f.depth
+        blk[rk.B_HALFW] = 0.5 * f.width
+        blk[rk.B_RBALL] = 0.5 * b.element_diameter
+        blk[rk.B_RRACE] = g["race_radius_m"]
+        blk[rk.B_RSIGN] = -1.0 if f.race is FaultRace.OUTER else 1.0
+        blk[rk.B_PROFILE] = 0.0 if f.profile is DefectProfile.GEOMETRIC else 1.0
+        blk[rk.B_HMAX] = g["h_min_m"]
+        blk[rk.B_FOMEGA] = 0.0 if f.race is FaultRace.OUTER else config.omega
+    return blk
+
+
+def fault_geometry(bearing: BallBearing, fault: LocalFault) -> dict[str, float]:
+    """Raceway radius, maximum drop and angular extent of ``fault`` on ``bearing``.
+
+    Seed VSM eqs. (1)–(3) (SPEC §1.1): ``h_s = [r - sqrt(r^2 - (b/2)^2)] -/+ [R - sqrt(R^2 -
+    (b/2)^2)]`` (``-`` and ``R = r_o`` for the outer race, ``+`` and ``r_i`` for the inner),
+    ``h_min = min(h_d, h_s)``, half angle ``asin(b / (2 R))``.
+
+    Returns
+    -------
+    dict
+        ``race_radius_m``, ``h_s_m``, ``h_min_m``, ``half_angle_rad``.
+    """
+    r = 0.5 * bearing.element_diameter
+    hb = 0.5 * fault.width
+    if fault.race is FaultRace.OUTER:
+        rr, sg = bearing.outer_raceway_radius, -1.0
+    else:
+        rr, sg = bearing.inner_raceway_radius, 1.0
+    hs = (r - math.sqrt(r * r - hb * hb)) + sg * (rr - math.sqrt(rr * rr - hb * hb))
+    return {
+        "race_radius_m": rr,
+        "h_s_m": hs,
+        "h_min_m": min(fault.depth, hs),
+        "half_angle_rad": math.asin(hb / rr),
+    }
+
+
+@dataclass
+class PackedModel:
+    """A :class:`RotorConfig` packed for the compiled kernel.
+
+    Attributes
+    ----------
+    p : ndarray
+        Flat parameter vector (layout in :mod:`.rotor_kernel`).
+    rotor : RotorAssembly
+        The reduced linear rotor.
+    n_r, n_balls, n_pos : int
+        Reduced rotor coordinates, balls, position states (state size ``2 n_pos``).
+    """
+
+    p: NDArray[np.float64]
+    rotor: RotorAssembly
+    n_r: int
+    n_balls: int
+    n_pos: int
+    z_de: int
+    z_fe: int
+
+
+def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False) -> PackedModel:
+    """Build the reduced rotor and the kernel's parameter vector for ``config``."""
+    rot = build_rotor(config, cutoff_hz)
+    nr = rot.n
+    Minv = np.linalg.inv(rot.M)
+    AK = Minv @ rot.K
+    AC = Minv @ (rot.C + config.omega * rot.G)
+    Tb = np.zeros((nr, 4))
+    Tb[:4, :4] = np.eye(4)  # boundary coordinates are the bearing-node x, y themselves
+    assert np.allclose(rot.reduction.T[rot.boundary_dofs, :4], np.eye(4))
+    BB = Minv @ Tb
+    blocks = [
+        AK.ravel(), AC.ravel(), BB.ravel(), Minv @ rot.f_static, Minv @ rot.f_unb_cos,
+        Minv @ rot.f_unb_sin,
+    ]  # fmt: skip
+    hdr = np.zeros(rk.HDR)
+    off = rk.HDR
+    offs = []
+    for blk in blocks:
+        offs.append(off)
+        off += blk.size
+    brg = [_bearing_block(config.de, config), _bearing_block(config.fe, config)]
+    hs = np.zeros(rk.HOUS_LEN)
+    for e, h in enumerate((config.housing_de, config.housing_fe)):
+        hs[5 * e : 5 * e + 5] = [h.mass, h.stiffness_x, h.stiffness_y, h.damping_x, h.damping_y]
+    z_de, z_fe = config.de.bearing.n_elements, config.fe.bearing.n_elements
+    hdr[rk.H_NR] = nr
+    hdr[rk.H_Z_DE] = z_de
+    hdr[rk.H_Z_FE] = z_fe
+    hdr[rk.H_OMEGA] = config.omega
+    hdr[rk.H_GRAV] = G0 if config.gravity else 0.0
+    for key, o in zip((rk.H_AK, rk.H_AC, rk.H_BB, rk.H_F0, rk.H_UC, rk.H_US), offs, strict=True):
+        hdr[key] = o
+    hdr[rk.H_BRG_DE] = off
+    hdr[rk.H_BRG_FE] = off + rk.BRG_LEN
+    hdr[rk.H_HOUS] = off + 2 * rk.BRG_LEN
+    hdr[rk.H_BALL_OUT] = 1.0 if ball_forces else 0.0
+    p = np.concatenate([hdr, *blocks, *brg, hs])
+    nb = z_de + z_fe
+    return PackedModel(p, rot, nr, nb, nr + 4 + nb, z_de, z_fe)
+
+
+def n_aux(model: PackedModel, ball_forces: bool) -> int:
+    """Number of auxiliary outputs per sample."""
+    return 4 + (2 * model.n_balls if ball_forces else 0)
+
+
+def evaluate_rhs(model: PackedModel, t: float, y: NDArray) -> tuple[NDArray, NDArray]:
+    """``(dy/dt, aux)`` of the compiled kernel at time ``t`` [s] and state ``y`` (for checks)."""
+    y = np.ascontiguousarray(y, dtype=float)
+    dydt = np.zeros_like(y)
+    aux = np.zeros(4 + 2 * model.n_balls)
+    p = model.p.copy()
+    p[rk.H_BALL_OUT] = 1.0
+    rk.rhs_core(float(t), y, p, dydt, aux, True)
+    return dydt, aux
+
+
+def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]:
+    """State at rest in static equilibrium at t = 0 (balls at their cage positions, all
+    velocities zero; gravity, ``bearing_loads`` and centrifugal ball forces balanced).
+
+    In the Craig–Bampton coordinates the interior modes are statically decoupled from the
+    boundary (``K_r`` is block diagonal and the bearing forces act on the boundary only), so
+    they follow directly from the constant load; the balls are put in equilibrium by
+    :func:`.rotor_kernel.settle_balls`; the remaining 8 unknowns (bearing-node and housing
+    x, y) are found with MINPACK's hybrid Powell method (:func:`scipy.optimize.root`) on the
+    force residual (unknowns in micrometres), falling back on Levenberg–Marquardt
+    (:func:`scipy.optimize.least_squares`) with a tiny regularisation.
+    """
+    npos = model.n_pos
+    nr = model.n_r
+    rot = model.rotor
+    mh = np.array([config.housing_de.mass] * 2 + [config.housing_fe.mass] * 2)
+    um = 1e-6
+    y = np.zeros(2 * npos)
+    dydt = np.zeros(2 * npos)
+    if nr > 4:
+        y[4:nr] = np.linalg.solve(rot.K[4:, 4:], rot.f_static[4:])
+
+    def resid(xi: NDArray) -> NDArray:
+        y[:4] = xi[:4] * um
+        y[nr : nr + 4] = xi[4:] * um
+        rk.settle_balls(0.0, y, model.p, dydt, 64)
+        rk.rhs_core(0.0, y, model.p, dydt, dydt, False)
+        a = dydt[npos:]
+        return np.concatenate([(rot.M @ a[:nr])[:4], mh * a[nr : nr + 4]])
+
+    # initial guess: housings on their springs under the bearing loads; each shaft end moved
+    # along its load until the balls carry that load (bisection, the ends taken separately)
+    x0 = np.zeros(8)
+    fb = rot.f_static[:4]
+    g = G0 if config.gravity else 0.0
+    pb = model.p.copy()
+    pb[rk.H_BALL_OUT] = 1.0
+    aux = np.zeros(4 + 2 * model.n_balls)
+    housings = (config.housing_de, config.housing_fe)
+    for e, h in enumerate(housings):
+        x0[4 + 2 * e] = fb[2 * e] / h.stiffness_x / um
+        x0[5 + 2 * e] = (fb[2 * e + 1] - h.mass * g) / h.stiffness_y / um
+    y[nr : nr + 4] = x0[4:] * um
+    for e in range(2):
+        f = float(np.hypot(fb[2 * e], fb[2 * e + 1]))
+        if f == 0.0:
+            continue
+        d = fb[2 * e : 2 * e + 2] / f
+        z0, z = (0, model.z_de) if e == 0 else (model.z_de, model.z_fe)
+        psi = np.array([pb[int(pb[rk.H_BRG_DE if e == 0 else rk.H_BRG_FE]) + rk.B_PSI0]])
+        psi = psi + 2 * np.pi * np.arange(z) / z
+        lo, hi = 0.0, 1e-4
+        for _ in range(60):
+            u = 0.5 * (lo + hi)
+            y[2 * e : 2 * e + 2] = y[nr + 2 * e : nr + 2 * e + 2] + u * d
+            rk.settle_balls(0.0, y, model.p, dydt, 64)
+            rk.rhs_core(0.0, y, pb, dydt, aux, True)
+            qa = aux[4 + 2 * z0 : 4 + 2 * z0 + z]  # inner contact forces of this bearing
+            carried = float(np.sum(qa * (np.sin(psi) * d[0] + np.cos(psi) * d[1])))
+            lo, hi = (u, hi) if carried < f else (lo, u)
+        x0[2 * e : 2 * e + 2] = y[2 * e : 2 * e + 2] / um
+    weight = float(np.abs(fb).sum()) + 1.0
+    sol = root(resid, x0, method="hybr")
+    best = (float(np.max(np.abs(resid(sol.x)))), sol.x)
+    if best[0] > 1e-9 * weight:
+        # Levenberg-Marquardt with a tiny Tikhonov term (1e-6 N per um): it keeps any neutral
+        # direction (e.g. a shaft end resting on a single ball, free sideways within the
+        # clearance) at the initial guess instead of letting the Jacobian go singular
+        ls = least_squares(lambda x: np.concatenate([resid(x), 1e-6 * (x - x0)]), x0,
+                           method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)  # fmt: skip
+        r = float(np.max(np.abs(resid(ls.x))))
+        if r < best[0]:
+            best = (r, ls.x)
+    r, x = best
+    if r > 1e-6 * weight:
+        raise SolverError(
+            f"no static equilibrium found for the rotor (force residual {r:.3g} N); "
+            "check the loads, clearances and stiffnesses"
+        )
+    resid(x)
+    return y.copy()
+
+
+def stable_step(model: PackedModel, config: RotorConfig, y0: NDArray, margin: float = 2.0):
+    """Largest RK4 step [s] for the fastest mode of the linearised system, ``margin / omega_max``
+    (the RK4 stability limit on the imaginary axis is 2.83).
+
+    The contact stiffness is the Hertz tangent ``1.5 k^(2/3) Q^(1/3)`` at four times the
+    largest static contact load (plus 1 N) to cover the dynamic load peaks.
+    """
+    _, aux = evaluate_rhs(model, 0.0, y0)
+    q = aux[4:]
+    qd = 4.0 * float(q.max()) + 1.0
+    w2 = []
+    for sup, h in ((config.de, config.housing_de), (config.fe, config.housing_fe)):
+        b = sup.bearing
+        ki = ball_contact(b, 1.0, Race.INNER).k_hertz
+        ko = ball_contact(b, 1.0, Race.OUTER).k_hertz
+        kti = 1.5 * ki ** (2 / 3) * qd ** (1 / 3)
+        kto = 1.5 * ko ** (2 / 3) * qd ** (1 / 3)
+        w2.append((kti + kto) / sup.ball_mass)
+        kser = 1.0 / (1.0 / kti + 1.0 / kto)
+        w2.append((max(h.stiffness_x, h.stiffness_y) + b.n_elements * kser) / h.mass)
+        kb = np.zeros_like(model.rotor.K)
+        kb[:4, :4] = np.eye(4) * b.n_elements * kser
+        lam = np.linalg.eigvals(np.linalg.solve(model.rotor.M, model.rotor.K + kb))
+        w2.append(float(np.max(lam.real)))
+    return margin / math.sqrt(max(w2))
+
+
+# ------------------------------------------------------------------------------ simulation
+
+
+def _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress=None, q=1,
+         chunk=1 << 15):  # fmt: skip
+    """Integrate in chunks of ``chunk`` output samples (bounded memory); returns the times,
+    auxiliary outputs, positions of the bearing nodes and housings, and the step count.
+    ``progress(n)`` is called with the number of final (every ``q``-th) samples done."""
+    nr = model.n_r
+    h = 1.0 / (fs_int * decim) if decim else None
+    t_all = np.empty(n_int)
+    aux = np.empty((n_int, na))
+    pos = np.empty((n_int, 8))
+    y = y0
+    i = 0
+    n_steps = 0
+    bound = 1.0  # ball radii are ~0.02 m; any coordinate past 1 m (or 1 m/s) is divergence
+    while i < n_int - 1 or i == 0:
+        n_c = min(chunk, n_int - 1 - i) + 1
+        t0 = i / fs_int
+        if method == "rk4":
+            tr = run_fixed(rk.rotor_rhs, rk.rotor_aux, y, model.p, dt=h, n_out=n_c, decim=decim,
+                           n_aux=na, bound=bound, t0=t0)  # fmt: skip
+        else:
+            te = (i + np.arange(n_c)) / fs_int
+            tr = run_adaptive(rk.rotor_rhs, rk.rotor_aux, y, model.p, te, n_aux=na, rtol=rtol,
+                              atol=atol, h0=1e-8, bound=bound)  # fmt: skip
+        t_all[i : i + n_c] = tr.t
+        aux[i : i + n_c] = tr.aux
+        pos[i : i + n_c, :4] = tr.y[:, :4]
+        pos[i : i + n_c, 4:] = tr.y[:, nr : nr + 4]
+        n_steps += tr.n_steps
+        y = tr.y[-1].copy()
+        i += n_c - 1
+        if progress is not None:
+            progress(i // q + 1)
+        if n_int == 1:
+            break
+    return t_all, aux, pos, n_steps
+
+
+def simulate_rotor(
+    config: RotorConfig,
+    duration: float = 1.0,
+    sample_rate: float = 12000.0,
+    dt: float | None = None,
+    ball_forces: bool = False,
+    antialias: bool = True,
+    method: str = "rk4",
+    rtol: float = 1e-8,
+    atol: float = 1e-13,
+    progress: Callable[[int], None] | None = None,
+) -> RotorResponse:
+    """Simulate the bearing–rotor–housing system from static equilibrium.
+
+    Parameters
+    ----------
+    config : RotorConfig
+        Inputs.
+    duration : float
+        Simulated time [s] (> 0): ``round(duration * sample_rate)`` samples from t = 0.
+    sample_rate : float
+        Output sample rate [Hz] (CWRU: 12 000 or 48 000).
+    dt : float or None
+        RK4 step [s]; default: the largest step from :func:`stable_step` that divides the
+        internal output interval. Ignored by ``method="dopri5"``.
+    ball_forces : bool
+        Also return every ball's contact forces.
+    antialias : bool
+        Like a data-acquisition system, sample internally at ``q`` x ``sample_rate`` (q = 4 up
+        to 24 kHz output, 2 above) and low-pass filter the accelerations before keeping every
+        q-th sample (:func:`scipy.signal.decimate`, zero-phase FIR, cut-off at the output
+        Nyquist frequency); the other outputs are sampled without filtering. ``False`` samples the
+        model's acceleration directly (content above ``sample_rate/2`` then aliases).
+    method : {"rk4", "dopri5"}
+        Compiled fixed-step RK4 (default) or adaptive Dormand–Prince 5(4) with ``rtol``,
+        ``atol`` (for checking).
+    progress : callable, optional
+        Called with the number of output samples done (for progress bars).
+
+    Returns
+    -------
+    RotorResponse
+    """
+    from scipy.signal import decimate
+
+    duration = check_positive("duration_s", duration, "s")
+    fs = check_positive("sample_rate_hz", sample_rate, "Hz")
+    if method not in ("rk4", "dopri5"):
+        raise ConfigError(f"method = {method!r} is invalid; valid: rk4, dopri5")
+    cutoff = config.mode_cutoff_hz or fs
+    t_wall = time.perf_counter()
+    model = pack_model(config, cutoff, ball_forces)
+    y0 = static_state(model, config)
+    q = (4 if fs <= 24000.0 else 2) if antialias else 1
+    fs_int = q * fs
+    n_out = int(round(duration * fs))
+    if n_out < 2:
+        raise ConfigError(
+            f"duration_s * sample_rate_hz = {duration * fs:.6g} samples is too few; valid range "
+            "[2, inf) samples"
+        )
+    n_int = q * (n_out - 1) + 1
+    na = n_aux(model, ball_forces)
+    decim = 0
+    if method == "rk4":
+        if dt is None:
+            decim = max(1, math.ceil(1.0 / (fs_int * stable_step(model, config, y0))))
+        else:
+            decim = max(1, int(round(1.0 / (fs_int * check_positive("dt_s", dt, "s")))))
+        solver = {"solver": "rk4", "dt_s": 1.0 / (fs_int * decim), "decim": decim}
+    else:
+        solver = {"solver": "dopri5", "rtol": rtol, "atol": atol}
+    t, aux, pos, n_steps = _run(
+        model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress, q
+    )
+    acc = aux[:, :4]
+    if q > 1:
+        acc = decimate(acc, q, ftype="fir", axis=0, zero_phase=True)
+        t, aux, pos = t[::q], aux[::q], pos[::q]
+    kin = config.kinematics()
+    red = model.rotor.reduction
+    arm = config.armature
+    meta = {
+        "model": "rotor",
+        "version": __version__,
+        "inputs": config_summary(config),
+        "sample_rate_hz": fs,
+        "duration_s": duration,
+        "antialias": bool(antialias),
+        "n_rotor_coordinates": model.n_r,
+        "n_fe_dof": model.rotor.fe.n_dof,
+        "mode_cutoff_hz": cutoff,
+        "n_modes_kept": int(red.mode_hz.size),
+        "n_modes_dropped": red.n_dropped,
+        "n_disks_label": "distributed rotor mass" if arm.distributed else f"{arm.n_disks} disk(s)",
+        "kinematics": {e: kin[e].as_dict() | {"shaft_hz": kin[e].shaft_hz} for e in ENDS},
+        "n_steps": n_steps,
+        "wall_time_s": time.perf_counter() - t_wall,
+        **solver,
+    }
+    bi = bo = None
+    if ball_forces:
+        zde, zfe = model.z_de, model.z_fe
+        bi = np.concatenate([aux[:, 4 : 4 + zde], aux[:, 4 + 2 * zde : 4 + 2 * zde + zfe]], 1)
+        bo = np.concatenate([aux[:, 4 + zde : 4 + 2 * zde], aux[:, 4 + 2 * zde + zfe :]], 1)
+    return RotorResponse(
+        t, np.ascontiguousarray(acc), pos[:, 4:].copy(), pos[:, :4].copy(), bi, bo, kin, meta
+    )

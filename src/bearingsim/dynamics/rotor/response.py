@@ -1,0 +1,152 @@
+"""Result of the bearing–rotor–housing model: :class:`RotorResponse` (SI arrays, metadata,
+plots, lossless :class:`xarray.Dataset` round trip)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import ConfigError
+from ...geometry import KinematicFrequencies
+from .config import AUX_NAMES, ENDS, G0
+
+
+@dataclass
+class RotorResponse:
+    """Time response of the bearing–rotor–housing model.
+
+    Attributes
+    ----------
+    time : ndarray
+        Sample times [s].
+    acceleration : ndarray
+        Housing accelerations (n, 4): DE x, DE y, FE x, FE y [m/s^2] (the accelerometer
+        signals; CWRU's DE sensor sits at 12 o'clock, i.e. along y).
+    housing_displacement : ndarray
+        Housing displacements (n, 4) [m], same columns.
+    shaft_displacement : ndarray
+        Shaft displacement at the DE and FE bearing nodes (n, 4) [m].
+    ball_load_inner, ball_load_outer : ndarray or None
+        Contact force of every ball on the inner / outer race (n, Z_DE + Z_FE) [N], DE balls
+        first (when requested).
+    kinematics : dict
+        :class:`~bearingsim.geometry.KinematicFrequencies` of the DE and FE bearings.
+    meta : dict
+        Model, version, inputs (:func:`config_summary`), solver facts.
+    """
+
+    time: NDArray[np.float64]
+    acceleration: NDArray[np.float64]
+    housing_displacement: NDArray[np.float64]
+    shaft_displacement: NDArray[np.float64]
+    ball_load_inner: NDArray[np.float64] | None
+    ball_load_outer: NDArray[np.float64] | None
+    kinematics: dict[str, KinematicFrequencies]
+    meta: dict[str, Any]
+
+    @property
+    def sample_rate(self) -> float:
+        """Output sample rate [Hz]."""
+        return float(self.meta["sample_rate_hz"])
+
+    def channel(self, end: str = "DE", axis: str = "y") -> NDArray[np.float64]:
+        """Housing acceleration of ``end`` ("DE"/"FE") along ``axis`` ("x"/"y") [m/s^2]."""
+        end, axis = end.upper(), axis.lower()
+        if end not in ENDS or axis not in ("x", "y"):
+            raise ConfigError(f"channel = {end}/{axis} is invalid; valid: DE|FE and x|y")
+        return self.acceleration[:, 2 * ENDS.index(end) + ("x", "y").index(axis)]
+
+    def plot_waveform(self, end: str = "DE", axis: str = "y", t0: float | None = None,
+                      t1: float | None = None, unit_g: bool = True):  # fmt: skip
+        """Housing acceleration against time between ``t0`` and ``t1`` [s]; returns a Figure."""
+        from matplotlib.figure import Figure
+
+        a = self.channel(end, axis) / (G0 if unit_g else 1.0)
+        m = np.ones(self.time.size, bool)
+        if t0 is not None:
+            m &= self.time >= t0
+        if t1 is not None:
+            m &= self.time <= t1
+        fig = Figure(figsize=(7, 3))
+        ax = fig.add_subplot()
+        ax.plot(self.time[m], a[m], lw=0.7)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(f"{end} {axis} acceleration [{'g' if unit_g else 'm/s$^2$'}]")
+        ax.set_title(f"rotor model, {self.meta['n_disks_label']}")
+        fig.tight_layout()
+        return fig
+
+    def spectrum(self, end: str = "DE", axis: str = "y", unit_g: bool = True):
+        """One-sided amplitude spectrum (Hann window, amplitude-corrected) of a channel:
+        ``(f [Hz], amplitude [g or m/s^2])``."""
+        a = self.channel(end, axis) / (G0 if unit_g else 1.0)
+        a = a - a.mean()
+        w = np.hanning(a.size)
+        amp = 2.0 * np.abs(np.fft.rfft(a * w)) / w.sum()
+        return np.fft.rfftfreq(a.size, 1.0 / self.sample_rate), amp
+
+    def plot_spectrum(self, end: str = "DE", axis: str = "y", f_max: float = 1000.0,
+                      mark: str = "bpfo", n_harmonics: int = 3):  # fmt: skip
+        """Amplitude spectrum up to ``f_max`` [Hz] with the ``mark`` frequency ("bpfo",
+        "bpfi", "ftf", "bsf" of that end's bearing) and its harmonics; returns a Figure."""
+        from matplotlib.figure import Figure
+
+        f, amp = self.spectrum(end, axis)
+        m = f <= f_max
+        fig = Figure(figsize=(7, 3))
+        ax = fig.add_subplot()
+        ax.plot(f[m], amp[m], lw=0.7)
+        fk = getattr(self.kinematics[end.upper()], f"{mark}_hz")
+        for k in range(1, n_harmonics + 1):
+            ax.axvline(k * fk, color="r", ls=":", lw=0.8)
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylabel("amplitude [g]")
+        ax.set_title(f"{end} {axis}: {mark.upper()} = {fk:.2f} Hz (red)")
+        fig.tight_layout()
+        return fig
+
+    def to_dataset(self):
+        """Lossless :class:`xarray.Dataset` (variables in SI, ``meta`` as JSON attribute)."""
+        import json
+
+        import xarray as xr
+
+        from ...io.jsonable import to_jsonable
+
+        data = {
+            "acceleration": (("time", "channel"), self.acceleration),
+            "housing_displacement": (("time", "channel"), self.housing_displacement),
+            "shaft_displacement": (("time", "channel"), self.shaft_displacement),
+        }
+        if self.ball_load_inner is not None:
+            data["ball_load_inner"] = (("time", "ball"), self.ball_load_inner)
+            data["ball_load_outer"] = (("time", "ball"), self.ball_load_outer)
+        ds = xr.Dataset(
+            data,
+            coords={"time": self.time, "channel": list(AUX_NAMES)},
+            attrs={"model": "rotor", "meta_json": json.dumps(to_jsonable(self.meta))},
+        )
+        ds["time"].attrs["units"] = "s"
+        ds["acceleration"].attrs["units"] = "m/s^2"
+        return ds
+
+    @classmethod
+    def from_dataset(cls, ds) -> RotorResponse:
+        """Inverse of :meth:`to_dataset`."""
+        import json
+
+        meta = json.loads(ds.attrs["meta_json"])
+        kin = {
+            e: KinematicFrequencies(**{k: meta["kinematics"][e][k] for k in
+                                       ("shaft_hz", "ftf_hz", "bpfo_hz", "bpfi_hz", "bsf_hz")})
+            for e in ENDS
+        }  # fmt: skip
+        bi = ds["ball_load_inner"].values if "ball_load_inner" in ds else None
+        bo = ds["ball_load_outer"].values if "ball_load_outer" in ds else None
+        return cls(
+            ds["time"].values, ds["acceleration"].values, ds["housing_displacement"].values,
+            ds["shaft_displacement"].values, bi, bo, kin, meta,
+        )  # fmt: skip

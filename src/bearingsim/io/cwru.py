@@ -1,0 +1,74 @@
+"""Reader of the CWRU Bearing Data Center ``.mat`` records."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ConfigError
+
+
+@dataclass(frozen=True)
+class CwruRecord:
+    """One CWRU Bearing Data Center record.
+
+    Attributes
+    ----------
+    path : Path
+        Source file.
+    number : str
+        Record number (e.g. ``"097"``).
+    channels : dict[str, ndarray]
+        Acceleration per channel (``"DE"``, ``"FE"``, ``"BA"``) [g] as stored by CWRU.
+    rpm : float or None
+        Shaft speed stored in the file (``X###RPM``) [r/min].
+    """
+
+    path: Path
+    number: str
+    channels: dict[str, np.ndarray]
+    rpm: float | None
+
+    def acceleration(self, channel: str = "DE") -> np.ndarray:
+        """Acceleration of ``channel`` in [m/s^2] (CWRU stores g; 1 g = 9.80665 m/s^2)."""
+        ch = channel.upper()
+        if ch not in self.channels:
+            raise ConfigError(
+                f"channel = {channel!r} not in {self.path.name}; valid: {', '.join(self.channels)}"
+            )
+        return self.channels[ch] * 9.80665
+
+
+_KEY = re.compile(r"^X(\d+)_(DE|FE|BA)_time$")
+
+
+def read_cwru_mat(path: str | Path) -> CwruRecord:
+    """Read a CWRU ``.mat`` file (keys ``X###_DE_time``, ``X###_FE_time``, ``X###_BA_time``,
+    ``X###RPM``)."""
+    from scipy.io import loadmat
+
+    p = Path(path)
+    try:
+        data = loadmat(p)
+    except (OSError, ValueError, TypeError) as exc:
+        raise ConfigError(f"file = {str(p)!r} is not a readable MATLAB .mat file ({exc})") from None
+    channels: dict[str, np.ndarray] = {}
+    numbers = set()
+    for key, val in data.items():
+        m = _KEY.match(key)
+        if m:
+            numbers.add(m.group(1))
+            channels[m.group(2)] = np.asarray(val, dtype=float).ravel()
+    if not channels:
+        raise ConfigError(
+            f"file = {str(p)!r} has no CWRU channel (expected keys X###_DE_time / X###_FE_time)"
+        )
+    number = sorted(numbers)[0]
+    rpm = None
+    for key, val in data.items():
+        if re.match(r"^X\d+RPM$", key):
+            rpm = float(np.asarray(val).ravel()[0])
+    return CwruRecord(p, number, channels, rpm)

@@ -1,0 +1,304 @@
+"""Planning a sweep: probe runs, the dataset layout, and time/disk estimates.
+
+:func:`plan_sweep` counts the runs of a :class:`~bearingsim.sweep_spec.SweepSpec` and estimates
+compute time and disk from short timing runs in this process. :func:`probe_run` (a two-sample
+run) gives the channels, units and shapes a model produces; :func:`make_layout` turns the probes
+of every group of runs into the :class:`~bearingsim.sweep_store.Layout` of the dataset.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..config import Scenario
+from ..errors import BearingsimError, ConfigError
+from ..io.jsonable import to_jsonable
+from .spec import SweepSpec
+from .store import ChannelLayout, Layout
+
+
+def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
+    """Two-sample run of ``scenario``: channel names, units and trailing shapes."""
+    from ..simulation import simulate
+
+    sc = Scenario.from_dict(scenario)
+    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, noise_rms_m_s2=0.0))
+    out = {}
+    for name, x in res.channels.items():
+        a = np.asarray(x)
+        dims = res._dims(name, a)
+        out[name] = {
+            "units": res.units.get(name, ""),
+            "extra_dim": dims[1] if a.ndim == 2 else None,
+            "n_extra": int(a.shape[1]) if a.ndim == 2 else 0,
+        }
+    return out
+
+
+def probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
+    """Probe the first candidate that starts; the last error text when none does."""
+    err = ""
+    for sd in candidates:
+        try:
+            return probe_run(sd)
+        except BearingsimError as exc:
+            err = " ".join(str(exc).split())
+    return err
+
+
+# ------------------------------------------------------------------------------ timing
+def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | None:
+    """Time ``scenario`` for 2 samples and for ``min(duration_s, max_duration_s)`` (in this
+    process): ``fixed_s`` [s] (the two-sample run, the faster of two: the first call of a
+    configuration fills caches), ``rate_s_per_s`` (wall time per simulated second beyond it)
+    [s/s], ``duration_s`` and ``wall_s`` of the longer run [s], and ``result`` (its
+    :class:`~bearingsim.simulate.SimulationResult`); ``None`` when the run raises."""
+    from ..simulation import simulate
+
+    d0 = 2.0 / scenario.fs_hz
+    d1 = max(min(scenario.duration_s, max_duration_s), 2 * d0)
+    t = []
+    for d in (d0, d0, d1):
+        t0 = time.perf_counter()
+        try:
+            res = simulate(scenario.replace(duration_s=d))
+        except BearingsimError:
+            return None
+        t.append(time.perf_counter() - t0)
+    fixed = min(t[0], t[1])
+    rate = max(t[2] - fixed, 0.0) / (d1 - d0)
+    return {"duration_s": d1, "wall_s": t[2], "fixed_s": fixed, "rate_s_per_s": rate, "result": res}
+
+
+def extrapolate(
+    scenarios: list[Scenario], fit: dict[str, list[tuple[float, float]]]
+) -> NDArray[np.float64]:
+    """Per-run compute estimate [s]: fixed part + rate x ``duration_s``, averaged over the
+    ``fit`` entries ``(fixed_s, rate_s_per_s)`` of the run's model (of all models when its own
+    has none; NaN when there are none)."""
+    allfit = [v for vs in fit.values() for v in vs]
+    est = np.full(len(scenarios), math.nan)
+    for i, sc in enumerate(scenarios):
+        f = fit.get(sc.model.value) or allfit
+        if f:
+            a = float(np.mean([v[0] for v in f]))
+            r = float(np.mean([v[1] for v in f]))
+            est[i] = a + r * sc.duration_s
+    return est
+
+
+def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float, float] | None:
+    """On a worker: ``(fixed_s, rate_s_per_s)`` of ``scenario`` from :func:`timing_run`, or
+    ``None`` when it raises anything (the run itself then records its error in the sweep)."""
+    try:
+        tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+    except Exception:
+        return None
+    return None if tr is None else (tr["fixed_s"], tr["rate_s_per_s"])
+
+
+# ------------------------------------------------------------------------------ layout
+def _group_key(sd: dict[str, Any]) -> tuple:
+    return (sd["model"], sd["per_ball"], sd.get("bearing"), sd.get("bearing_file"))
+
+
+def probe_groups(scenarios: list[Scenario]) -> dict[tuple, list[int]]:
+    """Runs grouped by what decides the channel set (model, per_ball, bearing): up to three
+    candidate runs per group."""
+    groups: dict[tuple, list[int]] = {}
+    for i, sc in enumerate(scenarios):
+        g = groups.setdefault(_group_key(sc.to_dict()), [])
+        if len(g) < 3:
+            g.append(i)
+    return groups
+
+
+def make_layout(
+    spec: SweepSpec, scenarios: list[Scenario], probes: dict[tuple, dict[str, Any]]
+) -> Layout:
+    """Dataset layout from the probe results of every group (see :func:`probe_groups`)."""
+    order: list[str] = []
+    info: dict[str, dict[str, Any]] = {}
+    for p in probes.values():
+        for name, d in p.items():
+            if name not in info:
+                order.append(name)
+                info[name] = dict(d)
+            else:
+                info[name]["n_extra"] = max(info[name]["n_extra"], d["n_extra"])
+    if spec.channels is None:
+        names = order
+    else:
+        names = list(spec.channels)
+        for name in names:
+            for key, p in probes.items():
+                if name not in p:
+                    valid = [k for k in order if all(k in q for q in probes.values())]
+                    raise ConfigError(
+                        f"{spec.origin}: channel {name!r} is not produced by the runs with "
+                        f"model = {key[0]!r}, per_ball = {key[1]}; valid: " + ", ".join(valid)
+                    )
+    chans = tuple(
+        ChannelLayout(n, info[n]["units"], info[n]["extra_dim"], info[n]["n_extra"]) for n in names
+    )
+    lengths = {(sc.fs_hz, sc.n_samples) for sc in scenarios}
+    n_time = max(sc.n_samples for sc in scenarios)
+    fs = next(iter(lengths))[0] if len(lengths) == 1 else None
+    return Layout(len(scenarios), n_time, fs, chans)
+
+
+def coordinates(spec: SweepSpec, scenarios: list[Scenario]) -> dict[str, list[Any]]:
+    dicts = [sc.to_dict() for sc in scenarios]
+    return {k: [d[k] for d in dicts] for k in spec.coordinate_keys}
+
+
+# ------------------------------------------------------------------------------ plan
+@dataclass
+class SweepPlan:
+    """Run count and estimates of a sweep.
+
+    Attributes
+    ----------
+    n_runs : int
+        Number of runs.
+    axes : dict
+        Number of values per axis.
+    channels : list of str
+        Stored channels.
+    n_samples : tuple of int
+        Smallest and largest samples per run.
+    compute_s_per_run : float
+        Estimated mean compute time of one run on one worker [s].
+    compute_s_total : float
+        Estimated compute time of every run on one worker [s].
+    workers : int
+        Worker count of ``wall_s`` [-].
+    wall_s : float
+        ``compute_s_total / workers`` (ideal scaling) [s].
+    bytes_raw, bytes_estimate : int
+        Size of the stored arrays uncompressed, and the estimate after compression [byte].
+    timing : list of dict
+        The timing runs (run, duration [s], wall [s]).
+    spec_hash : str
+        SHA-256 of the canonical spec.
+    """
+
+    n_runs: int
+    combine: str
+    axes: dict[str, int]
+    channels: list[str]
+    n_samples: tuple[int, int]
+    compute_s_per_run: float
+    compute_s_total: float
+    workers: int
+    wall_s: float
+    bytes_raw: int
+    bytes_estimate: int
+    timing: list[dict[str, Any]] = field(default_factory=list)
+    spec_hash: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        """Plain dict (JSON)."""
+        return to_jsonable(asdict(self))
+
+
+def plan_sweep(
+    spec: SweepSpec,
+    *,
+    timing_runs: int = 3,
+    timing_duration_s: float = 0.1,
+    workers: int | None = None,
+    seed: int = 0,
+) -> SweepPlan:
+    """Count the runs and estimate compute time and disk from short timing runs (in this
+    process).
+
+    Each timing run is a randomly chosen run (``seed``), at least one per model, simulated
+    twice: for 2 samples and for ``min(duration_s, timing_duration_s)``; the per-run cost is
+    extrapolated linearly in ``duration_s`` (fixed part + rate per simulated second, per model).
+    The disk estimate compresses the timing runs' channels with the dataset's codec.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    timing_runs : int
+        Number of timing runs (0: count only) [-].
+    timing_duration_s : float
+        Longest simulated time of a timing run [s].
+    workers : int, optional
+        Worker count for the wall-time estimate (default: CPU count).
+    seed : int
+        Choice of the timing runs.
+    """
+    import numcodecs
+
+    scenarios = spec.scenarios()
+    groups = probe_groups(scenarios)
+    probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
+    layout = make_layout(spec, scenarios, probes)
+    n = len(scenarios)
+    w = workers or os.cpu_count() or 1
+    raw_per_run = sum(8 * layout.n_time * max(1, c.n_extra) for c in layout.channels)
+    timing: list[dict[str, Any]] = []
+    ratio = 1.0
+    est = np.full(n, math.nan)
+    if timing_runs > 0:
+        rng = np.random.default_rng(seed)
+        models = sorted({sc.model.value for sc in scenarios})
+        picks = [next(i for i, sc in enumerate(scenarios) if sc.model.value == m) for m in models]
+        rest = [i for i in rng.permutation(n) if i not in picks]
+        picks = sorted(picks + rest[: max(0, timing_runs - len(picks))])
+        blosc = numcodecs.Blosc(cname="lz4", clevel=5, shuffle=numcodecs.Blosc.SHUFFLE)
+        enc = raw = 0
+        fit: dict[str, list[tuple[float, float]]] = {}
+        for i in picks:
+            sc = scenarios[i]
+            tr = timing_run(sc, timing_duration_s)
+            if tr is None:
+                timing.append({"run": i, "failed": True})
+                continue
+            res = tr.pop("result")
+            fit.setdefault(sc.model.value, []).append((tr["fixed_s"], tr["rate_s_per_s"]))
+            timing.append({"run": i, **tr})
+            for name in (c.name for c in layout.channels):
+                if name in res.channels:
+                    x = np.ascontiguousarray(res.channels[name], dtype=np.float64)
+                    raw += x.nbytes
+                    enc += len(blosc.encode(x))
+        ratio = enc / raw if raw else 1.0
+        est = extrapolate(scenarios, fit)
+    total = float(np.sum(est))
+    ns = [sc.n_samples for sc in scenarios]
+    return SweepPlan(
+        n_runs=n,
+        combine=spec.combine.value,
+        axes={a.name: len(a) for a in spec.axes},
+        channels=[c.name for c in layout.channels],
+        n_samples=(min(ns), max(ns)),
+        compute_s_per_run=total / n,
+        compute_s_total=total,
+        workers=w,
+        wall_s=total / w,
+        bytes_raw=raw_per_run * n,
+        bytes_estimate=int(raw_per_run * n * ratio + 600 * n),
+        timing=timing,
+        spec_hash=spec.spec_hash,
+    )
+
+
+def _probe_local(scenarios: list[Scenario], idx: list[int]) -> dict[str, Any]:
+    err: BearingsimError | None = None
+    for i in idx:
+        try:
+            return probe_run(scenarios[i].to_dict())
+        except BearingsimError as exc:
+            err = exc
+    raise ConfigError(f"run {idx[0]} cannot start: {' '.join(str(err).split())}")
