@@ -16,14 +16,9 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from bearingsim.dynamics.integrate import run_fixed  # noqa: E402
 from bearingsim.dynamics.rotor import kernel as rk  # noqa: E402
-from bearingsim.dynamics.rotor.model import (
-    LocalFault,
-    cwru_rotor_config,
-    pack_model,
-    simulate_rotor,
-    stable_step,
-    static_state,
-)
+from bearingsim.dynamics.rotor.config import cwru_rotor_config
+from bearingsim.dynamics.rotor.model import pack_model, simulate_rotor, stable_step, static_state
+from bearingsim.geometry import Defect
 
 TARGET_S = 2.0
 
@@ -38,7 +33,7 @@ def best(f, n=3):
 
 
 def main() -> None:
-    cfg = cwru_rotor_config(9, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(9, de_fault=Defect("outer"))
     t0 = time.perf_counter()
     simulate_rotor(cfg, duration=0.01)  # load the compiled kernels (numba cache) / compile
     t_first = time.perf_counter() - t0

@@ -16,7 +16,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
 from bearingsim.dynamics.ring.base import ModelInputs
-from bearingsim.dynamics.ring.defects import FaultLocation, defect_geometry
+from bearingsim.geometry import Race, defect_geometry
 
 
 class Reference:
@@ -33,13 +33,14 @@ class Reference:
         self.w_cage = 2 * math.pi * inputs.cage_hz
         self.w_shaft = 2 * math.pi * inputs.shaft_hz
         self.alpha0 = inputs.first_ball_angle
-        self.loc = inputs.defect.location
-        self.beta0 = inputs.defect.angle
+        self.loc = None if inputs.defect is None else inputs.defect.race
+        self.beta0 = 0.0
         self.dbeta = 0.0
         self.h = 0.0
         self.gamma = None
-        if self.loc is not FaultLocation.NONE:
+        if self.loc is not None:
             g = defect_geometry(inputs.bearing, inputs.defect)
+            self.beta0 = g.edge_angle  # seed VSM beta_0: the left edge
             self.dbeta = g.delta_beta
             if inputs.retention_factor is None:
                 self.h = g.h_min
@@ -58,8 +59,8 @@ class Reference:
         _e, psi = self.directions(t)
         off = np.full(self.Z, self.clr)
         fac = np.ones(self.Z)
-        if self.loc is not FaultLocation.NONE:
-            edge = self.beta0 + (self.w_shaft * t if self.loc is FaultLocation.INNER else 0.0)
+        if self.loc is not None:
+            edge = self.beta0 + (self.w_shaft * t if self.loc is Race.INNER else 0.0)
             over = np.mod(psi - edge, 2 * math.pi) < self.dbeta
             off[over] += self.h
             if self.gamma is not None:
@@ -110,9 +111,9 @@ class Reference:
 
     def jump_times(self, t_end: float) -> list[float]:
         """Instants in (0, t_end) at which some ball enters or leaves the defect."""
-        if self.loc is FaultLocation.NONE:
+        if self.loc is None:
             return []
-        w_rel = self.w_cage - (self.w_shaft if self.loc is FaultLocation.INNER else 0.0)
+        w_rel = self.w_cage - (self.w_shaft if self.loc is Race.INNER else 0.0)
         n_turns = int(abs(w_rel) * t_end / (2 * math.pi)) + 3
         out = []
         for j in range(self.Z):

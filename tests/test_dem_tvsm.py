@@ -11,8 +11,8 @@ from numpy.testing import assert_allclose
 from bearingsim import get_bearing
 from bearingsim.config import Scenario
 from bearingsim.dynamics.ring.base import ModelInputs
-from bearingsim.dynamics.ring.defects import Defect, FaultLocation
 from bearingsim.dynamics.ring.trace import stiffness_trace
+from bearingsim.geometry import defect_at_edge
 from bearingsim.simulation import simulate
 
 OUTER = {"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}
@@ -57,7 +57,8 @@ def test_dem_outputs_obey_newtons_law():
 def test_secant_stiffness_reproduces_the_load():
     """The VSM secant matrix S satisfies S u_s = F at every cage angle (eq. 19 statics)."""
     b = get_bearing("6205")
-    inp = ModelInputs(b, 10.0, 50.0, 1750 / 60, Defect(FaultLocation.INNER, 3.556e-4, 2.794e-4))
+    d = defect_at_edge(b, "inner", 3.556e-4, 2.794e-4, math.radians(10.0))  # seed beta_0
+    inp = ModelInputs(b, 10.0, 50.0, 1750 / 60, d)
     tr = stiffness_trace(inp, np.radians(np.arange(0, 360, 0.1)))
     ux, uy = tr.displacement.T
     assert_allclose(tr.k_x * ux + tr.k_xy * uy, 10.0, rtol=1e-9)

@@ -11,7 +11,6 @@ from numpy.testing import assert_allclose
 from bearingsim import get_bearing
 from bearingsim.contact.hertz import (
     EllipticMethod,
-    Race,
     ball_contact,
     ball_stiffness,
     combined_stiffness,
@@ -22,6 +21,7 @@ from bearingsim.contact.hertz import (
     roller_contact,
     subsurface_stresses,
 )
+from bearingsim.geometry import Race
 from bearingsim.load_distribution import stribeck_qmax
 
 

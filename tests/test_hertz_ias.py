@@ -9,7 +9,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim import ConfigError, get_bearing
-from bearingsim.contact.hertz import Race, combined_stiffness, element_stiffness, roller_contact
+from bearingsim.contact.hertz import combined_stiffness, element_stiffness, roller_contact
 from bearingsim.contact.pereira import (
     A1,
     A2,
@@ -28,6 +28,7 @@ from bearingsim.contact.pereira import (
     seed_line_stiffness,
     seed_reference_load,
 )
+from bearingsim.geometry import Race
 from bearingsim.materials import effective_modulus
 
 B = get_bearing("NU204-ECP")

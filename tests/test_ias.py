@@ -40,7 +40,7 @@ def faulty():
 
 @pytest.fixture(scope="module")
 def healthy():
-    return simulate_ias(replace(SEED, spall_width=0.0), DUR, DT, RATE)
+    return simulate_ias(replace(SEED, spall=None), DUR, DT, RATE)
 
 
 def test_constants_of_the_seed_case():
@@ -167,7 +167,11 @@ def test_dynamic_steady_state_matches_static_distribution(healthy):
 
 @pytest.mark.parametrize("width", [0.5e-3, 1e-3, 2e-3])
 def test_spall_width_estimate(width, faulty):
-    r = faulty if width == 1e-3 else simulate_ias(replace(SEED, spall_width=width), DUR, DT, RATE)
+    r = (
+        faulty
+        if width == 1e-3
+        else simulate_ias(replace(SEED, spall=replace(SEED.spall, width=width)), DUR, DT, RATE)
+    )
     est = r.analyze().estimate
     assert est is not None
     assert_allclose(est.width, width, rtol=0.10, err_msg="spall width, seed IAS eq. (37)")
@@ -238,7 +242,7 @@ def test_plots(faulty):
 
 def test_bad_parameters():
     with pytest.raises(ConfigError, match=r"spall_width_m = 0.009 m is out of range"):
-        replace(SEED, spall_width=9e-3)
+        replace(SEED, spall=replace(SEED.spall, width=9e-3))
     with pytest.raises(ConfigError, match="torque_nm = 0 N m with zero initial speed"):
         replace(SEED, torque=0.0)
     replace(SEED, torque=0.0, initial_speed=6.0)  # coasting down is a valid case
@@ -289,6 +293,6 @@ def test_model_options_keep_the_kinematic_results(change):
 def test_spall_outside_the_load_zone_is_silent():
     """A spall at the top (phi_os = pi/2) sits outside the load zone of a downward load: its roller
     load Q(phi) of seed eq. (1) is zero, so no spall force, no spall torque, no event."""
-    r = simulate_ias(replace(SEED, spall_angle=0.5 * math.pi), DUR, DT, RATE)
+    r = simulate_ias(replace(SEED, spall=replace(SEED.spall, angle=0.0)), DUR, DT, RATE)  # top
     assert np.all(r.spall_force == 0.0) and np.all(r.spall_torque == 0.0)
     assert r.analyze().estimate is None

@@ -10,9 +10,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.catalog import get_bearing
-from bearingsim.contact.hertz import Race, ball_contact
+from bearingsim.contact.hertz import ball_contact
 from bearingsim.errors import ConfigError
-from bearingsim.geometry import characteristic_frequencies
+from bearingsim.geometry import Race, characteristic_frequencies
 from bearingsim.life.iso281 import (
     FC_BALL_TABLE,
     FC_ROLLER_TABLE,

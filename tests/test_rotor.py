@@ -15,31 +15,32 @@ from scipy.signal import butter, find_peaks, hilbert, sosfiltfilt
 
 from bearingsim.catalog import get_bearing
 from bearingsim.config import Scenario
-from bearingsim.contact.hertz import Race, ball_contact
+from bearingsim.contact.hertz import ball_contact
 from bearingsim.dynamics.integrate import run_fixed
 from bearingsim.dynamics.rotor import kernel as rk
-from bearingsim.dynamics.rotor.config import BAND_TUNED_HOUSING
-from bearingsim.dynamics.rotor.model import (
+from bearingsim.dynamics.rotor.config import (
+    BAND_TUNED_HOUSING,
     Armature,
     BearingSupport,
     Housing,
-    LocalFault,
     RotorConfig,
-    RotorResponse,
     Shaft,
     ShaftMassModel,
-    build_rotor,
     cwru_rotor_config,
-    evaluate_rhs,
-    fault_geometry,
     housing_from_frequency,
+)
+from bearingsim.dynamics.rotor.model import (
+    build_rotor,
+    evaluate_rhs,
     pack_model,
     rotor_modes,
     simulate_rotor,
     static_state,
 )
+from bearingsim.dynamics.rotor.response import RotorResponse
 from bearingsim.dynamics.rotor.scenario import rotor_config_from_scenario
 from bearingsim.errors import ConfigError
+from bearingsim.geometry import Defect, Race, defect_geometry
 from bearingsim.io.cwru import read_cwru_mat
 
 G0 = 9.80665
@@ -136,7 +137,7 @@ def _model(cfg, cutoff=12000.0, ball=True):
 
 @pytest.mark.parametrize("n_disks", [1, 9, 17])
 def test_static_equilibrium_balances_rotor_weight(n_disks):
-    cfg = cwru_rotor_config(n_disks, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(n_disks, de_fault=Defect("outer"))
     m, y0 = _model(cfg)
     dydt, aux = evaluate_rhs(m, 0.0, y0)
     assert np.abs(dydt[m.n_pos :]).max() < 1e-3, "accelerations vanish at rest"
@@ -151,12 +152,12 @@ def test_static_equilibrium_balances_rotor_weight(n_disks):
 
 def test_fault_geometry_matches_seed_vsm_eq2():
     b = get_bearing("6205-cwru")
-    g = fault_geometry(b, LocalFault("outer"))
+    g = defect_geometry(b, Defect("outer"))
     r, hb, ro = b.element_diameter / 2, 0.007 * 25.4e-3 / 2, b.outer_raceway_radius
     hs = (r - math.sqrt(r * r - hb * hb)) - (ro - math.sqrt(ro * ro - hb * hb))
-    assert_allclose(g["h_s_m"], hs, rtol=1e-12, err_msg="seed VSM eq. (2), outer race")
-    assert g["h_min_m"] == pytest.approx(hs)  # 0.011 in deep: the ball never reaches the bottom
-    assert_allclose(g["half_angle_rad"], math.asin(hb / ro), rtol=1e-12, err_msg="eq. (3)")
+    assert_allclose(g.h_s, hs, rtol=1e-12, err_msg="seed VSM eq. (2), outer race")
+    assert g.h_min == pytest.approx(hs)  # 0.011 in deep: the ball never reaches the bottom
+    assert_allclose(g.delta_beta / 2, math.asin(hb / ro), rtol=1e-12, err_msg="eq. (3)")
 
 
 # ---------------------------------------------------------------- SciPy reference of the RHS
@@ -243,7 +244,7 @@ def test_compiled_kernel_matches_scipy_reference():
     # ball 5 (index 4, 160 deg after ball 1) reaches the defect centre (180 deg) at t = 1.5 ms
     wc = 2 * np.pi * 1750 / 60 / 2 * (1 - 7.94004 / 39.0398)
     psi0 = np.pi - 1.5e-3 * wc - 4 * 2 * np.pi / z
-    cfg = cwru_rotor_config(3, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(3, de_fault=Defect("outer"))
     cfg = RotorConfig(**{**cfg.__dict__, "de": BearingSupport(cfg.de.bearing, cfg.de.fault,
                                                                first_ball_angle=psi0)})  # fmt: skip
     m, y0 = _model(cfg, cutoff=5000.0, ball=False)
@@ -272,7 +273,7 @@ def test_compiled_kernel_matches_scipy_reference():
 
 @pytest.fixture(scope="module")
 def sim9():
-    cfg = cwru_rotor_config(9, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(9, de_fault=Defect("outer"))
     return simulate_rotor(cfg, duration=1.0, sample_rate=12000.0)
 
 
@@ -311,7 +312,7 @@ def test_impacts_between_0p10_and_0p20_s_equal_measured(sim9, rec132):
 def test_fault_frequency_independent_of_disk_count():
     freqs = []
     for n in (1, 2, 3, 5, 9):
-        cfg = cwru_rotor_config(n, de_fault=LocalFault("outer"))
+        cfg = cwru_rotor_config(n, de_fault=Defect("outer"))
         r = simulate_rotor(cfg, duration=0.5)
         f, df = envelope_peak(r.channel("DE", "y"), 12000.0)
         freqs.append(f)
@@ -322,7 +323,7 @@ def test_fan_end_outer_fault_shows_fan_end_bpfo():
     """FE 6203 outer-race defect at 6 o'clock (a ball sits on it at t = 0): the FE housing
     envelope shows the FE BPFO (CWRU order 3.0530). The record holds a whole number of fault
     periods (about 0.5 s), so BPFO falls on a bin and does not leak below its 2nd harmonic."""
-    cfg = cwru_rotor_config(3, fe_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(3, fe_fault=Defect("outer"))
     bpfo = cfg.kinematics()["FE"].bpfo_hz
     r = simulate_rotor(cfg, duration=round(0.5 * bpfo) / bpfo)
     f, df = envelope_peak(r.channel("FE", "y"), 12000.0)
@@ -330,7 +331,7 @@ def test_fan_end_outer_fault_shows_fan_end_bpfo():
 
 
 def test_inner_race_fault_bpfi_with_shaft_sidebands():
-    r = simulate_rotor(cwru_rotor_config(3, de_fault=LocalFault("inner")), duration=1.0)
+    r = simulate_rotor(cwru_rotor_config(3, de_fault=Defect("inner")), duration=1.0)
     fs_hz = 1750 / 60
     f, df = envelope_peak(r.channel("DE", "y"), 12000.0, 140.0, 175.0)
     assert abs(f - 5.4152 * fs_hz) <= df, "BPFI, CWRU bearing table order 5.4152"
@@ -347,10 +348,8 @@ def test_inner_race_fault_bpfi_with_shaft_sidebands():
 def test_healthy_bearing_is_quiet_and_zero_defect_limit():
     base = cwru_rotor_config(3)
     healthy = simulate_rotor(base, duration=0.1)
-    tiny = simulate_rotor(
-        cwru_rotor_config(3, de_fault=LocalFault("outer", depth=1e-15)), duration=0.1
-    )
-    faulty = simulate_rotor(cwru_rotor_config(3, de_fault=LocalFault("outer")), duration=0.1)
+    tiny = simulate_rotor(cwru_rotor_config(3, de_fault=Defect("outer", depth=1e-15)), duration=0.1)
+    faulty = simulate_rotor(cwru_rotor_config(3, de_fault=Defect("outer")), duration=0.1)
     a_h = healthy.channel("DE", "y")
     assert_allclose(tiny.channel("DE", "y"), a_h, atol=1e-6 * np.abs(a_h).max() + 1e-9,
                     err_msg="a 1e-15 m deep defect equals the healthy bearing")  # fmt: skip
@@ -363,7 +362,7 @@ def test_healthy_bearing_is_quiet_and_zero_defect_limit():
     kw = {"housing_de": h, "housing_fe": h}
     quiet = simulate_rotor(cwru_rotor_config(3, **kw), duration=0.1).channel("DE", "y")
     loud = simulate_rotor(
-        cwru_rotor_config(3, de_fault=LocalFault("outer"), **kw), duration=0.1
+        cwru_rotor_config(3, de_fault=Defect("outer"), **kw), duration=0.1
     ).channel("DE", "y")
     assert np.std(loud) > 20 * np.std(quiet)
 
@@ -391,7 +390,7 @@ def test_unbalance_gives_a_shaft_frequency_line_proportional_to_me():
 
 
 def test_dopri5_agrees_with_rk4():
-    cfg = cwru_rotor_config(1, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(1, de_fault=Defect("outer"))
     a = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False)
     b = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False,
                        method="dopri5", rtol=1e-7, atol=1e-12)  # fmt: skip
@@ -400,7 +399,7 @@ def test_dopri5_agrees_with_rk4():
 
 
 def test_time_step_convergence():
-    cfg = cwru_rotor_config(3, de_fault=LocalFault("outer"))
+    cfg = cwru_rotor_config(3, de_fault=Defect("outer"))
     a = simulate_rotor(cfg, duration=0.05)
     b = simulate_rotor(cfg, duration=0.05, dt=a.meta["dt_s"] / 2)
     ya, yb = a.channel("DE", "y"), b.channel("DE", "y")
@@ -410,7 +409,7 @@ def test_time_step_convergence():
 def test_response_roundtrip_netcdf(tmp_path):
     import xarray as xr
 
-    r = simulate_rotor(cwru_rotor_config(1, de_fault=LocalFault("outer")), duration=0.01,
+    r = simulate_rotor(cwru_rotor_config(1, de_fault=Defect("outer")), duration=0.01,
                        ball_forces=True)  # fmt: skip
     path = tmp_path / "r.nc"
     r.to_dataset().to_netcdf(path, engine="h5netcdf")
@@ -436,8 +435,8 @@ def test_response_roundtrip_netcdf(tmp_path):
         (lambda: Shaft(mass=0.0), "shaft_mass_kg"),
         (lambda: Shaft(youngs_modulus=-5.0), "shaft_youngs_modulus_pa"),
         (lambda: Armature(mass=-1.0), "rotor_mass_kg"),
-        (lambda: LocalFault("middle"), "fault_race"),
-        (lambda: LocalFault("outer", width=9e-3), None),
+        (lambda: Defect("middle"), "fault_race"),
+        (lambda: Defect("outer", width=9e-3), None),
     ],
     ids=["pos-outside", "housing-mass", "housing-k", "shaft-mass", "shaft-E", "rotor-mass",
          "race", "wide-defect"],
@@ -466,7 +465,7 @@ def test_bad_input_messages_name_field_value_range():
         cwru_rotor_config(9, n_elements=4)
     assert "n_elements = 4 is too few; valid range [10, inf)" in str(ei.value)
     with pytest.raises(ConfigError) as ei:
-        cwru_rotor_config(de_fault=LocalFault("outer", width=9e-3))
+        cwru_rotor_config(de_fault=Defect("outer", width=9e-3))
     assert "defect_width_m = 0.009 m is out of range" in str(ei.value)
 
 
@@ -517,7 +516,7 @@ def test_48k_record_135_fault_frequency_and_impacts():
         pytest.skip(f"CWRU record not found: {path}")
     rec = read_cwru_mat(path)
     fs = 48000.0
-    r = simulate_rotor(cwru_rotor_config(9, de_fault=LocalFault("outer"), speed_rpm=1796.0),
+    r = simulate_rotor(cwru_rotor_config(9, de_fault=Defect("outer"), speed_rpm=1796.0),
                        duration=1.0, sample_rate=fs)  # fmt: skip
     band = (2000.0, 10000.0)  # SOURCES.md sanity check band at 48 kHz
 

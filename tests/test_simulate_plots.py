@@ -13,8 +13,8 @@ import numpy as np  # noqa: E402
 
 import bearingsim  # noqa: E402
 from bearingsim.dynamics.ring.base import ModelInputs  # noqa: E402
-from bearingsim.dynamics.ring.defects import Defect, FaultLocation  # noqa: E402
 from bearingsim.dynamics.ring.trace import stiffness_trace  # noqa: E402
+from bearingsim.geometry import defect_at_edge  # noqa: E402
 from bearingsim.signal.core import fast_kurtogram  # noqa: E402
 
 
@@ -29,7 +29,7 @@ def test_package_level_simulate_and_plots():
         10.0,
         50.0,
         1750 / 60,
-        Defect(FaultLocation.OUTER, 1e-3, 1e-3, math.radians(10)),
+        defect_at_edge(bearingsim.get_bearing("6205"), "outer", 1e-3, 1e-3, math.radians(10)),
         retention_factor=0.38,
     )
     tr = stiffness_trace(inp, np.radians(np.arange(0, 360, 0.5)))

@@ -12,15 +12,10 @@ from scipy.optimize import brentq
 
 from bearingsim import get_bearing
 from bearingsim.dynamics.ring.base import ModelInputs
-from bearingsim.dynamics.ring.defects import (
-    Defect,
-    FaultLocation,
-    defect_geometry,
-    in_defect,
-    retention_factor,
-)
+from bearingsim.dynamics.ring.defects import in_defect, retention_factor
 from bearingsim.dynamics.ring.trace import stiffness_trace
 from bearingsim.errors import ConfigError
+from bearingsim.geometry import Defect, defect_at_edge, defect_geometry
 from bearingsim.load_distribution import radial_load_distribution
 
 B6205 = get_bearing("6205")
@@ -43,7 +38,7 @@ def k_paper() -> float:
 
 
 def inputs(loc="outer", width=1e-3, gamma=0.38, **kw) -> ModelInputs:
-    d = Defect(FaultLocation(loc), width, 1e-3, math.radians(10.0))
+    d = None if loc == "none" else defect_at_edge(B6205, loc, width, 1e-3, math.radians(10.0))
     return ModelInputs(B6205, FX, FY, SHAFT, d, retention_factor=gamma, **kw)
 
 
@@ -58,7 +53,7 @@ def events_of(trace, lo, hi, kinds=("enters_zone", "leaves_zone", "enters_defect
 def test_defect_drop_small_width_limit(race):
     """Eq. (2) for b << r reduces to the sagitta sum b^2/8 (1/r -/+ 1/r_race)."""
     b = 0.007 * 25.4e-3
-    g = defect_geometry(B6205, Defect(FaultLocation(race), b, 2.794e-4))
+    g = defect_geometry(B6205, Defect(race, b, 2.794e-4))
     r = 0.5 * B6205.element_diameter
     rr = B6205.outer_raceway_radius if race == "outer" else B6205.inner_raceway_radius
     sign = -1.0 if race == "outer" else 1.0
@@ -79,10 +74,10 @@ def test_defect_drop_small_width_limit(race):
 
 
 def test_defect_depth_limits_drop():
-    g = defect_geometry(B6205, Defect(FaultLocation.OUTER, 1e-3, 1e-7))
+    g = defect_geometry(B6205, Defect("outer", 1e-3, 1e-7))
     assert g.h_min == pytest.approx(1e-7, rel=1e-15), "eq. (1): h_min = min(h_d, h_s)"
-    gi = defect_geometry(B6205, Defect(FaultLocation.INNER, 1e-3, 1.0))
-    go = defect_geometry(B6205, Defect(FaultLocation.OUTER, 1e-3, 1.0))
+    gi = defect_geometry(B6205, Defect("inner", 1e-3, 1.0))
+    go = defect_geometry(B6205, Defect("outer", 1e-3, 1.0))
     assert go.h_s < gi.h_s, "outer (concave) raceway lets the ball drop less than inner (eq. 2)"
 
 
@@ -97,7 +92,7 @@ def test_defect_depth_limits_drop():
 )
 def test_defect_bad_input(width, depth, field):
     with pytest.raises(ConfigError, match=field):
-        defect_geometry(B6205, Defect(FaultLocation.OUTER, width, depth))
+        defect_geometry(B6205, Defect("outer", width, depth))
 
 
 def test_retention_factor_eq11():
@@ -316,7 +311,7 @@ def test_implicit_retention_factor_is_solved():
     """Without a prescribed gamma, a ball over the defect carries gamma(delta) K delta^1.5 with
     gamma from eq. (11) at its solved nominal deflection delta."""
     inp = ModelInputs(
-        B6205, FX, FY, SHAFT, Defect(FaultLocation.OUTER, 1.778e-4, 2.794e-4, math.radians(10.0))
+        B6205, FX, FY, SHAFT, defect_at_edge(B6205, "outer", 1.778e-4, 2.794e-4, math.radians(10.0))
     )
     tr = stiffness_trace(inp, STEP[::5])
     g = defect_geometry(B6205, inp.defect)

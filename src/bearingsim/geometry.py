@@ -1,4 +1,5 @@
-"""Bearing geometry as validated, frozen data, and the kinematic (characteristic) frequencies.
+"""Bearing geometry as validated, frozen data: bearings, raceways, local defects, and the
+kinematic (characteristic) frequencies.
 
 Conventions (used by every model): SI units; the outer ring is fixed and the inner ring rotates;
 element azimuths ``psi`` are measured from the +y axis towards +x (seed VSM fig. 1); the
@@ -7,6 +8,7 @@ diametral clearance ``P_d`` is the total free play across a diameter (negative =
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 
@@ -279,3 +281,196 @@ def characteristic_frequencies(bearing: Bearing, shaft_hz: float) -> KinematicFr
         bpfi_hz=0.5 * Z * fs * (1.0 + g),
         bsf_hz=D / (2.0 * d) * fs * (1.0 - g * g),
     )
+
+
+# ------------------------------------------------------------------------- raceways and defects
+
+
+class Race(enum.Enum):
+    """A raceway: the ring of a contact, or the ring that carries a local defect. The outer ring
+    is fixed; the inner ring turns with the shaft."""
+
+    INNER = "inner"
+    OUTER = "outer"
+
+
+class DefectProfile(enum.Enum):
+    """Extra clearance under an element crossing a local defect: ``GEOMETRIC`` (the ball rests on
+    the nearer edge; seed VSM eq. (2) evaluated along the path, continuous) or ``RECTANGULAR``
+    (the constant maximum drop ``h_min`` over the defect's extent, seed VSM eqs. (1)–(3)). Used by
+    the bearing–rotor–housing model; the ring models follow seed VSM (rectangular, with the
+    retention factor of its eq. (11)); the IAS model follows seed IAS eqs. (19)–(28)."""
+
+    GEOMETRIC = "geometric"
+    RECTANGULAR = "rectangular"
+
+
+#: CWRU seeded faults, 0.007 in wide (CWRU Bearing Data Center, "Fault Specifications") [m]
+CWRU_DEFECT_WIDTH_M = 0.007 * 25.4e-3
+#: CWRU electro-discharge-machined fault depth, 0.011 in (``../shared/data/cwru/SOURCES.md``) [m]
+CWRU_DEFECT_DEPTH_M = 0.011 * 25.4e-3
+
+
+def parse_enum(cls: type[enum.Enum], value: object, name: str) -> enum.Enum:
+    """``cls(value)`` (an enum member or its value); anything else raises a one-line
+    :class:`ConfigError` naming ``name`` and the valid values."""
+    try:
+        return cls(value.value if isinstance(value, enum.Enum) else value)
+    except ValueError:
+        valid = ", ".join(str(m.value) for m in cls)
+        raise ConfigError(f"{name} = {value!r} is invalid; valid: {valid}") from None
+
+
+@dataclass(frozen=True)
+class Defect:
+    """A local raceway defect: a slot across the raceway (seed VSM fig. 2; seed ROTOR §1.2;
+    the spall of seed IAS fig. 3). Shared by the ring, rotor and IAS models.
+
+    Parameters
+    ----------
+    race : Race or {"inner", "outer"}
+        Raceway carrying the defect.
+    width : float
+        Width ``b`` (``L_d`` in seed IAS) along the raceway [m], > 0 (default: CWRU 0.007 in).
+        Each model states the widths it admits (the element must span the defect).
+    depth : float
+        Depth ``h_d`` [m], > 0 (default: the CWRU EDM depth 0.011 in). The IAS model does not use
+        it (seed IAS assumes the spall deeper than the roller's drop).
+    angle : float
+        Azimuth of the defect **centre** at ``t = 0`` [rad], from +y towards +x (the project
+        convention); ``pi`` = 6 o'clock, the bottom of a horizontal machine (CWRU ``@6``). An
+        inner-race defect turns with the shaft from there.
+    profile : DefectProfile or str
+        Drop profile across the defect (rotor model; see :class:`DefectProfile`).
+    """
+
+    race: Race | str = Race.OUTER
+    width: float = CWRU_DEFECT_WIDTH_M
+    depth: float = CWRU_DEFECT_DEPTH_M
+    angle: float = math.pi
+    profile: DefectProfile | str = DefectProfile.GEOMETRIC
+
+    def __post_init__(self) -> None:
+        _set(self, "race", parse_enum(Race, self.race, "fault_race"))
+        _set(self, "profile", parse_enum(DefectProfile, self.profile, "defect_profile"))
+        _set(self, "width", check_positive("defect_width_m", self.width, "m"))
+        _set(self, "depth", check_positive("defect_depth_m", self.depth, "m"))
+        _set(self, "angle", check_range("defect_angle_rad", self.angle, unit="rad"))
+
+
+@dataclass(frozen=True)
+class DefectGeometry:
+    """Geometric quantities of a defect on a given bearing (seed VSM eqs. (1)–(3)).
+
+    Attributes
+    ----------
+    race : Race
+        Raceway.
+    race_radius : float
+        Raceway radius ``r_i`` or ``r_o`` [m].
+    h_s : float
+        Drop of a ball resting on both edges without touching the bottom, eq. (2) [m].
+    h_min : float
+        Maximum drop ``min(h_d, h_s)``, eq. (1) [m].
+    delta_beta : float
+        Central angle spanned by the defect on its raceway, eq. (3) [rad].
+    edge_angle : float
+        Azimuth of the defect's left (lower-azimuth) edge at ``t = 0``, ``beta_0`` of seed VSM
+        [rad]: the defect centre less half the extent.
+    """
+
+    race: Race
+    race_radius: float
+    h_s: float
+    h_min: float
+    delta_beta: float
+    edge_angle: float
+
+
+def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
+    """Maximum ball drop and angular extent of ``defect`` on ``bearing``.
+
+    Seed VSM eqs. (1)–(3)::
+
+        h_s = [r - sqrt(r^2 - (b/2)^2)] +/- [r_race - sqrt(r_race^2 - (b/2)^2)]
+        h_min = min(h_d, h_s)
+        Delta_beta = 2 arcsin(b / (2 r_race))
+
+    (``+`` and ``r_i`` for the inner race, whose convex surface falls away under the chord;
+    ``-`` and ``r_o`` for the concave outer race.) ``r = d/2`` is the ball radius; the raceway
+    radii are ``(D -/+ d)/2`` (seed table 1: 15.53 and 23.47 mm).
+
+    Parameters
+    ----------
+    bearing : BallBearing
+        Geometry.
+    defect : Defect
+        The defect (its ``angle`` is the centre azimuth).
+
+    Raises
+    ------
+    ConfigError
+        If the ball cannot span the defect (``b >= d``): the seed's geometry (a ball resting on
+        both edges, fig. 2) no longer applies.
+    """
+    if not isinstance(bearing, BallBearing):
+        raise ConfigError(
+            f"bearing = {bearing.id!r} is not a ball bearing; this defect geometry needs balls"
+        )
+    if not isinstance(defect, Defect):
+        raise ConfigError(f"defect = {defect!r} is not a Defect (a healthy bearing has none)")
+    d = bearing.element_diameter
+    r = 0.5 * d
+    b = defect.width
+    if b >= d:
+        raise ConfigError(
+            f"defect_width_m = {b:.6g} m is wider than the ball can span; valid range "
+            f"(0, {d:.6g}) m (ball diameter d)"
+        )
+    half = 0.5 * b
+    ball_chord = r - math.sqrt(r * r - half * half)
+    if defect.race is Race.INNER:
+        rr = bearing.inner_raceway_radius
+        h_s = ball_chord + (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), inner
+    else:
+        rr = bearing.outer_raceway_radius
+        h_s = ball_chord - (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), outer
+    h_min = min(defect.depth, h_s)  # seed VSM eq. (1)
+    dbeta = 2.0 * math.asin(b / (2.0 * rr))  # seed VSM eq. (3)
+    edge = defect.angle - 0.5 * dbeta
+    return DefectGeometry(defect.race, rr, h_s, h_min, dbeta, edge)
+
+
+def raceway_radius(bearing: Bearing, race: Race) -> float:
+    """Raceway radius ``r_i`` or ``r_o`` [m] of ``race``."""
+    return bearing.inner_raceway_radius if race is Race.INNER else bearing.outer_raceway_radius
+
+
+def angular_extent(bearing: Bearing, race: Race | str, width: float) -> float:
+    """Central angle ``Delta_beta = 2 arcsin(b / (2 r_race))`` spanned by a defect of width ``b``
+    [m] on ``race`` (seed VSM eq. (3)) [rad]."""
+    rr = raceway_radius(bearing, parse_enum(Race, race, "fault_race"))
+    return 2.0 * math.asin(min(1.0, width / (2.0 * rr)))
+
+
+def defect_at_edge(
+    bearing: Bearing, race: Race | str, width: float, depth: float, edge_angle: float
+) -> Defect:
+    """The :class:`Defect` whose left (lower-azimuth) edge is at ``edge_angle`` at ``t = 0``
+    [rad] — seed VSM's ``beta_0`` (its table 1: 10 deg) — i.e. whose centre is at
+    ``edge_angle + Delta_beta/2`` (eq. (3)).
+
+    Parameters
+    ----------
+    bearing : BallBearing
+        Geometry.
+    race : Race or str
+        Raceway.
+    width, depth : float
+        Defect width ``b`` and depth ``h_d`` [m].
+    edge_angle : float
+        Left-edge azimuth ``beta_0`` [rad].
+    """
+    race = parse_enum(Race, race, "fault_race")
+    w = check_positive("defect_width_m", width, "m")
+    return Defect(race, w, depth, edge_angle + 0.5 * angular_extent(bearing, race, w))

@@ -30,9 +30,8 @@ from .dynamics.ring.base import (
     max_frequency,
     static_path,
 )
-from .dynamics.ring.defects import Defect, FaultLocation, defect_geometry
 from .errors import ConfigError, SolverError
-from .geometry import characteristic_frequencies
+from .geometry import characteristic_frequencies, defect_at_edge, defect_geometry
 from .results import SimulationResult
 
 #: accuracy target of the automatic RK4 step: omega_max * dt <= this [-] (see choose_steps)
@@ -51,12 +50,15 @@ KERNELS: dict[Model, ModelKernel] = {
 def model_inputs(scenario: Scenario) -> ModelInputs:
     """Physical inputs of a VSM/DEM/TVSM scenario (bearing resolved, defect validated)."""
     bearing = resolve_bearing(scenario.bearing, scenario.bearing_file)
-    defect = Defect(
-        FaultLocation(scenario.fault),
-        scenario.defect_width_m,
-        scenario.defect_depth_m,
-        scenario.defect_angle_rad,
-    )
+    defect = None
+    if scenario.fault != "none":  # the scenario gives seed VSM's left edge beta_0
+        defect = defect_at_edge(
+            bearing,
+            scenario.fault,
+            scenario.defect_width_m,
+            scenario.defect_depth_m,
+            scenario.defect_angle_rad,
+        )
     return ModelInputs(
         bearing=bearing,
         fx=scenario.fx_n,
@@ -163,7 +165,7 @@ def _run_ring_model(scenario: Scenario, progress: Callable[[int], None] | None) 
         ch["acc_y"] = ch["acc_y"] + noise[:, 1]
     kin = characteristic_frequencies(inputs.bearing, inputs.shaft_hz)
     geo: dict[str, Any] = {}
-    if inputs.defect.location is not FaultLocation.NONE:
+    if inputs.defect is not None:
         g = defect_geometry(inputs.bearing, inputs.defect)
         geo = {
             "h_s_m": g.h_s,

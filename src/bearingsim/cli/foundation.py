@@ -11,7 +11,6 @@ import numpy as np
 from ..catalog import list_bearings
 from ..contact.hertz import (
     EllipticMethod,
-    Race,
     ball_contact,
     combined_stiffness,
     line_subsurface_stresses,
@@ -19,7 +18,7 @@ from ..contact.hertz import (
     subsurface_stresses,
 )
 from ..errors import ConfigError, check_range
-from ..geometry import BallBearing, Bearing, characteristic_frequencies
+from ..geometry import BallBearing, Bearing, Race, characteristic_frequencies
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
 from .common import bearing_options, bearing_summary, cli, emit_json, json_option
 

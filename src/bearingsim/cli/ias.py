@@ -91,10 +91,10 @@ def _summary_figure(summary, title: str):
     help="Outer-race spall width L_d [m]; 0 = healthy [1e-3].",
 )
 @click.option(
-    "--spall-angle-rad",
+    "--spall-angle-deg",
     type=float,
     default=None,
-    help="Spall azimuth from +x counter-clockwise [rad] [1.5 pi = bottom].",
+    help="Spall centre azimuth from +y towards +x [deg] [180 = bottom].",
 )
 @click.option("--fx", "fx_n", type=float, default=None, help="Radial load along +x [N] [0].")
 @click.option(

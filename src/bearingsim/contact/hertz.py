@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from ..errors import ConfigError, check_positive
-from ..geometry import BallBearing, RollerBearing
+from ..geometry import BallBearing, Race, RollerBearing, parse_enum
 from ..materials import effective_modulus
 
 
@@ -34,13 +34,6 @@ class EllipticMethod(enum.Enum):
     #: ``F = pi/2 + q ln a_r`` (``q = pi/2 - 1``). Measured against EXACT over
     #: 1 <= R_y/R_x <= 100: k and delta within 4.2 %, a, b and p_max within 2.7 %.
     HAMROCK_BREWE = "hamrock_brewe"
-
-
-class Race(enum.Enum):
-    """Raceway of a contact."""
-
-    INNER = "inner"
-    OUTER = "outer"
 
 
 @dataclass(frozen=True)
@@ -216,7 +209,7 @@ def ball_contact(
     method : EllipticMethod
         Exact (default) or Hamrock–Brewe.
     """
-    race = Race(race)
+    race = parse_enum(Race, race, "race")
     rx, ry = ball_race_radii(bearing, race)
     e_eff = effective_modulus(bearing.material, bearing.material)
     return point_contact(load, rx, ry, e_eff, method)
@@ -449,7 +442,7 @@ def line_contact(load: ArrayLike, r_eff: float, length: float, e_eff: float) -> 
 def roller_race_radius(bearing: RollerBearing, race: Race | str) -> float:
     """Effective radius ``R_x`` [m] of a roller/raceway contact (roller radius with the inner
     raceway convex, outer concave)."""
-    race = Race(race)
+    race = parse_enum(Race, race, "race")
     rc = 0.5 * bearing.element_diameter
     rr = bearing.inner_raceway_radius if race is Race.INNER else -bearing.outer_raceway_radius
     return 1.0 / (1.0 / rc + 1.0 / rr)

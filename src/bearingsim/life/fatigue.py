@@ -83,7 +83,8 @@ def inner_contact(
     method : ElementLoadMethod
         Stribeck (seed) or the discrete distribution.
     """
-    from ..contact.hertz import Race, ball_contact, roller_contact
+    from ..contact.hertz import ball_contact, roller_contact
+    from ..geometry import Race
     from ..load_distribution import radial_load_distribution, stribeck_qmax
 
     fr = check_positive("radial_load_n", radial_load, "N")

@@ -248,7 +248,8 @@ def static_capacity(bearing: Bearing) -> StaticCapacity:
     conformities enter)."""
     from scipy.optimize import brentq
 
-    from ..contact.hertz import Race, ball_contact, roller_contact
+    from ..contact.hertz import ball_contact, roller_contact
+    from ..geometry import Race
 
     ca = math.cos(bearing.contact_angle)
     Z = bearing.n_elements

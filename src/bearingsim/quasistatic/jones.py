@@ -58,9 +58,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..contact.hertz import Race, ball_contact, ball_stiffness
+from ..contact.hertz import ball_contact, ball_stiffness
 from ..errors import ConfigError, SolverError, check_range
-from ..geometry import BallBearing, Bearing, characteristic_frequencies
+from ..geometry import BallBearing, Bearing, Race, characteristic_frequencies
 from ._kernels import _sweep
 
 #: names of the five inner-ring degrees of freedom, in vector order

@@ -56,7 +56,7 @@ from ..._version import __version__
 from ...contact.hertz import element_stiffness
 from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_reference_load
 from ...errors import ConfigError, check_positive, check_range
-from ...geometry import RollerBearing
+from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
 from ..integrate import RHS_SIG, run_adaptive, run_fixed
 
@@ -86,6 +86,9 @@ class SpallLoad(enum.Enum):
     #: the roller's instantaneous Hertz force without the spall drop, ``K_t (x cos + y sin - c)^n``
     DYNAMIC = "dynamic"
 
+
+#: the seed's spall (seed IAS §3.1): 1 mm wide at the bottom of the outer race
+SEED_SPALL = Defect(Race.OUTER, 1e-3, CWRU_DEFECT_DEPTH_M, math.pi)
 
 # ------------------------------------------------------------------ parameter vector offsets
 P_M, P_I, P_CS, P_CT, P_QX, P_QY, P_MZ = 0, 1, 2, 3, 4, 5, 6
@@ -241,10 +244,12 @@ class IasParams:
     ----------
     bearing : RollerBearing
         Cylindrical roller bearing (seed: ``NU204-ECP``).
-    spall_width : float
-        Spall width along the raceway ``L_d`` [m]; 0 = healthy bearing (seed: 1 mm).
-    spall_angle : float
-        Spall azimuth ``phi_os`` [rad] (seed: 1.5 pi, bottom of the outer race).
+    spall : Defect or None
+        The outer-race spall: its ``width`` is ``L_d`` [m] (seed: 1 mm) and its ``angle`` the
+        centre azimuth in the project convention [rad] (from +y towards +x; seed: ``pi``, the
+        bottom, i.e. the seed's ``phi_os = 1.5 pi`` from +x); its ``depth`` is not used (the
+        seed's roller drop, eq. (19), assumes the spall deeper than the drop). ``None`` = healthy
+        bearing.
     fx, fy : float
         Radial load components [N]: ``Q_x = F_x``, ``Q_y = -F_y`` (``F_y`` downward; seed 0, 400).
     torque : float
@@ -277,8 +282,7 @@ class IasParams:
     """
 
     bearing: RollerBearing
-    spall_width: float = 1e-3
-    spall_angle: float = 1.5 * math.pi
+    spall: Defect | None = SEED_SPALL
     fx: float = 0.0
     fy: float = 400.0
     torque: float = 9.54
@@ -305,8 +309,15 @@ class IasParams:
         s = object.__setattr__
         s(self, "contact_law", ContactLaw(self.contact_law))
         s(self, "spall_load", SpallLoad(self.spall_load))
-        s(self, "spall_width", check_spall_width(b, self.spall_width))
-        s(self, "spall_angle", check_range("spall_angle_rad", self.spall_angle, unit="rad"))
+        if self.spall is not None:
+            if not isinstance(self.spall, Defect):
+                raise ConfigError(f"spall = {self.spall!r} is not a Defect or None")
+            if self.spall.race is not Race.OUTER:
+                raise ConfigError(
+                    f"spall race = {self.spall.race.value!r} is not modelled; valid: outer "
+                    "(seed IAS models an outer-race spall)"
+                )
+            check_spall_width(b, self.spall.width)
         s(self, "fx", check_range("fx_n", self.fx, unit="N"))
         s(self, "fy", check_range("fy_n", self.fy, unit="N"))
         if math.hypot(self.fx, self.fy) == 0.0:
@@ -360,10 +371,31 @@ class IasParams:
         """``F_r = |(F_x, F_y)|`` [N]."""
         return math.hypot(self.fx, self.fy)
 
+    @property
+    def spall_width(self) -> float:
+        """Spall width ``L_d`` [m]; 0 for a healthy bearing."""
+        return 0.0 if self.spall is None else self.spall.width
+
+    @property
+    def spall_phi(self) -> float:
+        """Spall centre ``phi_os`` in the model's frame (from +x counter-clockwise,
+        ``phi = pi/2 - psi``) [rad], in ``[0, 2 pi)``."""
+        if self.spall is None:
+            return 0.0
+        return (0.5 * math.pi - self.spall.angle) % (2.0 * math.pi)
+
     def as_dict(self) -> dict[str, Any]:
         """Plain-dict description (SI, bearing by id), for metadata."""
         d = asdict(self)
         d["bearing"] = self.bearing.id
+        if self.spall is not None:
+            d["spall"] = {
+                "race": self.spall.race.value,
+                "width": self.spall.width,
+                "depth": self.spall.depth,
+                "angle": self.spall.angle,
+                "profile": self.spall.profile.value,
+            }
         d["contact_law"] = self.contact_law.value
         d["spall_load"] = self.spall_load.value
         d["initial_displacement"] = list(self.initial_displacement)
@@ -577,7 +609,7 @@ def pack_parameters(params: IasParams, const: IasConstants | None = None) -> NDA
         params.rolling_resistance,
     )
     p[P_PHIOS], p[P_THOS], p[P_HM], p[P_LAM] = (
-        params.spall_angle,
+        params.spall_phi,
         k.spall_half_angle,
         k.spall_depth,
         k.impact_angle,

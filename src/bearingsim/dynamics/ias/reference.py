@@ -51,7 +51,7 @@ class ReferenceRhs:
         phi = p.first_roller_angle + k.cage_ratio * th + self.offsets  # eq. (3)
         cphi, sphi = np.cos(phi), np.sin(phi)
         d0 = x * cphi + yy * sphi - k.clearance  # eq. (33)
-        u = (phi - p.spall_angle + np.pi) % (2.0 * np.pi) - np.pi
+        u = (phi - p.spall_phi + np.pi) % (2.0 * np.pi) - np.pi
         th_os = k.spall_half_angle
         gamma = (np.abs(u) <= th_os) if p.spall_width > 0 else np.zeros(self.Z, bool)  # eq. (34)
         sh = np.where(gamma, np.sin(0.5 * np.pi * np.abs(u) / max(th_os, 1e-300)), 0.0)

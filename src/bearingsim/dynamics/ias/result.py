@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ConfigError, check_range
-from ...geometry import RollerBearing
+from ...geometry import Defect, RollerBearing
 from .model import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
 
 
@@ -187,6 +187,8 @@ class IasResult:
         bd["material"] = Material(**bd["material"])
         pd["bearing"] = RollerBearing(**bd)
         pd["initial_displacement"] = tuple(pd["initial_displacement"])
+        if pd.get("spall") is not None:
+            pd["spall"] = Defect(**pd["spall"])
         params = IasParams(**pd)
         cd = json.loads(ds.attrs["constants"])
         const = IasConstants(**cd)

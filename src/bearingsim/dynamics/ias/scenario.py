@@ -11,7 +11,8 @@ key                             meaning
 ``torque_nm``                   motor torque M_z [N m] (default 9.54; exclusive with ``rpm``)
 ``initial_rpm``                 initial shaft speed [r/min] (default 0)
 ``spall_width_m``               spall width L_d [m] (default 1e-3; 0 = healthy)
-``spall_angle_rad``             spall azimuth [rad] (default 1.5 pi, bottom)
+``spall_angle_deg``             spall centre azimuth [deg] from +y towards +x (project
+                                convention; default 180, the bottom: seed ``phi_os = 1.5 pi``)
 ``fx_n``, ``fy_n``              radial load [N] (``F_y`` downward; default 0, 400)
 ``duration_s``, ``dt_s``        simulated time and RK4 step [s] (default 10, 1e-6)
 ``output_rate_hz``              output sample rate [Hz] (default 48000)
@@ -32,12 +33,13 @@ key                             meaning
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 from ...catalog import resolve_bearing
 from ...errors import ConfigError, check_positive, check_range, read_toml
-from .model import ContactLaw, IasParams, SpallLoad
+from .model import SEED_SPALL, ContactLaw, IasParams, SpallLoad
 
 #: scenario key -> (IasParams field or run option, type)
 SCENARIO_KEYS: dict[str, type] = {
@@ -47,7 +49,7 @@ SCENARIO_KEYS: dict[str, type] = {
     "torque_nm": float,
     "initial_rpm": float,
     "spall_width_m": float,
-    "spall_angle_rad": float,
+    "spall_angle_deg": float,
     "fx_n": float,
     "fy_n": float,
     "duration_s": float,
@@ -66,8 +68,6 @@ SCENARIO_KEYS: dict[str, type] = {
     "reference_load_n": float,
 }
 _FIELDS = {
-    "spall_width_m": "spall_width",
-    "spall_angle_rad": "spall_angle",
     "fx_n": "fx",
     "fy_n": "fy",
     "mass_kg": "mass",
@@ -142,6 +142,16 @@ def build_scenario(settings: dict[str, Any]) -> tuple[IasParams, dict[str, Any]]
         kw["initial_speed"] = (
             2.0 * math.pi * check_range("initial_rpm", s["initial_rpm"], 0.0, unit="r/min") / 60.0
         )
+    if "spall_width_m" in s or "spall_angle_deg" in s:
+        width = check_range(
+            "spall_width_m", s.get("spall_width_m", SEED_SPALL.width), 0.0, unit="m"
+        )
+        angle = math.radians(
+            check_range(
+                "spall_angle_deg", s.get("spall_angle_deg", 180.0), -360.0, 360.0, unit="deg"
+            )
+        )
+        kw["spall"] = None if width == 0.0 else replace(SEED_SPALL, width=width, angle=angle)
     params = IasParams(bearing, **kw)
     run = {k: s.get(k, v) for k, v in RUN_DEFAULTS.items()}
     if run["method"] not in ("rk4", "dopri5"):

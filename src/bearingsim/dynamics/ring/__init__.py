@@ -12,7 +12,8 @@ May import: errors, geometry, catalog, contact, load_distribution, io, results,
 :mod:`bearingsim.dynamics.integrate`.
 """
 
+from ...geometry import DefectGeometry, defect_geometry
 from .base import ModelInputs
-from .defects import DefectGeometry, defect_geometry, retention_factor
+from .defects import retention_factor
 
 __all__ = ["DefectGeometry", "ModelInputs", "defect_geometry", "retention_factor"]

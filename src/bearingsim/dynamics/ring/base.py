@@ -25,10 +25,10 @@ from numpy.typing import NDArray
 
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
-from ...geometry import BallBearing, Bearing, characteristic_frequencies
+from ...geometry import BallBearing, Bearing, Defect, characteristic_frequencies, defect_geometry
 from ..integrate import run_adaptive, run_fixed
 from . import balance as bl
-from .defects import FAULT_CODE, Defect, FaultLocation, defect_geometry
+from .defects import FAULT_CODE
 
 #: number of fixed auxiliary outputs before the per-ball block
 N_AUX_FIXED = 7
@@ -54,8 +54,10 @@ class ModelInputs:
         the rotor weight).
     shaft_hz : float
         Inner-ring speed f_s [Hz]; the cage turns at the FTF.
-    defect : Defect
-        The local defect (``FaultLocation.NONE`` for a healthy bearing).
+    defect : Defect or None
+        The local raceway defect (its ``angle`` is the centre azimuth at ``t = 0``; see
+        :func:`.defects.defect_at_edge` for seed VSM's left-edge ``beta_0``); ``None`` for a
+        healthy bearing.
     first_ball_angle : float
         Azimuth of ball 1 at ``t = 0``, ``alpha_0`` [rad].
     mass : float
@@ -81,7 +83,7 @@ class ModelInputs:
     fx: float
     fy: float
     shaft_hz: float
-    defect: Defect = Defect()
+    defect: Defect | None = None
     first_ball_angle: float = 0.0
     mass: float = SEED_MASS_OUTER_KG
     damping: float = SEED_DAMPING
@@ -145,9 +147,9 @@ class ModelInputs:
                     unit="rad",
                 ),
             )
-        if not isinstance(self.defect, Defect):
-            raise ConfigError(f"defect = {self.defect!r} is not a Defect")
-        if self.defect.location is not FaultLocation.NONE:
+        if self.defect is not None:
+            if not isinstance(self.defect, Defect):
+                raise ConfigError(f"defect = {self.defect!r} is not a Defect or None")
             defect_geometry(b, self.defect)  # validates the width against the ball
         object.__setattr__(self, "tol", check_range("tol", self.tol, 0.0, 1e-6, lo_open=True))
 
@@ -187,11 +189,11 @@ class ModelInputs:
         p[bl.P_WCAGE] = 2.0 * math.pi * self.cage_hz
         p[bl.P_WSHAFT] = 2.0 * math.pi * self.shaft_hz
         p[bl.P_ALPHA0] = self.first_ball_angle
-        p[bl.P_FAULT] = FAULT_CODE[self.defect.location]
-        p[bl.P_BETA0] = self.defect.angle
+        p[bl.P_FAULT] = FAULT_CODE[None if self.defect is None else self.defect.race]
         p[bl.P_DFAC] = 1.0
-        if self.defect.location is not FaultLocation.NONE:
+        if self.defect is not None:
             g = defect_geometry(self.bearing, self.defect)
+            p[bl.P_BETA0] = g.edge_angle
             p[bl.P_DBETA] = g.delta_beta
             if self.retention_factor is None:
                 p[bl.P_DOFF] = g.h_min  # eq. (11) implicit: gamma K delta^1.5 = K(delta-h)^1.5

@@ -1,4 +1,7 @@
-"""Single local raceway defect: geometry, kinematics and the contact-deformation retention factor.
+"""Single local raceway defect in the ring models: kinematics and the retention factor.
+
+The defect itself (:class:`bearingsim.geometry.Defect`) and its geometry (seed VSM eqs. (1)–(3),
+:func:`bearingsim.geometry.defect_geometry`) are shared with the other model families.
 
 Seed VSM (Guo et al., J. Vib. Eng. 2025) §1, eqs. (1)–(3), (11)–(15). A rectangular defect of
 width ``b`` along the raceway and depth ``h_d`` sits on the outer race (fixed, left edge at
@@ -12,147 +15,14 @@ ball ``i`` (1-based) sits at ``alpha_mi = 2 pi f_m t + (i - 1) 2 pi / Z + alpha_
 
 from __future__ import annotations
 
-import enum
-import math
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...errors import ConfigError, check_positive, check_range
-from ...geometry import BallBearing, Bearing
+from ...errors import check_range
+from ...geometry import Race
 
-#: CWRU seeded faults: 0.007 in wide (CWRU "Fault Specifications"), EDM depth 0.011 in
-#: (/work/shared/data/cwru/SOURCES.md)
-CWRU_WIDTH_007_M = 0.007 * 25.4e-3
-CWRU_DEPTH_M = 0.011 * 25.4e-3
-
-
-class FaultLocation(enum.Enum):
-    """Where the single local defect is."""
-
-    NONE = "none"
-    OUTER = "outer"
-    INNER = "inner"
-
-
-#: integer codes used inside the compiled kernels
-FAULT_CODE = {FaultLocation.NONE: 0, FaultLocation.OUTER: 1, FaultLocation.INNER: 2}
-
-
-@dataclass(frozen=True)
-class Defect:
-    """A rectangular raceway defect (seed VSM fig. 2).
-
-    Parameters
-    ----------
-    location : FaultLocation
-        ``OUTER`` (fixed) or ``INNER`` (rotating with the shaft); ``NONE`` = healthy bearing.
-    width : float
-        Width ``b`` along the raceway [m]; the ball must span it (``0 < b < d``).
-    depth : float
-        Depth ``h_d`` [m], > 0.
-    angle : float
-        Azimuth of the defect's left (lower-azimuth) edge at ``t = 0``, ``beta_0`` [rad]
-        (seed table 1: 10 deg).
-    """
-
-    location: FaultLocation = FaultLocation.NONE
-    width: float = CWRU_WIDTH_007_M
-    depth: float = CWRU_DEPTH_M
-    angle: float = math.radians(10.0)
-
-    def __post_init__(self) -> None:
-        try:
-            object.__setattr__(self, "location", FaultLocation(self.location))
-        except ValueError:
-            raise ConfigError(
-                f"fault = {self.location!r} is invalid; valid: none, outer, inner"
-            ) from None
-        object.__setattr__(self, "width", check_positive("defect_width_m", self.width, "m"))
-        object.__setattr__(self, "depth", check_positive("defect_depth_m", self.depth, "m"))
-        object.__setattr__(self, "angle", check_range("defect_angle_rad", self.angle, unit="rad"))
-
-
-@dataclass(frozen=True)
-class DefectGeometry:
-    """Geometric quantities of a defect on a given bearing (seed VSM eqs. (1)–(3)).
-
-    Attributes
-    ----------
-    location : FaultLocation
-        Raceway.
-    race_radius : float
-        Raceway radius ``r_i`` or ``r_o`` [m].
-    h_s : float
-        Drop of a ball resting on both edges without touching the bottom, eq. (2) [m].
-    h_min : float
-        Maximum drop ``min(h_d, h_s)``, eq. (1) [m].
-    delta_beta : float
-        Central angle spanned by the defect on its raceway, eq. (3) [rad].
-    angle : float
-        Left-edge azimuth at ``t = 0``, ``beta_0`` [rad].
-    """
-
-    location: FaultLocation
-    race_radius: float
-    h_s: float
-    h_min: float
-    delta_beta: float
-    angle: float
-
-
-def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
-    """Maximum ball drop and angular extent of ``defect`` on ``bearing``.
-
-    Seed VSM eqs. (1)–(3)::
-
-        h_s = [r - sqrt(r^2 - (b/2)^2)] +/- [r_race - sqrt(r_race^2 - (b/2)^2)]
-        h_min = min(h_d, h_s)
-        Delta_beta = 2 arcsin(b / (2 r_race))
-
-    (``+`` and ``r_i`` for the inner race, whose convex surface falls away under the chord;
-    ``-`` and ``r_o`` for the concave outer race.) ``r = d/2`` is the ball radius; the raceway
-    radii are ``(D -/+ d)/2`` (seed table 1: 15.53 and 23.47 mm).
-
-    Parameters
-    ----------
-    bearing : BallBearing
-        Geometry.
-    defect : Defect
-        Defect; ``location`` must not be ``NONE``.
-
-    Raises
-    ------
-    ConfigError
-        If the ball cannot span the defect (``b >= d``): the seed's geometry (a ball resting on
-        both edges, fig. 2) no longer applies.
-    """
-    if not isinstance(bearing, BallBearing):
-        raise ConfigError(
-            f"bearing = {bearing.id!r} is not a ball bearing; the VSM defect model needs balls"
-        )
-    if defect.location is FaultLocation.NONE:
-        raise ConfigError("defect_geometry: fault = 'none' has no defect geometry")
-    d = bearing.element_diameter
-    r = 0.5 * d
-    b = defect.width
-    if b >= d:
-        raise ConfigError(
-            f"defect_width_m = {b:.6g} m is wider than the ball can span; valid range "
-            f"(0, {d:.6g}) m (ball diameter d)"
-        )
-    half = 0.5 * b
-    ball_chord = r - math.sqrt(r * r - half * half)
-    if defect.location is FaultLocation.INNER:
-        rr = bearing.inner_raceway_radius
-        h_s = ball_chord + (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), inner
-    else:
-        rr = bearing.outer_raceway_radius
-        h_s = ball_chord - (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), outer
-    h_min = min(defect.depth, h_s)  # seed VSM eq. (1)
-    dbeta = 2.0 * math.asin(b / (2.0 * rr))  # seed VSM eq. (3)
-    return DefectGeometry(defect.location, rr, h_s, h_min, dbeta, defect.angle)
+#: integer codes of the defect's raceway inside the compiled kernels (0 = no defect)
+FAULT_CODE = {None: 0, Race.OUTER: 1, Race.INNER: 2}
 
 
 def retention_factor(delta: ArrayLike, h_min: float) -> NDArray[np.float64]:

@@ -16,11 +16,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ConfigError
+from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
 from . import balance as bl
 from .base import ModelInputs, static_path
-from .defects import FaultLocation, defect_geometry
 
 
 @dataclass(frozen=True)
@@ -259,13 +259,15 @@ def stiffness_trace(
     ux, uy = table[:, bl.C_UX : bl.C_UX + 1], table[:, bl.C_UY : bl.C_UY + 1]
     ue = ux * sn + uy * cs
     nominal = ue - p[bl.P_CLR]
-    loc = inputs.defect.location
+    defect = inputs.defect
     shaft = times * 2 * math.pi * inputs.shaft_hz
-    if loc is FaultLocation.NONE:
+    beta0 = 0.0
+    if defect is None:
         over = np.zeros_like(psi, dtype=bool)
     else:
-        g = defect_geometry(inputs.bearing, inputs.defect)
-        edge = g.angle + (shaft[:, None] if loc is FaultLocation.INNER else 0.0)
+        g = defect_geometry(inputs.bearing, defect)
+        beta0 = g.edge_angle
+        edge = g.edge_angle + (shaft[:, None] if defect.race is Race.INNER else 0.0)
         over = np.mod(psi - edge, 2 * math.pi) < g.delta_beta
     off = np.where(over, p[bl.P_DOFF], 0.0)
     fac = np.where(over, p[bl.P_DFAC], 1.0)
@@ -289,8 +291,9 @@ def stiffness_trace(
         stiffness=K,
         first_element_angle=inputs.first_ball_angle,
     )
-    label = f"fault {loc.value}"
-    if loc is not FaultLocation.NONE:
+    fault = "none" if defect is None else defect.race.value
+    label = f"fault {fault}"
+    if defect is not None:
         label += f", b {inputs.defect.width * 1e3:.3g} mm, " + (
             f"gamma {inputs.retention_factor:g}"
             if inputs.retention_factor is not None
@@ -302,9 +305,9 @@ def stiffness_trace(
     meta = {
         "zone_margin": margin,
         "psi": psi,
-        "fault": loc.value,
+        "fault": fault,
         "alpha0": inputs.first_ball_angle,
-        "beta0": inputs.defect.angle,
+        "beta0": beta0,
         "Z": Z,
         "delta_beta": p[bl.P_DBETA],
         "cage_per_shaft": inputs.cage_hz / inputs.shaft_hz,

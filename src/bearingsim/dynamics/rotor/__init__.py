@@ -11,10 +11,10 @@
 May import: errors, geometry, catalog, contact, io, results, :mod:`bearingsim.dynamics.integrate`.
 """
 
+from ...geometry import DefectProfile
 from .config import (
     Armature,
     BearingSupport,
-    DefectProfile,
     Housing,
     RotorConfig,
     Shaft,

@@ -2,7 +2,7 @@
 
 Frozen, validated dataclasses in SI units: :class:`Shaft`, :class:`Armature` (the rotor mass
 spread over ``n`` disks), :class:`BearingSupport` (a ball bearing with an optional
-:class:`LocalFault`), :class:`Housing` and the whole :class:`RotorConfig`;
+:class:`~bearingsim.geometry.Defect`), :class:`Housing` and the whole :class:`RotorConfig`;
 :func:`cwru_rotor_config` builds the seed's CWRU case. Every bad value raises a one-line
 :class:`~bearingsim.errors.ConfigError` naming the field, the value and the valid range.
 """
@@ -19,7 +19,13 @@ import numpy as np
 
 from ...catalog import get_bearing
 from ...errors import ConfigError, check_positive, check_range
-from ...geometry import BallBearing, KinematicFrequencies, characteristic_frequencies
+from ...geometry import (
+    BallBearing,
+    Defect,
+    KinematicFrequencies,
+    characteristic_frequencies,
+    parse_enum,
+)
 
 #: seed ROTOR table 2 (CWRU motor): shaft mass, rotor (armature) mass [kg], shaft length,
 #: shaft diameter, disk diameter [m], shaft modulus [Pa]
@@ -29,10 +35,6 @@ SEED_SHAFT_LENGTH_M = 203.2e-3
 SEED_SHAFT_DIAMETER_M = 12.53e-3
 SEED_DISK_DIAMETER_M = 46.07e-3
 SEED_SHAFT_E_PA = 206e9
-#: CWRU seeded fault 0.007 in wide, EDM depth 0.011 in (CWRU "Fault Specifications";
-#: shared/data/cwru/SOURCES.md)
-CWRU_FAULT_WIDTH_M = 0.007 * 25.4e-3
-CWRU_FAULT_DEPTH_M = 0.011 * 25.4e-3
 #: standard gravity [m/s^2]
 G0 = 9.80665
 
@@ -48,63 +50,6 @@ class ShaftMassModel(enum.Enum):
     DISTRIBUTED = "distributed"
 
 
-class DefectProfile(enum.Enum):
-    """Extra clearance under a ball crossing a local defect: ``GEOMETRIC`` (the ball rests on
-    the nearer edge; seed VSM eq. 2 evaluated along the path, continuous) or ``RECTANGULAR``
-    (the constant maximum drop ``h_min`` over the defect's extent, seed VSM eqs. 1–3)."""
-
-    GEOMETRIC = "geometric"
-    RECTANGULAR = "rectangular"
-
-
-class FaultRace(enum.Enum):
-    """Raceway carrying a local defect."""
-
-    OUTER = "outer"
-    INNER = "inner"
-
-
-def _enum(cls, value, name):
-    try:
-        return cls(value.value if isinstance(value, enum.Enum) else value)
-    except ValueError:
-        valid = ", ".join(m.value for m in cls)
-        raise ConfigError(f"{name} = {value!r} is invalid; valid: {valid}") from None
-
-
-@dataclass(frozen=True)
-class LocalFault:
-    """A localized raceway defect (rectangular slot across the raceway).
-
-    Parameters
-    ----------
-    race : FaultRace or {"outer", "inner"}
-        Raceway; the outer ring is fixed, the inner ring turns with the shaft.
-    width : float
-        Width b along the raceway [m], 0 < b < ball diameter (default 0.007 in, CWRU).
-    depth : float
-        Depth h_d [m] (default 0.011 in, CWRU EDM depth).
-    angle : float
-        Azimuth of the defect centre at t = 0 [rad], from +y towards +x; ``pi`` = 6 o'clock
-        (the CWRU ``OR@6`` position, in the load zone under gravity).
-    profile : DefectProfile
-        Drop profile across the defect.
-    """
-
-    race: FaultRace | str = FaultRace.OUTER
-    width: float = CWRU_FAULT_WIDTH_M
-    depth: float = CWRU_FAULT_DEPTH_M
-    angle: float = math.pi
-    profile: DefectProfile | str = DefectProfile.GEOMETRIC
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "race", _enum(FaultRace, self.race, "fault_race"))
-        object.__setattr__(self, "profile", _enum(DefectProfile, self.profile, "defect_profile"))
-        object.__setattr__(self, "width", check_positive("defect_width_m", self.width, "m"))
-        object.__setattr__(self, "depth", check_positive("defect_depth_m", self.depth, "m"))
-        object.__setattr__(self, "angle", check_range("defect_angle_rad", self.angle, unit="rad"))
-
-
 @dataclass(frozen=True)
 class BearingSupport:
     """One ball bearing of the rotor.
@@ -114,8 +59,8 @@ class BearingSupport:
     bearing : BallBearing
         Geometry and material; the inner and outer Hertz constants come from
         :func:`bearingsim.hertz.ball_contact`.
-    fault : LocalFault or None
-        Local defect (None = healthy).
+    fault : Defect or None
+        Local raceway defect (its ``angle`` is the centre azimuth at t = 0; None = healthy).
     contact_damping : float
         Linear damping of each ball–race contact, acting along the compression while in
         contact [N s/m] (seed ROTOR eq. 11 ``C_v``; value not given in the seed).
@@ -126,7 +71,7 @@ class BearingSupport:
     """
 
     bearing: BallBearing
-    fault: LocalFault | None = None
+    fault: Defect | None = None
     contact_damping: float = 50.0
     first_ball_angle: float = 0.0
     ball_density: float | None = None
@@ -260,7 +205,7 @@ class Shaft:
         check_positive("shaft_youngs_modulus_pa", self.youngs_modulus, "Pa")
         check_positive("shaft_mass_kg", self.mass, "kg")
         object.__setattr__(
-            self, "mass_model", _enum(ShaftMassModel, self.mass_model, "shaft_mass_model")
+            self, "mass_model", parse_enum(ShaftMassModel, self.mass_model, "shaft_mass_model")
         )
 
     @property
@@ -423,8 +368,8 @@ class RotorConfig:
 
 def cwru_rotor_config(
     n_disks: int = 9,
-    de_fault: LocalFault | None = None,
-    fe_fault: LocalFault | None = None,
+    de_fault: Defect | None = None,
+    fe_fault: Defect | None = None,
     speed_rpm: float = 1750.0,
     de_bearing: str = "6205-cwru",
     fe_bearing: str = "6203-cwru",
@@ -436,8 +381,8 @@ def cwru_rotor_config(
     ----------
     n_disks : int
         Number of armature disks (equally spaced).
-    de_fault, fe_fault : LocalFault or None
-        Defects (e.g. ``LocalFault("outer")``: 0.007 in x 0.011 in at 6 o'clock, record 132).
+    de_fault, fe_fault : Defect or None
+        Defects (e.g. ``Defect("outer")``: 0.007 in x 0.011 in at 6 o'clock, record 132).
     speed_rpm : float
         Shaft speed [r/min] (CWRU record 132: 1750).
     de_bearing, fe_bearing : str

@@ -27,27 +27,23 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares, root
 
 from ..._version import __version__
-from ...contact.hertz import Race, ball_contact
+from ...contact.hertz import ball_contact
 from ...errors import ConfigError, SolverError, check_positive, check_range
-from ...geometry import BallBearing, characteristic_frequencies
+from ...geometry import (
+    DefectProfile,
+    Race,
+    characteristic_frequencies,
+    defect_geometry,
+)
 from ..integrate import run_adaptive, run_fixed
 from . import kernel as rk
 from .config import (
     ENDS,
     G0,
-    Armature,
     BearingSupport,
-    DefectProfile,
-    FaultRace,
-    Housing,
-    LocalFault,
     RotorConfig,
-    Shaft,
     ShaftMassModel,
     config_summary,
-    cwru_rotor_config,
-    default_housing,
-    housing_from_frequency,
 )
 from .fe import (
     DOF_NAMES,
@@ -64,26 +60,17 @@ from .fe import (
 from .response import RotorResponse
 
 __all__ = [
-    "Armature",
-    "BearingSupport",
-    "DefectProfile",
-    "FaultRace",
-    "Housing",
-    "LocalFault",
+    "PackedModel",
     "RotorAssembly",
-    "RotorConfig",
     "RotorModes",
-    "RotorResponse",
-    "Shaft",
-    "ShaftMassModel",
     "build_fe",
     "build_rotor",
-    "cwru_rotor_config",
-    "default_housing",
-    "housing_from_frequency",
-    "fault_geometry",
+    "evaluate_rhs",
+    "pack_model",
     "rotor_modes",
     "simulate_rotor",
+    "stable_step",
+    "static_state",
 ]
 
 # ------------------------------------------------------------------------------ linear rotor
@@ -289,46 +276,19 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
     blk[rk.B_CH] = 0.5 * b.diametral_clearance
     f = sup.fault
     if f is not None:
-        g = fault_geometry(b, f)
-        blk[rk.B_FAULT] = 1 if f.race is FaultRace.OUTER else 2
+        g = defect_geometry(b, f)
+        blk[rk.B_FAULT] = 1 if f.race is Race.OUTER else 2
         blk[rk.B_FANG] = f.angle
-        blk[rk.B_FHALF] = g["half_angle_rad"]
+        blk[rk.B_FHALF] = 0.5 * g.delta_beta
         blk[rk.B_DEPTH] = f.depth
         blk[rk.B_HALFW] = 0.5 * f.width
         blk[rk.B_RBALL] = 0.5 * b.element_diameter
-        blk[rk.B_RRACE] = g["race_radius_m"]
-        blk[rk.B_RSIGN] = -1.0 if f.race is FaultRace.OUTER else 1.0
+        blk[rk.B_RRACE] = g.race_radius
+        blk[rk.B_RSIGN] = -1.0 if f.race is Race.OUTER else 1.0
         blk[rk.B_PROFILE] = 0.0 if f.profile is DefectProfile.GEOMETRIC else 1.0
-        blk[rk.B_HMAX] = g["h_min_m"]
-        blk[rk.B_FOMEGA] = 0.0 if f.race is FaultRace.OUTER else config.omega
+        blk[rk.B_HMAX] = g.h_min
+        blk[rk.B_FOMEGA] = 0.0 if f.race is Race.OUTER else config.omega
     return blk
-
-
-def fault_geometry(bearing: BallBearing, fault: LocalFault) -> dict[str, float]:
-    """Raceway radius, maximum drop and angular extent of ``fault`` on ``bearing``.
-
-    Seed VSM eqs. (1)–(3) (SPEC §1.1): ``h_s = [r - sqrt(r^2 - (b/2)^2)] -/+ [R - sqrt(R^2 -
-    (b/2)^2)]`` (``-`` and ``R = r_o`` for the outer race, ``+`` and ``r_i`` for the inner),
-    ``h_min = min(h_d, h_s)``, half angle ``asin(b / (2 R))``.
-
-    Returns
-    -------
-    dict
-        ``race_radius_m``, ``h_s_m``, ``h_min_m``, ``half_angle_rad``.
-    """
-    r = 0.5 * bearing.element_diameter
-    hb = 0.5 * fault.width
-    if fault.race is FaultRace.OUTER:
-        rr, sg = bearing.outer_raceway_radius, -1.0
-    else:
-        rr, sg = bearing.inner_raceway_radius, 1.0
-    hs = (r - math.sqrt(r * r - hb * hb)) + sg * (rr - math.sqrt(rr * rr - hb * hb))
-    return {
-        "race_radius_m": rr,
-        "h_s_m": hs,
-        "h_min_m": min(fault.depth, hs),
-        "half_angle_rad": math.asin(hb / rr),
-    }
 
 
 @dataclass

@@ -24,15 +24,16 @@ import numpy as np
 from ..._version import __version__
 from ...catalog import get_bearing
 from ...config import Scenario
+from ...geometry import Defect
 from ...results import SimulationResult
-from .config import Armature, BearingSupport, LocalFault, RotorConfig, Shaft, default_housing
+from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
 from .model import simulate_rotor
 
 
 def _support(bearing_id: str, fault: str, angle_deg: float, sc: Scenario) -> BearingSupport:
     f = None
     if fault != "none":
-        f = LocalFault(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
+        f = Defect(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
     return BearingSupport(get_bearing(bearing_id), f, contact_damping=sc.contact_damping_n_s_m)
 
 

@@ -8,8 +8,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ...catalog import get_bearing
-from ...contact.hertz import Race, ball_contact, subsurface_stresses
-from ...geometry import characteristic_frequencies
+from ...contact.hertz import ball_contact, subsurface_stresses
+from ...geometry import Race, characteristic_frequencies
 from ...load_distribution import radial_load_distribution, stribeck_qmax
 from .. import Context, Row, Section, compare
 from ..figures import save_figure

@@ -33,7 +33,9 @@ def run(ctx: Context) -> Section:
     # quick: dt 1e-5 s (valid: halving it moves the order peaks < 1e-3 orders, tests/test_ias.py)
     dt, dur, rate = (1e-5, 3.0, 20_000.0) if ctx.quick else (1e-6, 10.0, 20_000.0)
     runs = {
-        w: simulate_ias(replace(seed, spall_width=w), dur, dt, rate)
+        w: simulate_ias(
+            replace(seed, spall=replace(seed.spall, width=w) if w else None), dur, dt, rate
+        )
         for w in (0.0, 0.5e-3, 1e-3, 2e-3)
     }
     summ = {w: r.analyze() for w, r in runs.items()}

@@ -16,18 +16,15 @@ from ...dynamics.rotor.config import (
     DEFAULT_HOUSING_DAMPING_N_S_M,
     DEFAULT_HOUSING_MASS_KG,
     DEFAULT_HOUSING_STIFFNESS_N_M,
-)
-from ...dynamics.rotor.fe import Disk, assemble_rotor, complex_modes
-from ...dynamics.rotor.model import (
     Armature,
-    LocalFault,
     Shaft,
     ShaftMassModel,
     cwru_rotor_config,
     housing_from_frequency,
-    rotor_modes,
-    simulate_rotor,
 )
+from ...dynamics.rotor.fe import Disk, assemble_rotor, complex_modes
+from ...dynamics.rotor.model import rotor_modes, simulate_rotor
+from ...geometry import Defect
 from ...signal.core import amplitude_spectrum, envelope, envelope_spectrum
 from ...signal.diagnosis import load_signal
 from .. import Context, Row, Section, compare
@@ -159,7 +156,7 @@ def _psd_peak_hz(x: np.ndarray, fs: float) -> float:
 
 def _sim132(**kw) -> tuple[np.ndarray, float]:
     """Simulated DE y acceleration of the record-132 case (9 disks, about 1 s) and its BPFO."""
-    cfg = cwru_rotor_config(9, de_fault=LocalFault("outer"), **kw)
+    cfg = cwru_rotor_config(9, de_fault=Defect("outer"), **kw)
     bpfo = cfg.kinematics()["DE"].bpfo_hz
     # a whole number of fault periods (about 1 s) puts the simulated BPFO on a spectral bin
     dur = round(bpfo * 1.0) / bpfo
@@ -362,7 +359,7 @@ def _disks(ctx: Context, sec: Section, cwru: dict[str, float]) -> None:
     fig, axs = plt.subplots(len(cases), 1, figsize=(9, 1.6 * len(cases) + 1), sharex=True)
     bpfo = res = math.nan
     for ax, (lab, arm) in zip(axs, cases, strict=True):
-        r = simulate_rotor(cwru_rotor_config(armature=arm, de_fault=LocalFault("outer")),
+        r = simulate_rotor(cwru_rotor_config(armature=arm, de_fault=Defect("outer")),
                            duration=dur, sample_rate=FS)  # fmt: skip
         x = r.channel("DE", "y")
         bpfo = r.kinematics["DE"].bpfo_hz

@@ -13,9 +13,8 @@ from scipy.optimize import brentq
 from ...catalog import get_bearing
 from ...config import Scenario
 from ...dynamics.ring.base import ModelInputs
-from ...dynamics.ring.defects import Defect, FaultLocation
 from ...dynamics.ring.trace import stiffness_trace
-from ...geometry import characteristic_frequencies
+from ...geometry import characteristic_frequencies, defect_at_edge
 from ...load_distribution import radial_load_distribution
 from ...signal.core import envelope_spectrum, fast_kurtogram
 from ...signal.diagnosis import analyze_record, diagnose, load_signal
@@ -88,7 +87,7 @@ def _inputs(loc, gamma=0.38, **kw):
         FX,
         FY,
         1750 / 60,
-        Defect(FaultLocation(loc), 1e-3, 1e-3, math.radians(10.0)),
+        None if loc == "none" else defect_at_edge(B6205, loc, 1e-3, 1e-3, math.radians(10.0)),
         retention_factor=gamma,
         **kw,
     )
