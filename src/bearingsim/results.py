@@ -1,4 +1,17 @@
-"""Simulation results: SI arrays plus every input as metadata; lossless netCDF (h5netcdf) files.
+"""The result pattern shared by every model, and the time-domain :class:`SimulationResult`.
+
+Every model result (ring/rotor/IAS simulations, quasi-static solutions, stiffness matrices and
+traces, contact-fatigue life) derives from :class:`Result`:
+
+- ``to_dataset()`` — an :class:`xarray.Dataset`: SI arrays with ``units`` attributes, every input
+  and the solver metadata as JSON attributes, ``format`` naming the class and its version;
+- ``from_dataset(ds)`` — the exact inverse (lossless);
+- ``save(path) -> Path`` — a self-describing netCDF-4 file (engine ``h5netcdf``) written
+  atomically (a temporary file beside ``path``, renamed on success);
+- ``load(path)`` — reads it back, refusing a file of another kind in one line;
+- ``plot_*()`` — Matplotlib figures, returned without being shown.
+
+:func:`load_result` reads any result file and returns the right class (by its ``format``).
 
 A :class:`SimulationResult` holds the sample times and named channels (first axis = time; a
 second axis, e.g. ``ball``, is allowed and named in ``dims``), their units, the scenario that
@@ -14,7 +27,7 @@ import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -27,9 +40,108 @@ from .io.jsonable import to_jsonable
 #: identifies our files
 FORMAT = "bearingsim.SimulationResult/1"
 
+#: ``format`` attribute -> result class (filled by :meth:`Result.__init_subclass__`)
+_FORMATS: dict[str, type[Result]] = {}
+
+
+def json_attr(obj: Any) -> str:
+    """``obj`` as a JSON string for a netCDF attribute (NumPy types converted, non-finite floats
+    written as ``null``)."""
+    return json.dumps(to_jsonable(obj))
+
+
+def read_json_attr(ds: Any, name: str) -> Any:
+    """The JSON attribute ``name`` of dataset ``ds``, parsed; a missing or broken one raises a
+    one-line :class:`ConfigError`."""
+    try:
+        return json.loads(ds.attrs[name])
+    except (KeyError, TypeError, ValueError):
+        raise ConfigError(
+            f"attribute {name!r} is missing or not JSON; valid: a file written by bearingsim"
+        ) from None
+
+
+class Result:
+    """Base class of every model result (see the module docstring for the pattern).
+
+    A subclass sets ``FORMAT`` (``"bearingsim.<Class>/<version>"``) and implements
+    :meth:`to_dataset` and :meth:`from_dataset`; :meth:`save` and :meth:`load` come from here.
+    """
+
+    #: the ``format`` attribute of this class's files
+    FORMAT: ClassVar[str] = ""
+
+    def __init_subclass__(cls, **kw: Any) -> None:
+        super().__init_subclass__(**kw)
+        if cls.FORMAT:
+            _FORMATS[cls.FORMAT] = cls
+
+    def to_dataset(self):
+        """The result as an :class:`xarray.Dataset` (SI, units in attributes, inputs as JSON)."""
+        raise NotImplementedError
+
+    @classmethod
+    def from_dataset(cls, ds):
+        """Inverse of :meth:`to_dataset`."""
+        raise NotImplementedError
+
+    @classmethod
+    def check_format(cls, ds: Any) -> None:
+        """Raise a one-line :class:`ConfigError` unless ``ds`` was written by this class."""
+        got = ds.attrs.get("format")
+        if got != cls.FORMAT:
+            raise ConfigError(
+                f"file format = {got!r} is not a {cls.__name__} file; valid: {cls.FORMAT!r}"
+            )
+
+    def save(self, path: str | Path) -> Path:
+        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path."""
+        p = Path(path)
+        ds = self.to_dataset()
+        ds.attrs["format"] = self.FORMAT
+        ds.attrs.setdefault("bearingsim_version", __version__)
+        with atomic_path(p, suffix=".nc") as tmp:
+            ds.to_netcdf(tmp, engine="h5netcdf")
+        return p
+
+    @classmethod
+    def load(cls, path: str | Path):
+        """Read a file written by :meth:`save` (of this class, or of any class when called on
+        :class:`Result`)."""
+        ds = _open(path)
+        if cls is Result:
+            return load_result(path, ds)
+        cls.check_format(ds)
+        return cls.from_dataset(ds)
+
+
+def _open(path: str | Path):
+    import xarray as xr
+
+    p = Path(path)
+    try:
+        with xr.open_dataset(p, engine="h5netcdf") as ds:
+            return ds.load()
+    except (OSError, ValueError) as exc:
+        raise ConfigError(
+            f"file = {str(p)!r} is not a readable bearingsim result ({type(exc).__name__})"
+        ) from None
+
+
+def load_result(path: str | Path, _ds: Any = None) -> Result:
+    """Read any bearingsim result file; the class comes from its ``format`` attribute."""
+    ds = _open(path) if _ds is None else _ds
+    fmt = ds.attrs.get("format")
+    cls = _FORMATS.get(fmt)
+    if cls is None:
+        raise ConfigError(
+            f"file format = {fmt!r} is not a bearingsim result; valid: " + ", ".join(_FORMATS)
+        )
+    return cls.from_dataset(ds)
+
 
 @dataclass
-class SimulationResult:
+class SimulationResult(Result):
     """Time series of one simulation.
 
     Attributes
@@ -48,6 +160,8 @@ class SimulationResult:
     dims : dict[str, tuple[str, ...]]
         Dimension names of the channels that are not 1-D (default ``("time", "ball")``).
     """
+
+    FORMAT: ClassVar[str] = FORMAT
 
     time: NDArray[np.float64]
     channels: dict[str, NDArray[np.float64]]
@@ -123,11 +237,7 @@ class SimulationResult:
     @classmethod
     def from_dataset(cls, ds) -> SimulationResult:
         """Inverse of :meth:`to_dataset`."""
-        if ds.attrs.get("format") != FORMAT:
-            raise ConfigError(
-                f"file format = {ds.attrs.get('format')!r} is not a bearingsim result; "
-                f"valid: {FORMAT!r}"
-            )
+        cls.check_format(ds)
         dims = {k: tuple(v) for k, v in json.loads(ds.attrs.get("dims_json", "{}")).items()}
         channels = {}
         units = {}
@@ -142,31 +252,6 @@ class SimulationResult:
             meta=json.loads(ds.attrs["meta_json"]),
             dims=dims,
         )
-
-    def save(self, path: str | Path) -> Path:
-        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path."""
-        p = Path(path)
-        ds = self.to_dataset()
-        with atomic_path(p, suffix=".nc") as tmp:
-            ds.to_netcdf(tmp, engine="h5netcdf")
-        return p
-
-    @classmethod
-    def load(cls, path: str | Path) -> SimulationResult:
-        """Read a file written by :meth:`save`."""
-        import xarray as xr
-
-        p = Path(path)
-        try:
-            with xr.open_dataset(p, engine="h5netcdf") as ds:
-                ds.load()
-                return cls.from_dataset(ds)
-        except (OSError, ValueError) as exc:
-            if isinstance(exc, ConfigError):
-                raise
-            raise ConfigError(
-                f"file = {str(p)!r} is not a readable bearingsim result ({type(exc).__name__})"
-            ) from None
 
     # ------------------------------------------------------------------------ plots
     def plot_time(self, channel: str = "acc_y", t_range: tuple[float, float] | None = None):
