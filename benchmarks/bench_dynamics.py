@@ -29,7 +29,8 @@ sys.path.insert(0, str(ROOT / "tests"))
 import numpy as np  # noqa: E402
 
 from bearingsim.config import Scenario  # noqa: E402
-from bearingsim.simulation import model_inputs, simulate  # noqa: E402
+from bearingsim.dynamics.ring.scenario import model_inputs  # noqa: E402
+from bearingsim.simulation import simulate  # noqa: E402
 
 CASES = {
     "outer": {"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4},

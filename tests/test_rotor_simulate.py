@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
 import bearingsim
 from bearingsim.cli import main
 from bearingsim.config import Scenario
+from bearingsim.errors import ConfigError
 from bearingsim.results import SimulationResult
 
 BASE = ["simulate", "--model", "rotor", "--duration-s", "0.5", "--fs", "12000"]
@@ -86,7 +86,7 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--contact-damping", "-1"], "contact_damping_n_s_m = -1 N s/m is out of range"),
         (["--disks", "9", "--elements", "4"], "n_elements = 4 is too few; valid range [10, inf)"),
         (["--disks", "0"], "disks = 0 is invalid; valid range [1, inf) integer"),
-        (["--fault", "outer"], "fault = 'outer' is not used by model rotor"),
+        (["--fault", "outer"], "unknown key 'fault' (a key of model vsm/dem/tvsm)"),
         (["--de-bearing", "nope"], "nope"),
         (["--de-fault", "outer", "--defect-width-m", "0.01"],
          "defect_width_m = 0.01 m is out of range"),
@@ -108,8 +108,8 @@ def test_cli_simulate_rotor_bad_input(args, needle, capsys, tmp_path):
     assert not list(tmp_path.iterdir()), "no partial file either"
 
 
-def test_rotor_keys_ignored_by_ring_models():
-    """Adding the rotor keys leaves the ring models untouched (defaults unchanged)."""
-    a = bearingsim.simulate({"model": "vsm", "duration_s": 0.01, "fs_hz": 12000.0})
-    b = bearingsim.simulate({"model": "vsm", "duration_s": 0.01, "fs_hz": 12000.0, "disks": 3})
-    assert np.array_equal(a["acc_y"], b["acc_y"])
+def test_rotor_keys_refused_by_ring_models():
+    """Each family has its own schema (issue 13): a rotor key in a ring scenario is an error that
+    names the family it belongs to (before 0.2.0 it was silently ignored)."""
+    with pytest.raises(ConfigError, match=r"unknown key 'disks' \(a key of model rotor\)"):
+        bearingsim.simulate({"model": "vsm", "duration_s": 0.01, "fs_hz": 12000.0, "disks": 3})

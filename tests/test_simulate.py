@@ -15,9 +15,10 @@ from dynamics_reference import Reference
 from numpy.testing import assert_allclose
 
 from bearingsim.config import Scenario
+from bearingsim.dynamics.ring.scenario import model_inputs
 from bearingsim.errors import ConfigError, SolverError
 from bearingsim.results import SimulationResult
-from bearingsim.simulation import model_inputs, simulate
+from bearingsim.simulation import simulate
 
 #: seed VSM §2.5 / CWRU: 0.007 in outer defect at 1796 r/min, 0.014 in inner defect at 1748
 OUTER = {"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}

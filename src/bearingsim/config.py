@@ -1,69 +1,30 @@
-"""Scenario schema: TOML/dict → validated :class:`Scenario` (clear one-line errors).
+"""Scenarios: the inputs of one time-domain simulation, one schema per model family.
 
-A scenario file holds exactly the keys below (SI units; the suffix names the unit; angles in
-degrees and speed in r/min at this edge only). Any other key is an error naming the valid keys.
+A scenario is a flat table of keys (TOML file, dict or keyword arguments) whose ``model`` key
+selects the family and so the schema:
 
-============================  ==============  ===================================================
-key                           default         meaning
-============================  ==============  ===================================================
-``model``                     ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm`` | ``rotor`` (``Model``)
-``bearing``                   ``"6205"``      catalogue id (seed VSM table 1 bearing)
-``bearing_file``              –               user bearing TOML (instead of ``bearing``)
-``fault``                     ``"none"``      ``none`` | ``outer`` | ``inner``
-``defect_width_m``            1.778e-4        defect width b along the raceway [m] (CWRU 0.007 in)
-``defect_depth_m``            2.794e-4        defect depth h_d [m] (CWRU EDM depth 0.011 in)
-``defect_angle_deg``          10.0            defect left edge at t = 0, beta_0 [deg] (seed table 1)
-``first_ball_angle_deg``      0.0             ball 1 azimuth at t = 0, alpha_0 [deg] (seed table 1)
-``rpm``                       1750.0          shaft speed [r/min] (seed table 1)
-``fx_n``, ``fy_n``            10.0, 50.0      radial force on the inner ring [N] (seed table 1)
-``duration_s``                1.0             simulated time [s]
-``fs_hz``                     48000.0         output sample rate [Hz] (CWRU rate)
-``seed``                      0               seed of the measurement noise (integer >= 0)
-``noise_rms_m_s2``            0.0             RMS of white measurement noise on the accelerations
-``mass_kg``                   by fault        vibrating mass m; seed table 1: 0.063 (outer ring,
-                                              also for ``none``), 0.045 (inner ring, inner fault)
-``damping_n_s_m``             300.0           c_eq (seed table 1)
-``stiffness_n_m15``           Hertz           ball constant K [N/m^1.5] override (seed eq. (10))
-``clearance_m``               bearing         diametral clearance P_d [m] override (>= 0)
-``retention_factor``          eq. (11)        prescribed constant gamma in [0, 1] for a ball over
-                                              the defect (seed figs. 6–7); default: eq. (11)
-``load_zone_half_angle_deg``  contact         fixed load-zone half angle psi_L (seed eq. (14)
-                                              literal); default: the contact decides
-``dt_s``                      auto            RK4 step [s]; must divide 1/fs_hz into an integer
-                                              number of steps (rounded); auto: omega_max dt <= 0.35
-``solver``                    ``"rk4"``       ``rk4`` (fixed step) | ``dopri5`` (adaptive check)
-``per_ball``                  false           also store per-ball loads and deformations
-============================  ==============  ===================================================
+- :class:`RingScenario` — ``model = "vsm" | "dem" | "tvsm"``: one ball bearing with a local defect
+  (seed VSM, Guo et al. 2025, and its two baselines);
+- :class:`RotorScenario` — ``model = "rotor"``: the bearing–rotor–housing system of the CWRU rig
+  (seed ROTOR, Liu et al. 2021);
+- :class:`IasScenario` — ``model = "ias"``: the 3-DOF instantaneous-angular-speed model of a
+  cylindrical roller bearing with an outer-race spall (seed IAS, Han, Guo & Fan 2025).
 
-Keys of the bearing–rotor–housing model (``model = "rotor"``, seed ROTOR, SPEC §2; the ring-model
-keys ``bearing``, ``fault``, ``defect_angle_deg``, ``first_ball_angle_deg``, ``fx_n``, ``fy_n``,
-``mass_kg``, ``damping_n_s_m``, ``stiffness_n_m15``, ``clearance_m``, ``retention_factor`` and
-``load_zone_half_angle_deg`` are not used by it; ``fault`` must stay ``"none"``):
+``Scenario(**keys)``, :meth:`Scenario.from_dict` and :meth:`Scenario.from_toml` return the
+family's class (``model`` defaults to ``"vsm"``). Keys are SI with the unit in the name; speeds are
+in r/min and angles in degrees at this edge only (azimuths from +y towards +x, the project
+convention). A key of another family, an unknown key or a bad value raises a one-line
+:class:`~bearingsim.errors.ConfigError`; a renamed key still works for one release with a
+:class:`~bearingsim.errors.DeprecatedKeyWarning` (or, where its meaning changed, names its
+replacement). The defaults are the seeds' cases; every literature default is defined once, here,
+with its source, and the models import it from here.
 
-============================  ==============  ===================================================
-key                           default         meaning
-============================  ==============  ===================================================
-``de_bearing``, ``fe_bearing``  6205-cwru,    drive-end / fan-end catalogue ids (CWRU motor)
-                                6203-cwru
-``de_fault``, ``fe_fault``    ``"none"``      defect of each bearing: none | outer | inner
-                                              (width and depth from ``defect_width_m/_depth_m``)
-``de_defect_angle_deg``,      180.0           defect **centre** azimuth at t = 0 [deg], from +y
-``fe_defect_angle_deg``                       towards +x (180 = 6 o'clock, CWRU ``OR@6``)
-``disks``                     9               number of equal disks carrying the rotor mass
-``disk_positions_mm``         equal spacing   disk positions from the DE bearing [mm] (list)
-``distributed_rotor``         false           rotor mass spread along the shaft instead of disks
-``n_elements``                auto            minimum number of beam elements
-``shaft_mass_model``          ``"lumped"``    lumped (half at each bearing, seed) | distributed
-``housing_mass_kg``           6.638           mass of each housing [kg] (Sawalhi & Randall 2008
-                                              pedestal, as used for CWRU by Ruan et al. 2022)
-``housing_stiffness_n_m``     1.51e7          housing mount stiffness, X and Y [N/m] (same source)
-``housing_damping_n_s_m``     2210.7          housing mount damping, X and Y [N s/m] (same source)
-``contact_damping_n_s_m``     50.0            damping of each ball-race contact [N s/m]
-``gravity``                   true            gravity (-y) on every mass
-``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
-``antialias``                 true            4x (2x above 24 kHz) internal sampling and FIR
-                                              decimation of the accelerations (like a DAQ)
-============================  ==============  ===================================================
+Keys common to every family: ``model``, ``duration_s``, ``fs_hz`` (output sample rate [Hz]),
+``dt_s`` (integration step [s]; ``None`` = the model's automatic choice), ``solver`` (``rk4`` |
+``dopri5``). The family keys are listed in each class's docstring.
+
+May import: :mod:`bearingsim.errors`, :mod:`bearingsim.geometry`. The model families import this
+module, never the reverse (the runner of each family is found by :mod:`bearingsim.simulation`).
 """
 
 from __future__ import annotations
@@ -71,11 +32,13 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
-from .errors import ConfigError, check_positive, check_range, read_toml
+from .errors import ConfigError, DeprecatedKeyWarning, check_positive, check_range, read_toml
+from .geometry import CWRU_DEFECT_DEPTH_M, CWRU_DEFECT_WIDTH_M, parse_enum
 
 
 class Model(enum.Enum):
@@ -85,10 +48,11 @@ class Model(enum.Enum):
     DEM = "dem"
     TVSM = "tvsm"
     ROTOR = "rotor"
+    IAS = "ias"
 
 
 class Solver(enum.Enum):
-    """Time integrator."""
+    """Time integrator: fixed-step RK4 (every seed's solver) or adaptive Dormand–Prince 5(4)."""
 
     RK4 = "rk4"
     DOPRI5 = "dopri5"
@@ -97,92 +61,146 @@ class Solver(enum.Enum):
 #: maximum number of output samples of one simulation (memory guard)
 MAX_SAMPLES = 50_000_000
 
+# ------------------------------------------------------------------ literature defaults
+#: seed VSM table 1: vibrating mass of an outer-race (also healthy) / inner-race case [kg]
+SEED_VSM_MASS_OUTER_KG = 0.063
+SEED_VSM_MASS_INNER_KG = 0.045
+#: seed VSM table 1 / Petersen et al. (2015): equivalent damping c_eq [N s/m]
+SEED_VSM_DAMPING_N_S_M = 300.0
+#: seed VSM table 1: radial force on the inner ring [N], shaft speed [r/min], defect left edge
+#: beta_0 [deg]
+SEED_VSM_FX_N = 10.0
+SEED_VSM_FY_N = 50.0
+SEED_VSM_RPM = 1750.0
+SEED_VSM_DEFECT_EDGE_DEG = 10.0
+#: shaft speed of the ring and rotor scenarios unless given [r/min]: seed VSM table 1
+DEFAULT_RPM = SEED_VSM_RPM
 
+#: Default housing, per end and per direction (X and Y): the bearing pedestal of the 5-DOF
+#: bearing model of Sawalhi & Randall (2008, *Mech. Syst. Signal Process.* 22, 1924–1951,
+#: "pedestal": outer race + housing on a spring and damper to the base), with the values used
+#: for the CWRU drive-end 6205 by Ruan, Chen, Gühmann, Yan & Li (2022), "Dynamics modeling of
+#: bearing with defect in Modelica and application in direct transfer learning from simulation
+#: to test bench for bearing fault diagnosis", *Electronics* 11(4), 622
+#: (doi:10.3390/electronics11040622; also Ruan, Li & Gühmann, Proc. 14th Modelica Conf. 2021,
+#: doi:10.3384/ecp21181373), whose simulated signals are compared with the CWRU records. The
+#: numbers were read from the authors' published model (test-bearing parameters mp, kp, cp);
+#: see docs/models.md (ROTOR, "Housings"). Mount frequency sqrt(k/m)/2pi = 240 Hz, damping
+#: ratio 0.110.
+HOUSING_MASS_KG = 6.638
+HOUSING_STIFFNESS_N_M = 1.51e7
+HOUSING_DAMPING_N_S_M = 2210.7
+#: damping of each ball–race contact [N s/m] (seed ROTOR eq. (11) ``C_v``; the seed gives no
+#: value: an assumption, see docs/models.md)
+CONTACT_DAMPING_N_S_M = 50.0
+#: seed ROTOR: the rotor mass carried by 9 equal disks
+SEED_ROTOR_DISKS = 9
+
+#: seed IAS §3.1 case (NU204-ECP): motor torque [N m], radial load F_y (downward) [N], inner ring
+#: and shaft mass [kg], radial damping C_s [N s/m], torsional damping C_T [N m s/rad],
+#: rolling-resistance coefficient mu [-] (eq. (14)), spall width L_d [m], RK4 step [s] and
+#: simulated time [s]
+SEED_IAS_TORQUE_N_M = 9.54
+SEED_IAS_FY_N = 400.0
+SEED_IAS_MASS_KG = 1.3
+SEED_IAS_RADIAL_DAMPING_N_S_M = 400.0
+SEED_IAS_TORSIONAL_DAMPING_N_M_S = 1.52
+SEED_IAS_ROLLING_RESISTANCE = 0.0015
+SEED_IAS_SPALL_WIDTH_M = 1e-3
+SEED_IAS_DT_S = 1e-6
+SEED_IAS_DURATION_S = 10.0
+#: output sample rate of the IAS model unless given [Hz]: 20 seed steps per sample
+IAS_FS_HZ = 50_000.0
+#: polar inertia of the shaft [kg m^2]: not given by seed IAS; a 1.3 kg solid steel shaft of the
+#: NU204's 20 mm bore, ``m r^2 / 2`` (an assumption, docs/models.md)
+IAS_INERTIA_KG_M2 = 6.5e-5
+
+
+# ------------------------------------------------------------------ helpers
+def _bool(name: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise ConfigError(f"{name} = {value!r} is invalid; valid: true or false")
+    return value
+
+
+def _int(name: str, value: Any, lo: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < lo:
+        raise ConfigError(f"{name} = {value!r} is invalid; valid range [{lo}, inf) integer")
+    return value
+
+
+def _choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
+    if value not in valid:
+        raise ConfigError(f"{name} = {value!r} is invalid; valid: " + ", ".join(valid))
+    return value
+
+
+def _angle(name: str, value: Any) -> float:
+    return check_range(name, value, -360.0, 360.0, unit="deg")
+
+
+_FAULTS = ("none", "outer", "inner")
+
+
+def _family_of(model: Any) -> type[Scenario]:
+    m = parse_enum(Model, model, "model")
+    return _FAMILY[m]
+
+
+# ------------------------------------------------------------------ the base schema
 @dataclass(frozen=True)
 class Scenario:
-    """One simulation: every input, validated (see the module docstring for the keys)."""
+    """Inputs of one simulation; the base of the per-family schemas.
+
+    ``Scenario(**keys)`` returns the family's class chosen by ``model`` (like
+    :class:`pathlib.Path` returns a ``PosixPath``), so ``bearingsim.Scenario(model="rotor",
+    disks=3)`` is a :class:`RotorScenario`.
+
+    Parameters
+    ----------
+    model : Model or str
+        The model (and so the family).
+    duration_s : float
+        Simulated time [s].
+    fs_hz : float
+        Output sample rate [Hz].
+    dt_s : float or None
+        Integration step [s]; ``None`` = the model's automatic or seed step.
+    solver : Solver or str
+        ``rk4`` (fixed step) or ``dopri5`` (adaptive, as a check).
+    """
+
+    #: the models of this family (filled per subclass)
+    MODELS: ClassVar[tuple[Model, ...]] = ()
+    #: the keys of this family in documentation order
+    KEYS: ClassVar[tuple[str, ...]] = ()
+    #: renamed keys: old -> new (same meaning; a warning) or old -> message (meaning changed)
+    RENAMED: ClassVar[dict[str, str]] = {}
+    #: whether ``dt_s`` must not exceed the output interval ``1/fs_hz``
+    DT_WITHIN_OUTPUT: ClassVar[bool] = True
 
     model: Model = Model.VSM
-    bearing: str | None = "6205"
-    bearing_file: str | None = None
-    fault: str = "none"
-    defect_width_m: float = 0.007 * 25.4e-3
-    defect_depth_m: float = 0.011 * 25.4e-3
-    defect_angle_deg: float = 10.0
-    first_ball_angle_deg: float = 0.0
-    rpm: float = 1750.0
-    fx_n: float = 10.0
-    fy_n: float = 50.0
     duration_s: float = 1.0
     fs_hz: float = 48000.0
-    seed: int = 0
-    noise_rms_m_s2: float = 0.0
-    mass_kg: float | None = None
-    damping_n_s_m: float = 300.0
-    stiffness_n_m15: float | None = None
-    clearance_m: float | None = None
-    retention_factor: float | None = None
-    load_zone_half_angle_deg: float | None = None
     dt_s: float | None = None
     solver: Solver = Solver.RK4
-    per_ball: bool = False
-    # bearing-rotor-housing model (model = "rotor"); see the second table above
-    de_bearing: str = "6205-cwru"
-    fe_bearing: str = "6203-cwru"
-    de_fault: str = "none"
-    fe_fault: str = "none"
-    de_defect_angle_deg: float = 180.0
-    fe_defect_angle_deg: float = 180.0
-    disks: int = 9
-    disk_positions_mm: tuple[float, ...] | None = None
-    distributed_rotor: bool = False
-    n_elements: int | None = None
-    shaft_mass_model: str = "lumped"
-    housing_mass_kg: float = 6.638
-    housing_stiffness_n_m: float = 1.51e7
-    housing_damping_n_s_m: float = 2210.7
-    contact_damping_n_s_m: float = 50.0
-    gravity: bool = True
-    unbalance_kg_m: float = 0.0
-    antialias: bool = True
+
+    def __new__(cls, *args: Any, **kw: Any):
+        if cls is Scenario:
+            if args:
+                raise ConfigError("Scenario(...) takes keyword arguments only (the scenario keys)")
+            cls = _family_of(kw.get("model", Model.VSM))
+        return object.__new__(cls)
 
     def __post_init__(self) -> None:
         s = object.__setattr__
-        try:
-            s(self, "model", Model(self.model))
-        except ValueError:
+        s(self, "model", parse_enum(Model, self.model, "model"))
+        if self.model not in self.MODELS:
             raise ConfigError(
-                f"model = {self.model!r} is invalid; valid: " + ", ".join(m.value for m in Model)
-            ) from None
-        try:
-            s(self, "solver", Solver(self.solver))
-        except ValueError:
-            raise ConfigError(
-                f"solver = {self.solver!r} is invalid; valid: " + ", ".join(m.value for m in Solver)
-            ) from None
-        if self.fault not in ("none", "outer", "inner"):
-            raise ConfigError(f"fault = {self.fault!r} is invalid; valid: none, outer, inner")
-        if self.bearing_file is not None:
-            s(self, "bearing", None)
-        elif not isinstance(self.bearing, str) or not self.bearing:
-            raise ConfigError(f"bearing = {self.bearing!r} is invalid; valid: a catalogue id")
-        s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
-        s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
-        s(
-            self,
-            "defect_angle_deg",
-            check_range("defect_angle_deg", self.defect_angle_deg, -360.0, 360.0, unit="deg"),
-        )
-        s(
-            self,
-            "first_ball_angle_deg",
-            check_range(
-                "first_ball_angle_deg", self.first_ball_angle_deg, -360.0, 360.0, unit="deg"
-            ),
-        )
-        s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
-        s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
-        s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
+                f"model = {self.model.value!r} is not a model of {type(self).__name__}; valid: "
+                + ", ".join(m.value for m in self.MODELS)
+            )
+        s(self, "solver", parse_enum(Solver, self.solver, "solver"))
         s(self, "duration_s", check_positive("duration_s", self.duration_s, "s"))
         s(self, "fs_hz", check_positive("fs_hz", self.fs_hz, "Hz"))
         n = round(self.duration_s * self.fs_hz)
@@ -191,8 +209,223 @@ class Scenario:
                 f"duration_s * fs_hz = {self.duration_s * self.fs_hz:.6g} samples is out of "
                 f"range; valid range [2, {MAX_SAMPLES}] samples"
             )
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
-            raise ConfigError(f"seed = {self.seed!r} is invalid; valid range [0, inf) integer")
+        if self.dt_s is not None:
+            dt = check_positive("dt_s", self.dt_s, "s")
+            if self.DT_WITHIN_OUTPUT and dt > (1.0 + 1e-9) / self.fs_hz:
+                raise ConfigError(
+                    f"dt_s = {dt:.6g} s is larger than the output interval 1/fs_hz; valid range "
+                    f"(0, {1.0 / self.fs_hz:.6g}] s"
+                )
+            s(self, "dt_s", dt)
+        self._validate()
+
+    def _validate(self) -> None:
+        """Family checks (subclasses)."""
+
+    # ------------------------------------------------------------------ conversions
+    @property
+    def n_samples(self) -> int:
+        """Number of output samples ``round(duration_s * fs_hz)`` [-]."""
+        return int(round(self.duration_s * self.fs_hz))
+
+    def to_dict(self) -> dict[str, Any]:
+        """Every key as a plain TOML/JSON value, in documentation order (``None`` = default)."""
+        d = dataclasses.asdict(self)
+        out = {k: d[k] for k in self.KEYS}
+        for k, v in out.items():
+            if isinstance(v, enum.Enum):
+                out[k] = v.value
+        return out
+
+    def replace(self, **changes: Any) -> Scenario:
+        """Copy with ``changes`` (validated; ``model`` may only change within the family)."""
+        return dataclasses.replace(self, **changes)
+
+    @classmethod
+    def keys(cls) -> tuple[str, ...]:
+        """The keys of this family (of every family, on :class:`Scenario`), documentation order."""
+        if cls is Scenario:
+            out: list[str] = []
+            for fam in _FAMILIES:
+                out += [k for k in fam.KEYS if k not in out]
+            return tuple(out)
+        return cls.KEYS
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], origin: str = "<scenario>") -> Scenario:
+        """Build from a table of keys (the family from ``model``; unknown keys raise)."""
+        if not isinstance(data, dict):
+            raise ConfigError(f"{origin}: a scenario must be a table of keys")
+        try:
+            fam = cls
+            if cls is Scenario:
+                fam = _family_of(data.get("model", Model.VSM))
+            data = fam._renamed(dict(data), origin)
+            unknown = [k for k in data if k not in fam.KEYS]
+            if unknown:
+                k = unknown[0]
+                other = [f for f in _FAMILIES if k in f.KEYS]
+                where = (
+                    f" (a key of model {'/'.join(m.value for m in other[0].MODELS)})"
+                    if other
+                    else ""
+                )
+                raise ConfigError(f"unknown key {k!r}{where}; valid keys: " + ", ".join(fam.KEYS))
+            return fam(**data)
+        except ConfigError as exc:
+            raise ConfigError(f"{origin}: {exc}") from None
+
+    @classmethod
+    def _renamed(cls, data: dict[str, Any], origin: str) -> dict[str, Any]:
+        for old, new in cls.RENAMED.items():
+            if old not in data:
+                continue
+            if new not in cls.KEYS:  # the meaning changed: say what replaces it
+                raise ConfigError(f"key {old!r} was replaced: {new}")
+            if new in data:
+                raise ConfigError(f"keys {old!r} and {new!r} given; {old!r} is the old name")
+            warnings.warn(
+                f"{origin}: scenario key {old!r} is deprecated; use {new!r}",
+                DeprecatedKeyWarning,
+                stacklevel=3,
+            )
+            data[new] = data.pop(old)
+        return data
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> Scenario:
+        """Read a scenario TOML file (relative ``bearing_file`` paths are taken relative to it)."""
+        p = Path(path)
+        data = read_toml(p, "scenario file")
+        if isinstance(data.get("bearing_file"), str):
+            bf = Path(data["bearing_file"])
+            if not bf.is_absolute():
+                data["bearing_file"] = str(p.parent / bf)
+        return cls.from_dict(data, origin=p.name)
+
+
+def _check_bearing(sc: Any, default: str) -> None:
+    s = object.__setattr__
+    if sc.bearing_file is not None:
+        if not isinstance(sc.bearing_file, str) or not sc.bearing_file:
+            raise ConfigError(f"bearing_file = {sc.bearing_file!r} is invalid; valid: a path")
+        s(sc, "bearing", None)
+    elif sc.bearing is None:
+        s(sc, "bearing", default)
+    elif not isinstance(sc.bearing, str) or not sc.bearing:
+        raise ConfigError(f"bearing = {sc.bearing!r} is invalid; valid: a catalogue id")
+
+
+# ------------------------------------------------------------------ ring models
+@dataclass(frozen=True)
+class RingScenario(Scenario):
+    """One ball bearing with a local raceway defect: VSM (seed VSM), DEM, TVSM.
+
+    ============================  ==============  ==============================================
+    key                           default         meaning
+    ============================  ==============  ==============================================
+    ``model``                     ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm``
+    ``bearing``                   ``"6205"``      catalogue id (seed VSM table 1 bearing)
+    ``bearing_file``              –               user bearing TOML (instead of ``bearing``)
+    ``fault``                     ``"none"``      ``none`` | ``outer`` | ``inner``
+    ``defect_width_m``            1.778e-4        defect width b along the raceway [m] (CWRU
+                                                  0.007 in)
+    ``defect_depth_m``            2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``defect_edge_angle_deg``     10.0            the defect's **left edge** at t = 0, seed VSM
+                                                  beta_0 [deg] (table 1); its centre is half the
+                                                  defect's extent further on
+    ``first_ball_angle_deg``      0.0             ball 1 azimuth at t = 0, alpha_0 [deg]
+    ``rpm``                       1750.0          shaft speed [r/min] (seed table 1)
+    ``fx_n``, ``fy_n``            10.0, 50.0      radial force on the inner ring [N] (table 1)
+    ``duration_s``                1.0             simulated time [s]
+    ``fs_hz``                     48000.0         output sample rate [Hz] (CWRU rate)
+    ``seed``                      0               seed of the measurement noise (integer >= 0)
+    ``noise_rms_m_s2``            0.0             RMS of white measurement noise on the
+                                                  accelerations [m/s^2]
+    ``mass_kg``                   by fault        vibrating mass m [kg]; seed table 1: 0.063
+                                                  (outer ring, also ``none``), 0.045 (inner)
+    ``damping_n_s_m``             300.0           c_eq [N s/m] (seed table 1)
+    ``stiffness_n_m15``           Hertz           ball constant K [N/m^1.5] override (eq. (10))
+    ``clearance_m``               bearing         diametral clearance P_d [m] override (>= 0)
+    ``retention_factor``          eq. (11)        prescribed constant gamma in [0, 1] for a ball
+                                                  over the defect (seed figs. 6–7)
+    ``load_zone_half_angle_deg``  contact         fixed load-zone half angle psi_L (seed eq. (14)
+                                                  literal); default: the contact decides
+    ``dt_s``                      auto            RK4 step [s], rounded to divide 1/fs_hz;
+                                                  auto: omega_max dt <= 0.35
+    ``solver``                    ``"rk4"``       ``rk4`` | ``dopri5`` (adaptive check)
+    ``per_ball``                  false           also store per-ball loads and deformations
+    ============================  ==============  ==============================================
+
+    Renamed in 0.2.0: ``defect_angle_deg`` → ``defect_edge_angle_deg`` (same meaning).
+    """
+
+    MODELS: ClassVar[tuple[Model, ...]] = (Model.VSM, Model.DEM, Model.TVSM)
+    KEYS: ClassVar[tuple[str, ...]] = (
+        "model",
+        "bearing",
+        "bearing_file",
+        "fault",
+        "defect_width_m",
+        "defect_depth_m",
+        "defect_edge_angle_deg",
+        "first_ball_angle_deg",
+        "rpm",
+        "fx_n",
+        "fy_n",
+        "duration_s",
+        "fs_hz",
+        "seed",
+        "noise_rms_m_s2",
+        "mass_kg",
+        "damping_n_s_m",
+        "stiffness_n_m15",
+        "clearance_m",
+        "retention_factor",
+        "load_zone_half_angle_deg",
+        "dt_s",
+        "solver",
+        "per_ball",
+    )
+    RENAMED: ClassVar[dict[str, str]] = {"defect_angle_deg": "defect_edge_angle_deg"}
+
+    model: Model = Model.VSM
+    bearing: str | None = "6205"
+    bearing_file: str | None = None
+    fault: str = "none"
+    defect_width_m: float = CWRU_DEFECT_WIDTH_M
+    defect_depth_m: float = CWRU_DEFECT_DEPTH_M
+    defect_edge_angle_deg: float = SEED_VSM_DEFECT_EDGE_DEG
+    first_ball_angle_deg: float = 0.0
+    rpm: float = DEFAULT_RPM
+    fx_n: float = SEED_VSM_FX_N
+    fy_n: float = SEED_VSM_FY_N
+    seed: int = 0
+    noise_rms_m_s2: float = 0.0
+    mass_kg: float | None = None
+    damping_n_s_m: float = SEED_VSM_DAMPING_N_S_M
+    stiffness_n_m15: float | None = None
+    clearance_m: float | None = None
+    retention_factor: float | None = None
+    load_zone_half_angle_deg: float | None = None
+    per_ball: bool = False
+
+    def _validate(self) -> None:
+        s = object.__setattr__
+        _check_bearing(self, "6205")
+        _choice("fault", self.fault, _FAULTS)
+        s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
+        s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
+        s(
+            self,
+            "defect_edge_angle_deg",
+            _angle("defect_edge_angle_deg", self.defect_edge_angle_deg),
+        )
+        s(self, "first_ball_angle_deg", _angle("first_ball_angle_deg", self.first_ball_angle_deg))
+        s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
+        s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
+        s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
+        _int("seed", self.seed, 0)
         s(
             self,
             "noise_rms_m_s2",
@@ -233,45 +466,147 @@ class Scenario:
                     unit="deg",
                 ),
             )
-        if self.dt_s is not None:
-            dt = check_positive("dt_s", self.dt_s, "s")
-            if dt > (1.0 + 1e-9) / self.fs_hz:
-                raise ConfigError(
-                    f"dt_s = {dt:.6g} s is larger than the output interval 1/fs_hz; valid range "
-                    f"(0, {1.0 / self.fs_hz:.6g}] s"
-                )
-            s(self, "dt_s", dt)
-        if not isinstance(self.per_ball, bool):
-            raise ConfigError(f"per_ball = {self.per_ball!r} is invalid; valid: true or false")
-        self._check_rotor_keys()
+        _bool("per_ball", self.per_ball)
 
-    def _check_rotor_keys(self) -> None:
-        """Types and simple ranges of the rotor keys (the rotor model validates the rest when
-        it builds its :class:`~bearingsim.dynamics.rotor_config.RotorConfig`)."""
+    @property
+    def shaft_hz(self) -> float:
+        """Shaft frequency ``rpm / 60`` [Hz]."""
+        return self.rpm / 60.0
+
+    @property
+    def resolved_mass_kg(self) -> float:
+        """Vibrating mass [kg]: given, else seed VSM table 1 (0.045 inner fault, 0.063 else)."""
+        if self.mass_kg is not None:
+            return self.mass_kg
+        return SEED_VSM_MASS_INNER_KG if self.fault == "inner" else SEED_VSM_MASS_OUTER_KG
+
+    @property
+    def defect_edge_angle_rad(self) -> float:
+        """Seed VSM beta_0, the defect's left edge at t = 0 [rad]."""
+        return math.radians(self.defect_edge_angle_deg)
+
+
+# ------------------------------------------------------------------ rotor model
+@dataclass(frozen=True)
+class RotorScenario(Scenario):
+    """The bearing–rotor–housing system of the CWRU rig (seed ROTOR, SPEC §2).
+
+    ============================  ==============  ==============================================
+    key                           default         meaning
+    ============================  ==============  ==============================================
+    ``model``                     ``"rotor"``
+    ``de_bearing``, ``fe_bearing``  6205-cwru,    drive-end / fan-end catalogue ids (CWRU motor)
+                                    6203-cwru
+    ``de_fault``, ``fe_fault``    ``"none"``      defect of each bearing: none | outer | inner
+    ``defect_width_m``            1.778e-4        defect width b [m] (CWRU 0.007 in)
+    ``defect_depth_m``            2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``de_defect_angle_deg``,      180.0           defect **centre** azimuth at t = 0 [deg]
+    ``fe_defect_angle_deg``                       (180 = 6 o'clock, CWRU ``OR@6``)
+    ``rpm``                       1750.0          shaft speed [r/min]
+    ``duration_s``, ``fs_hz``     1.0, 48000.0    simulated time [s], output sample rate [Hz]
+    ``seed``, ``noise_rms_m_s2``  0, 0.0          white measurement noise on the accelerations
+    ``disks``                     9               number of equal disks carrying the rotor mass
+    ``disk_positions_mm``         equal spacing   disk positions from the DE bearing [mm] (list)
+    ``distributed_rotor``         false           rotor mass spread along the shaft instead
+    ``n_elements``                auto            minimum number of beam elements
+    ``shaft_mass_model``          ``"lumped"``    lumped (half at each bearing, seed) |
+                                                  distributed
+    ``housing_mass_kg``           6.638           mass of each housing [kg] (Sawalhi & Randall
+                                                  2008 pedestal, values of Ruan et al. 2022)
+    ``housing_stiffness_n_m``     1.51e7          housing mount stiffness, X and Y [N/m]
+    ``housing_damping_n_s_m``     2210.7          housing mount damping, X and Y [N s/m]
+    ``contact_damping_n_s_m``     50.0            damping of each ball–race contact [N s/m]
+    ``gravity``                   true            gravity (-y) on every mass
+    ``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
+    ``antialias``                 true            4x (2x above 24 kHz) internal sampling and FIR
+                                                  decimation of the accelerations (like a DAQ)
+    ``dt_s``, ``solver``          auto, rk4       integration step [s] and integrator
+    ``per_ball``                  false           also store per-ball contact forces
+    ============================  ==============  ==============================================
+    """
+
+    MODELS: ClassVar[tuple[Model, ...]] = (Model.ROTOR,)
+    KEYS: ClassVar[tuple[str, ...]] = (
+        "model",
+        "de_bearing",
+        "fe_bearing",
+        "de_fault",
+        "fe_fault",
+        "defect_width_m",
+        "defect_depth_m",
+        "de_defect_angle_deg",
+        "fe_defect_angle_deg",
+        "rpm",
+        "duration_s",
+        "fs_hz",
+        "seed",
+        "noise_rms_m_s2",
+        "disks",
+        "disk_positions_mm",
+        "distributed_rotor",
+        "n_elements",
+        "shaft_mass_model",
+        "housing_mass_kg",
+        "housing_stiffness_n_m",
+        "housing_damping_n_s_m",
+        "contact_damping_n_s_m",
+        "gravity",
+        "unbalance_kg_m",
+        "antialias",
+        "dt_s",
+        "solver",
+        "per_ball",
+    )
+
+    model: Model = Model.ROTOR
+    de_bearing: str = "6205-cwru"
+    fe_bearing: str = "6203-cwru"
+    de_fault: str = "none"
+    fe_fault: str = "none"
+    defect_width_m: float = CWRU_DEFECT_WIDTH_M
+    defect_depth_m: float = CWRU_DEFECT_DEPTH_M
+    de_defect_angle_deg: float = 180.0
+    fe_defect_angle_deg: float = 180.0
+    rpm: float = DEFAULT_RPM
+    seed: int = 0
+    noise_rms_m_s2: float = 0.0
+    disks: int = SEED_ROTOR_DISKS
+    disk_positions_mm: tuple[float, ...] | None = None
+    distributed_rotor: bool = False
+    n_elements: int | None = None
+    shaft_mass_model: str = "lumped"
+    housing_mass_kg: float = HOUSING_MASS_KG
+    housing_stiffness_n_m: float = HOUSING_STIFFNESS_N_M
+    housing_damping_n_s_m: float = HOUSING_DAMPING_N_S_M
+    contact_damping_n_s_m: float = CONTACT_DAMPING_N_S_M
+    gravity: bool = True
+    unbalance_kg_m: float = 0.0
+    antialias: bool = True
+    per_ball: bool = False
+
+    def _validate(self) -> None:
         s = object.__setattr__
         for name in ("de_fault", "fe_fault"):
-            if getattr(self, name) not in ("none", "outer", "inner"):
-                raise ConfigError(
-                    f"{name} = {getattr(self, name)!r} is invalid; valid: none, outer, inner"
-                )
-        if self.model is Model.ROTOR and self.fault != "none":
-            raise ConfigError(
-                f"fault = {self.fault!r} is not used by model rotor; valid: none (give the "
-                "defects with de_fault / fe_fault)"
-            )
+            _choice(name, getattr(self, name), _FAULTS)
         for name in ("de_bearing", "fe_bearing"):
             if not isinstance(getattr(self, name), str) or not getattr(self, name):
                 raise ConfigError(
                     f"{name} = {getattr(self, name)!r} is invalid; valid: a catalogue id"
                 )
+        s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
+        s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
         for name in ("de_defect_angle_deg", "fe_defect_angle_deg"):
-            s(self, name, check_range(name, getattr(self, name), -360.0, 360.0, unit="deg"))
-        for name, lo in (("disks", 1), ("n_elements", 1)):
-            v = getattr(self, name)
-            if v is None and name == "n_elements":
-                continue
-            if isinstance(v, bool) or not isinstance(v, int) or v < lo:
-                raise ConfigError(f"{name} = {v!r} is invalid; valid range [{lo}, inf) integer")
+            s(self, name, _angle(name, getattr(self, name)))
+        s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
+        _int("seed", self.seed, 0)
+        s(
+            self,
+            "noise_rms_m_s2",
+            check_range("noise_rms_m_s2", self.noise_rms_m_s2, 0.0, unit="m/s^2"),
+        )
+        _int("disks", self.disks, 1)
+        if self.n_elements is not None:
+            _int("n_elements", self.n_elements, 1)
         if self.disk_positions_mm is not None:
             try:
                 pos = tuple(float(v) for v in self.disk_positions_mm)
@@ -283,95 +618,210 @@ class Scenario:
             if not pos:
                 raise ConfigError("disk_positions_mm = [] is invalid; valid: a non-empty list")
             s(self, "disk_positions_mm", pos)
-        if self.shaft_mass_model not in ("lumped", "distributed"):
-            raise ConfigError(
-                f"shaft_mass_model = {self.shaft_mass_model!r} is invalid; valid: lumped, "
-                "distributed"
-            )
+        _choice("shaft_mass_model", self.shaft_mass_model, ("lumped", "distributed"))
         s(self, "housing_mass_kg", check_positive("housing_mass_kg", self.housing_mass_kg, "kg"))
         s(
             self,
             "housing_stiffness_n_m",
             check_positive("housing_stiffness_n_m", self.housing_stiffness_n_m, "N/m"),
         )
-        s(
-            self,
-            "housing_damping_n_s_m",
-            check_range("housing_damping_n_s_m", self.housing_damping_n_s_m, 0.0, unit="N s/m"),
-        )
-        s(
-            self,
-            "contact_damping_n_s_m",
-            check_range("contact_damping_n_s_m", self.contact_damping_n_s_m, 0.0, unit="N s/m"),
-        )
+        for name in ("housing_damping_n_s_m", "contact_damping_n_s_m"):
+            s(self, name, check_range(name, getattr(self, name), 0.0, unit="N s/m"))
         s(
             self,
             "unbalance_kg_m",
             check_range("unbalance_kg_m", self.unbalance_kg_m, 0.0, unit="kg m"),
         )
-        for name in ("distributed_rotor", "gravity", "antialias"):
-            if not isinstance(getattr(self, name), bool):
-                raise ConfigError(
-                    f"{name} = {getattr(self, name)!r} is invalid; valid: true or false"
-                )
-
-    # ------------------------------------------------------------------ conversions
-    @property
-    def n_samples(self) -> int:
-        """Number of output samples ``round(duration_s * fs_hz)`` [-]."""
-        return int(round(self.duration_s * self.fs_hz))
+        for name in ("distributed_rotor", "gravity", "antialias", "per_ball"):
+            _bool(name, getattr(self, name))
 
     @property
     def shaft_hz(self) -> float:
         """Shaft frequency ``rpm / 60`` [Hz]."""
         return self.rpm / 60.0
 
-    @property
-    def resolved_mass_kg(self) -> float:
-        """Vibrating mass [kg]: given, else seed table 1 (0.045 inner fault, 0.063 otherwise)."""
-        if self.mass_kg is not None:
-            return self.mass_kg
-        return 0.045 if self.fault == "inner" else 0.063
 
-    def to_dict(self) -> dict[str, Any]:
-        """All keys as plain TOML/JSON values (``None`` = default)."""
-        d = dataclasses.asdict(self)
-        d["model"] = self.model.value
-        d["solver"] = self.solver.value
-        return d
+# ------------------------------------------------------------------ IAS model
+@dataclass(frozen=True)
+class IasScenario(Scenario):
+    """The 3-DOF IAS model of a cylindrical roller bearing with an outer-race spall (seed IAS,
+    SPEC §3). The shaft speed is not imposed: the motor torque drives the shaft against the
+    torsional damping and the bearing, and the speed comes out of the torque balance.
 
-    def replace(self, **changes: Any) -> Scenario:
-        """Copy with ``changes`` (validated)."""
-        return dataclasses.replace(self, **changes)
+    ================================  ===========  =============================================
+    key                               default      meaning
+    ================================  ===========  =============================================
+    ``model``                         ``"ias"``
+    ``bearing``                       NU204-ECP    catalogue id (seed IAS table 1)
+    ``bearing_file``                  –            user bearing TOML (a roller bearing)
+    ``rpm``                           –            target speed [r/min]: sets the motor torque
+                                                   ``M_z = C_T 2 pi rpm/60`` (the free speed)
+    ``torque_n_m``                    9.54         motor torque M_z [N m] (seed; exclusive with
+                                                   ``rpm``)
+    ``initial_rpm``                   0.0          initial shaft speed [r/min]
+    ``spall_width_m``                 1e-3         outer-race spall width L_d [m]; 0 = healthy
+    ``spall_angle_deg``               180.0        spall centre azimuth [deg] (the bottom; the
+                                                   seed's ``phi_os = 1.5 pi`` from +x)
+    ``fx_n``, ``fy_n``                0.0, 400.0   radial load [N]; ``fy_n`` pushes the shaft
+                                                   **down** (seed IAS eq. (1))
+    ``duration_s``                    10.0         simulated time [s] (seed)
+    ``dt_s``                          1e-6         RK4 step [s] (seed)
+    ``fs_hz``                         50000.0      output sample rate [Hz] (a whole number of
+                                                   seed steps per sample, module
+                                                   :mod:`~bearingsim.dynamics.ias.scenario`)
+    ``solver``                        ``"rk4"``    ``rk4`` (seed) | ``dopri5``
+    ``contact_law``                   ``"seed"``   ``seed`` (eqs. (5)–(12)) | ``harris``
+    ``spall_load``                    stribeck     roller load in eq. (30): ``stribeck`` |
+                                                   ``dynamic``
+    ``skip_s``                        10 % of run  start-up left out of the analysis [s]
+    ``mass_kg``                       1.3          inner ring + shaft mass m [kg] (seed)
+    ``inertia_kg_m2``                 6.5e-5       polar inertia I [kg m^2] (assumed)
+    ``radial_damping_n_s_m``          400.0        C_s [N s/m] (seed)
+    ``torsional_damping_n_m_s_rad``   1.52         C_T [N m s/rad] (seed)
+    ``rolling_resistance``            0.0015       mu [-] (seed eq. (14))
+    ``first_roller_angle_deg``        90.0         roller 1 azimuth at t = 0 [deg] (the seed's
+                                                   ``Phi_0 = 0`` from +x)
+    ``reference_load_n``              F_r / Z      roller load of the seed contact stiffness [N]
+    ================================  ===========  =============================================
 
-    @classmethod
-    def from_dict(cls, data: dict[str, Any], origin: str = "<scenario>") -> Scenario:
-        """Build from the documented keys; unknown keys raise :class:`ConfigError`."""
-        if not isinstance(data, dict):
-            raise ConfigError(f"{origin}: a scenario must be a table of keys")
-        valid = [f.name for f in dataclasses.fields(cls)]
-        unknown = sorted(set(data) - set(valid))
-        if unknown:
+    Renamed in 0.2.0: ``torque_nm`` → ``torque_n_m``, ``output_rate_hz`` → ``fs_hz``,
+    ``method`` → ``solver`` (same meanings); ``spall_angle_rad`` and ``first_roller_angle_rad``
+    (from +x, counter-clockwise) → ``spall_angle_deg`` and ``first_roller_angle_deg`` (project
+    convention).
+    """
+
+    MODELS: ClassVar[tuple[Model, ...]] = (Model.IAS,)
+    #: a step above the output interval is checked for stability by the model first; the
+    #: output grid then uses one step per sample (:mod:`bearingsim.dynamics.ias.scenario`)
+    DT_WITHIN_OUTPUT: ClassVar[bool] = False
+    KEYS: ClassVar[tuple[str, ...]] = (
+        "model",
+        "bearing",
+        "bearing_file",
+        "rpm",
+        "torque_n_m",
+        "initial_rpm",
+        "spall_width_m",
+        "spall_angle_deg",
+        "fx_n",
+        "fy_n",
+        "duration_s",
+        "dt_s",
+        "fs_hz",
+        "solver",
+        "contact_law",
+        "spall_load",
+        "skip_s",
+        "mass_kg",
+        "inertia_kg_m2",
+        "radial_damping_n_s_m",
+        "torsional_damping_n_m_s_rad",
+        "rolling_resistance",
+        "first_roller_angle_deg",
+        "reference_load_n",
+    )
+    RENAMED: ClassVar[dict[str, str]] = {
+        "torque_nm": "torque_n_m",
+        "output_rate_hz": "fs_hz",
+        "method": "solver",
+        "spall_angle_rad": "spall_angle_deg (centre azimuth from +y towards +x [deg]; the old "
+        "phi_os from +x counter-clockwise is 90 - degrees(phi_os), so 1.5 pi is 180)",
+        "first_roller_angle_rad": "first_roller_angle_deg (azimuth from +y towards +x [deg]; "
+        "the old Phi_0 from +x counter-clockwise is 90 - degrees(Phi_0))",
+    }
+
+    model: Model = Model.IAS
+    bearing: str | None = "NU204-ECP"
+    bearing_file: str | None = None
+    rpm: float | None = None
+    torque_n_m: float | None = None
+    initial_rpm: float = 0.0
+    spall_width_m: float = SEED_IAS_SPALL_WIDTH_M
+    spall_angle_deg: float = 180.0
+    fx_n: float = 0.0
+    fy_n: float = SEED_IAS_FY_N
+    duration_s: float = SEED_IAS_DURATION_S
+    fs_hz: float = IAS_FS_HZ
+    dt_s: float | None = SEED_IAS_DT_S
+    contact_law: str = "seed"
+    spall_load: str = "stribeck"
+    skip_s: float | None = None
+    mass_kg: float = SEED_IAS_MASS_KG
+    inertia_kg_m2: float = IAS_INERTIA_KG_M2
+    radial_damping_n_s_m: float = SEED_IAS_RADIAL_DAMPING_N_S_M
+    torsional_damping_n_m_s_rad: float = SEED_IAS_TORSIONAL_DAMPING_N_M_S
+    rolling_resistance: float = SEED_IAS_ROLLING_RESISTANCE
+    first_roller_angle_deg: float = 90.0
+    reference_load_n: float | None = None
+
+    def _validate(self) -> None:
+        s = object.__setattr__
+        _check_bearing(self, "NU204-ECP")
+        if self.dt_s is None:
+            s(self, "dt_s", SEED_IAS_DT_S)
+        if self.rpm is not None and self.torque_n_m is not None:
             raise ConfigError(
-                f"{origin}: unknown key {unknown[0]!r}; valid keys: " + ", ".join(valid)
+                f"rpm = {self.rpm!r} and torque_n_m = {self.torque_n_m!r}: give at most one "
+                "(rpm sets M_z = C_T 2 pi rpm/60)"
             )
-        try:
-            return cls(**data)
-        except ConfigError as exc:
-            raise ConfigError(f"{origin}: {exc}") from None
-
-    @classmethod
-    def from_toml(cls, path: str | Path) -> Scenario:
-        """Read a scenario TOML file (keys as in the module docstring)."""
-        p = Path(path)
-        data = read_toml(p, "scenario file")
-        if "bearing_file" in data and isinstance(data["bearing_file"], str):
-            bf = Path(data["bearing_file"])
-            if not bf.is_absolute():
-                data["bearing_file"] = str(p.parent / bf)
-        return cls.from_dict(data, origin=p.name)
+        if self.rpm is not None:
+            s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
+        if self.torque_n_m is not None:
+            s(self, "torque_n_m", check_range("torque_n_m", self.torque_n_m, 0.0, unit="N m"))
+        s(self, "initial_rpm", check_range("initial_rpm", self.initial_rpm, 0.0, unit="r/min"))
+        s(self, "spall_width_m", check_range("spall_width_m", self.spall_width_m, 0.0, unit="m"))
+        s(self, "spall_angle_deg", _angle("spall_angle_deg", self.spall_angle_deg))
+        s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
+        s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
+        _choice("contact_law", self.contact_law, ("seed", "harris"))
+        _choice("spall_load", self.spall_load, ("stribeck", "dynamic"))
+        if self.skip_s is not None:
+            s(
+                self,
+                "skip_s",
+                check_range("skip_s", self.skip_s, 0.0, self.duration_s, hi_open=True, unit="s"),
+            )
+        s(
+            self,
+            "first_roller_angle_deg",
+            _angle("first_roller_angle_deg", self.first_roller_angle_deg),
+        )
+        if self.reference_load_n is not None:
+            s(
+                self,
+                "reference_load_n",
+                check_positive("reference_load_n", self.reference_load_n, "N"),
+            )
+        # mass, inertia, damping, rolling resistance: IasParams checks them with their ranges
 
     @property
-    def defect_angle_rad(self) -> float:
-        """beta_0 [rad]."""
-        return math.radians(self.defect_angle_deg)
+    def motor_torque_n_m(self) -> float:
+        """Motor torque M_z [N m]: given, from ``rpm`` (``C_T 2 pi rpm/60``), else the seed's."""
+        if self.torque_n_m is not None:
+            return self.torque_n_m
+        if self.rpm is not None:
+            return self.torsional_damping_n_m_s_rad * 2.0 * math.pi * self.rpm / 60.0
+        return SEED_IAS_TORQUE_N_M
+
+
+#: the families, in documentation order
+_FAMILIES: tuple[type[Scenario], ...] = (RingScenario, RotorScenario, IasScenario)
+#: model -> its family's scenario class
+_FAMILY: dict[Model, type[Scenario]] = {m: f for f in _FAMILIES for m in f.MODELS}
+
+
+def family(model: Model | str) -> type[Scenario]:
+    """The scenario class of ``model`` (:class:`RingScenario`, :class:`RotorScenario` or
+    :class:`IasScenario`)."""
+    return _family_of(model)
+
+
+__all__ = [
+    "IasScenario",
+    "Model",
+    "RingScenario",
+    "RotorScenario",
+    "Scenario",
+    "Solver",
+    "family",
+]

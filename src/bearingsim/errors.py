@@ -24,6 +24,10 @@ class SolverError(BearingsimError):
     """A solver found no solution (no equilibrium, divergence, ...)."""
 
 
+class DeprecatedKeyWarning(FutureWarning):
+    """A renamed scenario key or CLI option was used; it works for one more release."""
+
+
 def _fmt(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"

@@ -232,8 +232,8 @@ def vsm_trace_cmd(
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
     import numpy as np
 
+    from ..dynamics.ring.scenario import model_inputs
     from ..dynamics.ring.trace import stiffness_trace
-    from ..simulation import model_inputs
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o OUT.csv, --plot PNG and/or --json")

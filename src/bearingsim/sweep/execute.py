@@ -178,9 +178,9 @@ def worker_hello() -> dict[str, Any]:
     import numcodecs  # noqa: F401  (the commit path's imports, outside the timed runs)
     import zarr  # noqa: F401
 
-    from ..simulation import MODEL_RUNNERS, simulate
+    from ..simulation import MODELS, simulate
 
-    for model in list(MODEL_RUNNERS):
+    for model in MODELS:
         with contextlib.suppress(BearingsimError):
             simulate(Scenario(model=model, duration_s=2.0 / 4000.0, fs_hz=4000.0))
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()

@@ -56,7 +56,7 @@ from typing import Any
 
 import numpy as np
 
-from ..config import Scenario
+from ..config import Scenario, family
 from ..errors import ConfigError, check_range, read_toml
 
 #: identifies the canonical spec
@@ -77,7 +77,7 @@ SWEEP_KEYS = (
     "name",
 )
 #: scenario keys (the valid axis names)
-SCENARIO_KEYS = tuple(f.name for f in dataclasses.fields(Scenario))
+SCENARIO_KEYS = Scenario.keys()
 #: the random distributions of an axis and their parameters
 RANDOM_KINDS = {
     "uniform": ("low", "high"),
@@ -86,6 +86,24 @@ RANDOM_KINDS = {
     "integers": ("low", "high"),
     "choice": ("values",),
 }
+
+
+def _one_family(base: Scenario, models: tuple[Any, ...], origin: str) -> None:
+    """A sweep runs one model family (one scenario schema, one channel set): refuse a ``model``
+    axis that leaves the base's family."""
+    fam = type(base)
+    for v in models:
+        try:
+            other = family(v)
+        except ConfigError as exc:
+            raise ConfigError(f"{origin}: axis {exc}") from None
+        if other is not fam:
+            raise ConfigError(
+                f"{origin}: axis model = {v!r} is a {other.__name__[:-8].lower()} model but the "
+                f"base is a {fam.__name__[:-8].lower()} model; valid: "
+                + ", ".join(m.value for m in fam.MODELS)
+                + " (a sweep runs one model family; sweep the others separately)"
+            )
 
 
 class Combine(enum.Enum):
@@ -595,6 +613,8 @@ class SweepSpec:
             ax = expand_axis(key, desc, seed, origin)
             if key == "bearing_file":
                 ax = Axis(key, tuple(rel(v) if isinstance(v, str) else v for v in ax.values))
+            if key == "model":
+                _one_family(base_sc, ax.values, origin)
             axes.append(ax)
         return cls(
             base=base_sc.to_dict(),

@@ -53,6 +53,16 @@ from numba import cfunc, njit
 from numpy.typing import NDArray
 
 from ..._version import __version__
+from ...config import (
+    IAS_INERTIA_KG_M2,
+    SEED_IAS_FY_N,
+    SEED_IAS_MASS_KG,
+    SEED_IAS_RADIAL_DAMPING_N_S_M,
+    SEED_IAS_ROLLING_RESISTANCE,
+    SEED_IAS_SPALL_WIDTH_M,
+    SEED_IAS_TORQUE_N_M,
+    SEED_IAS_TORSIONAL_DAMPING_N_M_S,
+)
 from ...contact.hertz import element_stiffness
 from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_reference_load
 from ...errors import ConfigError, check_positive, check_range
@@ -88,7 +98,7 @@ class SpallLoad(enum.Enum):
 
 
 #: the seed's spall (seed IAS §3.1): 1 mm wide at the bottom of the outer race
-SEED_SPALL = Defect(Race.OUTER, 1e-3, CWRU_DEFECT_DEPTH_M, math.pi)
+SEED_SPALL = Defect(Race.OUTER, SEED_IAS_SPALL_WIDTH_M, CWRU_DEFECT_DEPTH_M, math.pi)
 
 # ------------------------------------------------------------------ parameter vector offsets
 P_M, P_I, P_CS, P_CT, P_QX, P_QY, P_MZ = 0, 1, 2, 3, 4, 5, 6
@@ -284,13 +294,13 @@ class IasParams:
     bearing: RollerBearing
     spall: Defect | None = SEED_SPALL
     fx: float = 0.0
-    fy: float = 400.0
-    torque: float = 9.54
-    mass: float = 1.3
-    inertia: float = 6.5e-5
-    radial_damping: float = 400.0
-    torsional_damping: float = 1.52
-    rolling_resistance: float = 0.0015
+    fy: float = SEED_IAS_FY_N
+    torque: float = SEED_IAS_TORQUE_N_M
+    mass: float = SEED_IAS_MASS_KG
+    inertia: float = IAS_INERTIA_KG_M2
+    radial_damping: float = SEED_IAS_RADIAL_DAMPING_N_S_M
+    torsional_damping: float = SEED_IAS_TORSIONAL_DAMPING_N_M_S
+    rolling_resistance: float = SEED_IAS_ROLLING_RESISTANCE
     contact_law: ContactLaw = ContactLaw.SEED
     spall_load: SpallLoad = SpallLoad.STRIBECK
     reference_load: float | None = None

@@ -1,166 +1,113 @@
-"""IAS scenario files: a flat TOML table of the IAS model inputs (SI, unit in the key name).
+"""The IAS model behind :func:`bearingsim.simulate` (``model = "ias"``): an
+:class:`~bearingsim.config.IasScenario` becomes :class:`~.model.IasParams` and runs on the
+output grid of the scenario.
 
-Every key is optional; the defaults are the seed's case (seed IAS §3.1). Unknown keys are errors.
+The keys are those of :class:`bearingsim.config.IasScenario` (seed IAS §3.1 defaults). The shaft
+speed is never imposed: ``rpm`` only sets the motor torque ``M_z = C_T w`` so that the free speed
+``M_z / C_T`` equals it; the actual speed comes out of the torque balance.
 
-==============================  ============================================================
-key                             meaning
-==============================  ============================================================
-``bearing``                     catalogue id (default ``"NU204-ECP"``)
-``bearing_file``                user bearing TOML (relative to the scenario file)
-``rpm``                         target speed [r/min]: sets ``M_z = C_T 2 pi rpm/60``
-``torque_nm``                   motor torque M_z [N m] (default 9.54; exclusive with ``rpm``)
-``initial_rpm``                 initial shaft speed [r/min] (default 0)
-``spall_width_m``               spall width L_d [m] (default 1e-3; 0 = healthy)
-``spall_angle_deg``             spall centre azimuth [deg] from +y towards +x (project
-                                convention; default 180, the bottom: seed ``phi_os = 1.5 pi``)
-``fx_n``, ``fy_n``              radial load [N] (``F_y`` downward; default 0, 400)
-``duration_s``, ``dt_s``        simulated time and RK4 step [s] (default 10, 1e-6)
-``output_rate_hz``              output sample rate [Hz] (default 48000)
-``method``                      ``"rk4"`` (default) or ``"dopri5"``
-``contact_law``                 ``"seed"`` (default) or ``"harris"``
-``spall_load``                  ``"stribeck"`` (default) or ``"dynamic"``
-``skip_s``                      start-up left out of the analysis [s] (default 10 % of the run)
-``mass_kg``                     m (1.3)
-``inertia_kg_m2``               I (6.5e-5, not given by the seed)
-``radial_damping_n_s_m``        C_s (400)
-``torsional_damping_n_m_s_rad`` C_T (1.52)
-``rolling_resistance``          mu (0.0015)
-``first_roller_angle_rad``      Phi_0 (0)
-``reference_load_n``            roller load for the seed contact stiffness [N] (F_r/Z)
-==============================  ============================================================
+Output grid: ``decim = max(1, round(1/(fs_hz dt_s)))`` RK4 steps per output sample and the step
+``1/(fs_hz decim)`` (``dt_s`` rounded so that the output interval is an exact number of steps, as
+in the ring models); the seed's ``dt_s = 1e-6`` s is kept exactly at ``fs_hz`` = 50, 20 or 10 kHz.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ...catalog import resolve_bearing
-from ...errors import ConfigError, check_positive, check_range, read_toml
-from .model import SEED_SPALL, ContactLaw, IasParams, SpallLoad
+from ...config import IasScenario, Model
+from ...errors import ConfigError, read_toml
+from .model import SEED_SPALL, ContactLaw, IasParams, SpallLoad, check_step, simulate_ias
 
-#: scenario key -> (IasParams field or run option, type)
-SCENARIO_KEYS: dict[str, type] = {
-    "bearing": str,
-    "bearing_file": str,
-    "rpm": float,
-    "torque_nm": float,
-    "initial_rpm": float,
-    "spall_width_m": float,
-    "spall_angle_deg": float,
-    "fx_n": float,
-    "fy_n": float,
-    "duration_s": float,
-    "dt_s": float,
-    "output_rate_hz": float,
-    "method": str,
-    "contact_law": str,
-    "spall_load": str,
-    "skip_s": float,
-    "mass_kg": float,
-    "inertia_kg_m2": float,
-    "radial_damping_n_s_m": float,
-    "torsional_damping_n_m_s_rad": float,
-    "rolling_resistance": float,
-    "first_roller_angle_rad": float,
-    "reference_load_n": float,
-}
-_FIELDS = {
-    "fx_n": "fx",
-    "fy_n": "fy",
-    "mass_kg": "mass",
-    "inertia_kg_m2": "inertia",
-    "radial_damping_n_s_m": "radial_damping",
-    "torsional_damping_n_m_s_rad": "torsional_damping",
-    "rolling_resistance": "rolling_resistance",
-    "first_roller_angle_rad": "first_roller_angle",
-    "reference_load_n": "reference_load",
-}
-RUN_DEFAULTS = {"duration_s": 10.0, "dt_s": 1e-6, "output_rate_hz": 48_000.0, "method": "rk4"}
+if TYPE_CHECKING:
+    from .result import IasResult
+
+__all__ = ["build_scenario", "ias_params", "output_grid", "read_scenario", "run_ias"]
+
+
+def ias_params(sc: IasScenario) -> IasParams:
+    """The :class:`IasParams` of an IAS scenario (every value validated; bad ones raise a
+    one-line :class:`~bearingsim.errors.ConfigError`)."""
+    if not isinstance(sc, IasScenario):
+        raise ConfigError(f"scenario model = {sc.model.value!r} is not the IAS model")
+    bearing = resolve_bearing(sc.bearing, sc.bearing_file)
+    spall = None
+    if sc.spall_width_m > 0.0:
+        spall = replace(SEED_SPALL, width=sc.spall_width_m, angle=math.radians(sc.spall_angle_deg))
+    return IasParams(
+        bearing,
+        spall=spall,
+        fx=sc.fx_n,
+        fy=sc.fy_n,
+        torque=sc.motor_torque_n_m,
+        mass=sc.mass_kg,
+        inertia=sc.inertia_kg_m2,
+        radial_damping=sc.radial_damping_n_s_m,
+        torsional_damping=sc.torsional_damping_n_m_s_rad,
+        rolling_resistance=sc.rolling_resistance,
+        contact_law=ContactLaw(sc.contact_law),
+        spall_load=SpallLoad(sc.spall_load),
+        reference_load=sc.reference_load_n,
+        # the model's frame: Phi_0 from +x counter-clockwise = pi/2 - psi_0
+        first_roller_angle=0.5 * math.pi - math.radians(sc.first_roller_angle_deg),
+        initial_speed=2.0 * math.pi * sc.initial_rpm / 60.0,
+    )
+
+
+def output_grid(sc: IasScenario) -> tuple[int, float]:
+    """RK4 steps per output sample and the step [s] (module docstring)."""
+    decim = max(1, round(1.0 / (sc.fs_hz * sc.dt_s)))
+    return decim, 1.0 / (sc.fs_hz * decim)
+
+
+def run_ias(sc: IasScenario, progress: Callable[[int], None] | None = None) -> IasResult:
+    """Run an IAS scenario (the runner behind :func:`bearingsim.simulate`)."""
+    params = ias_params(sc)
+    check_step(params, sc.dt_s)  # the given step must be stable before it is rounded
+    _decim, dt = output_grid(sc)
+    return simulate_ias(params, sc.duration_s, dt, sc.fs_hz, sc.solver.value)
+
+
+# ------------------------------------------------------------------ the `ias` command's files
+#: scenario keys of the IAS files before 0.2.0 that the ``ias`` command still passes internally
+_OLD_SETTINGS = {"torque_nm": "torque_n_m", "output_rate_hz": "fs_hz", "method": "solver"}
 
 
 def read_scenario(path: str | Path) -> dict[str, Any]:
-    """Read and type-check a scenario TOML; ``bearing_file`` is made absolute."""
+    """Read an IAS scenario TOML (keys of :class:`~bearingsim.config.IasScenario`; ``model`` may
+    be left out) into a dict of validated keys; ``bearing_file`` is made absolute."""
     p = Path(path)
     data = read_toml(p, "scenario =")
-    out: dict[str, Any] = {}
-    for k, v in data.items():
-        if k not in SCENARIO_KEYS:
-            raise ConfigError(
-                f"scenario key {k!r} in {p.name} is unknown; valid keys: "
-                f"{', '.join(sorted(SCENARIO_KEYS))}"
-            )
-        typ = SCENARIO_KEYS[k]
-        if typ is float and isinstance(v, int | float) and not isinstance(v, bool):
-            v = float(v)
-        if not isinstance(v, typ):
-            raise ConfigError(f"scenario key {k} = {v!r} in {p.name} must be a {typ.__name__}")
-        out[k] = v
-    if "bearing_file" in out:
-        out["bearing_file"] = str((p.parent / out["bearing_file"]).resolve())
-    return out
+    if not isinstance(data, dict):
+        raise ConfigError(f"{p.name}: a scenario must be a table of keys")
+    data.setdefault("model", "ias")
+    if isinstance(data.get("bearing_file"), str):
+        data["bearing_file"] = str((p.parent / data["bearing_file"]).resolve())
+    sc = IasScenario.from_dict(data, origin=p.name)
+    given = set(data) | {IasScenario.RENAMED.get(k, k) for k in data}
+    return {k: v for k, v in sc.to_dict().items() if k in given}
 
 
 def build_scenario(settings: dict[str, Any]) -> tuple[IasParams, dict[str, Any]]:
-    """Turn scenario settings (file keys, CLI overrides merged) into :class:`IasParams` and the
-    run options ``duration, dt, output_rate, method, skip_s``.
-
-    The shaft speed is never imposed: ``rpm`` only sets the motor torque ``M_z = C_T w`` so that
-    the free speed ``M_z / C_T`` equals it; the actual speed comes out of the torque balance.
-    """
-    s = {k: v for k, v in settings.items() if v is not None}
-    unknown = set(s) - set(SCENARIO_KEYS)
-    if unknown:
-        raise ConfigError(
-            f"scenario key {sorted(unknown)[0]!r} is unknown; valid keys: "
-            f"{', '.join(sorted(SCENARIO_KEYS))}"
-        )
-    bid = s.get("bearing")
-    bfile = s.get("bearing_file")
-    if bid is None and bfile is None:
-        bid = "NU204-ECP"
-    bearing = resolve_bearing(bid, bfile)
-    kw: dict[str, Any] = {_FIELDS[k]: v for k, v in s.items() if k in _FIELDS}
-    for k in ("contact_law", "spall_load"):
-        if k in s:
-            enum_t = ContactLaw if k == "contact_law" else SpallLoad
-            valid = [e.value for e in enum_t]
-            if s[k] not in valid:
-                raise ConfigError(f"{k} = {s[k]!r} is not valid; valid: {', '.join(valid)}")
-            kw[k] = enum_t(s[k])
-    ct = kw.get("torsional_damping", 1.52)
-    if "rpm" in s and "torque_nm" in s:
-        raise ConfigError("give at most one of rpm (sets M_z = C_T w) and torque_nm")
-    if "rpm" in s:
-        rpm = check_positive("rpm", s["rpm"], "r/min")
-        kw["torque"] = float(ct) * 2.0 * math.pi * rpm / 60.0
-    elif "torque_nm" in s:
-        kw["torque"] = s["torque_nm"]
-    if "initial_rpm" in s:
-        kw["initial_speed"] = (
-            2.0 * math.pi * check_range("initial_rpm", s["initial_rpm"], 0.0, unit="r/min") / 60.0
-        )
-    if "spall_width_m" in s or "spall_angle_deg" in s:
-        width = check_range(
-            "spall_width_m", s.get("spall_width_m", SEED_SPALL.width), 0.0, unit="m"
-        )
-        angle = math.radians(
-            check_range(
-                "spall_angle_deg", s.get("spall_angle_deg", 180.0), -360.0, 360.0, unit="deg"
-            )
-        )
-        kw["spall"] = None if width == 0.0 else replace(SEED_SPALL, width=width, angle=angle)
-    params = IasParams(bearing, **kw)
-    run = {k: s.get(k, v) for k, v in RUN_DEFAULTS.items()}
-    if run["method"] not in ("rk4", "dopri5"):
-        raise ConfigError(f"method = {run['method']!r} is not valid; valid: rk4, dopri5")
-    run["duration_s"] = check_positive("duration_s", run["duration_s"], "s")
-    run["dt_s"] = check_positive("dt_s", run["dt_s"], "s")
-    run["skip_s"] = s.get("skip_s")
-    if run["skip_s"] is not None:
-        run["skip_s"] = check_range(
-            "skip_s", run["skip_s"], 0.0, run["duration_s"], hi_open=True, unit="s"
-        )
+    """Turn scenario settings (file keys, CLI overrides merged; ``None`` = not given) into
+    :class:`IasParams` and the run options ``duration_s, dt_s, output_rate_hz, method,
+    skip_s``."""
+    s = {_OLD_SETTINGS.get(k, k): v for k, v in settings.items() if v is not None}
+    if s.get("bearing_file") is not None:
+        s.pop("bearing", None)
+    s.setdefault("model", Model.IAS.value)
+    sc = IasScenario.from_dict(s, origin="scenario")
+    params = ias_params(sc)
+    run = {
+        "duration_s": sc.duration_s,
+        "dt_s": sc.dt_s,
+        "output_rate_hz": sc.fs_hz,
+        "method": sc.solver.value,
+        "skip_s": sc.skip_s,
+    }
     return params, run

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import BallBearing, Bearing, Defect, characteristic_frequencies, defect_geometry
@@ -33,12 +34,6 @@ from .defects import FAULT_CODE
 #: number of fixed auxiliary outputs before the per-ball block
 N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
-
-#: seed VSM table 1: vibrating mass [kg] for an outer-ring / inner-ring model
-SEED_MASS_OUTER_KG = 0.063
-SEED_MASS_INNER_KG = 0.045
-#: seed VSM table 1 / Petersen et al. (2015): equivalent damping [N s/m]
-SEED_DAMPING = 300.0
 
 
 @dataclass(frozen=True)
@@ -85,8 +80,8 @@ class ModelInputs:
     shaft_hz: float
     defect: Defect | None = None
     first_ball_angle: float = 0.0
-    mass: float = SEED_MASS_OUTER_KG
-    damping: float = SEED_DAMPING
+    mass: float = SEED_VSM_MASS_OUTER_KG
+    damping: float = SEED_VSM_DAMPING_N_S_M
     stiffness: float | None = None
     clearance: float | None = None
     retention_factor: float | None = None

@@ -18,6 +18,13 @@ from typing import Any
 import numpy as np
 
 from ...catalog import get_bearing
+from ...config import (
+    CONTACT_DAMPING_N_S_M,
+    DEFAULT_RPM,
+    HOUSING_DAMPING_N_S_M,
+    HOUSING_MASS_KG,
+    HOUSING_STIFFNESS_N_M,
+)
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
     BallBearing,
@@ -72,7 +79,7 @@ class BearingSupport:
 
     bearing: BallBearing
     fault: Defect | None = None
-    contact_damping: float = 50.0
+    contact_damping: float = CONTACT_DAMPING_N_S_M
     first_ball_angle: float = 0.0
     ball_density: float | None = None
 
@@ -133,21 +140,6 @@ class Housing:
                      (self.stiffness_x, self.stiffness_y))  # fmt: skip
 
 
-#: Default housing, per end and per direction (X and Y): the bearing pedestal of the 5-DOF
-#: bearing model of Sawalhi & Randall (2008, *Mech. Syst. Signal Process.* 22, 1924–1951,
-#: "pedestal": outer race + housing on a spring and damper to the base), with the values used
-#: for the CWRU drive-end 6205 by Ruan, Chen, Gühmann, Yan & Li (2022), "Dynamics modeling of
-#: bearing with defect in Modelica and application in direct transfer learning from simulation
-#: to test bench for bearing fault diagnosis", *Electronics* 11(4), 622
-#: (doi:10.3390/electronics11040622; also Ruan, Li & Gühmann, Proc. 14th Modelica Conf. 2021,
-#: doi:10.3384/ecp21181373), whose simulated signals are compared with the CWRU records. The
-#: numbers were read from the authors' published model (test-bearing parameters mp, kp, cp);
-#: see docs/models.md (ROTOR, "Housings"). Mount frequency sqrt(k/m)/2pi = 240 Hz, damping
-#: ratio 0.110.
-DEFAULT_HOUSING_MASS_KG = 6.638
-DEFAULT_HOUSING_STIFFNESS_N_M = 1.51e7
-DEFAULT_HOUSING_DAMPING_N_S_M = 2210.7
-
 #: An alternative that is *not* from the literature: a 1 kg end shield whose mount alone rings
 #: at 3.3 kHz with 5 % damping, chosen from the measured resonance band of CWRU record 132
 #: (2.5–3.5 kHz, PSD maximum 3.36 kHz). Kept for comparison in the report (docs/validation.md);
@@ -156,9 +148,9 @@ BAND_TUNED_HOUSING = (1.0, 3300.0, 0.05)
 
 
 def default_housing(
-    mass: float = DEFAULT_HOUSING_MASS_KG,
-    stiffness: float = DEFAULT_HOUSING_STIFFNESS_N_M,
-    damping: float = DEFAULT_HOUSING_DAMPING_N_S_M,
+    mass: float = HOUSING_MASS_KG,
+    stiffness: float = HOUSING_STIFFNESS_N_M,
+    damping: float = HOUSING_DAMPING_N_S_M,
 ) -> Housing:
     """Isotropic housing: ``mass`` [kg] on a mount of ``stiffness`` [N/m] and ``damping``
     [N s/m] in X and Y (defaults: Sawalhi & Randall 2008 pedestal as used for the CWRU rig by
@@ -303,7 +295,7 @@ class RotorConfig:
     housing_fe: Housing = field(default_factory=default_housing)
     shaft: Shaft = field(default_factory=Shaft)
     armature: Armature = field(default_factory=Armature)
-    speed_rpm: float = 1750.0
+    speed_rpm: float = DEFAULT_RPM
     gravity: bool = True
     unbalance: float = 0.0
     unbalance_phase: float = 0.0
@@ -370,7 +362,7 @@ def cwru_rotor_config(
     n_disks: int = 9,
     de_fault: Defect | None = None,
     fe_fault: Defect | None = None,
-    speed_rpm: float = 1750.0,
+    speed_rpm: float = DEFAULT_RPM,
     de_bearing: str = "6205-cwru",
     fe_bearing: str = "6203-cwru",
     **kw: Any,

@@ -23,21 +23,21 @@ import numpy as np
 
 from ..._version import __version__
 from ...catalog import get_bearing
-from ...config import Scenario
+from ...config import RotorScenario
 from ...geometry import Defect
 from ...results import SimulationResult
 from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
 from .model import simulate_rotor
 
 
-def _support(bearing_id: str, fault: str, angle_deg: float, sc: Scenario) -> BearingSupport:
+def _support(bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario) -> BearingSupport:
     f = None
     if fault != "none":
         f = Defect(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
     return BearingSupport(get_bearing(bearing_id), f, contact_damping=sc.contact_damping_n_s_m)
 
 
-def rotor_config_from_scenario(sc: Scenario) -> RotorConfig:
+def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     """The :class:`RotorConfig` of a ``model = "rotor"`` scenario (validates every input and
     raises a one-line :class:`~bearingsim.errors.ConfigError` on bad values)."""
     pos = None
@@ -64,7 +64,7 @@ def rotor_config_from_scenario(sc: Scenario) -> RotorConfig:
 
 
 def run_rotor(
-    scenario: Scenario, progress: Callable[[int], None] | None = None
+    scenario: RotorScenario, progress: Callable[[int], None] | None = None
 ) -> SimulationResult:
     """Runner registered for ``Model.ROTOR`` in :mod:`bearingsim.simulate`."""
     t_wall = time.perf_counter()

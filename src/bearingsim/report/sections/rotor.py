@@ -11,11 +11,9 @@ from pathlib import Path
 import numpy as np
 from scipy.signal import find_peaks
 
+from ...config import HOUSING_DAMPING_N_S_M, HOUSING_MASS_KG, HOUSING_STIFFNESS_N_M
 from ...dynamics.rotor.config import (
     BAND_TUNED_HOUSING,
-    DEFAULT_HOUSING_DAMPING_N_S_M,
-    DEFAULT_HOUSING_MASS_KG,
-    DEFAULT_HOUSING_STIFFNESS_N_M,
     Armature,
     Shaft,
     ShaftMassModel,
@@ -468,8 +466,8 @@ def run(ctx: Context) -> Section:
     _disks(ctx, sec, cwru)
     sec.text = (
         "Beam finite elements with lumped disks and nonlinear ball bearings (docs/models.md, "
-        f"ROTOR); housings {DEFAULT_HOUSING_MASS_KG:g} kg on {DEFAULT_HOUSING_STIFFNESS_N_M:g} "
-        f"N/m and {DEFAULT_HOUSING_DAMPING_N_S_M:g} N s/m (Sawalhi & Randall 2008 pedestal, as "
+        f"ROTOR); housings {HOUSING_MASS_KG:g} kg on {HOUSING_STIFFNESS_N_M:g} "
+        f"N/m and {HOUSING_DAMPING_N_S_M:g} N s/m (Sawalhi & Randall 2008 pedestal, as "
         "used for the CWRU 6205 by Ruan et al. 2022); gravity is the only radial load; "
         "anti-aliased 12 kHz output." + sec.text
     )
