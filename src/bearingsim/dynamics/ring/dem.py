@@ -24,10 +24,23 @@ from .base import ModelKernel
 
 
 @njit(cache=True, inline="always")
-def ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, Z, fault, psil2, dbeta, ss, cc, clr, doff, dfac, K, n):
+def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
-    ball 1's direction ``(s0, c0)`` and angles past the defect/zone edges (scalars only: this is
-    the DEM's hot loop)."""
+    ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
+    cell half-widths ``hd, hw`` (the ball frame of :func:`.balance.frame_cached`), with the
+    model's parameters read once from the packed vector ``p`` (layout :mod:`.balance`). This is
+    the DEM's hot loop: inlined, scalars only inside the loop."""
+    Z = int(p[bl.P_Z])
+    fault = int(p[bl.P_FAULT])
+    psil2 = 2.0 * p[bl.P_PSIL]
+    dbeta = p[bl.P_DBETA]
+    ss = p[bl.P_SSTEP]
+    cc = p[bl.P_CSTEP]
+    clr = p[bl.P_CLR]
+    doff = p[bl.P_DOFF]
+    dfac = p[bl.P_DFAC]
+    K = p[bl.P_K]
+    n = p[bl.P_N]
     step = bl.TWO_PI / Z
     gx = 0.0
     gy = 0.0
@@ -61,27 +74,7 @@ def dem_force(t, ux, uy, p, point):
     if point:
         hd = 0.0
         hw = 0.0
-    return ball_sum(
-        ux,
-        uy,
-        s0,
-        c0,
-        rd,
-        rw,
-        hd,
-        hw,
-        int(p[bl.P_Z]),
-        int(p[bl.P_FAULT]),
-        2.0 * p[bl.P_PSIL],
-        p[bl.P_DBETA],
-        p[bl.P_SSTEP],
-        p[bl.P_CSTEP],
-        p[bl.P_CLR],
-        p[bl.P_DOFF],
-        p[bl.P_DFAC],
-        p[bl.P_K],
-        p[bl.P_N],
-    )
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p)
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -127,27 +120,7 @@ def dem_rhs(t, y, p, dydt):
         p[bl.P_CRW] = rw
         p[bl.P_CHD] = hd
         p[bl.P_CHW] = hw
-    gx, gy, _a, _b, _c = ball_sum(
-        y[0],
-        y[1],
-        s0,
-        c0,
-        rd,
-        rw,
-        hd,
-        hw,
-        int(p[bl.P_Z]),
-        int(p[bl.P_FAULT]),
-        2.0 * p[bl.P_PSIL],
-        p[bl.P_DBETA],
-        p[bl.P_SSTEP],
-        p[bl.P_CSTEP],
-        p[bl.P_CLR],
-        p[bl.P_DOFF],
-        p[bl.P_DFAC],
-        p[bl.P_K],
-        p[bl.P_N],
-    )
+    gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     dydt[0] = y[2]
