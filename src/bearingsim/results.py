@@ -16,11 +16,11 @@ traces, contact-fatigue life) derives from :class:`Result`:
 
 A subclass sets ``FORMAT`` (``"bearingsim.<Class>/<version>"``), starts its dataset's
 attributes with :meth:`Result._base_attrs` and calls :meth:`Result.check_format` first in
-``from_dataset``. Arrays become variables with ``units`` (``"1"`` for dimensionless) and named
-dimensions and coordinates; inputs and metadata become JSON attributes (:func:`json_attr`,
-:func:`read_json_attr`); scalars that may be NaN become 0-d variables (JSON has no NaN). A
-module defining a result class is listed in :data:`RESULT_MODULES` so that :func:`load_result`
-finds it without the caller importing it.
+``from_dataset``. Arrays become variables with named dimensions and coordinates and the
+attributes of :func:`var_attrs` (``units``, ``"1"`` for dimensionless); inputs and metadata become
+JSON attributes (:func:`json_attr`, :func:`read_json_attr`); scalars that may be NaN become 0-d
+variables (JSON has no NaN). A module defining a result class is listed in
+:data:`RESULT_MODULES` so that :func:`load_result` finds it without the caller importing it.
 
 A :class:`SimulationResult` holds the sample times and named channels (first axis = time; a
 second axis, e.g. ``ball``, is allowed and named in ``dims``), their units, the scenario that
@@ -69,6 +69,7 @@ __all__ = [
     "json_attr",
     "load_result",
     "read_json_attr",
+    "var_attrs",
 ]
 
 
@@ -76,6 +77,12 @@ def json_attr(obj: Any) -> str:
     """``obj`` as a JSON string for a netCDF attribute (NumPy types converted, non-finite floats
     written as ``null``)."""
     return json.dumps(to_jsonable(obj))
+
+
+def var_attrs(units: str, long_name: str = "") -> dict[str, str]:
+    """The attributes of a result variable: its ``units`` (``"1"`` for dimensionless) and, when
+    given, a ``long_name`` describing it."""
+    return {"units": units, "long_name": long_name} if long_name else {"units": units}
 
 
 def read_json_attr(ds: Any, name: str) -> Any:

@@ -42,7 +42,7 @@ from numpy.typing import NDArray
 from .._version import __version__
 from ..errors import ConfigError, SolverError, check_positive, check_range
 from ..geometry import BallBearing, Bearing
-from ..results import Result, json_attr, read_json_attr
+from ..results import Result, json_attr, read_json_attr, var_attrs
 from .damage import GCR15_TORSION, DamageLaw, fit_sn_curve
 from .fe import ShearMeasure, contact_section, core_substructure, section_spec
 from .validation import validate_against_hertz
@@ -140,10 +140,6 @@ _LIFE_SCALARS: dict[str, tuple[str, str]] = {
 }
 
 
-def _attrs(units: str, description: str) -> dict[str, str]:
-    return {"units": units, "long_name": description}
-
-
 @dataclass
 class LifeResult(Result):
     """Result of :func:`contact_fatigue_life` (SI arrays plus metadata).
@@ -222,9 +218,9 @@ class LifeResult(Result):
 
         data: dict[str, Any] = {}
         for name, (dims, units, desc) in _LIFE_VARIABLES.items():
-            data[name] = (dims, np.asarray(getattr(self, name)), _attrs(units, desc))
+            data[name] = (dims, np.asarray(getattr(self, name)), var_attrs(units, desc))
         for name, (units, desc) in _LIFE_SCALARS.items():
-            data[name] = ((), getattr(self, name), _attrs(units, desc))
+            data[name] = ((), getattr(self, name), var_attrs(units, desc))
         coords = {
             "step": ("step", np.arange(self.cycles.size)),
             "element": ("element", np.arange(self.damage_final.size)),

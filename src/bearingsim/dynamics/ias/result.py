@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 
 from ...errors import ConfigError, check_range
 from ...geometry import Defect, RollerBearing
-from ...results import Result, json_attr, read_json_attr
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from .model import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
 
 __all__ = ["IasResult"]
@@ -172,7 +172,7 @@ class IasResult(Result):
         for arr, names in ((self.state, STATE_NAMES), (self.aux, AUX_NAMES)):
             for i, n in enumerate(names):
                 units, desc = _UNITS[n]
-                data[n] = ("time", arr[:, i], {"units": units, "long_name": desc})
+                data[n] = ("time", arr[:, i], var_attrs(units, desc))
         pd = self.params.as_dict()
         pd["bearing"] = asdict(self.params.bearing)
         attrs = self._base_attrs(
@@ -182,7 +182,7 @@ class IasResult(Result):
             solver=json_attr(self.solver),
             version=self.version,
         )
-        return xr.Dataset(data, coords={"time": ("time", self.t, {"units": "s"})}, attrs=attrs)
+        return xr.Dataset(data, coords={"time": ("time", self.t, var_attrs("s"))}, attrs=attrs)
 
     @classmethod
     def check_format(cls, ds: Any, path: Any = None) -> None:

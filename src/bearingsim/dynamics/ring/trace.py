@@ -27,7 +27,7 @@ from ...errors import ConfigError
 from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
-from ...results import Result, json_attr, read_json_attr
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from . import balance as bl
 from .base import ModelInputs, static_path
 
@@ -186,19 +186,19 @@ class StiffnessTrace(Result):
         fixed = (m.get("inputs") or {}).get("load_zone_half_angle") is not None
         data: dict[str, Any] = {}
         for name, (dims, units, desc) in _VARIABLES.items():
-            data[name] = (dims, np.asarray(getattr(self, name)), _var_attrs(units, desc))
+            data[name] = (dims, np.asarray(getattr(self, name)), var_attrs(units, desc))
         for name, (units, desc) in _SCALARS.items():
-            data[name] = ((), float(getattr(self, name)), _var_attrs(units, desc))
+            data[name] = ((), float(getattr(self, name)), var_attrs(units, desc))
         arrays = [k for k, v in m.items() if isinstance(v, np.ndarray)]
         for k in arrays:
             units = "rad" if k == "psi" or (k == "zone_margin" and fixed) else "m"
             data[f"meta_{k}"] = (
                 ("cage_angle", "ball"),
                 np.asarray(m[k]),
-                _var_attrs(units, _META_ARRAYS.get(k, k)),
+                var_attrs(units, _META_ARRAYS.get(k, k)),
             )
         coords = {
-            "cage_angle": ("cage_angle", np.asarray(self.cage_angle), _var_attrs("rad", "theta_m")),
+            "cage_angle": ("cage_angle", np.asarray(self.cage_angle), var_attrs("rad", "theta_m")),
             "ball": ("ball", np.arange(1, self.ball_load.shape[1] + 1)),
             "axis": ("axis", ["x", "y"]),
         }
@@ -436,10 +436,6 @@ def stiffness_trace(
         label=label,
         meta=meta,
     )
-
-
-def _var_attrs(units: str, description: str) -> dict[str, str]:
-    return {"units": units, "long_name": description}
 
 
 def _inputs_dict(inputs: ModelInputs) -> dict[str, Any]:

@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 
 from ...errors import ConfigError
 from ...geometry import KinematicFrequencies
-from ...results import Result, json_attr, read_json_attr
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from .config import AUX_NAMES, ENDS, G0
 
 __all__ = ["RotorResponse"]
@@ -134,9 +134,9 @@ class RotorResponse(Result):
         for name, (dims, units, desc) in _VARIABLES.items():
             arr = getattr(self, name)
             if arr is not None:
-                data[name] = (dims, arr, {"units": units, "long_name": desc})
+                data[name] = (dims, arr, var_attrs(units, desc))
         coords: dict[str, Any] = {
-            "time": ("time", self.time, {"units": "s"}),
+            "time": ("time", self.time, var_attrs("s")),
             "channel": ("channel", list(AUX_NAMES)),
         }
         if self.ball_load_inner is not None:
