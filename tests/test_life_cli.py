@@ -28,7 +28,7 @@ KEYS = {
 
 
 def test_life_json(run_cli, tmp_path):
-    out = tmp_path / "life.npz"
+    out = tmp_path / "life.nc"
     png = tmp_path / "field.png"
     curve = tmp_path / "curve.png"
     r = run_cli(
@@ -62,13 +62,13 @@ def test_life_json(run_cli, tmp_path):
 
 
 def test_life_text_output(run_cli, tmp_path):
-    r = run_cli("life", "6206", "--radial-load", "5000", *QUICK, "-o", tmp_path / "a.npz")
+    r = run_cli("life", "6206", "--radial-load", "5000", *QUICK, "-o", tmp_path / "a.nc")
     assert r.code == 0, r.err
     assert "damage life: initiation" in r.out and "ISO 281: C =" in r.out
 
 
 def _bad(capsys, args, tmp_path, match):
-    out = tmp_path / "bad.npz"
+    out = tmp_path / "bad.nc"
     with pytest.raises(SystemExit) as exc:
         main(["life", "6206", *args, "-o", str(out)])
     assert exc.value.code == 2
@@ -110,7 +110,7 @@ def test_life_overload_error_and_warning(capsys, tmp_path, run_cli):
         f"{1.3 * c0:.0f}",
         *QUICK,
         "-o",
-        tmp_path / "w.npz",
+        tmp_path / "w.nc",
         "--json",
     )
     assert r.code == 0

@@ -90,7 +90,7 @@ def test_life_is_of_the_order_of_the_single_element_estimate(quick_spall):
 
 
 def test_result_roundtrip(quick_spall, tmp_path):
-    p = quick_spall.save(tmp_path / "life.npz")
+    p = quick_spall.save(tmp_path / "life.nc")
     q = LifeResult.load(p)
     for k in LifeResult._ARRAYS:
         np.testing.assert_array_equal(getattr(q, k), getattr(quick_spall, k))
@@ -104,7 +104,7 @@ def test_result_roundtrip(quick_spall, tmp_path):
 def test_nan_survives_roundtrip(tmp_path):
     r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, stop="initiation")
     assert math.isnan(r.cycles_spall)
-    q = LifeResult.load(r.save(tmp_path / "x.npz"))
+    q = LifeResult.load(r.save(tmp_path / "x.nc"))
     assert math.isnan(q.cycles_spall) and q.steps_spall == -1
 
 

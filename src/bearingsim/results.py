@@ -9,9 +9,18 @@ traces, contact-fatigue life) derives from :class:`Result`:
 - ``save(path) -> Path`` — a self-describing netCDF-4 file (engine ``h5netcdf``) written
   atomically (a temporary file beside ``path``, renamed on success);
 - ``load(path)`` — reads it back, refusing a file of another kind in one line;
-- ``plot_*()`` — Matplotlib figures, returned without being shown.
+- ``plot_*()`` — Matplotlib figures, returned without being shown;
+- ``identical(other)`` — whether two results have identical datasets (the lossless check).
 
 :func:`load_result` reads any result file and returns the right class (by its ``format``).
+
+A subclass sets ``FORMAT`` (``"bearingsim.<Class>/<version>"``), starts its dataset's
+attributes with :meth:`Result._base_attrs` and calls :meth:`Result.check_format` first in
+``from_dataset``. Arrays become variables with named dimensions and coordinates and the
+attributes of :func:`var_attrs` (``units``, ``"1"`` for dimensionless); inputs and metadata become
+JSON attributes (:func:`json_attr`, :func:`read_json_attr`); scalars that may be NaN become 0-d
+variables (JSON has no NaN). A module defining a result class is listed in
+:data:`RESULT_MODULES` so that :func:`load_result` finds it without the caller importing it.
 
 A :class:`SimulationResult` holds the sample times and named channels (first axis = time; a
 second axis, e.g. ``ball``, is allowed and named in ``dims``), their units, the scenario that
@@ -43,11 +52,37 @@ FORMAT = "bearingsim.SimulationResult/1"
 #: ``format`` attribute -> result class (filled by :meth:`Result.__init_subclass__`)
 _FORMATS: dict[str, type[Result]] = {}
 
+#: modules that define result classes, imported by :func:`load_result` when a file's format is
+#: not registered yet (the layers above this module may not be imported by it otherwise)
+RESULT_MODULES: tuple[str, ...] = (
+    "bearingsim.dynamics.ring.trace",
+    "bearingsim.dynamics.rotor.response",
+    "bearingsim.dynamics.ias.result",
+    "bearingsim.life.fatigue",
+)
+
+__all__ = [
+    "FORMAT",
+    "RESULT_MODULES",
+    "Result",
+    "SimulationResult",
+    "json_attr",
+    "load_result",
+    "read_json_attr",
+    "var_attrs",
+]
+
 
 def json_attr(obj: Any) -> str:
     """``obj`` as a JSON string for a netCDF attribute (NumPy types converted, non-finite floats
     written as ``null``)."""
     return json.dumps(to_jsonable(obj))
+
+
+def var_attrs(units: str, long_name: str = "") -> dict[str, str]:
+    """The attributes of a result variable: its ``units`` (``"1"`` for dimensionless) and, when
+    given, a ``long_name`` describing it."""
+    return {"units": units, "long_name": long_name} if long_name else {"units": units}
 
 
 def read_json_attr(ds: Any, name: str) -> Any:
@@ -65,7 +100,8 @@ class Result:
     """Base class of every model result (see the module docstring for the pattern).
 
     A subclass sets ``FORMAT`` (``"bearingsim.<Class>/<version>"``) and implements
-    :meth:`to_dataset` and :meth:`from_dataset`; :meth:`save` and :meth:`load` come from here.
+    :meth:`to_dataset` and :meth:`from_dataset`; :meth:`save`, :meth:`load` and
+    :meth:`identical` come from here.
     """
 
     #: the ``format`` attribute of this class's files
@@ -85,14 +121,30 @@ class Result:
         """Inverse of :meth:`to_dataset`."""
         raise NotImplementedError
 
+    def _base_attrs(self, **extra: Any) -> dict[str, Any]:
+        """The attributes every result dataset starts with (``format``, ``bearingsim_version``)
+        followed by ``extra``."""
+        return {"format": self.FORMAT, "bearingsim_version": __version__, **extra}
+
     @classmethod
-    def check_format(cls, ds: Any) -> None:
-        """Raise a one-line :class:`ConfigError` unless ``ds`` was written by this class."""
+    def check_format(cls, ds: Any, path: str | Path | None = None) -> None:
+        """Raise a one-line :class:`ConfigError` unless ``ds`` was written by this class; the
+        message names the file's class and the expected one."""
         got = ds.attrs.get("format")
         if got != cls.FORMAT:
+            other = _FORMATS.get(got)
+            kind = f" ({other.__name__})" if other is not None else ""
+            where = f"file = {str(path)!r}: " if path is not None else ""
             raise ConfigError(
-                f"file format = {got!r} is not a {cls.__name__} file; valid: {cls.FORMAT!r}"
+                f"{where}format = {got!r}{kind} is not a {cls.__name__} file; valid: "
+                f"{cls.FORMAT!r} (load_result reads any kind)"
             )
+
+    def identical(self, other: Any) -> bool:
+        """Whether ``other`` is a result of the same class with an identical dataset (values,
+        dims, coordinates and attributes; NaN equals NaN): what a lossless ``load(save(r))``
+        gives."""
+        return type(other) is type(self) and self.to_dataset().identical(other.to_dataset())
 
     def save(self, path: str | Path) -> Path:
         """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path."""
@@ -111,8 +163,12 @@ class Result:
         ds = _open(path)
         if cls is Result:
             return load_result(path, ds)
-        cls.check_format(ds)
+        cls.check_format(ds, path)
         return cls.from_dataset(ds)
+
+
+#: first bytes of a zip archive, e.g. a NumPy ``.npz`` (the former ``LifeResult`` format)
+_ZIP_MAGIC = b"PK\x03\x04"
 
 
 def _open(path: str | Path):
@@ -123,19 +179,38 @@ def _open(path: str | Path):
         with xr.open_dataset(p, engine="h5netcdf") as ds:
             return ds.load()
     except (OSError, ValueError) as exc:
+        if _is_zip(p):
+            raise ConfigError(
+                f"file = {str(p)!r} is a NumPy .npz archive (the former LifeResult format); "
+                "valid: a netCDF result file (.nc) written by save(); re-run to write one"
+            ) from None
         raise ConfigError(
             f"file = {str(p)!r} is not a readable bearingsim result ({type(exc).__name__})"
         ) from None
+
+
+def _is_zip(p: Path) -> bool:
+    try:
+        with open(p, "rb") as fh:
+            return fh.read(4) == _ZIP_MAGIC
+    except OSError:
+        return False
 
 
 def load_result(path: str | Path, _ds: Any = None) -> Result:
     """Read any bearingsim result file; the class comes from its ``format`` attribute."""
     ds = _open(path) if _ds is None else _ds
     fmt = ds.attrs.get("format")
+    if fmt not in _FORMATS:
+        import importlib
+
+        for mod in RESULT_MODULES:
+            importlib.import_module(mod)
     cls = _FORMATS.get(fmt)
     if cls is None:
         raise ConfigError(
-            f"file format = {fmt!r} is not a bearingsim result; valid: " + ", ".join(_FORMATS)
+            f"file = {str(path)!r}: format = {fmt!r} is not a bearingsim result; valid: "
+            + ", ".join(sorted(_FORMATS))
         )
     return cls.from_dataset(ds)
 

@@ -101,7 +101,7 @@ from .common import bearing_options, cli, emit_json, json_option
     "out",
     type=click.Path(dir_okay=False),
     required=True,
-    help="Result file (.npz, lossless; LifeResult.load reads it).",
+    help="Result file (netCDF .nc, lossless; LifeResult.load reads it).",
 )
 @json_option
 def life_cmd(

@@ -18,17 +18,23 @@ matrix stays regular; the same floor enters the effective stress ``Delta_tau/(1 
 The section outside the fine zone is condensed onto it once (static condensation, see
 :class:`~bearingsim.life.fe.CoreSubstructure`) and assumed undamaged; the largest undamaged
 damage rate outside relative to inside is reported (``outer_rate_ratio``).
+
+:class:`LifeResult` follows the result pattern (:class:`~bearingsim.results.Result`): ``save``
+writes a self-describing netCDF file (damage curve on ``step``, damage field and element
+geometry on ``element``, units on every variable, every input including the damage law and the
+mesh specification in ``meta_json``), ``load`` reads it back losslessly.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import json
 import math
 import time
 import warnings
 from dataclasses import dataclass, field
-from pathlib import Path
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -36,9 +42,19 @@ from numpy.typing import NDArray
 from .._version import __version__
 from ..errors import ConfigError, SolverError, check_positive, check_range
 from ..geometry import BallBearing, Bearing
+from ..results import Result, json_attr, read_json_attr, var_attrs
 from .damage import GCR15_TORSION, DamageLaw, fit_sn_curve
 from .fe import ShearMeasure, contact_section, core_substructure, section_spec
 from .validation import validate_against_hertz
+
+__all__ = [
+    "ContactLoad",
+    "ElementLoadMethod",
+    "LifeResult",
+    "contact_fatigue_life",
+    "default_damage_law",
+    "inner_contact",
+]
 
 
 class ElementLoadMethod(enum.Enum):
@@ -101,8 +117,31 @@ def inner_contact(
     return ContactLoad(q, float(c.p_max), float(c.b), 0.5 * bearing.roller_length, method)
 
 
+#: array fields of :class:`LifeResult`: name -> (dims, units, description)
+_LIFE_VARIABLES: dict[str, tuple[tuple[str, ...], str, str]] = {
+    "cycles": (("step",), "1", "cumulative load cycles after each damage block"),
+    "damage_max": (("step",), "1", "largest element damage after each block"),
+    "n_failed": (("step",), "1", "number of failed elements after each block"),
+    "centroids": (("axis", "element"), "m", "core element centroid (x rolling, z depth)"),
+    "element_size": (("axis", "element"), "m", "core element width (x) and height (z)"),
+    "surface": (("element",), "1", "core element with an edge on the contact surface"),
+    "delta_tau0": (("element",), "Pa", "undamaged shear range Delta_tau"),
+    "damage_initiation": (("element",), "1", "damage field when the first element failed"),
+    "damage_final": (("element",), "1", "damage field at the end (spall or step limit)"),
+}
+#: scalar fields of :class:`LifeResult`: name -> (units, description)
+_LIFE_SCALARS: dict[str, tuple[str, str]] = {
+    "cycles_initiation": ("1", "load cycles to the first failed element"),
+    "cycles_spall": ("1", "load cycles to the first failed surface element"),
+    "initiation_depth": ("m", "depth of the first failed element's centroid"),
+    "initiation_x": ("m", "x of the first failed element's centroid"),
+    "steps_initiation": ("1", "damage blocks to initiation (-1: not reached)"),
+    "steps_spall": ("1", "damage blocks to the spall (-1: not reached)"),
+}
+
+
 @dataclass
-class LifeResult:
+class LifeResult(Result):
     """Result of :func:`contact_fatigue_life` (SI arrays plus metadata).
 
     Attributes
@@ -134,11 +173,15 @@ class LifeResult:
     steps_initiation, steps_spall : int
         Damage blocks to initiation / spall (``-1`` if not reached).
     meta : dict
-        Inputs and derived scalars: bearing, radial_load_n, q_n, p_max_pa, b_m, kappa,
-        sigma_t_pa, delta_d, measure, mesh (elements per b), element_size_m, n_elements,
+        Inputs and derived scalars: bearing (id) and bearing_data (the geometry and material),
+        radial_load_n, load_method, q_n, p_max_pa, b_m, kappa, sigma_t_pa, law_source,
+        delta_d, delta_d_spall, measure, mesh (elements per b), element_size_m, order,
+        traverse_m, section_length_m, section_height_m, stop, max_steps, n_elements,
         n_core_elements, n_positions, residual_stiffness, outer_rate_ratio, fe validation,
         wall_s, version.
     """
+
+    FORMAT: ClassVar[str] = "bearingsim.LifeResult/1"
 
     cycles: NDArray[np.float64]
     damage_max: NDArray[np.float64]
@@ -163,46 +206,39 @@ class LifeResult:
         return float(self.meta.get("wall_s", math.nan))
 
     # ------------------------------------------------------------------ files
-    _ARRAYS = (
-        "cycles", "damage_max", "n_failed", "centroids", "element_size", "surface",
-        "delta_tau0", "damage_initiation", "damage_final",
-    )  # fmt: skip
-    _SCALARS = (
-        "cycles_initiation", "cycles_spall", "initiation_depth", "initiation_x",
-        "steps_initiation", "steps_spall",
-    )  # fmt: skip
+    _ARRAYS = tuple(_LIFE_VARIABLES)
+    _SCALARS = tuple(_LIFE_SCALARS)
 
-    def save(self, path: str | Path) -> Path:
-        """Write the result losslessly to a NumPy ``.npz`` file (atomic) and return the path."""
-        from ..io.atomic import atomic_path
-        from ..io.jsonable import to_jsonable
+    def to_dataset(self):
+        """The result as an :class:`xarray.Dataset`: the damage curve on ``step`` (0..n_steps),
+        the core elements' damage fields, shear ranges and geometry on ``element`` (with
+        ``axis`` = x, z for centroids and sizes), the outcome scalars as 0-d variables (NaN when
+        not reached), every variable with its ``units``; ``meta`` as a JSON attribute."""
+        import xarray as xr
 
-        p = Path(path)
-        arrays = {k: getattr(self, k) for k in self._ARRAYS}
-        scal = {k: getattr(self, k) for k in self._SCALARS}
-        header = json.dumps(
-            {
-                "scalars": to_jsonable(scal),
-                "meta": to_jsonable(self.meta),
-                "nan": [k for k, v in scal.items() if isinstance(v, float) and math.isnan(v)],
-            }
+        data: dict[str, Any] = {}
+        for name, (dims, units, desc) in _LIFE_VARIABLES.items():
+            data[name] = (dims, np.asarray(getattr(self, name)), var_attrs(units, desc))
+        for name, (units, desc) in _LIFE_SCALARS.items():
+            data[name] = ((), getattr(self, name), var_attrs(units, desc))
+        coords = {
+            "step": ("step", np.arange(self.cycles.size)),
+            "element": ("element", np.arange(self.damage_final.size)),
+            "axis": ("axis", ["x", "z"]),
+        }
+        attrs = self._base_attrs(
+            model="contact-fatigue life (seed LIFE, damage mechanics)",
+            meta_json=json_attr(self.meta),
         )
-        with atomic_path(p, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez(fh, header=np.array(header), **arrays)
-        return p
+        return xr.Dataset(data, coords=coords, attrs=attrs)
 
     @classmethod
-    def load(cls, path: str | Path) -> LifeResult:
-        """Read a result written by :meth:`save`."""
-        with np.load(Path(path), allow_pickle=False) as z:
-            head = json.loads(str(z["header"]))
-            arrays = {k: z[k] for k in cls._ARRAYS}
-        scal = head["scalars"]
-        for k in head.get("nan", []):
-            scal[k] = math.nan
-        scal["steps_initiation"] = int(scal["steps_initiation"])
-        scal["steps_spall"] = int(scal["steps_spall"])
-        return cls(**arrays, **scal, meta=head["meta"])
+    def from_dataset(cls, ds) -> LifeResult:
+        """Inverse of :meth:`to_dataset`."""
+        cls.check_format(ds)
+        arrays = {k: np.asarray(ds[k].values) for k in _LIFE_VARIABLES}
+        scal: dict[str, Any] = {k: ds[k].values.item() for k in _LIFE_SCALARS}
+        return cls(**arrays, **scal, meta=read_json_attr(ds, "meta_json"))
 
     # ------------------------------------------------------------------ plots
     def plot_damage_field(self, which: str = "final", zoom_b: float = 4.0):
@@ -450,6 +486,7 @@ def contact_fatigue_life(
         )
     meta = {
         "bearing": bearing.id,
+        "bearing_data": json.loads(json_attr(dataclasses.asdict(bearing))),
         "radial_load_n": fr,
         "q_n": contact.q,
         "load_method": contact.method.value,
@@ -473,6 +510,8 @@ def contact_fatigue_life(
         "n_core_dofs": core.n_dofs,
         "n_positions": section.n_positions,
         "residual_stiffness": res_k,
+        "stop": stop,
+        "max_steps": max_steps,
         "outer_rate_ratio": outer_ratio,
         "fe_tau_max_pa": val.tau_max_fe,
         "fe_tau_depth_m": val.depth_fe,

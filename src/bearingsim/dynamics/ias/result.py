@@ -1,21 +1,42 @@
 """Result object of the IAS model (:mod:`bearingsim.dynamics.ias`): time series, angle-domain
-analysis, plots, lossless netCDF save/load."""
+analysis, plots; the result pattern of :class:`~bearingsim.results.Result` (lossless
+``to_dataset``/``from_dataset``, netCDF ``save`` returning the path, ``load``)."""
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ConfigError, check_range
 from ...geometry import Defect, RollerBearing
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from .model import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
+
+__all__ = ["IasResult"]
+
+#: units and description of every column of ``state`` and ``aux`` (:data:`STATE_NAMES`,
+#: :data:`AUX_NAMES`)
+_UNITS: dict[str, tuple[str, str]] = {
+    "x": ("m", "inner-ring displacement x"),
+    "y": ("m", "inner-ring displacement y"),
+    "theta": ("rad", "shaft angle"),
+    "vx": ("m/s", "inner-ring velocity x"),
+    "vy": ("m/s", "inner-ring velocity y"),
+    "omega": ("rad/s", "shaft angular speed (IAS)"),
+    "bearing_torque": ("N m", "resisting torque of the rollers sum(r_i T_k + b_n N_k)"),
+    "spall_torque": ("N m", "spall torque M_T"),
+    "spall_force": ("N", "spall force F_T"),
+    "impact_force": ("N", "impact part F_os cos(lambda) (1 - sin(...)) of F_T"),
+    "normal_force_sum": ("N", "sum of the roller normal forces N_k"),
+    "n_loaded": ("1", "number of loaded rollers"),
+}
 
 
 @dataclass(frozen=True)
-class IasResult:
+class IasResult(Result):
     """Time series of the IAS model with its inputs and solver facts (SI).
 
     Attributes
@@ -37,6 +58,8 @@ class IasResult:
     version : str
         bearingsim version.
     """
+
+    FORMAT: ClassVar[str] = "bearingsim.IasResult/1"
 
     t: NDArray[np.float64]
     state: NDArray[np.float64]
@@ -138,51 +161,44 @@ class IasResult:
         fig.axes[0].set_title(f"IAS order spectrum (BPFO order {bp:.4f} and harmonics dashed)")
         return fig
 
-    # ------------------------------------------------------------------------- save / load
-    def save(self, path) -> None:
-        """Write a netCDF file (xarray/h5netcdf, float64, lossless) atomically."""
-        import json
-
+    # ------------------------------------------------------------------------- files
+    def to_dataset(self):
+        """Lossless :class:`xarray.Dataset`: one variable per column of ``state`` and ``aux``
+        on the ``time`` dimension (coordinate [s]) with its ``units``; ``params`` (bearing and
+        spall spelled out), ``constants`` and ``solver`` as JSON attributes."""
         import xarray as xr
 
-        from ...io.atomic import atomic_path
-        from ...io.jsonable import to_jsonable
-
-        data = {n: ("t", self.state[:, i]) for i, n in enumerate(STATE_NAMES)}
-        data.update({n: ("t", self.aux[:, i]) for i, n in enumerate(AUX_NAMES)})
-        ds = xr.Dataset(data, coords={"t": self.t})
+        data = {}
+        for arr, names in ((self.state, STATE_NAMES), (self.aux, AUX_NAMES)):
+            for i, n in enumerate(names):
+                units, desc = _UNITS[n]
+                data[n] = ("time", arr[:, i], var_attrs(units, desc))
         pd = self.params.as_dict()
         pd["bearing"] = asdict(self.params.bearing)
-        ds.attrs.update(
+        attrs = self._base_attrs(
             model="IAS (seed 002, Han, Guo, Fan 2025)",
-            params=json.dumps(to_jsonable(pd)),
-            constants=json.dumps(to_jsonable(asdict(self.constants))),
-            solver=json.dumps(to_jsonable(self.solver)),
+            params=json_attr(pd),
+            constants=json_attr(asdict(self.constants)),
+            solver=json_attr(self.solver),
             version=self.version,
-            units="SI: t s, x y m, theta rad, vx vy m/s, omega rad/s, torques N m, forces N",
         )
-        with atomic_path(path, suffix=".nc") as tmp:
-            ds.to_netcdf(tmp, engine="h5netcdf")
+        return xr.Dataset(data, coords={"time": ("time", self.t, var_attrs("s"))}, attrs=attrs)
 
     @classmethod
-    def load(cls, path) -> IasResult:
-        """Read a file written by :meth:`save`."""
-        import json
+    def check_format(cls, ds: Any, path: Any = None) -> None:
+        """As :meth:`Result.check_format`; files written before the result pattern (no
+        ``format``, time dimension ``t``) are accepted too."""
+        if ds.attrs.get("format") is None and "params" in ds.attrs and "omega" in ds:
+            return
+        super().check_format(ds, path)
 
-        import xarray as xr
-
+    @classmethod
+    def from_dataset(cls, ds) -> IasResult:
+        """Inverse of :meth:`to_dataset`."""
         from ...materials import Material
 
-        try:
-            with xr.open_dataset(path, engine="h5netcdf") as ds:
-                ds.load()
-        except (OSError, ValueError) as exc:
-            raise ConfigError(
-                f"file = {str(path)!r} is not a readable IAS result ({exc})"
-            ) from None
-        if "params" not in ds.attrs or "omega" not in ds:
-            raise ConfigError(f"file = {str(path)!r} is not an IAS result written by bearingsim")
-        pd = json.loads(ds.attrs["params"])
+        cls.check_format(ds)
+        pd = read_json_attr(ds, "params")
         bd = pd.pop("bearing")
         bd["material"] = Material(**bd["material"])
         pd["bearing"] = RollerBearing(**bd)
@@ -190,16 +206,16 @@ class IasResult:
         if pd.get("spall") is not None:
             pd["spall"] = Defect(**pd["spall"])
         params = IasParams(**pd)
-        cd = json.loads(ds.attrs["constants"])
-        const = IasConstants(**cd)
+        const = IasConstants(**read_json_attr(ds, "constants"))
         state = np.stack([ds[n].values for n in STATE_NAMES], 1)
         aux = np.stack([ds[n].values for n in AUX_NAMES], 1)
+        time = "time" if "time" in ds.coords else "t"  # "t": files before the result pattern
         return cls(
-            ds["t"].values,
+            ds[time].values,
             state,
             aux,
             params,
             const,
-            json.loads(ds.attrs["solver"]),
-            ds.attrs["version"],
+            read_json_attr(ds, "solver"),
+            str(ds.attrs.get("version", "")),
         )

@@ -15,5 +15,13 @@ May import: errors, geometry, catalog, contact, load_distribution, io, results,
 from ...geometry import DefectGeometry, defect_geometry
 from .base import ModelInputs
 from .defects import retention_factor
+from .trace import StiffnessTrace, stiffness_trace
 
-__all__ = ["DefectGeometry", "ModelInputs", "defect_geometry", "retention_factor"]
+__all__ = [
+    "DefectGeometry",
+    "ModelInputs",
+    "StiffnessTrace",
+    "defect_geometry",
+    "retention_factor",
+    "stiffness_trace",
+]

@@ -4,13 +4,21 @@ The static balance of seed VSM eq. (16) over the discrete balls (:mod:`.balance`
 of cage angles: per-ball contact forces, deformations and secant stiffnesses, the effective
 stiffness in the load direction and the load-zone events (a ball entering or leaving the zone
 or the defect).
+
+A :class:`StiffnessTrace` follows the result pattern (:class:`~bearingsim.results.Result`):
+``save(path)`` writes a self-describing netCDF file (dims ``cage_angle``, ``ball``, ``axis``;
+every variable with its ``units``; the inputs and ``meta`` as JSON attributes), ``load`` reads it
+back losslessly; ``to_csv`` stays as a plain-text export.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -19,12 +27,44 @@ from ...errors import ConfigError
 from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from . import balance as bl
 from .base import ModelInputs, static_path
 
+__all__ = ["StiffnessTrace", "stiffness_trace"]
+
+#: array fields of :class:`StiffnessTrace`: name -> (dims, units, description)
+_VARIABLES: dict[str, tuple[tuple[str, ...], str, str]] = {
+    "shaft_angle": (("cage_angle",), "rad", "inner-ring rotation angle 2 pi f_s t"),
+    "displacement": (("cage_angle", "axis"), "m", "static ring displacement"),
+    "k_load": (("cage_angle",), "N/m", "total effective stiffness along the load"),
+    "k_x": (("cage_angle",), "N/m", "total effective stiffness in x"),
+    "k_y": (("cage_angle",), "N/m", "total effective stiffness in y"),
+    "k_xy": (("cage_angle",), "N/m", "total effective stiffness coupling x-y"),
+    "ball_load": (("cage_angle", "ball"), "N", "contact force Q_j"),
+    "ball_deformation": (("cage_angle", "ball"), "m", "contact deformation (Q_j/K)^(2/3)"),
+    "ball_k_load": (("cage_angle", "ball"), "N/m", "per-ball effective stiffness along the load"),
+    "ball_k_x": (("cage_angle", "ball"), "N/m", "per-ball effective stiffness in x"),
+    "ball_k_y": (("cage_angle", "ball"), "N/m", "per-ball effective stiffness in y"),
+    "in_zone": (("cage_angle", "ball"), "1", "load-zone flag lambda_j (seed VSM eq. (14))"),
+    "in_defect": (("cage_angle", "ball"), "1", "ball over the defect (seed VSM eq. (15))"),
+    "residual": (("cage_angle",), "1", "relative force residual of seed VSM eq. (16)"),
+}
+#: scalar fields: name -> (units, description)
+_SCALARS: dict[str, tuple[str, str]] = {
+    "theta0": ("rad", "load direction"),
+    "psi_l0": ("rad", "load-zone half angle of the intact bearing at cage angle 0 (eq. (8))"),
+}
+#: array entries of ``meta`` (cage angle x ball): name -> description
+_META_ARRAYS: dict[str, str] = {
+    "zone_margin": "load-zone margin of eq. (14): nominal deflection [m], or the angular "
+    "margin to the fixed window [rad] when load_zone_half_angle is given",
+    "psi": "ball azimuth psi_j",
+}
+
 
 @dataclass(frozen=True)
-class StiffnessTrace:
+class StiffnessTrace(Result):
     """Quasi-static VSM quantities vs cage angle (seed VSM figs. 5–12, tables 2–3).
 
     Per-ball effective stiffnesses are the secant-matrix contributions of ball ``j``:
@@ -60,7 +100,14 @@ class StiffnessTrace:
         0 (eq. (8)) [rad].
     label : str
         Description (fault, retention factor, stiffness used).
+    meta : dict
+        The inputs (``inputs``: bearing, loads, defect, overrides, as in
+        :class:`~.base.ModelInputs`), the defect and ball-frame scalars used by :meth:`events`,
+        the ball constant ``stiffness`` [N/m^1.5] and the arrays ``zone_margin`` (m, Z) and
+        ``psi`` (m, Z) [rad].
     """
+
+    FORMAT: ClassVar[str] = "bearingsim.StiffnessTrace/1"
 
     cage_angle: NDArray[np.float64]
     shaft_angle: NDArray[np.float64]
@@ -126,6 +173,60 @@ class StiffnessTrace:
         r = r - 2 * math.pi * np.round(r[0] / (2 * math.pi))
         f = r[0] / (r[0] - r[1]) if r[0] != r[1] else 0.5
         return math.degrees(th[0] + f * (th[1] - th[0]))
+
+    # ------------------------------------------------------------------------ files
+    def to_dataset(self):
+        """The trace as an :class:`xarray.Dataset`: dims ``cage_angle`` (coordinate [rad]),
+        ``ball`` (1..Z) and ``axis`` (x, y); every array with its ``units`` (the arrays of
+        ``meta`` as ``meta_<name>``); ``label`` and the other ``meta`` entries (inputs included)
+        as JSON attributes."""
+        import xarray as xr
+
+        m = self.meta
+        fixed = (m.get("inputs") or {}).get("load_zone_half_angle") is not None
+        data: dict[str, Any] = {}
+        for name, (dims, units, desc) in _VARIABLES.items():
+            data[name] = (dims, np.asarray(getattr(self, name)), var_attrs(units, desc))
+        for name, (units, desc) in _SCALARS.items():
+            data[name] = ((), float(getattr(self, name)), var_attrs(units, desc))
+        arrays = [k for k, v in m.items() if isinstance(v, np.ndarray)]
+        for k in arrays:
+            units = "rad" if k == "psi" or (k == "zone_margin" and fixed) else "m"
+            data[f"meta_{k}"] = (
+                ("cage_angle", "ball"),
+                np.asarray(m[k]),
+                var_attrs(units, _META_ARRAYS.get(k, k)),
+            )
+        coords = {
+            "cage_angle": ("cage_angle", np.asarray(self.cage_angle), var_attrs("rad", "theta_m")),
+            "ball": ("ball", np.arange(1, self.ball_load.shape[1] + 1)),
+            "axis": ("axis", ["x", "y"]),
+        }
+        # the arrays keep their place in meta_json as null (key order survives)
+        scalars = {k: (None if k in arrays else v) for k, v in m.items()}
+        attrs = self._base_attrs(
+            model="vsm-trace (seed VSM, Guo et al. 2025)",
+            label=self.label,
+            meta_json=json_attr(scalars),
+            meta_arrays_json=json.dumps(arrays),
+        )
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+    @classmethod
+    def from_dataset(cls, ds) -> StiffnessTrace:
+        """Inverse of :meth:`to_dataset`."""
+        cls.check_format(ds)
+        meta = read_json_attr(ds, "meta_json")
+        for k in read_json_attr(ds, "meta_arrays_json"):
+            meta[k] = np.asarray(ds[f"meta_{k}"].values)
+        kw = {name: np.asarray(ds[name].values) for name in _VARIABLES}
+        kw.update({name: float(ds[name].values) for name in _SCALARS})
+        return cls(
+            cage_angle=np.asarray(ds["cage_angle"].values),
+            label=str(ds.attrs.get("label", "")),
+            meta=meta,
+            **kw,
+        )
 
     def to_csv(self, path: str | Path) -> None:
         """Write the trace as CSV (one row per cage angle; SI units, angles in deg), atomically."""
@@ -309,9 +410,10 @@ def stiffness_trace(
         "alpha0": inputs.first_ball_angle,
         "beta0": beta0,
         "Z": Z,
-        "delta_beta": p[bl.P_DBETA],
+        "delta_beta": float(p[bl.P_DBETA]),
         "cage_per_shaft": inputs.cage_hz / inputs.shaft_hz,
-        "stiffness": K,
+        "stiffness": float(K),
+        "inputs": _inputs_dict(inputs),
     }
     return StiffnessTrace(
         cage_angle=cage,
@@ -334,3 +436,19 @@ def stiffness_trace(
         label=label,
         meta=meta,
     )
+
+
+def _inputs_dict(inputs: ModelInputs) -> dict[str, Any]:
+    """The inputs as plain JSON types (bearing and defect spelled out, enums by value)."""
+    d: dict[str, Any] = {f.name: getattr(inputs, f.name) for f in dataclasses.fields(inputs)}
+    d["bearing"] = dataclasses.asdict(inputs.bearing)
+    dfc = inputs.defect
+    if dfc is not None:
+        d["defect"] = {
+            "race": dfc.race.value,
+            "width": dfc.width,
+            "depth": dfc.depth,
+            "angle": dfc.angle,
+            "profile": dfc.profile.value,
+        }
+    return json.loads(json_attr(d))

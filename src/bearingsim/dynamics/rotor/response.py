@@ -1,21 +1,35 @@
 """Result of the bearing–rotor–housing model: :class:`RotorResponse` (SI arrays, metadata,
-plots, lossless :class:`xarray.Dataset` round trip)."""
+plots; the result pattern of :class:`~bearingsim.results.Result`: lossless
+:class:`xarray.Dataset` round trip, netCDF ``save``/``load``)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ConfigError
 from ...geometry import KinematicFrequencies
+from ...results import Result, json_attr, read_json_attr, var_attrs
 from .config import AUX_NAMES, ENDS, G0
+
+__all__ = ["RotorResponse"]
+
+#: array fields: name -> (dims, units, description)
+_VARIABLES: dict[str, tuple[tuple[str, str], str, str]] = {
+    "acceleration": (("time", "channel"), "m/s^2", "housing acceleration"),
+    "housing_displacement": (("time", "channel"), "m", "housing displacement"),
+    "shaft_displacement": (("time", "channel"), "m", "shaft displacement at the bearing nodes"),
+    "ball_load_inner": (("time", "ball"), "N", "inner-race contact force, DE balls first"),
+    "ball_load_outer": (("time", "ball"), "N", "outer-race contact force, DE balls first"),
+}
+_KINEMATICS = ("shaft_hz", "ftf_hz", "bpfo_hz", "bpfi_hz", "bsf_hz")
 
 
 @dataclass
-class RotorResponse:
+class RotorResponse(Result):
     """Time response of the bearing–rotor–housing model.
 
     Attributes
@@ -37,6 +51,8 @@ class RotorResponse:
     meta : dict
         Model, version, inputs (:func:`config_summary`), solver facts.
     """
+
+    FORMAT: ClassVar[str] = "bearingsim.RotorResponse/1"
 
     time: NDArray[np.float64]
     acceleration: NDArray[np.float64]
@@ -109,41 +125,34 @@ class RotorResponse:
         return fig
 
     def to_dataset(self):
-        """Lossless :class:`xarray.Dataset` (variables in SI, ``meta`` as JSON attribute)."""
-        import json
-
+        """Lossless :class:`xarray.Dataset`: dims ``time`` (coordinate [s]), ``channel``
+        (:data:`AUX_NAMES`) and ``ball`` (1..Z_DE+Z_FE, DE balls first); every variable with
+        its ``units``; ``meta`` (inputs, solver, kinematics) as a JSON attribute."""
         import xarray as xr
 
-        from ...io.jsonable import to_jsonable
-
-        data = {
-            "acceleration": (("time", "channel"), self.acceleration),
-            "housing_displacement": (("time", "channel"), self.housing_displacement),
-            "shaft_displacement": (("time", "channel"), self.shaft_displacement),
+        data = {}
+        for name, (dims, units, desc) in _VARIABLES.items():
+            arr = getattr(self, name)
+            if arr is not None:
+                data[name] = (dims, arr, var_attrs(units, desc))
+        coords: dict[str, Any] = {
+            "time": ("time", self.time, var_attrs("s")),
+            "channel": ("channel", list(AUX_NAMES)),
         }
         if self.ball_load_inner is not None:
-            data["ball_load_inner"] = (("time", "ball"), self.ball_load_inner)
-            data["ball_load_outer"] = (("time", "ball"), self.ball_load_outer)
-        ds = xr.Dataset(
-            data,
-            coords={"time": self.time, "channel": list(AUX_NAMES)},
-            attrs={"model": "rotor", "meta_json": json.dumps(to_jsonable(self.meta))},
-        )
-        ds["time"].attrs["units"] = "s"
-        ds["acceleration"].attrs["units"] = "m/s^2"
-        return ds
+            coords["ball"] = ("ball", np.arange(1, self.ball_load_inner.shape[1] + 1))
+        attrs = self._base_attrs(model="rotor", meta_json=json_attr(self.meta))
+        return xr.Dataset(data, coords=coords, attrs=attrs)
 
     @classmethod
     def from_dataset(cls, ds) -> RotorResponse:
         """Inverse of :meth:`to_dataset`."""
-        import json
-
-        meta = json.loads(ds.attrs["meta_json"])
+        cls.check_format(ds)
+        meta = read_json_attr(ds, "meta_json")
         kin = {
-            e: KinematicFrequencies(**{k: meta["kinematics"][e][k] for k in
-                                       ("shaft_hz", "ftf_hz", "bpfo_hz", "bpfi_hz", "bsf_hz")})
+            e: KinematicFrequencies(**{k: meta["kinematics"][e][k] for k in _KINEMATICS})
             for e in ENDS
-        }  # fmt: skip
+        }
         bi = ds["ball_load_inner"].values if "ball_load_inner" in ds else None
         bo = ds["ball_load_outer"].values if "ball_load_outer" in ds else None
         return cls(
