@@ -61,7 +61,19 @@ from numpy.typing import ArrayLike, NDArray
 from ..contact.hertz import ball_contact, ball_stiffness
 from ..errors import ConfigError, SolverError, check_range
 from ..geometry import BallBearing, Bearing, Race, characteristic_frequencies
-from ._kernels import _sweep
+from ._kernels import (
+    B_ALPHA,
+    B_DELTA,
+    B_Q,
+    I_ITER,
+    I_RES,
+    I_STATUS,
+    P_CO,
+    R_F,
+    R_U,
+    _params,
+    _sweep,
+)
 
 #: names of the five inner-ring degrees of freedom, in vector order
 DOF_NAMES = ("x", "y", "z", "theta_x", "theta_y")
@@ -626,63 +638,37 @@ def run_quasi_static(
             "undetermined; apply a force or moment (valid: |F| > 0)"
         )
     fc, mg0, gam = _inertia(geom, spd)
+    p = _params(
+        geom,
+        F,
+        free,
+        first_ball_angle=psi0,
+        outer_tilt_xy=(
+            mis.outer_tilt * math.sin(mis.outer_azimuth),
+            mis.outer_tilt * math.cos(mis.outer_azimuth),
+        ),
+        inner_tilt=(mis.inner_tilt, mis.inner_azimuth),
+        inertia=(fc, mg0, gam) if spd.active else None,
+        tol=tol,
+        max_iterations=int(max_iterations),
+    )
+    # start: radial solution along the load line, axial from equal ball loads; ball centres on
+    # the outer groove (pushed out by the centrifugal force)
     Z = geom.n_balls
-    ci = (geom.f_i - 0.5) * geom.d
-    co = (geom.f_o - 0.5) * geom.d
-    # start: radial solution along the load line, axial from equal ball loads
     psi_first = cage[0] + psi0 + 2.0 * np.pi * np.arange(Z) / Z + err
     ux, uy = _radial_start(geom, psi_first, F)
     u0 = np.array([ux, uy, _axial_start(geom, F[2]), 0.0, 0.0])
+    co = p[P_CO]
     V0 = np.zeros((Z, 2))
     V0[:, 1] = co + (fc / geom.k_outer) ** (2.0 / 3.0) if spd.centrifugal else co
     m = cage.size
-    out_u = np.zeros((m, 5))
+    out_ring = np.zeros((m, 2, 5))
     out_H = np.zeros((m, 5, 5))
-    out_f = np.zeros((m, 5))
-    out_Q = np.zeros((m, Z))
-    out_a = np.zeros((m, Z))
-    out_d = np.zeros((m, Z))
+    out_balls = np.zeros((m, 3, Z))
     out_info = np.zeros((m, 4))
-    to_x = mis.outer_tilt * math.sin(mis.outer_azimuth)
-    to_y = mis.outer_tilt * math.cos(mis.outer_azimuth)
-    done = _sweep(
-        cage,
-        psi0,
-        err,
-        geom.cage_ratio,
-        to_x,
-        to_y,
-        mis.inner_tilt,
-        mis.inner_azimuth,
-        u0,
-        free,
-        F,
-        geom.r_pi,
-        geom.r_po,
-        geom.y0,
-        geom.a0,
-        geom.k,
-        ci,
-        co,
-        geom.k_inner,
-        geom.k_outer,
-        fc,
-        mg0,
-        gam,
-        spd.active,
-        V0,
-        tol,
-        int(max_iterations),
-        out_u,
-        out_H,
-        out_f,
-        out_Q,
-        out_a,
-        out_d,
-        out_info,
-    )
+    done = _sweep(cage, err, p, u0, V0, out_ring, out_H, out_balls, out_info)
     if done < m:
-        status = int(out_info[done, 3])
+        status = int(out_info[done, I_STATUS])
         where = f"at cage angle {cage[done]:.6g} rad"
         if status == 2:
             raise SolverError(
@@ -690,9 +676,10 @@ def run_quasi_static(
                 "distance (load beyond what the geometry allows); reduce the load"
             )
         raise SolverError(
-            f"no equilibrium found {where} after {int(out_info[done, 0])} Newton iterations "
-            f"(relative residual {out_info[done, 1]:.3g}); check the load and clearance"
+            f"no equilibrium found {where} after {int(out_info[done, I_ITER])} Newton iterations "
+            f"(relative residual {out_info[done, I_RES]:.3g}); check the load and clearance"
         )
+    out_Q, out_a = out_balls[:, B_Q], out_balls[:, B_ALPHA]
     amax = np.max(np.abs(out_a) * (out_Q > 0))
     if amax > geom.max_contact_angle:
         i, j = np.unravel_index(np.argmax(np.abs(out_a) * (out_Q > 0)), out_a.shape)
@@ -706,15 +693,15 @@ def run_quasi_static(
     return QuasiStaticSolution(
         cage_angle=cage,
         shaft_angle=cage / geom.cage_ratio,
-        displacement=out_u,
+        displacement=np.ascontiguousarray(out_ring[:, R_U]),
         stiffness_matrix=out_H,
-        reaction=out_f,
+        reaction=np.ascontiguousarray(out_ring[:, R_F]),
         ball_angles=psi,
-        ball_loads=out_Q,
-        contact_angles=out_a,
-        deflections=out_d,
-        iterations=out_info[:, 0].astype(np.int64),
-        residual=out_info[:, 1],
+        ball_loads=np.ascontiguousarray(out_Q),
+        contact_angles=np.ascontiguousarray(out_a),
+        deflections=np.ascontiguousarray(out_balls[:, B_DELTA]),
+        iterations=out_info[:, I_ITER].astype(np.int64),
+        residual=out_info[:, I_RES].copy(),
         applied=F,
         free=free,
         geometry=geom,
