@@ -73,7 +73,7 @@ def _params(
     max_iterations: int = 100,
 ) -> np.ndarray:
     """The parameter vector ``p`` of the kernels for a
-    :class:`~bearingsim.quasistatic.jones.QSGeometry` ``geom``.
+    :class:`~bearingsim.quasistatic.inputs.QSGeometry` ``geom``.
 
     Parameters
     ----------
@@ -123,6 +123,16 @@ def _params(
     return p
 
 
+@njit(cache=True, inline="always")
+def _separation(u, psi_j, moff_j, r_pi, y0):
+    """``(sin psi_j, cos psi_j, X_j, Y_j)``: axial ``X_j = z + r_pi (theta_x cos psi_j -
+    theta_y sin psi_j) + m_j`` and radial ``Y_j = A0 - P_d/2 + x sin psi_j + y cos psi_j``
+    separation of the groove centres of ball ``j`` [m] (seed QS5 eqs. (6)–(7))."""
+    s = math.sin(psi_j)
+    c = math.cos(psi_j)
+    return s, c, u[2] + r_pi * (u[3] * c - u[4] * s) + moff_j, y0 + u[0] * s + u[1] * c
+
+
 @njit(cache=True)
 def _assemble(u, psi, moff, p, f, H):
     """Ring force ``f = sum Q dA/du`` and tangent stiffness ``H``; returns (elastic energy,
@@ -140,10 +150,7 @@ def _assemble(u, psi, moff, p, f, H):
     g = np.empty(5)
     t = np.empty(5)
     for j in range(psi.size):
-        s = math.sin(psi[j])
-        c = math.cos(psi[j])
-        X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-        Y = y0 + u[0] * s + u[1] * c
+        s, c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
         ymin = min(ymin, Y)
         A = math.sqrt(X * X + Y * Y)
         dl = A - a0
@@ -307,10 +314,7 @@ def _assemble_speed(u, psi, moff, p, V, f, H, balls):
     ymin = 1e300
     worst = 0.0
     for j in range(psi.size):
-        s = math.sin(psi[j])
-        c = math.cos(psi[j])
-        X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-        Y = y0 + u[0] * s + u[1] * c
+        s, c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
         ymin = min(ymin, Y)
         v = V[j]
         res = _ball_solve(X, Y, v, p)
@@ -615,10 +619,7 @@ def _sweep(cage, errors, p, u0, V0, out_ring, out_H, out_balls, out_info):
         else:
             _assemble(u, psi, moff, p, f, H)
             for j in range(Z):
-                s = math.sin(psi[j])
-                c = math.cos(psi[j])
-                X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-                Y = y0 + u[0] * s + u[1] * c
+                _s, _c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
                 A = math.sqrt(X * X + Y * Y)
                 dl = A - a0
                 out_balls[m, B_DELTA, j] = dl
