@@ -330,7 +330,15 @@ def check_ball_errors(geom: QSGeometry, errors: ArrayLike | None) -> NDArray[np.
 def load_vector(
     fx: float = 0.0, fy: float = 0.0, fz: float = 0.0, mx: float = 0.0, my: float = 0.0
 ) -> NDArray[np.float64]:
-    """Validated applied load ``(Fx, Fy, Fz [N], Mx, My [N m])`` on the inner ring."""
+    """Validated applied load on the inner ring as one vector ``(Fx, Fy, Fz, Mx, My)``.
+
+    Parameters
+    ----------
+    fx, fy, fz : float
+        Forces along x, y (radial) and z (axial) [N].
+    mx, my : float
+        Moments about x and y [N m].
+    """
     return np.array(
         [
             check_range("fx_n", fx, unit="N"),

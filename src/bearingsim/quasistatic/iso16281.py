@@ -77,6 +77,9 @@ ISO_OUTER_CONFORMITY = 0.53
 #: constant of the ISO/TS 16281 §4.2 simplified stiffness (steel-independent form, E/(1-nu^2)
 #: factored out)
 ISO_CP_FACTOR = 1.48
+#: Stribeck's ``Q_max = 5 F_r / Z`` for a ball bearing with nominal clearance (Stribeck 1901;
+#: Harris & Kotzalas 2007 vol. 1 §7.2), used only for the solver's starting point
+_STRIBECK_CLEARANCE = 5.0
 
 
 class Conformities(enum.Enum):
@@ -226,7 +229,7 @@ def _start(geom: QSGeometry, psi: NDArray[np.float64], F: NDArray[np.float64]) -
     u = np.zeros(5)
     fr = math.hypot(F[0], F[1])
     if fr > 0:
-        dmax = (5.0 * fr / (geom.n_balls * geom.k)) ** (2.0 / 3.0)
+        dmax = (_STRIBECK_CLEARANCE * fr / (geom.n_balls * geom.k)) ** (2.0 / 3.0)
         u[0], u[1] = (
             (dmax + 0.5 * geom.clearance) * F[0] / fr,
             (dmax + 0.5 * geom.clearance) * F[1] / fr,
