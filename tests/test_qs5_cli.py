@@ -50,7 +50,7 @@ def test_files_and_iso_method(run_cli, tmp_path):
     assert png.stat().st_size > 1000
     res = StiffnessResult.load(out)
     assert res.solution.cage_angle.size == 180
-    # the -o file is the netCDF result (it was JSON before 0.2.0)
+    # the -o file is the netCDF StiffnessResult (it was JSON before issue 13)
     assert load_result(out).solution.method.value == "iso16281"
 
 
