@@ -12,9 +12,7 @@ import time
 import numpy as np
 
 from bearingsim.catalog import get_bearing
-from bearingsim.quasistatic.iso16281 import run_iso16281
-from bearingsim.quasistatic.jones import Misalignment, run_quasi_static
-from bearingsim.quasistatic.stiffness import stiffness_vs_cage
+from bearingsim.quasistatic import Misalignment, run_iso16281, run_quasi_static, stiffness_vs_cage
 
 
 def timeit(fn, repeat: int = 7) -> tuple[float, float]:

@@ -7,7 +7,8 @@ import json
 import pytest
 
 from bearingsim.cli import main
-from bearingsim.quasistatic.stiffness import StiffnessResult
+from bearingsim.quasistatic import StiffnessResult
+from bearingsim.results import load_result
 
 BASE = ["stiffness", "6205", "--fy", "500", "--cage-revs", "2", "--points-per-rev", "90"]
 
@@ -29,7 +30,7 @@ def test_json_contract(run_cli):
 
 
 def test_files_and_iso_method(run_cli, tmp_path):
-    out, png = tmp_path / "r.json", tmp_path / "r.png"
+    out, png = tmp_path / "r.nc", tmp_path / "r.png"
     r = run_cli(
         *BASE,
         "--method",
@@ -49,7 +50,8 @@ def test_files_and_iso_method(run_cli, tmp_path):
     assert png.stat().st_size > 1000
     res = StiffnessResult.load(out)
     assert res.solution.cage_angle.size == 180
-    assert json.loads(out.read_text())["method"] == "iso16281"
+    # the -o file is the netCDF StiffnessResult (it was JSON before issue 13)
+    assert load_result(out).solution.method.value == "iso16281"
 
 
 def test_text_output(run_cli):

@@ -8,7 +8,8 @@ import click
 
 from ..errors import ConfigError, check_range
 from ..geometry import Bearing
-from ..quasistatic.jones import Method, Misalignment, SpeedEffects
+from ..quasistatic.inputs import Method, Misalignment, SpeedEffects
+from ..quasistatic.iso16281 import Conformities
 from ..quasistatic.stiffness import SERIES, stiffness_vs_cage
 from .common import bearing_options, cli, emit_json, json_option
 
@@ -92,8 +93,8 @@ def _parse_errors(text: str | None) -> list[float] | None:
 )
 @click.option(
     "--conformities",
-    type=click.Choice(["bearing", "iso"]),
-    default="bearing",
+    type=click.Choice([c.value for c in Conformities]),
+    default=Conformities.BEARING.value,
     show_default=True,
     help="iso16281: groove radii of the bearing or ISO defaults.",
 )
@@ -112,7 +113,7 @@ def _parse_errors(text: str | None) -> list[float] | None:
     "out",
     type=click.Path(dir_okay=False),
     default=None,
-    help="Write the full result (JSON, lossless).",
+    help="Write the full result (netCDF-4, lossless; StiffnessResult.load reads it).",
 )
 @json_option
 def stiffness_cmd(
@@ -158,9 +159,9 @@ def stiffness_cmd(
         ball_errors=_parse_errors(ball_errors_rad),
         speed=speed,
     )
-    if method == Method.ISO16281.value:
-        kw["conformities"] = conformities
-    elif conformities != "bearing":
+    if Method(method) is Method.ISO16281:
+        kw["conformities"] = Conformities(conformities)
+    elif Conformities(conformities) is not Conformities.BEARING:
         raise ConfigError("--conformities applies to --method iso16281 only")
     res = stiffness_vs_cage(
         bearing,
@@ -171,7 +172,7 @@ def stiffness_cmd(
         my,
         cage_revs=cage_revs,
         points_per_rev=points_per_rev,
-        method=method,
+        method=Method(method),
         **kw,
     )
     if plot:

@@ -1,9 +1,15 @@
 """Compiled (Numba, ``cache=True``) kernels of the quasi-static 5-DOF ball-bearing model.
 
-The physics and notation are documented in :mod:`bearingsim.quasi_static` (seed QS5 eqs. (1)–(7),
-Jones 1960, Harris & Kotzalas 2007 vol. 2 ch. 3). Ring DOF vector ``u = (x, y, z, theta_x,
-theta_y)``; ball ``j`` at azimuth ``psi_j`` from +y towards +x; ``X_j`` axial and ``Y_j`` radial
-separation of the inner from the outer groove-curvature centre.
+The physics and notation are documented in :mod:`bearingsim.quasistatic.jones` (seed QS5
+eqs. (1)–(7), Jones 1960, Harris & Kotzalas 2007 vol. 2 ch. 3). Ring DOF vector ``u = (x, y, z,
+theta_x, theta_y)``; ball ``j`` at azimuth ``psi_j`` from +y towards +x; ``X_j`` axial and
+``Y_j`` radial separation of the inner from the outer groove-curvature centre.
+
+The kernels read their scalar inputs from one float64 parameter vector ``p`` laid out by the
+``P_*`` offsets below (the project's convention, as :mod:`bearingsim.dynamics.ring.balance`),
+built by :func:`_params`; arrays are the ball azimuths and misalignment offsets, the ring state,
+the ball-centre state of the inertia model, and output or work buffers whose rows are named by the
+``R_*``, ``B_*``, ``W_*`` and ``I_*`` constants. Everything here is private to the package.
 """
 
 from __future__ import annotations
@@ -13,11 +19,128 @@ import math
 import numpy as np
 from numba import njit
 
+__all__: list[str] = []
+
+# ---------------------------------------------------------------- parameter vector layout
+P_RPI = 0  #: radius of the inner groove-centre locus r_pi [m] (seed QS5 eq. (5))
+P_RPO = 1  #: radius of the outer groove-centre locus r_po [m] (seed QS5 eq. (5))
+P_Y0 = 2  #: radial groove-centre separation of the centred rings A0 - P_d/2 [m]
+P_A0 = 3  #: groove-centre distance at first contact A0 = (f_i + f_o - 1) d [m]
+P_K = 4  #: combined ball constant K [N/m^1.5]
+P_CI = 5  #: inner groove radius minus ball radius (f_i - 1/2) d [m]
+P_CO = 6  #: outer groove radius minus ball radius (f_o - 1/2) d [m]
+P_KI = 7  #: Hertz constant of the inner contact [N/m^1.5]
+P_KO = 8  #: Hertz constant of the outer contact [N/m^1.5]
+P_FC = 9  #: ball centrifugal force F_c [N]
+P_MG0 = 10  #: gyroscopic friction scale 2 J omega_R omega_c / d [N]
+P_GAM = 11  #: d / d_m [-]
+P_SPEED = 12  #: 1 = inertia loads on (ball centres solved), 0 = off [-]
+P_TOL = 13  #: relative force-residual tolerance [-]
+P_MAXIT = 14  #: Newton iterations per cage angle [-]
+P_CAGE_RATIO = 15  #: cage speed / shaft speed [-]
+P_PSI0 = 16  #: azimuth of ball 1 at cage angle 0 [rad]
+P_TOX = 17  #: outer-ring tilt rotation vector, x component [rad]
+P_TOY = 18  #: outer-ring tilt rotation vector, y component [rad]
+P_TIAMP = 19  #: inner-ring tilt magnitude [rad]
+P_TIAZ0 = 20  #: azimuth of the inner-ring tilt axis at shaft angle 0 [rad]
+P_F = 21  #: applied load (Fx, Fy, Fz [N], Mx, My [N m]), 5 entries
+P_FREE = 26  #: 1 = DOF solved, 0 = held at its start value, 5 entries
+N_PARAMS = 31  #: length of ``p``
+
+# ---------------------------------------------------------------- named rows of the buffers
+#: ring output rows (m, 2, 5): displacement u, resultant f of the ball forces
+R_U, R_F = 0, 1
+#: ball output rows (m, 3, Z): load Q_j [N], contact angle alpha_j [rad], deformation delta_j [m]
+B_Q, B_ALPHA, B_DELTA = 0, 1, 2
+#: ball rows of the inertia model (4, Z): inner/outer loads [N], inner/outer contact angles [rad]
+W_QI, W_QO, W_AI, W_AO = 0, 1, 2, 3
+#: solver info: iterations, relative residual, minimum Y_j [m], status
+I_ITER, I_RES, I_YMIN, I_STATUS = 0, 1, 2, 3
+#: 2x2 blocks of one ball (3, 2, 2): ball Jacobian, inner and outer contact Hessians
+M_JVV, M_HI, M_HO = 0, 1, 2
+
+
+def _params(
+    geom,
+    applied=None,
+    free=None,
+    *,
+    first_ball_angle: float = 0.0,
+    outer_tilt_xy: tuple[float, float] = (0.0, 0.0),
+    inner_tilt: tuple[float, float] = (0.0, 0.0),
+    inertia: tuple[float, float, float] | None = None,
+    tol: float = 1e-12,
+    max_iterations: int = 100,
+) -> np.ndarray:
+    """The parameter vector ``p`` of the kernels for a
+    :class:`~bearingsim.quasistatic.inputs.QSGeometry` ``geom``.
+
+    Parameters
+    ----------
+    geom : QSGeometry
+        Derived geometry.
+    applied : array_like, shape (5,), optional
+        ``(Fx, Fy, Fz [N], Mx, My [N m])`` (default 0).
+    free : array_like of bool, shape (5,), optional
+        DOFs solved (default all).
+    first_ball_angle : float
+        Azimuth of ball 1 at cage angle 0 [rad].
+    outer_tilt_xy : tuple of float
+        Outer-ring tilt rotation vector ``(T sin A, T cos A)`` [rad].
+    inner_tilt : tuple of float
+        Inner-ring tilt magnitude [rad] and axis azimuth at shaft angle 0 [rad].
+    inertia : tuple of float, optional
+        ``(F_c [N], 2 J omega_R omega_c / d [N], d/d_m [-])``; given = inertia loads on.
+    tol : float
+        Relative force-residual tolerance [-].
+    max_iterations : int
+        Newton iterations per cage angle [-].
+    """
+    p = np.zeros(N_PARAMS)
+    p[P_RPI] = geom.r_pi
+    p[P_RPO] = geom.r_po
+    p[P_Y0] = geom.y0
+    p[P_A0] = geom.a0
+    p[P_K] = geom.k
+    p[P_CI] = (geom.f_i - 0.5) * geom.d
+    p[P_CO] = (geom.f_o - 0.5) * geom.d
+    p[P_KI] = geom.k_inner
+    p[P_KO] = geom.k_outer
+    if inertia is None:
+        p[P_GAM] = geom.d / geom.dm
+    else:
+        p[P_FC], p[P_MG0], p[P_GAM] = inertia
+        p[P_SPEED] = 1.0
+    p[P_TOL] = tol
+    p[P_MAXIT] = max_iterations
+    p[P_CAGE_RATIO] = geom.cage_ratio
+    p[P_PSI0] = first_ball_angle
+    p[P_TOX], p[P_TOY] = outer_tilt_xy
+    p[P_TIAMP], p[P_TIAZ0] = inner_tilt
+    if applied is not None:
+        p[P_F : P_F + 5] = applied
+    p[P_FREE : P_FREE + 5] = 1.0 if free is None else np.asarray(free, dtype=float)
+    return p
+
+
+@njit(cache=True, inline="always")
+def _separation(u, psi_j, moff_j, r_pi, y0):
+    """``(sin psi_j, cos psi_j, X_j, Y_j)``: axial ``X_j = z + r_pi (theta_x cos psi_j -
+    theta_y sin psi_j) + m_j`` and radial ``Y_j = A0 - P_d/2 + x sin psi_j + y cos psi_j``
+    separation of the groove centres of ball ``j`` [m] (seed QS5 eqs. (6)–(7))."""
+    s = math.sin(psi_j)
+    c = math.cos(psi_j)
+    return s, c, u[2] + r_pi * (u[3] * c - u[4] * s) + moff_j, y0 + u[0] * s + u[1] * c
+
 
 @njit(cache=True)
-def _assemble(u, psi, moff, r_pi, y0, a0, K, f, H):
+def _assemble(u, psi, moff, p, f, H):
     """Ring force ``f = sum Q dA/du`` and tangent stiffness ``H``; returns (elastic energy,
     minimum radial separation Y_j). Seed QS5 eqs. (6)–(7); SPEC §5."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    a0 = p[P_A0]
+    K = p[P_K]
     for i in range(5):
         f[i] = 0.0
         for k in range(5):
@@ -27,10 +150,7 @@ def _assemble(u, psi, moff, r_pi, y0, a0, K, f, H):
     g = np.empty(5)
     t = np.empty(5)
     for j in range(psi.size):
-        s = math.sin(psi[j])
-        c = math.cos(psi[j])
-        X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-        Y = y0 + u[0] * s + u[1] * c
+        s, c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
         ymin = min(ymin, Y)
         A = math.sqrt(X * X + Y * Y)
         dl = A - a0
@@ -71,10 +191,21 @@ def _hess2(n1, n2, kn, kt, out):
 
 
 @njit(cache=True)
-def _ball_residual(v1, v2, X, Y, ci, co, Ki, Ko, Fc, mg0, gam, Ri, Jvv, Hi, Ho):
-    """Residual of one ball's equilibrium (Harris & Kotzalas 2007 vol. 2 eqs. (3.36)–(3.37),
-    outer-raceway control) at ball centre ``v`` (axial, radial, from the outer groove centre),
-    with its Jacobian ``Jvv`` and the two contact Hessians; returns (Qi, Qo, dli, dlo)."""
+def _ball_residual(v1, v2, X, Y, p, Ri, M):
+    """Residual ``Ri`` of one ball's equilibrium (Harris & Kotzalas 2007 vol. 2 eqs.
+    (3.36)–(3.37), outer-raceway control) at ball centre ``v`` (axial, radial, from the outer
+    groove centre), with its Jacobian and the two contact Hessians in ``M`` (rows ``M_*``);
+    returns (Qi, Qo, dli, dlo)."""
+    ci = p[P_CI]
+    co = p[P_CO]
+    Ki = p[P_KI]
+    Ko = p[P_KO]
+    Fc = p[P_FC]
+    mg0 = p[P_MG0]
+    gam = p[P_GAM]
+    Jvv = M[M_JVV]
+    Hi = M[M_HI]
+    Ho = M[M_HO]
     w1 = X - v1
     w2 = Y - v2
     Lw = math.sqrt(w1 * w1 + w2 * w2)
@@ -124,18 +255,17 @@ def _ball_residual(v1, v2, X, Y, ci, co, Ki, Ko, Fc, mg0, gam, Ri, Jvv, Hi, Ho):
 
 
 @njit(cache=True)
-def _ball_solve(X, Y, v, ci, co, Ki, Ko, Fc, mg0, gam):
+def _ball_solve(X, Y, v, p):
     """Newton solve of one ball's centre ``v`` (in place); returns the final residual norm."""
-    Jvv = np.empty((2, 2))
-    Hi = np.empty((2, 2))
-    Ho = np.empty((2, 2))
+    co = p[P_CO]
+    Fc = p[P_FC]
+    M = np.empty((3, 2, 2))
+    Jvv = M[M_JVV]
     R = np.empty(2)
     scale = Fc + 1e-300
     res = 0.0
     for _ in range(60):
-        Qi, Qo, dli, dlo = _ball_residual(
-            v[0], v[1], X, Y, ci, co, Ki, Ko, Fc, mg0, gam, R, Jvv, Hi, Ho
-        )
+        Qi, Qo, dli, dlo = _ball_residual(v[0], v[1], X, Y, p, R, M)
         res = math.hypot(R[0], R[1])
         scale = max(scale, Qi, Qo)
         if res <= 1e-13 * scale:
@@ -153,23 +283,7 @@ def _ball_solve(X, Y, v, ci, co, Ki, Ko, Fc, mg0, gam):
             s1 *= lim / sn
         tstep = 1.0
         for _ls in range(30):
-            _ball_residual(
-                v[0] + tstep * s0,
-                v[1] + tstep * s1,
-                X,
-                Y,
-                ci,
-                co,
-                Ki,
-                Ko,
-                Fc,
-                mg0,
-                gam,
-                R,
-                Jvv,
-                Hi,
-                Ho,
-            )
+            _ball_residual(v[0] + tstep * s0, v[1] + tstep * s1, X, Y, p, R, M)
             if math.hypot(R[0], R[1]) < (1.0 - 1e-4 * tstep) * res:
                 break
             tstep *= 0.5
@@ -179,41 +293,39 @@ def _ball_solve(X, Y, v, ci, co, Ki, Ko, Fc, mg0, gam):
 
 
 @njit(cache=True)
-def _assemble_speed(
-    u, psi, moff, r_pi, y0, ci, co, Ki, Ko, Fc, mg0, gam, V, f, H, Qi_out, Qo_out, ai_out, ao_out
-):
+def _assemble_speed(u, psi, moff, p, V, f, H, balls):
     """Ring force and condensed tangent stiffness with ball inertia loads: per ball the centre
-    ``V[j]`` is solved, then ``dF/dA = H_i - H_i J_vv^-1 H_i`` (implicit function theorem)."""
+    ``V[j]`` is solved, then ``dF/dA = H_i - H_i J_vv^-1 H_i`` (implicit function theorem).
+    ``balls`` (4, Z) receives the rows ``W_*``; returns (worst relative ball residual, minimum
+    radial separation Y_j)."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    Fc = p[P_FC]
     for i in range(5):
         f[i] = 0.0
         for k in range(5):
             H[i, k] = 0.0
-    Jvv = np.empty((2, 2))
-    Hi = np.empty((2, 2))
-    Ho = np.empty((2, 2))
+    M = np.empty((3, 2, 2))
+    Jvv = M[M_JVV]
+    Hi = M[M_HI]
     R = np.empty(2)
     b1 = np.empty(5)
     b2 = np.empty(5)
     ymin = 1e300
     worst = 0.0
     for j in range(psi.size):
-        s = math.sin(psi[j])
-        c = math.cos(psi[j])
-        X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-        Y = y0 + u[0] * s + u[1] * c
+        s, c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
         ymin = min(ymin, Y)
         v = V[j]
-        res = _ball_solve(X, Y, v, ci, co, Ki, Ko, Fc, mg0, gam)
-        Qi, Qo, dli, dlo = _ball_residual(
-            v[0], v[1], X, Y, ci, co, Ki, Ko, Fc, mg0, gam, R, Jvv, Hi, Ho
-        )
+        res = _ball_solve(X, Y, v, p)
+        Qi, Qo, dli, dlo = _ball_residual(v[0], v[1], X, Y, p, R, M)
         worst = max(worst, res / (Fc + Qi + Qo + 1e-300))
-        Qi_out[j] = Qi
-        Qo_out[j] = Qo
+        balls[W_QI, j] = Qi
+        balls[W_QO, j] = Qo
         w1 = X - v[0]
         w2 = Y - v[1]
-        ai_out[j] = math.atan2(w1, w2)
-        ao_out[j] = math.atan2(v[0], v[1])
+        balls[W_AI, j] = math.atan2(w1, w2)
+        balls[W_AO, j] = math.atan2(v[0], v[1])
         if Qi <= 0.0:
             continue
         Lw = math.hypot(w1, w2)
@@ -312,39 +424,23 @@ def _lu_solve(A, b, n, out):
 
 
 @njit(cache=True)
-def _solve_ring(
-    u,
-    free,
-    F,
-    psi,
-    moff,
-    r_pi,
-    y0,
-    a0,
-    K,
-    ci,
-    co,
-    Ki,
-    Ko,
-    Fc,
-    mg0,
-    gam,
-    speed,
-    V,
-    tol,
-    maxit,
-    out_info,
-):
+def _solve_ring(u, p, psi, moff, V, out_info):
     """Newton–Raphson for the free DOFs of the inner ring (in place).
 
     Merit: the convex potential (Armijo) without inertia loads, the residual norm with them.
-    ``out_info`` receives (iterations, relative residual, minimum radial separation, status)
-    with status 0 converged, 1 not converged, 2 geometry violated (Y_j <= 0).
+    ``out_info`` receives the rows ``I_*``: iterations, relative residual, minimum radial
+    separation, status (0 converged, 1 not converged, 2 geometry violated, Y_j <= 0).
     """
+    r_pi = p[P_RPI]
+    Fc = p[P_FC]
+    speed = p[P_SPEED] != 0.0
+    tol = p[P_TOL]
+    maxit = int(p[P_MAXIT])
+    F = p[P_F : P_F + 5]
     idx = np.empty(5, dtype=np.int64)
     n = 0
     for i in range(5):
-        if free[i]:
+        if p[P_FREE + i] != 0.0:
             idx[n] = i
             n += 1
     f = np.empty(5)
@@ -353,10 +449,7 @@ def _solve_ring(
     r = np.empty(5)
     step = np.empty(5)
     ut = np.empty(5)
-    Qi = np.empty(psi.size)
-    Qo = np.empty(psi.size)
-    ai = np.empty(psi.size)
-    ao = np.empty(psi.size)
+    balls = np.empty((4, psi.size))
     # force scale: moments are converted to forces with the arm r_pi
     fscale = 0.0
     for i in range(5):
@@ -369,15 +462,13 @@ def _solve_ring(
     status = 1
     for it in range(maxit + 1):
         if speed:
-            _w, ymin = _assemble_speed(
-                u, psi, moff, r_pi, y0, ci, co, Ki, Ko, Fc, mg0, gam, V, f, H, Qi, Qo, ai, ao
-            )
+            _w, ymin = _assemble_speed(u, psi, moff, p, V, f, H, balls)
             qs = Fc * psi.size
             for j in range(psi.size):
-                qs += Qi[j]
+                qs += balls[W_QI, j]
             en = 0.0
         else:
-            en, ymin = _assemble(u, psi, moff, r_pi, y0, a0, K, f, H)
+            en, ymin = _assemble(u, psi, moff, p, f, H)
             qs = 0.0
             for i in range(2):
                 qs += f[i] * f[i]
@@ -422,10 +513,10 @@ def _solve_ring(
             status = 1
             break
         # backtracking line search
-        p0 = en
+        pot0 = en
         slope = 0.0
         for m in range(n):
-            p0 -= F[idx[m]] * u[idx[m]]
+            pot0 -= F[idx[m]] * u[idx[m]]
             slope += r[m] * step[m]
         tstep = 1.0
         for _ls in range(60):
@@ -435,9 +526,7 @@ def _solve_ring(
                 ut[idx[m]] += tstep * step[m]
             if speed:
                 Vt = V.copy()
-                _w, yt = _assemble_speed(
-                    ut, psi, moff, r_pi, y0, ci, co, Ki, Ko, Fc, mg0, gam, Vt, f, H, Qi, Qo, ai, ao
-                )
+                _w, yt = _assemble_speed(ut, psi, moff, p, Vt, f, H, balls)
                 nt = 0.0
                 for m in range(n):
                     i = idx[m]
@@ -447,81 +536,62 @@ def _solve_ring(
                     V[:, :] = Vt
                     break
             else:
-                e1, yt = _assemble(ut, psi, moff, r_pi, y0, a0, K, f, H)
-                p1 = e1
+                e1, yt = _assemble(ut, psi, moff, p, f, H)
+                pot1 = e1
                 nt = 0.0
                 for m in range(n):
                     i = idx[m]
-                    p1 -= F[i] * ut[i]
+                    pot1 -= F[i] * ut[i]
                     w = (f[i] - F[i]) / r_pi if i >= 3 else f[i] - F[i]
                     nt += w * w
                 if yt > 0.0 and (
-                    p1 <= p0 + 1e-4 * tstep * slope or math.sqrt(nt) < (1.0 - 1e-4 * tstep) * nr
+                    pot1 <= pot0 + 1e-4 * tstep * slope or math.sqrt(nt) < (1.0 - 1e-4 * tstep) * nr
                 ):
                     break
             tstep *= 0.5
         for m in range(n):
             u[idx[m]] += tstep * step[m]
-    out_info[0] = it
-    out_info[1] = rel
-    out_info[2] = ymin
-    out_info[3] = status
+    out_info[I_ITER] = it
+    out_info[I_RES] = rel
+    out_info[I_YMIN] = ymin
+    out_info[I_STATUS] = status
 
 
 @njit(cache=True)
-def _ball_setup(cage, psi0, errors, shaft_angle, to_x, to_y, ti_amp, ti_az0, r_pi, r_po, psi, moff):
+def _ball_setup(cage, p, errors, psi, moff):
     """Ball azimuths ``psi_j = cage + psi0 + 2 pi j/Z + e_j`` (seed eq. (1)) and misalignment
-    offsets ``m_j`` (seed eqs. (2)–(3)) at one cage angle."""
+    offsets ``m_j`` (seed eqs. (2)–(3)) at one cage angle ``cage`` [rad]."""
+    r_pi = p[P_RPI]
+    r_po = p[P_RPO]
+    psi0 = p[P_PSI0]
+    to_x = p[P_TOX]
+    to_y = p[P_TOY]
+    ti_amp = p[P_TIAMP]
     Z = psi.size
-    az = ti_az0 + shaft_angle
+    az = p[P_TIAZ0] + cage / p[P_CAGE_RATIO]
     ti_x = ti_amp * math.sin(az)
     ti_y = ti_amp * math.cos(az)
     for j in range(Z):
-        p = cage + psi0 + 2.0 * math.pi * j / Z + errors[j]
-        psi[j] = p
-        c = math.cos(p)
-        s = math.sin(p)
+        q = cage + psi0 + 2.0 * math.pi * j / Z + errors[j]
+        psi[j] = q
+        c = math.cos(q)
+        s = math.sin(q)
         moff[j] = r_pi * (ti_x * c - ti_y * s) - r_po * (to_x * c - to_y * s)
 
 
 @njit(cache=True)
-def _sweep(
-    cage,
-    psi0,
-    errors,
-    cage_ratio,
-    to_x,
-    to_y,
-    ti_amp,
-    ti_az0,
-    u0,
-    free,
-    F,
-    r_pi,
-    r_po,
-    y0,
-    a0,
-    K,
-    ci,
-    co,
-    Ki,
-    Ko,
-    Fc,
-    mg0,
-    gam,
-    speed,
-    V0,
-    tol,
-    maxit,
-    out_u,
-    out_H,
-    out_f,
-    out_Q,
-    out_alpha,
-    out_delta,
-    out_info,
-):
-    """Equilibrium and tangent stiffness at every cage angle, each started from the previous."""
+def _sweep(cage, errors, p, u0, V0, out_ring, out_H, out_balls, out_info):
+    """Equilibrium and tangent stiffness at every cage angle ``cage[m]``, each started from the
+    previous (``u0``, ``V0`` at the first): ``out_ring`` (m, 2, 5) rows ``R_*``, ``out_H``
+    (m, 5, 5), ``out_balls`` (m, 3, Z) rows ``B_*``, ``out_info`` (m, 4) rows ``I_*``. Returns
+    the number of cage angles solved (``cage.size`` unless one failed)."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    a0 = p[P_A0]
+    K = p[P_K]
+    Ki = p[P_KI]
+    Ko = p[P_KO]
+    speed = p[P_SPEED] != 0.0
     Z = errors.size
     psi = np.empty(Z)
     moff = np.empty(Z)
@@ -530,75 +600,34 @@ def _sweep(
     f = np.empty(5)
     H = np.empty((5, 5))
     info = np.empty(4)
-    Qi = np.empty(Z)
-    Qo = np.empty(Z)
-    ai = np.empty(Z)
-    ao = np.empty(Z)
+    balls = np.empty((4, Z))
     for m in range(cage.size):
-        _ball_setup(
-            cage[m],
-            psi0,
-            errors,
-            cage[m] / cage_ratio,
-            to_x,
-            to_y,
-            ti_amp,
-            ti_az0,
-            r_pi,
-            r_po,
-            psi,
-            moff,
-        )
-        _solve_ring(
-            u,
-            free,
-            F,
-            psi,
-            moff,
-            r_pi,
-            y0,
-            a0,
-            K,
-            ci,
-            co,
-            Ki,
-            Ko,
-            Fc,
-            mg0,
-            gam,
-            speed,
-            V,
-            tol,
-            maxit,
-            info,
-        )
+        _ball_setup(cage[m], p, errors, psi, moff)
+        _solve_ring(u, p, psi, moff, V, info)
         for i in range(4):
             out_info[m, i] = info[i]
-        if info[3] != 0.0:
+        if info[I_STATUS] != 0.0:
             return m
         if speed:
-            _assemble_speed(
-                u, psi, moff, r_pi, y0, ci, co, Ki, Ko, Fc, mg0, gam, V, f, H, Qi, Qo, ai, ao
-            )
+            _assemble_speed(u, psi, moff, p, V, f, H, balls)
             for j in range(Z):
-                out_Q[m, j] = Qi[j]
-                out_alpha[m, j] = ai[j]
-                out_delta[m, j] = (Qi[j] / Ki) ** (2.0 / 3.0) + (Qo[j] / Ko) ** (2.0 / 3.0)
+                Qi = balls[W_QI, j]
+                Qo = balls[W_QO, j]
+                out_balls[m, B_Q, j] = Qi
+                out_balls[m, B_ALPHA, j] = balls[W_AI, j]
+                out_balls[m, B_DELTA, j] = (Qi / Ki) ** (2.0 / 3.0) + (Qo / Ko) ** (2.0 / 3.0)
         else:
-            _assemble(u, psi, moff, r_pi, y0, a0, K, f, H)
+            _assemble(u, psi, moff, p, f, H)
             for j in range(Z):
-                s = math.sin(psi[j])
-                c = math.cos(psi[j])
-                X = u[2] + r_pi * (u[3] * c - u[4] * s) + moff[j]
-                Y = y0 + u[0] * s + u[1] * c
+                _s, _c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
                 A = math.sqrt(X * X + Y * Y)
                 dl = A - a0
-                out_delta[m, j] = dl
-                out_alpha[m, j] = math.atan2(X, Y)
-                out_Q[m, j] = K * dl * math.sqrt(dl) if dl > 0.0 else 0.0
+                out_balls[m, B_DELTA, j] = dl
+                out_balls[m, B_ALPHA, j] = math.atan2(X, Y)
+                out_balls[m, B_Q, j] = K * dl * math.sqrt(dl) if dl > 0.0 else 0.0
         for i in range(5):
-            out_u[m, i] = u[i]
-            out_f[m, i] = f[i]
+            out_ring[m, R_U, i] = u[i]
+            out_ring[m, R_F, i] = f[i]
             for k in range(5):
                 out_H[m, i, k] = H[i, k]
     return cage.size

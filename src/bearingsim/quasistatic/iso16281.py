@@ -1,13 +1,13 @@
 """ISO/TS 16281:2008 internal load distribution of a single-row radial ball bearing.
 
 An independent implementation (NumPy + SciPy ``root``, finite-difference stiffness) used to
-cross-check the Jones model of :mod:`bearingsim.quasi_static`. We could not consult the standard
-itself; the formulas below are the ones of its clause 4.2 (ball bearings) and 6.3 (reference
-geometry) as transcribed in public re-implementations and summaries. What each step is:
+cross-check the Jones model of :mod:`bearingsim.quasistatic.jones`. We could not consult the
+standard itself; the formulas below are the ones of its clause 4.2 (ball bearings) and 6.3
+(reference geometry) as transcribed in public re-implementations and summaries. What each step is:
 
 * **Reference geometry** (ISO/TS 16281 §6.3, deep-groove and angular-contact ball bearings): when
   the bearing gives no groove radii, ``r_i = 0.52 D_w`` and ``r_e = 0.53 D_w``
-  (``conformities="iso"`` forces these defaults).
+  (``conformities=Conformities.ISO`` forces these defaults).
 * **Clearance** (§4.2): ``A = r_i + r_e - D_w``, initial contact angle
   ``alpha_0 = arccos(1 - s_r/(2A))`` from the radial operating clearance ``s_r`` (our diametral
   ``P_d``), axial clearance ``s_a = 2 A sin(alpha_0)``, inner groove-centre radius
@@ -39,6 +39,7 @@ the 5x5 stiffness is the central finite difference of the equilibrium forces.
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import replace
 
@@ -48,18 +49,27 @@ from scipy.optimize import brentq, root
 from scipy.special import ellipe, ellipk
 
 from ..errors import ConfigError, SolverError, check_range
-from ..geometry import BallBearing, Bearing
-from .jones import (
+from ..geometry import BallBearing, Bearing, parse_enum
+from .inputs import (
     Method,
     Misalignment,
     QSGeometry,
-    QuasiStaticSolution,
     SpeedEffects,
-    check_ball_errors,
-    check_misalignment,
-    load_vector,
+    _ball_azimuths,
+    _validate_case,
     qs_geometry,
 )
+from .result import QuasiStaticSolution
+
+__all__ = [
+    "ISO_CP_FACTOR",
+    "ISO_INNER_CONFORMITY",
+    "ISO_OUTER_CONFORMITY",
+    "Conformities",
+    "iso_geometry",
+    "iso_stiffness_constant",
+    "run_iso16281",
+]
 
 #: ISO/TS 16281 §6.3 reference groove radii of deep-groove/angular-contact ball bearings, / D_w
 ISO_INNER_CONFORMITY = 0.52
@@ -67,6 +77,18 @@ ISO_OUTER_CONFORMITY = 0.53
 #: constant of the ISO/TS 16281 §4.2 simplified stiffness (steel-independent form, E/(1-nu^2)
 #: factored out)
 ISO_CP_FACTOR = 1.48
+#: Stribeck's ``Q_max = 5 F_r / Z`` for a ball bearing with nominal clearance (Stribeck 1901;
+#: Harris & Kotzalas 2007 vol. 1 §7.2), used only for the solver's starting point
+_STRIBECK_CLEARANCE = 5.0
+
+
+class Conformities(enum.Enum):
+    """Groove conformities used by the ISO method."""
+
+    #: the groove radii of the bearing
+    BEARING = "bearing"
+    #: the ISO/TS 16281 §6.3 reference values ``r_i = 0.52 D_w``, ``r_e = 0.53 D_w``
+    ISO = "iso"
 
 
 def _chi(F_rho: float) -> float:
@@ -121,24 +143,39 @@ def iso_stiffness_constant(
 def iso_geometry(
     bearing: Bearing,
     clearance: float | None = None,
-    conformities: str = "bearing",
+    conformities: Conformities | str = Conformities.BEARING,
     max_contact_angle: float | None = None,
     stiffness: float | None = None,
 ) -> tuple[QSGeometry, float, float]:
-    """Derived geometry, ``c_p`` and ``R_i`` of the ISO method.
+    """Derived geometry, ``c_p`` and ``R_i`` of the ISO method (ISO/TS 16281 §4.2, §6.3).
 
-    Returns ``(geometry, c_p [N/m^1.5], R_i [m])``; ``geometry.k`` holds ``c_p`` (or the
-    override ``stiffness``).
+    Parameters
+    ----------
+    bearing : BallBearing
+        Geometry and material.
+    clearance : float, optional
+        Diametral clearance P_d [m] overriding the bearing's.
+    conformities : Conformities or {"bearing", "iso"}
+        Groove radii of the bearing or the ISO reference values.
+    max_contact_angle : float, optional
+        Largest admissible contact angle [rad].
+    stiffness : float, optional
+        Ball constant [N/m^1.5] overriding ``c_p``.
+
+    Returns
+    -------
+    tuple
+        ``(geometry, c_p [N/m^1.5], R_i [m])``; ``geometry.k`` holds ``c_p`` (or the override
+        ``stiffness``).
     """
     if not isinstance(bearing, BallBearing):
         raise ConfigError(
             f"bearing = {bearing.id!r} is a {bearing.kind} bearing; ISO/TS 16281 "
             "ball method needs a ball bearing"
         )
-    if conformities not in ("bearing", "iso"):
-        raise ConfigError(f"conformities = {conformities!r} is invalid; valid: 'bearing', 'iso'")
+    conformities = parse_enum(Conformities, conformities, "conformities")
     d = bearing.element_diameter
-    if conformities == "iso":
+    if conformities is Conformities.ISO:
         bearing = replace(
             bearing,
             inner_groove_radius=ISO_INNER_CONFORMITY * d,
@@ -192,7 +229,7 @@ def _start(geom: QSGeometry, psi: NDArray[np.float64], F: NDArray[np.float64]) -
     u = np.zeros(5)
     fr = math.hypot(F[0], F[1])
     if fr > 0:
-        dmax = (5.0 * fr / (geom.n_balls * geom.k)) ** (2.0 / 3.0)
+        dmax = (_STRIBECK_CLEARANCE * fr / (geom.n_balls * geom.k)) ** (2.0 / 3.0)
         u[0], u[1] = (
             (dmax + 0.5 * geom.clearance) * F[0] / fr,
             (dmax + 0.5 * geom.clearance) * F[1] / fr,
@@ -257,7 +294,7 @@ def run_iso16281(
     ball_errors: ArrayLike | None = None,
     first_ball_angle: float = 0.0,
     tilt_free: bool | None = None,
-    conformities: str = "bearing",
+    conformities: Conformities | str = Conformities.BEARING,
     max_contact_angle: float | None = None,
     stiffness: float | None = None,
     speed: SpeedEffects | None = None,
@@ -265,10 +302,10 @@ def run_iso16281(
 ) -> QuasiStaticSolution:
     """ISO/TS 16281 ball-bearing load distribution at each cage angle (module docstring).
 
-    Parameters as :func:`bearingsim.quasi_static.run_quasi_static`, plus ``conformities``:
-    ``"bearing"`` (groove radii of the bearing) or ``"iso"`` (ISO/TS 16281 §6.3 defaults
-    0.52/0.53). ``stiffness`` overrides ``c_p`` [N/m^1.5] (to isolate kinematic differences).
-    Inertia loads are not part of ISO/TS 16281.
+    Parameters as :func:`bearingsim.quasistatic.jones.run_quasi_static`, plus ``conformities``
+    (:class:`Conformities`: ``BEARING``, the groove radii of the bearing, or ``ISO``, the
+    ISO/TS 16281 §6.3 defaults 0.52/0.53). ``stiffness`` overrides ``c_p`` [N/m^1.5] (to
+    isolate kinematic differences). Inertia loads are not part of ISO/TS 16281.
     """
     if speed is not None and speed.active:
         raise ConfigError(
@@ -276,31 +313,22 @@ def run_iso16281(
             "valid: method 'jones' for inertia loads"
         )
     geom, _cp, Ri = iso_geometry(bearing, clearance, conformities, max_contact_angle, stiffness)
-    mis = misalignment if misalignment is not None else Misalignment()
-    check_misalignment(geom, mis)
-    err = check_ball_errors(geom, ball_errors)
-    F = load_vector(fx, fy, fz, mx, my)
-    psi0 = check_range("first_ball_angle_rad", first_ball_angle, unit="rad")
-    cage = np.atleast_1d(np.asarray(cage_angles, dtype=float)).ravel()
-    if cage.size == 0 or not np.all(np.isfinite(cage)):
-        raise ConfigError("cage_angle must be finite values; valid range (-inf, inf) rad")
-    held = mis.any if tilt_free is None else not tilt_free
-    if held and (F[3] != 0 or F[4] != 0):
-        raise ConfigError(
-            f"mx_nm = {F[3]:.6g}, my_nm = {F[4]:.6g} N m cannot be applied while the ring tilts "
-            "are held by a misalignment; valid: 0 N m, or no misalignment"
-        )
-    if not np.any(F) and geom.clearance > 0 and not mis.any:
-        raise ConfigError(
-            "load = 0 with positive clearance and no misalignment: the ring "
-            "position is undetermined; apply a force or moment (valid: |F| > 0)"
-        )
-    free = np.array([True, True, True, not held, not held])
+    case = _validate_case(
+        geom,
+        cage_angles,
+        (fx, fy, fz, mx, my),
+        misalignment,
+        ball_errors,
+        first_ball_angle,
+        tilt_free,
+        False,
+    )
+    mis, cage, F, free = case.misalignment, case.cage, case.applied, case.free
     Z = geom.n_balls
     m = cage.size
     idx = np.flatnonzero(free)
     fscale = max(float(np.linalg.norm(np.r_[F[:3], F[3:] / Ri])), 1.0)
-    out = {k: np.zeros((m, Z)) for k in ("psi", "Q", "al", "dl")}
+    out = {k: np.zeros((m, Z)) for k in ("Q", "al", "dl")}
     U = np.zeros((m, 5))
     H = np.zeros((m, 5, 5))
     R = np.zeros((m, 5))
@@ -308,7 +336,7 @@ def run_iso16281(
     its = np.zeros(m, dtype=np.int64)
     u = None
     for i, cg in enumerate(cage):
-        psi = cg + psi0 + 2.0 * np.pi * np.arange(Z) / Z + err
+        psi = _ball_azimuths(cg, case.first_ball_angle, case.ball_errors)
         sh = cg / geom.cage_ratio
         azi = mis.inner_azimuth + sh
         ti = (mis.inner_tilt * math.sin(azi), mis.inner_tilt * math.cos(azi))
@@ -346,7 +374,7 @@ def run_iso16281(
                 _forces(up, psi, moff, geom, Ri)[0] - _forces(um, psi, moff, geom, Ri)[0]
             ) / (2 * hs[k])
         U[i], R[i], res[i], its[i] = u, Fq, rel, nfev
-        out["psi"][i], out["Q"][i], out["al"][i], out["dl"][i] = psi, Q, al, dl
+        out["Q"][i], out["al"][i], out["dl"][i] = Q, al, dl
     amax = np.max(np.abs(out["al"]) * (out["Q"] > 0))
     if amax > geom.max_contact_angle:
         raise SolverError(
@@ -354,24 +382,18 @@ def run_iso16281(
             f"beyond the groove limit {math.degrees(geom.max_contact_angle):.1f} deg; reduce the "
             "load"
         )
-    return QuasiStaticSolution(
-        cage_angle=cage,
-        shaft_angle=cage / geom.cage_ratio,
+    return QuasiStaticSolution._build(
+        case,
+        geom,
+        Method.ISO16281,
+        SpeedEffects(),
+        bearing.id,
+        H,
         displacement=U,
-        stiffness_matrix=H,
         reaction=R,
-        ball_angles=out["psi"],
         ball_loads=out["Q"],
         contact_angles=out["al"],
         deflections=out["dl"],
         iterations=its,
         residual=res,
-        applied=F,
-        free=free,
-        geometry=geom,
-        method=Method.ISO16281,
-        misalignment=mis,
-        ball_errors=err,
-        speed=SpeedEffects(),
-        bearing_id=bearing.id,
     )

@@ -1,8 +1,8 @@
 """Bearing stiffness vs cage angle and its fluctuation spectrum (seed QS5 §2–3).
 
-The 5x5 tangent stiffness of :mod:`bearingsim.quasi_static` (or of the ISO/TS 16281 method,
-:mod:`bearingsim.iso16281`) is evaluated at ``points_per_rev`` cage positions per cage revolution
-over ``cage_revs`` revolutions. Three scalar stiffnesses are extracted:
+The 5x5 tangent stiffness of :mod:`bearingsim.quasistatic.jones` (or of the ISO/TS 16281
+method, :mod:`bearingsim.quasistatic.iso16281`) is evaluated at ``points_per_rev`` cage positions
+per cage revolution over ``cage_revs`` revolutions. Three scalar stiffnesses are extracted:
 
 * radial ``k_r = n^T K_xy n`` along the radial-load direction ``n = (sin theta_0, cos theta_0)``
   (``n = e_y`` without radial load) [N/m];
@@ -21,10 +21,9 @@ combinations ``kZ×cage ± n×shaft``.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import asdict, dataclass
-from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,18 +31,24 @@ from scipy.signal import find_peaks
 from scipy.signal.windows import hann
 
 from ..errors import ConfigError, check_range
-from ..geometry import Bearing
-from ..io.atomic import atomic_open
-from ..io.jsonable import to_jsonable
-from .jones import (
-    Method,
-    Misalignment,
-    QSGeometry,
-    QuasiStaticSolution,
-    SpeedEffects,
-    run_quasi_static,
-)
+from ..geometry import Bearing, parse_enum
+from ..results import Result, json_attr, read_json_attr
+from .inputs import Method
+from .jones import run_quasi_static
+from .result import QuasiStaticSolution
 
+__all__ = [
+    "SERIES",
+    "SpectralComponent",
+    "StiffnessResult",
+    "StiffnessSpectrum",
+    "component_names",
+    "label_order",
+    "order_spectrum",
+    "stiffness_vs_cage",
+]
+
+#: the three scalar stiffness series, in order
 SERIES = ("radial", "axial", "tilt")
 _UNITS = {"radial": "N/m", "axial": "N/m", "tilt": "N m/rad"}
 
@@ -192,8 +197,11 @@ def order_spectrum(
 
 
 @dataclass(frozen=True)
-class StiffnessResult:
+class StiffnessResult(Result):
     """Stiffness vs cage angle with its spectra (seed QS5 §2–3).
+
+    Saved as netCDF-4 (:meth:`save`, lossless :meth:`load`); :meth:`to_dict` is the JSON
+    summary (``bearingsim stiffness --json``).
 
     Attributes
     ----------
@@ -211,6 +219,8 @@ class StiffnessResult:
         Keys ``radial``, ``axial``, ``tilt``.
     """
 
+    FORMAT: ClassVar[str] = "bearingsim.StiffnessResult/1"
+
     solution: QuasiStaticSolution
     cage_revs: int
     points_per_rev: int
@@ -221,7 +231,9 @@ class StiffnessResult:
     spectra: dict[str, StiffnessSpectrum]
 
     def series(self, name: str) -> NDArray[np.float64]:
-        """Stiffness series ``radial``, ``axial`` or ``tilt``."""
+        """Stiffness series ``radial`` [N/m], ``axial`` [N/m] or ``tilt`` [N m/rad]."""
+        if name not in SERIES:
+            raise ConfigError(f"series = {name!r} is invalid; valid: " + ", ".join(SERIES))
         return {"radial": self.k_radial, "axial": self.k_axial, "tilt": self.k_tilt}[name]
 
     def fluctuation(self) -> dict[str, dict[str, object]]:
@@ -254,7 +266,7 @@ class StiffnessResult:
                     ("x_m", "y_m", "z_m", "theta_x_rad", "theta_y_rad"), map(float, u0), strict=True
                 )
             ),
-            "stiffness_matrix": s.stiffness_matrix[0],
+            "stiffness_matrix": s.stiffness_matrix.at(0).values,
             "k_radial_mean": float(self.k_radial.mean()),
             "k_axial_mean": float(self.k_axial.mean()),
             "k_tilt_mean": float(self.k_tilt.mean()),
@@ -276,7 +288,7 @@ class StiffnessResult:
             out["arrays"] = {
                 "cage_angle": s.cage_angle,
                 "displacement": s.displacement,
-                "stiffness_matrix": s.stiffness_matrix,
+                "stiffness_matrix": s.stiffness_matrix.values,
                 "reaction": s.reaction,
                 "ball_angles": s.ball_angles,
                 "ball_loads": s.ball_loads,
@@ -288,49 +300,60 @@ class StiffnessResult:
             }
         return out
 
-    def save(self, path: str | Path) -> Path:
-        """Write the full result as JSON (float64 round-trips exactly), atomically."""
-        p = Path(path)
-        with atomic_open(p, "w", encoding="utf-8") as fh:
-            json.dump(to_jsonable(self.to_dict(full=True)), fh)
-        return p
+    # ---------------------------------------------------------------------------- files
+    def to_dataset(self):
+        """The result as an :class:`xarray.Dataset`: the solution's variables
+        (:meth:`QuasiStaticSolution.to_dataset`), the series ``k_radial``, ``k_axial``,
+        ``k_tilt`` over ``position``, the amplitude spectra ``spectrum_<series>`` over ``order``
+        (coordinates ``order_cage``, ``order_shaft``) and the analysis settings and labelled
+        peaks as JSON attributes."""
+        ds = self.solution.to_dataset()
+        for name in SERIES:
+            ds[f"k_{name}"] = ("position", self.series(name), {"units": _UNITS[name]})
+        sp0 = self.spectra[SERIES[0]]
+        ds = ds.assign_coords(
+            order_cage=("order", sp0.order_cage, {"units": "1", "long_name": "cage orders"}),
+            order_shaft=("order", sp0.order_shaft, {"units": "1", "long_name": "shaft orders"}),
+        )
+        for name in SERIES:  # one order axis: every series has the same length and sampling
+            amp = self.spectra[name].amplitude
+            ds[f"spectrum_{name}"] = ("order", amp, {"units": _UNITS[name]})
+        ds.attrs["format"] = self.FORMAT
+        ds.attrs["analysis_json"] = json_attr(
+            {
+                "cage_revs": self.cage_revs,
+                "points_per_rev": self.points_per_rev,
+                "radial_direction": self.radial_direction,
+                "components": {
+                    name: [asdict(c) for c in self.spectra[name].components] for name in SERIES
+                },
+            }
+        )
+        return ds
 
     @classmethod
-    def load(cls, path: str | Path) -> StiffnessResult:
-        """Read a file written by :meth:`save`."""
-        try:
-            d = json.loads(Path(path).read_text(encoding="utf-8"))
-            a, inp = d["arrays"], d["inputs"]
-        except (OSError, ValueError, KeyError) as exc:
-            raise ConfigError(
-                f"stiffness result file {str(path)!r} cannot be read: {exc}"
-            ) from None
-        sol = QuasiStaticSolution(
-            cage_angle=np.array(a["cage_angle"], float),
-            shaft_angle=np.array(a["cage_angle"], float) / inp["geometry"]["cage_ratio"],
-            displacement=np.array(a["displacement"], float),
-            stiffness_matrix=np.array(a["stiffness_matrix"], float),
-            reaction=np.array(a["reaction"], float),
-            ball_angles=np.array(a["ball_angles"], float),
-            ball_loads=np.array(a["ball_loads"], float),
-            contact_angles=np.array(a["contact_angles"], float),
-            deflections=np.array(a["deflections"], float),
-            iterations=np.array(a["iterations"], np.int64),
-            residual=np.array(a["residual"], float),
-            applied=np.array(inp["applied"], float),
-            free=np.array(inp["free"], bool),
-            geometry=QSGeometry(**inp["geometry"]),
-            method=Method(d["method"]),
-            misalignment=Misalignment(**inp["misalignment"]),
-            ball_errors=np.array(inp["ball_errors_rad"], float),
-            speed=SpeedEffects(**inp["speed"]),
-            bearing_id=d["bearing"],
-        )
-        return _build(
-            sol,
-            int(d["cage_revs"]),
-            int(d["points_per_rev"]),
-            np.array(a["radial_direction"], float),
+    def from_dataset(cls, ds) -> StiffnessResult:
+        """Inverse of :meth:`to_dataset`."""
+        cls.check_format(ds)
+        an = read_json_attr(ds, "analysis_json")
+        oc = np.asarray(ds["order_cage"].values)
+        os_ = np.asarray(ds["order_shaft"].values)
+        spectra = {
+            name: StiffnessSpectrum(
+                oc,
+                os_,
+                np.asarray(ds[f"spectrum_{name}"].values),
+                [SpectralComponent(**c) for c in an["components"][name]],
+            )
+            for name in SERIES
+        }
+        return cls(
+            QuasiStaticSolution._read(ds),
+            int(an["cage_revs"]),
+            int(an["points_per_rev"]),
+            np.array(an["radial_direction"], dtype=float),
+            *(np.asarray(ds[f"k_{name}"].values) for name in SERIES),
+            spectra,
         )
 
     # ---------------------------------------------------------------------------- plots
@@ -411,16 +434,7 @@ class StiffnessResult:
 
     def plot_loads(self, index: int = 0):
         """Polar bar plot of the ball loads at cage position ``index``; returns the Figure."""
-        import matplotlib.pyplot as plt
-
-        s = self.solution
-        fig = plt.figure(figsize=(5, 5))
-        ax = fig.add_subplot(projection="polar")
-        ax.set_theta_zero_location("N")
-        ax.set_theta_direction(-1)
-        ax.bar(s.ball_angles[index], s.ball_loads[index], width=0.15, alpha=0.8)
-        ax.set_title(f"ball loads [N] at cage angle {math.degrees(s.cage_angle[index]):.1f} deg")
-        return fig
+        return self.solution.plot_loads(index)
 
 
 def _build(
@@ -430,7 +444,7 @@ def _build(
     n: NDArray[np.float64],
     n_components: int = 5,
 ) -> StiffnessResult:
-    H = sol.stiffness_matrix
+    H = sol.stiffness_matrix.stack
     m = np.array([n[1], -n[0]])
     kr = np.einsum("i,mij,j->m", n, H[:, :2, :2], n)
     kt = np.einsum("i,mij,j->m", m, H[:, 3:, 3:], m)
@@ -480,9 +494,10 @@ def stiffness_vs_cage(
         Number of labelled spectral peaks per series [-].
     **kwargs
         ``clearance``, ``misalignment``, ``ball_errors``, ``first_ball_angle``, ``tilt_free``,
-        ``speed``, ``stiffness``, ``max_contact_angle`` as :func:`run_quasi_static`.
+        ``speed``, ``stiffness``, ``max_contact_angle`` as :func:`run_quasi_static`;
+        ``conformities`` for the ISO method (:func:`~.iso16281.run_iso16281`).
     """
-    method = Method(method)
+    method = parse_enum(Method, method, "method")
     revs = check_range("cage_revs", cage_revs, 1, 10000, unit="rev")
     if revs != int(revs):
         raise ConfigError(f"cage_revs = {cage_revs!r} is not an integer; valid range [1, 10000]")

@@ -9,9 +9,13 @@ import numpy as np
 
 from ...catalog import get_bearing
 from ...load_distribution import radial_load_distribution
-from ...quasistatic.iso16281 import iso_geometry, run_iso16281
-from ...quasistatic.jones import Misalignment, run_quasi_static
-from ...quasistatic.stiffness import stiffness_vs_cage
+from ...quasistatic import (
+    Misalignment,
+    iso_geometry,
+    run_iso16281,
+    run_quasi_static,
+    stiffness_vs_cage,
+)
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 
