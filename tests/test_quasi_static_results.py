@@ -295,3 +295,28 @@ def test_results_are_frozen_dataclasses_of_the_pattern():
     for cls in (QuasiStaticSolution, StiffnessMatrix, StiffnessResult):
         assert issubclass(cls, Result) and dataclasses.is_dataclass(cls)
         assert cls.FORMAT == f"bearingsim.{cls.__name__}/1"
+
+
+def test_load_result_finds_the_class_in_a_fresh_process(tmp_path):
+    """``load_result`` imports the module of a file's class itself (``results.RESULT_MODULES``):
+    a fresh interpreter that imported nothing of the quasi-static family reads both kinds."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    a = solve_equilibrium(B6205, fy=500.0).save(tmp_path / "sol.nc")
+    b = stiffness_vs_cage(B6205, fy=500.0, cage_revs=1, points_per_rev=36).save(tmp_path / "r.nc")
+    code = (
+        "import sys\nfrom bearingsim.results import load_result\n"
+        "print(type(load_result(sys.argv[1])).__name__, type(load_result(sys.argv[2])).__name__)"
+    )
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    out = subprocess.run(
+        [sys.executable, "-c", code, str(a), str(b)],
+        capture_output=True,
+        text=True,
+        env={"PYTHONPATH": src, "PATH": "/usr/bin:/bin"},
+        timeout=300,
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["QuasiStaticSolution", "StiffnessResult"]

@@ -59,6 +59,8 @@ RESULT_MODULES: tuple[str, ...] = (
     "bearingsim.dynamics.rotor.response",
     "bearingsim.dynamics.ias.result",
     "bearingsim.life.fatigue",
+    "bearingsim.quasistatic.result",
+    "bearingsim.quasistatic.stiffness",
 )
 
 __all__ = [
