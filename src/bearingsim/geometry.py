@@ -305,6 +305,11 @@ class DefectProfile(enum.Enum):
     RECTANGULAR = "rectangular"
 
 
+#: reference groove conformities ``r / D_w`` of radial ball bearings, inner and outer raceway
+#: [-] (ISO/TS 16281:2008 §6.3; the same values underlie ISO 281's ratings, ISO/TR 1281-1)
+ISO_INNER_CONFORMITY = 0.52
+ISO_OUTER_CONFORMITY = 0.53
+
 #: CWRU seeded faults, 0.007 in wide (CWRU Bearing Data Center, "Fault Specifications") [m]
 CWRU_DEFECT_WIDTH_M = 0.007 * 25.4e-3
 #: CWRU electro-discharge-machined fault depth, 0.011 in (``../shared/data/cwru/SOURCES.md``) [m]

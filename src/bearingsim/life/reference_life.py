@@ -43,12 +43,10 @@ import numpy as np
 from scipy.integrate import quad
 
 from ..errors import check_positive
+from ..geometry import ISO_INNER_CONFORMITY as F_I
+from ..geometry import ISO_OUTER_CONFORMITY as F_O
 from ..geometry import BallBearing, Bearing
 from .iso281 import dynamic_load_rating, gamma
-
-#: ISO reference groove conformities r/D_w of radial ball bearings (ISO/TR 1281-1)
-F_REF_INNER = 0.52
-F_REF_OUTER = 0.53
 
 
 @dataclass(frozen=True)
@@ -123,7 +121,7 @@ def raceway_ratings(bearing: Bearing) -> RacewayRatings:
         ratio = ((1.0 - g) / (1.0 + g)) ** (143.0 / 108.0)  # Q_ci / Q_ce
         p_comb = 4.5  # (C_i/P)^-4.5 + (C_e/P)^-4.5 combination (p e = 4 x 9/8)
     else:
-        ratio = _ball_shape(F_REF_INNER, g, True) / _ball_shape(F_REF_OUTER, g, False)
+        ratio = _ball_shape(F_I, g, True) / _ball_shape(F_O, g, False)
         p_comb = 10.0 / 3.0  # p e = 3 x 10/9
     # C = C_i [1 + (C_i/C_e)^p_comb]^(-1/p_comb), C_i = Q_ci Z cos(a) J_r/J_1, C_e likewise with J_2
     ci_over_ce = ratio * J.j_2 / J.j_1
@@ -133,8 +131,8 @@ def raceway_ratings(bearing: Bearing) -> RacewayRatings:
     if line:
         return RacewayRatings(q_ci_ref, q_ce_ref)
     # actual conformities
-    si = _ball_shape(bearing.inner_conformity, g, True) / _ball_shape(F_REF_INNER, g, True)
-    se = _ball_shape(bearing.outer_conformity, g, False) / _ball_shape(F_REF_OUTER, g, False)
+    si = _ball_shape(bearing.inner_conformity, g, True) / _ball_shape(F_I, g, True)
+    se = _ball_shape(bearing.outer_conformity, g, False) / _ball_shape(F_O, g, False)
     return RacewayRatings(q_ci_ref * si, q_ce_ref * se)
 
 

@@ -49,7 +49,13 @@ from scipy.optimize import brentq, root
 from scipy.special import ellipe, ellipk
 
 from ..errors import ConfigError, SolverError, check_range
-from ..geometry import BallBearing, Bearing, parse_enum
+from ..geometry import (
+    ISO_INNER_CONFORMITY,
+    ISO_OUTER_CONFORMITY,
+    BallBearing,
+    Bearing,
+    parse_enum,
+)
 from .inputs import (
     Method,
     Misalignment,
@@ -71,9 +77,7 @@ __all__ = [
     "run_iso16281",
 ]
 
-#: ISO/TS 16281 §6.3 reference groove radii of deep-groove/angular-contact ball bearings, / D_w
-ISO_INNER_CONFORMITY = 0.52
-ISO_OUTER_CONFORMITY = 0.53
+
 #: constant of the ISO/TS 16281 §4.2 simplified stiffness (steel-independent form, E/(1-nu^2)
 #: factored out)
 ISO_CP_FACTOR = 1.48
