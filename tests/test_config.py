@@ -132,9 +132,10 @@ def test_simulate_runs_every_family():
     assert ring["acc_y"].size == rotor["acc_y"].size == 60
     sc = IasScenario(duration_s=0.05, dt_s=1e-5, fs_hz=10000.0)
     ias = bearingsim.simulate(sc)
-    ref = simulate_ias(ias_params(sc), 0.05, 1e-5, 10000.0, "rk4")
+    ref = simulate_ias(ias_params(sc), 0.0499, 1e-5, 10000.0, "rk4")  # 500 samples from t = 0
     np.testing.assert_array_equal(ias.omega, ref.omega)
-    assert ias.omega.size >= 500
+    assert ias.time.size == sc.n_samples == 500 and ias.fs_hz == 10000.0
+    assert ias.scenario == sc.to_dict() and np.array_equal(ias["omega"], ias.omega)
 
 
 def test_sweep_refuses_a_model_axis_across_families():

@@ -604,3 +604,25 @@ def test_local_workers_keep_glibc_dynamic_mmap_threshold(client):
         pytest.skip("MALLOC_TRIM_THRESHOLD_ is set in this environment (the workers inherit it)")
     got = client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_")
     assert len(got) == 2 and set(got.values()) == {None}
+
+
+def test_ias_scenarios_sweep_like_the_others(client, tmp_path):
+    """The IAS model runs in a sweep through ``simulate`` (issue 13): its default label is the
+    spall width, its default channel the shaft speed, and every run reads back equal to
+    ``simulate`` of the same scenario."""
+    spec = SweepSpec.from_dict(
+        {
+            "base": {"model": "ias", "duration_s": 0.02, "dt_s": 1e-5, "fs_hz": 10000.0},
+            "axes": {"spall_width_m": [0.0, 1e-3], "fy_n": [300.0, 400.0]},
+        },
+        origin="ias.toml",
+    )
+    assert spec.label == ("spall_width_m",) and spec.channels == ("omega",)
+    out = tmp_path / "ias.zarr"
+    assert run_sweep(spec, out, client=client).n_ok == 4
+    ds = open_dataset(out)
+    assert list(ds.labels()) == ["0.0", "0.0", "0.001", "0.001"]
+    for i in range(4):
+        r, s = ds.result(i), simulate(spec.scenario(i))
+        assert_array_equal(r["omega"], s["omega"], err_msg=f"run {i} vs simulate")
+        assert_allclose(r.time, s.time, rtol=0, atol=1e-15)

@@ -29,7 +29,8 @@ def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
     from ..simulation import simulate
 
     sc = Scenario.from_dict(scenario)
-    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, noise_rms_m_s2=0.0))
+    quiet = {"noise_rms_m_s2": 0.0} if hasattr(sc, "noise_rms_m_s2") else {}
+    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet))
     out = {}
     for name, x in res.channels.items():
         a = np.asarray(x)
@@ -106,7 +107,7 @@ def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float
 
 # ------------------------------------------------------------------------------ layout
 def _group_key(sd: dict[str, Any]) -> tuple:
-    return (sd["model"], sd["per_ball"], sd.get("bearing"), sd.get("bearing_file"))
+    return (sd["model"], sd.get("per_ball"), sd.get("bearing"), sd.get("bearing_file"))
 
 
 def probe_groups(scenarios: list[Scenario]) -> dict[tuple, list[int]]:

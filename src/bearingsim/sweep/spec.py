@@ -6,8 +6,9 @@ A sweep file is TOML with three tables::
     combine = "cartesian"        # "cartesian" (every combination) | "zip" (axes side by side)
     zip = [["rpm", "fy_n"]]      # groups of axes taken side by side inside a cartesian sweep
     seed = 0                     # seed of the random axes (integer >= 0)
-    channels = ["acc_x", "acc_y"]  # channels stored per run, or "all"
-    label = "fault"              # scenario key(s) used as the class label (summary, ML loader)
+    channels = ["acc_x", "acc_y"]  # channels stored per run, or "all" (IAS default: ["omega"])
+    label = "fault"              # scenario key(s) used as the class label (summary, ML loader;
+                                 # default: fault, de_fault (rotor), spall_width_m (IAS))
     per_run_seed = false         # true: noise seed of run i = base seed + i
     base_file = "scenario.toml"  # optional scenario file under [base] (relative to this file)
     name = "..."                 # free text
@@ -56,7 +57,7 @@ from typing import Any
 
 import numpy as np
 
-from ..config import Scenario, family
+from ..config import IasScenario, RingScenario, RotorScenario, Scenario, family
 from ..errors import ConfigError, check_range, read_toml
 
 #: identifies the canonical spec
@@ -76,7 +77,7 @@ SWEEP_KEYS = (
     "base_file",
     "name",
 )
-#: scenario keys (the valid axis names)
+#: scenario keys of every family (a sweep's axes are keys of its base's family)
 SCENARIO_KEYS = Scenario.keys()
 #: the random distributions of an axis and their parameters
 RANDOM_KINDS = {
@@ -85,6 +86,14 @@ RANDOM_KINDS = {
     "normal": ("mean", "std"),
     "integers": ("low", "high"),
     "choice": ("values",),
+}
+
+
+#: per model family: the default class label and stored channels of a sweep
+_FAMILY_DEFAULTS: dict[type[Scenario], tuple[str, tuple[str, ...]]] = {
+    RingScenario: ("fault", ("acc_x", "acc_y")),
+    RotorScenario: ("de_fault", ("acc_x", "acc_y")),
+    IasScenario: ("spall_width_m", ("omega",)),
 }
 
 
@@ -345,19 +354,24 @@ class SweepSpec:
     def __post_init__(self) -> None:
         o = self.origin
         names = [a.name for a in self.axes]
+        keys = family(self.base.get("model", "vsm")).KEYS
         for n in names:
-            if n not in SCENARIO_KEYS:
+            if n not in keys:
                 raise ConfigError(
-                    f"{o}: axis {n!r} is not a scenario key; valid: " + ", ".join(SCENARIO_KEYS)
+                    f"{o}: axis {n!r} is not a scenario key; valid: " + ", ".join(keys)
                 )
         if len(set(names)) != len(names):
             raise ConfigError(f"{o}: an axis appears twice in {names}")
         for k in self.label:
-            if k not in SCENARIO_KEYS:
+            if k not in keys:
                 raise ConfigError(
-                    f"{o}: label key {k!r} is not a scenario key; valid: "
-                    + ", ".join(SCENARIO_KEYS)
+                    f"{o}: label key {k!r} is not a scenario key; valid: " + ", ".join(keys)
                 )
+        if self.per_run_seed and "seed" not in keys:
+            raise ConfigError(
+                f"{o}: per_run_seed = true but model {self.base.get('model')!r} has no noise "
+                "seed; valid: false"
+            )
         if self.per_run_seed and "seed" in names:
             raise ConfigError(f"{o}: per_run_seed = true and a 'seed' axis exclude each other")
         lengths = {a.name: len(a) for a in self.axes}
@@ -439,7 +453,7 @@ class SweepSpec:
     def iter_values(self):
         """Axis values of every run, in run order (fast path of :meth:`run_values`)."""
         factors = self.factors
-        seed0 = int(self.base["seed"])
+        seed0 = int(self.base.get("seed", 0))
         for i, combo in enumerate(itertools.product(*(range(len(f[0])) for f in factors))):
             out = {a.name: a.values[k] for f, k in zip(factors, combo, strict=True) for a in f}
             if self.per_run_seed:
@@ -578,7 +592,8 @@ class SweepSpec:
             raise ConfigError(
                 f"{origin}: sweep.zip = {zips!r} is invalid; valid: a list of lists of axis names"
             )
-        channels = sw.get("channels", ["acc_x", "acc_y"])
+        default_label, default_channels = _FAMILY_DEFAULTS[type(base_sc)]
+        channels = sw.get("channels", list(default_channels))
         if channels == "all":
             chans = None
         elif (
@@ -593,7 +608,7 @@ class SweepSpec:
                 f'{origin}: sweep.channels = {channels!r} is invalid; valid: "all" or a list of '
                 "distinct channel names"
             )
-        label = sw.get("label", "fault")
+        label = sw.get("label", default_label)
         label = [label] if isinstance(label, str) else label
         if not isinstance(label, list) or not all(isinstance(k, str) for k in label):
             raise ConfigError(
@@ -604,11 +619,11 @@ class SweepSpec:
             raise ConfigError(f"{origin}: sweep.per_run_seed = {prs!r} is invalid; valid: bool")
         name = sw.get("name", "")
         axes = []
+        keys = type(base_sc).KEYS
         for key, desc in axes_t.items():
-            if key not in SCENARIO_KEYS:
+            if key not in keys:
                 raise ConfigError(
-                    f"{origin}: axis {key!r} is not a scenario key; valid: "
-                    + ", ".join(SCENARIO_KEYS)
+                    f"{origin}: axis {key!r} is not a scenario key; valid: " + ", ".join(keys)
                 )
             ax = expand_axis(key, desc, seed, origin)
             if key == "bearing_file":

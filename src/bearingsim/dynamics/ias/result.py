@@ -57,6 +57,13 @@ class IasResult(Result):
         Method, step, decimation, steps, output rate, wall time.
     version : str
         bearingsim version.
+    scenario : dict or None
+        The :class:`~bearingsim.config.IasScenario` keys when the run came from
+        :func:`bearingsim.simulate` (``None`` for a direct :func:`.model.simulate_ias` call).
+
+    Like every result of :func:`bearingsim.simulate`, it also reads as a time series of named
+    channels: ``time``, ``channels`` (the columns of ``state`` and ``aux`` by name),
+    ``units``, ``fs_hz``, ``meta``, ``res["omega"]`` — which is what sweeps store.
     """
 
     FORMAT: ClassVar[str] = "bearingsim.IasResult/1"
@@ -68,6 +75,7 @@ class IasResult(Result):
     constants: IasConstants
     solver: dict[str, Any]
     version: str
+    scenario: dict[str, Any] | None = None
 
     def __getattr__(self, name: str) -> NDArray[np.float64]:
         if name in STATE_NAMES:
@@ -76,6 +84,58 @@ class IasResult(Result):
             return self.aux[:, AUX_NAMES.index(name)]
         raise AttributeError(name)
 
+    # ------------------------------------------------------------ the time-series view
+    @property
+    def time(self) -> NDArray[np.float64]:
+        """Sample times [s] (``t``)."""
+        return self.t
+
+    @property
+    def channels(self) -> dict[str, NDArray[np.float64]]:
+        """Every column of ``state`` and ``aux`` by name (units in :attr:`units`)."""
+        out = {n: self.state[:, i] for i, n in enumerate(STATE_NAMES)}
+        out.update({n: self.aux[:, i] for i, n in enumerate(AUX_NAMES)})
+        return out
+
+    @property
+    def units(self) -> dict[str, str]:
+        """Unit of each channel."""
+        return {n: _UNITS[n][0] for n in (*STATE_NAMES, *AUX_NAMES)}
+
+    @property
+    def dims(self) -> dict[str, tuple[str, ...]]:
+        """Dimensions of the channels that are not 1-D (none here)."""
+        return {}
+
+    def _dims(self, name: str, arr: NDArray) -> tuple[str, ...]:
+        return ("time",)
+
+    @property
+    def fs_hz(self) -> float:
+        """Output sample rate [Hz]."""
+        return float(self.solver["output_rate_hz"])
+
+    @property
+    def meta(self) -> dict[str, Any]:
+        """Model, bearing, inputs, derived constants and solver facts (as in the other
+        simulation results)."""
+        return {
+            "model": "ias",
+            "bearing_id": self.params.bearing.id,
+            "fs_hz": self.fs_hz,
+            "params": self.params.as_dict(),
+            "constants": asdict(self.constants),
+            "solver": self.solver,
+            "bearingsim_version": self.version,
+        }
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        ch = self.channels
+        if name not in ch:
+            raise ConfigError(f"channel = {name!r} is not in the result; valid: " + ", ".join(ch))
+        return ch[name]
+
+    # ------------------------------------------------------------------ analysis
     def default_skip(self) -> float:
         """Start-up time left out of the analysis: 10 % of the run [s]."""
         return 0.1 * float(self.t[-1] - self.t[0])
@@ -182,6 +242,8 @@ class IasResult(Result):
             solver=json_attr(self.solver),
             version=self.version,
         )
+        if self.scenario is not None:
+            attrs["scenario_json"] = json_attr(self.scenario)
         return xr.Dataset(data, coords={"time": ("time", self.t, var_attrs("s"))}, attrs=attrs)
 
     @classmethod
@@ -218,4 +280,5 @@ class IasResult(Result):
             const,
             read_json_attr(ds, "solver"),
             str(ds.attrs.get("version", "")),
+            read_json_attr(ds, "scenario_json") if "scenario_json" in ds.attrs else None,
         )

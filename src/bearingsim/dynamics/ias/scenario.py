@@ -13,6 +13,7 @@ in the ring models); the seed's ``dt_s = 1e-6`` s is kept exactly at ``fs_hz`` =
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import replace
@@ -66,11 +67,15 @@ def output_grid(sc: IasScenario) -> tuple[int, float]:
 
 
 def run_ias(sc: IasScenario, progress: Callable[[int], None] | None = None) -> IasResult:
-    """Run an IAS scenario (the runner behind :func:`bearingsim.simulate`)."""
+    """Run an IAS scenario (the runner behind :func:`bearingsim.simulate`): ``n_samples``
+    output samples at ``fs_hz`` from ``t = 0`` (``progress`` is not called: the run is one
+    compiled call)."""
     params = ias_params(sc)
     check_step(params, sc.dt_s)  # the given step must be stable before it is rounded
     _decim, dt = output_grid(sc)
-    return simulate_ias(params, sc.duration_s, dt, sc.fs_hz, sc.solver.value)
+    span = (sc.n_samples - 1) / sc.fs_hz  # n_samples samples, the last at span
+    res = simulate_ias(params, span, dt, sc.fs_hz, sc.solver.value)
+    return dataclasses.replace(res, scenario=sc.to_dict())
 
 
 # ------------------------------------------------------------------ the `ias` command's files
