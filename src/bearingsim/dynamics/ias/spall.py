@@ -1,14 +1,14 @@
-"""Angle-domain processing of shaft-speed signals: angular resampling, order spectrum, synchronous
-averaging and spall-width estimation (seed IAS §3.1, eq. (37); SPEC §0.5 order tracking).
-
-Everything here works on a *signal* — simulated or measured (encoder timestamps, angle vs time
-or speed vs time) — and never on a model's internals.
+"""Spall-width estimate from an instantaneous-angular-speed signal (seed IAS §3.1, eq. (37)) and
+the angle-domain summary of a shaft-speed signal. Works on any IAS signal — simulated
+(:meth:`.IasResult.analyze`) or measured (encoder timestamps, ``bearingsim analyze-ias``) — through
+:mod:`bearingsim.signal` only, never on the model's internals.
 
 Spall-width estimation (:func:`estimate_spall_width`)
-    1. the IAS ``omega(theta)`` on a uniform shaft-angle grid;
+    1. the IAS ``omega(theta)`` on a uniform shaft-angle grid
+       (:func:`bearingsim.signal.resample_to_angle`);
     2. its order spectrum; the fault order ``f_o`` is the strongest peak within ±10 % of an
-       expected order (e.g. the kinematic BPFO order), refined by interpolation — so cage slip
-       in a measurement is followed;
+       expected order (e.g. the kinematic BPFO order), refined by parabolic interpolation — so
+       cage slip in a measurement is followed;
     3. synchronous average of ``omega`` over the fault period ``2 pi / f_o`` (one roller pass);
     4. the crossing angle from the averaged event:
 
@@ -33,293 +33,25 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
-from scipy.signal import find_peaks
+from numpy.typing import NDArray
 
-from ..errors import ConfigError, check_positive, check_range
+from ...errors import ConfigError, check_positive, check_range
+from ...geometry import parse_enum
+from ...signal.order import AngleSignal, order_spectrum, synchronous_average
+from ...signal.peaks import SpectralPeak, spectrum_peaks, strongest_peak
+from ...signal.spectrum import Spectrum
+
+__all__ = [
+    "MIN_CONTRAST",
+    "IasSummary",
+    "SpallEstimate",
+    "SpallEstimator",
+    "analyze_speed_signal",
+    "estimate_spall_width",
+    "spall_width_from_angle",
+]
 
 TWO_PI = 2.0 * math.pi
-
-
-def _arr(name: str, v: ArrayLike) -> NDArray[np.float64]:
-    a = np.asarray(v, dtype=float).ravel()
-    if a.size < 4:
-        raise ConfigError(f"{name} has {a.size} samples; valid range >= 4 samples")
-    if not np.all(np.isfinite(a)):
-        raise ConfigError(f"{name} contains a non-finite value; valid range finite numbers")
-    return a
-
-
-@dataclass(frozen=True)
-class AngleSignal:
-    """A signal sampled uniformly in shaft angle.
-
-    Attributes
-    ----------
-    angle : ndarray
-        Shaft angle [rad], uniform step ``2 pi / samples_per_rev``.
-    value : ndarray
-        Signal at those angles (here the angular speed [rad/s]).
-    samples_per_rev : int
-        Samples per shaft revolution [-].
-    """
-
-    angle: NDArray[np.float64]
-    value: NDArray[np.float64]
-    samples_per_rev: int
-
-    @property
-    def n_revs(self) -> float:
-        """Length in shaft revolutions [-]."""
-        return self.value.size / self.samples_per_rev
-
-    def plot(
-        self,
-        ax=None,
-        label: str | None = None,
-        scale: float = 60.0 / TWO_PI,
-        ylabel: str = "IAS [r/min]",
-    ):
-        """Signal vs shaft angle in revolutions; returns the Figure."""
-        import matplotlib.pyplot as plt
-
-        fig = None
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(8, 3.5))
-        ax.plot(self.angle / TWO_PI, self.value * scale, lw=0.8, label=label)
-        ax.set_xlabel("shaft angle [rev]")
-        ax.set_ylabel(ylabel)
-        return fig or ax.figure
-
-
-def speed_from_angle(t: ArrayLike, angle: ArrayLike) -> NDArray[np.float64]:
-    """Angular speed ``d angle/dt`` [rad/s] at the samples (second-order differences; for encoder
-    timestamps this is the elapsed-time method).
-
-    Parameters
-    ----------
-    t : array_like
-        Sample times [s], strictly increasing.
-    angle : array_like
-        Shaft angle [rad] at ``t``.
-    """
-    tt = _arr("time_s", t)
-    th = _arr("angle_rad", angle)
-    if tt.size != th.size:
-        raise ConfigError(f"angle has {th.size} samples but time has {tt.size}; they must match")
-    if np.any(np.diff(tt) <= 0):
-        raise ConfigError("time_s is not strictly increasing; valid: increasing sample times")
-    return np.gradient(th, tt, edge_order=2)
-
-
-def angle_from_speed(t: ArrayLike, speed: ArrayLike) -> NDArray[np.float64]:
-    """Shaft angle [rad] by trapezoidal integration of the speed [rad/s] from 0 at ``t[0]``."""
-    tt = _arr("time_s", t)
-    w = _arr("speed_rad_s", speed)
-    if tt.size != w.size:
-        raise ConfigError(f"speed has {w.size} samples but time has {tt.size}; they must match")
-    if np.any(np.diff(tt) <= 0):
-        raise ConfigError("time_s is not strictly increasing; valid: increasing sample times")
-    out = np.empty_like(w)
-    out[0] = 0.0
-    np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(tt), out=out[1:])
-    return out
-
-
-def resample_to_angle(
-    angle: ArrayLike,
-    value: ArrayLike,
-    samples_per_rev: int | None = None,
-) -> AngleSignal:
-    """Resample ``value`` given at (monotonic) shaft angles onto a uniform angle grid.
-
-    Parameters
-    ----------
-    angle : array_like
-        Shaft angle of each sample [rad]; must increase strictly (the shaft turns one way).
-    value : array_like
-        Signal at those samples (e.g. angular speed [rad/s]).
-    samples_per_rev : int, optional
-        Samples per revolution of the output; default: the power of two nearest the input's mean
-        density (at least 64).
-    """
-    th = _arr("angle_rad", angle)
-    v = _arr("value", value)
-    if th.size != v.size:
-        raise ConfigError(f"value has {v.size} samples but angle has {th.size}; they must match")
-    if np.any(np.diff(th) <= 0):
-        raise ConfigError(
-            "angle_rad is not strictly increasing; the shaft must turn one way "
-            "(drop the start-up or the stopped part)"
-        )
-    span = th[-1] - th[0]
-    if samples_per_rev is None:
-        dens = th.size / (span / TWO_PI)
-        samples_per_rev = max(64, 2 ** int(round(math.log2(max(dens, 1.0)))))
-    spr = int(check_range("samples_per_rev", samples_per_rev, 8, 2**24))
-    step = TWO_PI / spr
-    n = int(math.floor(span / step)) + 1
-    grid = th[0] + step * np.arange(n)
-    return AngleSignal(grid, np.interp(grid, th, v), spr)
-
-
-@dataclass(frozen=True)
-class OrderSpectrum:
-    """Single-sided amplitude spectrum versus order (cycles per shaft revolution).
-
-    Attributes
-    ----------
-    order : ndarray
-        Orders [-] (zero-padded grid).
-    amplitude : ndarray
-        Amplitude of a sinusoid at that order (Hann window, amplitude-corrected), in the unit of
-        the signal (e.g. [rad/s]).
-    resolution : float
-        ``1 / n_revs``, the true order resolution [-].
-    """
-
-    order: NDArray[np.float64]
-    amplitude: NDArray[np.float64]
-    resolution: float
-
-    def plot(
-        self,
-        ax=None,
-        max_order: float = 30.0,
-        scale: float = 60.0 / TWO_PI,
-        ylabel: str = "amplitude [r/min]",
-        marks: ArrayLike | None = None,
-    ):
-        """Spectrum up to ``max_order`` with optional vertical marks; returns the Figure."""
-        import matplotlib.pyplot as plt
-
-        fig = None
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(8, 3.5))
-        m = self.order <= max_order
-        ax.plot(self.order[m], self.amplitude[m] * scale, lw=0.8)
-        for o in np.atleast_1d(marks if marks is not None else []):
-            ax.axvline(o, color="r", ls="--", lw=0.7)
-        ax.set_xlabel("order [-]")
-        ax.set_ylabel(ylabel)
-        return fig or ax.figure
-
-
-def order_spectrum(sig: AngleSignal, pad_factor: int = 16) -> OrderSpectrum:
-    """Order spectrum of an angle-domain signal (mean removed, Hann window, zero padding).
-
-    Parameters
-    ----------
-    sig : AngleSignal
-        Uniformly sampled in angle.
-    pad_factor : int
-        Zero padding factor (interpolates the spectrum; the resolution stays ``1/n_revs``).
-    """
-    pad = int(check_range("pad_factor", pad_factor, 1, 1024))
-    v = sig.value - sig.value.mean()
-    w = np.hanning(v.size)
-    nfft = 1 << int(math.ceil(math.log2(v.size * pad)))
-    spec = np.abs(np.fft.rfft(v * w, nfft)) * 2.0 / w.sum()
-    order = np.fft.rfftfreq(nfft, d=1.0 / sig.samples_per_rev)
-    return OrderSpectrum(order, spec, 1.0 / sig.n_revs)
-
-
-@dataclass(frozen=True)
-class OrderPeak:
-    """A spectral peak: order [-] and amplitude (signal unit)."""
-
-    order: float
-    amplitude: float
-
-
-def _refine(spec: OrderSpectrum, i: int) -> OrderPeak:
-    a = spec.amplitude
-    if 0 < i < a.size - 1:
-        y0, y1, y2 = a[i - 1], a[i], a[i + 1]
-        den = y0 - 2.0 * y1 + y2
-        d = 0.5 * (y0 - y2) / den if den != 0 else 0.0
-        d = min(max(d, -0.5), 0.5)
-        step = spec.order[1] - spec.order[0]
-        return OrderPeak(float(spec.order[i] + d * step), float(y1 - 0.25 * (y0 - y2) * d))
-    return OrderPeak(float(spec.order[i]), float(a[i]))
-
-
-def find_order_peaks(
-    spec: OrderSpectrum,
-    n_peaks: int = 5,
-    min_order: float = 0.5,
-    max_order: float | None = None,
-    rel_height: float = 0.05,
-) -> list[OrderPeak]:
-    """The ``n_peaks`` largest spectral peaks (refined by parabolic interpolation), by amplitude.
-
-    Peaks closer than two resolutions (the Hann main lobe) are merged; a peak must reach
-    ``rel_height`` times the largest one in ``[min_order, max_order]`` (the default 0.05 is above
-    the Hann window's highest side lobe, -31.5 dB = 0.027).
-    """
-    m = spec.order >= min_order
-    if max_order is not None:
-        m &= spec.order <= max_order
-    if not np.any(m):
-        return []
-    i0 = int(np.argmax(m))
-    a = np.where(m, spec.amplitude, 0.0)
-    step = spec.order[1] - spec.order[0]
-    dist = max(1, int(round(2.0 * spec.resolution / step)))
-    idx, _ = find_peaks(a, height=rel_height * a[i0:].max(), distance=dist)
-    idx = sorted(idx, key=lambda i: -a[i])[:n_peaks]
-    return [_refine(spec, int(i)) for i in idx]
-
-
-def dominant_order(spec: OrderSpectrum, near: float, rel_tol: float = 0.1) -> OrderPeak:
-    """Strongest peak within ``near (1 ± rel_tol)`` [-], refined; raises if none."""
-    near = check_positive("expected_order", near)
-    m = (spec.order >= near * (1 - rel_tol)) & (spec.order <= near * (1 + rel_tol))
-    if not np.any(m):
-        raise ConfigError(
-            f"expected_order = {near:.6g} is beyond the spectrum (max order "
-            f"{spec.order[-1]:.4g}); sample the signal more finely"
-        )
-    i = int(np.flatnonzero(m)[np.argmax(spec.amplitude[m])])
-    return _refine(spec, i)
-
-
-def synchronous_average(
-    sig: AngleSignal, period: float, samples_per_period: int = 1024
-) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
-    """Average of the signal over consecutive angular periods.
-
-    Parameters
-    ----------
-    sig : AngleSignal
-        Uniform in shaft angle.
-    period : float
-        Angular period [rad] (e.g. ``2 pi / BPFO order``).
-    samples_per_period : int
-        Samples of the averaged period.
-
-    Returns
-    -------
-    phase : ndarray
-        Angle within the period [rad], from the first sample of ``sig``.
-    mean : ndarray
-        Averaged signal.
-    n_periods : int
-        Number of whole periods averaged.
-    """
-    period = check_positive("period_rad", period, "rad")
-    span = sig.angle[-1] - sig.angle[0]
-    k = int(math.floor(span / period))
-    if k < 1:
-        raise ConfigError(
-            f"signal spans {span:.4g} rad, less than one period {period:.4g} rad; "
-            "valid: a longer signal"
-        )
-    spp = int(check_range("samples_per_period", samples_per_period, 16, 2**20))
-    phase = period * np.arange(spp) / spp
-    grid = sig.angle[0] + (np.arange(k)[:, None] * period + phase[None, :])
-    vals = np.interp(grid.ravel(), sig.angle, sig.value).reshape(k, spp)
-    return phase, vals.mean(axis=0), k
 
 
 def spall_width_from_angle(
@@ -452,12 +184,12 @@ def estimate_spall_width(
     min_contrast : float
         Detection threshold on the step contrast [-].
     """
-    method = SpallEstimator(method)
+    method = parse_enum(SpallEstimator, method, "method")
     do = check_positive("outer_raceway_diameter_m", outer_raceway_diameter, "m")
     rho = check_range("cage_ratio", cage_ratio, 0.0, 1.0, lo_open=True, hi_open=True)
     thr = check_range("threshold", threshold, 0.0, 1.0, lo_open=True, hi_open=True)
-    spec = order_spectrum(sig)
-    fo = dominant_order(spec, expected_order).order
+    spec = order_spectrum(sig, unit="rad/s")
+    fo = strongest_peak(spec, expected_order).freq
     period = TWO_PI / fo
     phase, avg, k = synchronous_average(sig, period, samples_per_period)
     n = avg.size
@@ -511,10 +243,10 @@ class IasSummary:
         Mean angular speed [rad/s] (angle-domain mean).
     ripple_rel : float
         ``(max - min) / mean`` of the speed [-].
-    peaks : list of OrderPeak
+    peaks : list of SpectralPeak
         Largest order-spectrum peaks, sorted by order.
-    spectrum : OrderSpectrum
-        The order spectrum.
+    spectrum : Spectrum
+        The order spectrum (:attr:`~bearingsim.signal.Domain.ORDER`) [rad/s].
     bpfo_order : float or None
         Kinematic BPFO order of the bearing, when known [-].
     estimate : SpallEstimate or None
@@ -525,8 +257,8 @@ class IasSummary:
 
     mean_speed: float
     ripple_rel: float
-    peaks: list[OrderPeak]
-    spectrum: OrderSpectrum
+    peaks: list[SpectralPeak]
+    spectrum: Spectrum
     bpfo_order: float | None
     estimate: SpallEstimate | None
     signal: AngleSignal
@@ -581,8 +313,8 @@ def analyze_speed_signal(
             f"mean speed = {mean:.6g} rad/s; valid range (0, inf) rad/s (the shaft must turn)"
         )
     ripple = float((sig.value.max() - sig.value.min()) / mean)
-    spec = order_spectrum(sig)
-    peaks = sorted(find_order_peaks(spec, n_peaks=n_peaks), key=lambda p: p.order)
+    spec = order_spectrum(sig, unit="rad/s")
+    peaks = sorted(spectrum_peaks(spec, n_peaks, f_min=0.5), key=lambda p: p.freq)
     est = None
     if None not in (bpfo_order, outer_raceway_diameter, cage_ratio):
         est = estimate_spall_width(
