@@ -12,7 +12,12 @@ Angular resampling (:func:`resample_to_angle`; computed order tracking, Fyfe & M
     (nothing aliases there), and decimated by ``L`` with :func:`scipy.signal.resample_poly`
     (Kaiser-windowed FIR low-pass at ``samples_per_rev / 2`` orders, zero phase, the ends
     extended along the line through the first and last samples). Where the output is at least
-    as dense as the input, plain interpolation is exact enough and nothing is filtered.
+    as dense as the input, plain interpolation is exact enough and nothing is filtered. The
+    density is the 1st percentile of the angle steps (robust to timing jitter), and the finer
+    grid holds at most four times the input's samples. The FIR (SciPy's default Kaiser window,
+    beta 5, 10 taps per phase) passes orders below 0.8 of the Nyquist order within 0.2 % and
+    attenuates orders above 1.2 of it by more than 50 dB (the transition band lies between);
+    its end transients span ~10 output samples.
 
 Order spectrum (:func:`order_spectrum`)
     the amplitude spectrum of :mod:`.spectrum` over orders (cycles per shaft revolution), zero
@@ -188,8 +193,9 @@ def resample_to_angle(
         Signal at those samples (any unit, e.g. angular speed [rad/s] or acceleration
         [m/s^2]).
     samples_per_rev : int, optional
-        Samples per revolution of the output [-]; default: the power of two nearest the input's
-        mean density (at least 64).
+        Samples per revolution of the output [-]; default: the smallest power of two at least the
+        input's mean density (at least 64) — nothing is filtered unless the shaft is slower than
+        average by more than that power of two's margin.
     interpolation : Interpolation
         Between input samples: ``LINEAR`` (default) or ``CUBIC``.
 
@@ -211,14 +217,15 @@ def resample_to_angle(
         )
     span = th[-1] - th[0]
     if samples_per_rev is None:
-        dens = th.size / (span / TWO_PI)
-        samples_per_rev = max(64, 2 ** int(round(math.log2(max(dens, 1.0)))))
+        dens = (th.size - 1) / (span / TWO_PI) * (1.0 - _DENSITY_TOL)  # mean steps per rev
+        samples_per_rev = max(64, 2 ** math.ceil(math.log2(max(dens, 1.0))))
     spr = int(check_range("samples_per_rev", samples_per_rev, 8, 2**24))
     step = TWO_PI / spr
     n = int(math.floor(span / step)) + 1
-    # oversampling of the interpolation grid: at least the densest input [samples/rev]
-    densest = TWO_PI / float(dth.min())
-    L = max(1, math.ceil(densest / spr * (1.0 - _DENSITY_TOL)))
+    # oversampling of the interpolation grid: at least the densest input [samples/rev] (1st
+    # percentile of the steps: robust to jitter), at most 4 times the input's samples
+    densest = TWO_PI / float(np.quantile(dth, 0.01))
+    L = max(1, min(math.ceil(densest / spr * (1.0 - _DENSITY_TOL)), math.ceil(4 * th.size / n)))
     grid = th[0] + (step / L) * np.arange((n - 1) * L + 1) if L > 1 else th[0] + step * np.arange(n)
     if interp is Interpolation.LINEAR:
         y = np.interp(grid, th, v)

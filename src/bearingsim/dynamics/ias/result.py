@@ -83,7 +83,7 @@ class IasResult:
         """IAS resampled to uniform shaft angle after ``skip_s`` [s] (an
         :class:`~bearingsim.signal.AngleSignal`, anti-aliased:
         :func:`bearingsim.signal.resample_to_angle`); ``samples_per_rev`` [1/rev] defaults to
-        the power of two nearest the output rate's density."""
+        the smallest power of two at least the samples per revolution of the output rate."""
         from ...signal.order import resample_to_angle
 
         m = self.steady(skip_s)
