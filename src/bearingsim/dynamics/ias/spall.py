@@ -42,7 +42,9 @@ from ...signal.peaks import SpectralPeak, spectrum_peaks, strongest_peak
 from ...signal.spectrum import Spectrum
 
 __all__ = [
+    "EXTENT_THRESHOLD",
     "MIN_CONTRAST",
+    "SAMPLES_PER_PASS",
     "IasSummary",
     "SpallEstimate",
     "SpallEstimator",
@@ -146,8 +148,12 @@ class SpallEstimate:
         return fig
 
 
-#: minimum step contrast for a spall to be reported (see :attr:`SpallEstimate.contrast`)
+#: minimum step contrast for a spall to be reported (see :attr:`SpallEstimate.contrast`) [-]
 MIN_CONTRAST = 20.0
+#: ``EXTENT`` reading: fraction of the peak deviation bounding the event [-]
+EXTENT_THRESHOLD = 0.02
+#: samples of the synchronous-averaged roller pass [-]
+SAMPLES_PER_PASS = 4096
 
 
 def estimate_spall_width(
@@ -157,8 +163,8 @@ def estimate_spall_width(
     expected_order: float,
     *,
     method: SpallEstimator | str = SpallEstimator.STEPS,
-    threshold: float = 0.02,
-    samples_per_period: int = 4096,
+    threshold: float = EXTENT_THRESHOLD,
+    samples_per_period: int = SAMPLES_PER_PASS,
     min_contrast: float = MIN_CONTRAST,
 ) -> SpallEstimate | None:
     """Estimate an outer-race spall width from an IAS signal (seed IAS eq. (37)); see the module
@@ -184,11 +190,29 @@ def estimate_spall_width(
     min_contrast : float
         Detection threshold on the step contrast [-].
     """
+    spec = order_spectrum(sig, unit="rad/s")
+    return _estimate(
+        sig, spec, outer_raceway_diameter, cage_ratio, expected_order, method, threshold,
+        samples_per_period, min_contrast,
+    )  # fmt: skip
+
+
+def _estimate(
+    sig: AngleSignal,
+    spec: Spectrum,
+    outer_raceway_diameter: float,
+    cage_ratio: float,
+    expected_order: float,
+    method: SpallEstimator | str,
+    threshold: float,
+    samples_per_period: int,
+    min_contrast: float,
+) -> SpallEstimate | None:
+    """:func:`estimate_spall_width` given the order spectrum ``spec`` of ``sig``."""
     method = parse_enum(SpallEstimator, method, "method")
     do = check_positive("outer_raceway_diameter_m", outer_raceway_diameter, "m")
     rho = check_range("cage_ratio", cage_ratio, 0.0, 1.0, lo_open=True, hi_open=True)
     thr = check_range("threshold", threshold, 0.0, 1.0, lo_open=True, hi_open=True)
-    spec = order_spectrum(sig, unit="rad/s")
     fo = strongest_peak(spec, expected_order).freq
     period = TWO_PI / fo
     phase, avg, k = synchronous_average(sig, period, samples_per_period)
@@ -317,7 +341,8 @@ def analyze_speed_signal(
     peaks = sorted(spectrum_peaks(spec, n_peaks, f_min=0.5), key=lambda p: p.freq)
     est = None
     if None not in (bpfo_order, outer_raceway_diameter, cage_ratio):
-        est = estimate_spall_width(
-            sig, outer_raceway_diameter, cage_ratio, bpfo_order, method=method
-        )
+        est = _estimate(
+            sig, spec, outer_raceway_diameter, cage_ratio, bpfo_order, method, EXTENT_THRESHOLD,
+            SAMPLES_PER_PASS, MIN_CONTRAST,
+        )  # fmt: skip
     return IasSummary(mean, ripple, peaks, spec, bpfo_order, est, sig)
