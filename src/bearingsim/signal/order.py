@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import parse_enum
-from .spectrum import Domain, Spectrum, amplitude_spectrum
+from .spectrum import Domain, Spectrum, amplitude_spectrum, as_signal
 
 __all__ = [
     "AngleSignal",
@@ -56,12 +56,18 @@ TWO_PI = 2.0 * math.pi
 
 
 def _arr(name: str, v: ArrayLike) -> NDArray[np.float64]:
-    a = np.asarray(v, dtype=float).ravel()
-    if a.size < 4:
-        raise ConfigError(f"{name} has {a.size} samples; valid range >= 4 samples")
-    if not np.all(np.isfinite(a)):
-        raise ConfigError(f"{name} contains a non-finite value; valid range finite numbers")
-    return a
+    return as_signal(v, name, min_samples=4)
+
+
+def _time_and(t: ArrayLike, name: str, v: ArrayLike) -> tuple[NDArray, NDArray]:
+    """Validated sample times [s] (strictly increasing) and a signal ``name`` as long."""
+    tt = _arr("time_s", t)
+    a = _arr(name, v)
+    if tt.size != a.size:
+        raise ConfigError(f"{name} has {a.size} samples but time has {tt.size}; they must match")
+    if np.any(np.diff(tt) <= 0):
+        raise ConfigError("time_s is not strictly increasing; valid: increasing sample times")
+    return tt, a
 
 
 @dataclass(frozen=True)
@@ -129,12 +135,7 @@ def speed_from_angle(t: ArrayLike, angle: ArrayLike) -> NDArray[np.float64]:
     angle : array_like
         Shaft angle [rad] at ``t``.
     """
-    tt = _arr("time_s", t)
-    th = _arr("angle_rad", angle)
-    if tt.size != th.size:
-        raise ConfigError(f"angle has {th.size} samples but time has {tt.size}; they must match")
-    if np.any(np.diff(tt) <= 0):
-        raise ConfigError("time_s is not strictly increasing; valid: increasing sample times")
+    tt, th = _time_and(t, "angle_rad", angle)
     return np.gradient(th, tt, edge_order=2)
 
 
@@ -148,12 +149,7 @@ def angle_from_speed(t: ArrayLike, speed: ArrayLike) -> NDArray[np.float64]:
     speed : array_like
         Angular speed [rad/s] at ``t``.
     """
-    tt = _arr("time_s", t)
-    w = _arr("speed_rad_s", speed)
-    if tt.size != w.size:
-        raise ConfigError(f"speed has {w.size} samples but time has {tt.size}; they must match")
-    if np.any(np.diff(tt) <= 0):
-        raise ConfigError("time_s is not strictly increasing; valid: increasing sample times")
+    tt, w = _time_and(t, "speed_rad_s", speed)
     out = np.empty_like(w)
     out[0] = 0.0
     np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(tt), out=out[1:])

@@ -45,14 +45,19 @@ class Domain(enum.Enum):
     ORDER = "order"
 
 
-def as_signal(x: ArrayLike, name: str = "signal") -> NDArray[np.float64]:
-    """``x`` as a finite one-dimensional float array of at least :data:`MIN_SAMPLES` samples;
-    anything else raises a one-line :class:`ConfigError` naming ``name``."""
+def as_signal(
+    x: ArrayLike, name: str = "signal", min_samples: int = MIN_SAMPLES
+) -> NDArray[np.float64]:
+    """``x`` as a finite one-dimensional float array (a column or row vector is flattened) of at
+    least ``min_samples`` samples; anything else raises a one-line :class:`ConfigError` naming
+    ``name``."""
     a = np.asarray(x, dtype=float)
     if a.ndim != 1:
-        raise ConfigError(f"{name} must be one-dimensional; got shape {a.shape}")
-    if a.size < MIN_SAMPLES:
-        raise ConfigError(f"{name} has {a.size} samples; valid range [{MIN_SAMPLES}, inf) samples")
+        a = np.squeeze(a)
+        if a.ndim != 1:
+            raise ConfigError(f"{name} must be one-dimensional; got shape {np.shape(x)}")
+    if a.size < min_samples:
+        raise ConfigError(f"{name} has {a.size} samples; valid range [{min_samples}, inf) samples")
     if not np.all(np.isfinite(a)):
         raise ConfigError(f"{name} contains non-finite values; valid: finite numbers")
     return a
