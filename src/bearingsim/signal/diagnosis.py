@@ -1,11 +1,12 @@
-"""Envelope-analysis diagnosis of a rolling-bearing vibration signal, and signal file loading.
+"""Envelope-analysis diagnosis of a rolling-bearing vibration signal, and loading a record to
+diagnose (:func:`load_signal`, over :func:`bearingsim.io.read_signal`).
 
 One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or simulated):
 
-1. **Band.** The band is given or chosen by the fast kurtogram (:func:`.signal.fast_kurtogram`)
+1. **Band.** The band is given or chosen by the fast kurtogram (:func:`.kurtogram.fast_kurtogram`)
    among bands at least ``3 f_max + f_r`` wide (``f_max`` the largest of BPFO, BPFI, 2×BSF), so
    that the envelope keeps the first three harmonics and the shaft sidebands.
-2. **Envelope spectrum** of that band (:func:`.signal.envelope_spectrum`).
+2. **Envelope spectrum** of that band (:func:`.envelope.envelope_spectrum`).
 3. **Lines** (:func:`find_lines`). The fundamentals of BPFO (outer), BPFI (inner), 2×BSF (ball),
    FTF (cage) and f_r (shaft) are searched within ``max(1 % of the target, 2 bins)`` (1 %:
    allowance for the speed uncertainty and the 1–2 % slip of rolling elements, Randall & Antoni
@@ -57,7 +58,6 @@ __all__ = [
     "FAMILIES",
     "Diagnosis",
     "DiagnosisRule",
-    "SignalRecord",
     "analyze_record",
     "diagnose",
     "find_lines",

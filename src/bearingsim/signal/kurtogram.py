@@ -106,7 +106,7 @@ def fast_kurtogram(
     Parameters
     ----------
     x : array_like
-        Signal.
+        Signal (any unit), at least 16 samples.
     fs : float
         Sample rate [Hz].
     max_level : int, optional
