@@ -11,8 +11,7 @@ from numpy.testing import assert_allclose
 from bearingsim import get_bearing
 from bearingsim.config import Scenario
 from bearingsim.geometry import characteristic_frequencies
-from bearingsim.signal.core import envelope_spectrum, fast_kurtogram
-from bearingsim.signal.diagnosis import diagnose
+from bearingsim.signal import diagnose, envelope_spectrum, fast_kurtogram
 from bearingsim.simulation import simulate
 
 ALLOWED = {"outer", "inner", "ball", "none", "uncertain"}
@@ -87,7 +86,7 @@ def _sim(tmp_path, model, fault, noise=NOISE_97):
 @pytest.mark.parametrize("fault", ["outer", "inner", "none"])
 def test_simulations_are_diagnosed(run_cli, tmp_path, model, fault):
     """Simulated 6205 (seed VSM §2.5 cases) with CWRU-normal-level noise: outer -> "outer",
-    inner -> "inner" with BPFI +/- f_s sidebands, healthy -> "none"."""
+    inner -> "inner" with BPFI +/- f_r sidebands, healthy -> "none"."""
     _res, path = _sim(tmp_path, model, fault)
     r = run_cli("analyze", path, "--json")
     assert r.code == 0, r.err
@@ -95,7 +94,7 @@ def test_simulations_are_diagnosed(run_cli, tmp_path, model, fault):
     assert d["diagnosis"] == fault, d["notes"]
     peaks = {p["label"]: p for p in d["peaks"]}
     if fault == "inner":
-        for lab in ("BPFI", "BPFI-fs", "BPFI+fs", "2xBPFI"):
+        for lab in ("BPFI", "BPFI-fr", "BPFI+fr", "2xBPFI"):
             assert peaks[lab]["detected"], lab
         assert_allclose(
             peaks["BPFI"]["freq_hz"],

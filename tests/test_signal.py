@@ -1,5 +1,5 @@
-"""Signal processing: amplitude and envelope spectra, fast kurtogram, order tracking, peak
-matching — analytic cases with known answers."""
+"""Signal processing: amplitude and envelope spectra, fast kurtogram, order tracking, angular
+resampling, peak refinement and matching — analytic cases with known answers."""
 
 from __future__ import annotations
 
@@ -10,10 +10,14 @@ import pytest
 from numpy.testing import assert_allclose
 
 from bearingsim.errors import ConfigError
-from bearingsim.signal.core import (
+from bearingsim.signal import (
+    AngleSignal,
+    Domain,
     EnvelopeKind,
+    Interpolation,
+    Spectrum,
     amplitude_spectrum,
-    angular_resample,
+    angle_from_speed,
     check_band,
     envelope,
     envelope_spectrum,
@@ -21,9 +25,14 @@ from bearingsim.signal.core import (
     kurtogram_levels,
     match_peaks,
     order_spectrum,
+    refine_peak,
+    resample_to_angle,
+    spectrum_peaks,
+    strongest_peak,
 )
 
 FS = 48000.0
+TWO_PI = 2 * math.pi
 
 
 def test_amplitude_spectrum_reads_sinusoid_amplitude():
@@ -86,17 +95,20 @@ def test_order_tracking_sharpens_a_swept_order():
     speed = 20.0 + 5.0 * t  # Hz
     angle = 20.0 * t + 2.5 * t * t  # rev
     x = np.sin(2 * np.pi * 6.0 * angle)
-    theta, xr = angular_resample(x, FS, speed_hz=speed, samples_per_rev=128)
-    assert_allclose(theta[-1] - theta[0], angle[-1], rtol=1e-3)
-    osp = order_spectrum(xr, 128)
+    sig = resample_to_angle(
+        angle_from_speed(t, TWO_PI * speed), x, 128, interpolation=Interpolation.CUBIC
+    )
+    assert_allclose((sig.angle[-1] - sig.angle[0]) / TWO_PI, angle[-1], rtol=1e-3)
+    osp = order_spectrum(sig, pad_factor=None)
     k = int(np.argmax(osp.amplitude))
     assert_allclose(osp.freq[k], 6.0, atol=osp.resolution)
     assert osp.amplitude[k] > 0.9, "full amplitude in one order line"
     fsp = amplitude_spectrum(x, FS)
     assert fsp.amplitude.max() < 0.35, "smeared in the frequency domain"
     # the angle route gives the same signal
-    _th2, xr2 = angular_resample(x, FS, angle_rev=angle, samples_per_rev=128)
-    assert_allclose(xr2[100:-100], xr[100:-100], atol=1e-3)
+    sig2 = resample_to_angle(TWO_PI * angle, x, 128, interpolation=Interpolation.CUBIC)
+    m = min(sig.value.size, sig2.value.size)
+    assert_allclose(sig2.value[100 : m - 100], sig.value[100 : m - 100], atol=1e-3)
 
 
 def test_match_peaks_tolerance_and_snr():
@@ -104,8 +116,6 @@ def test_match_peaks_tolerance_and_snr():
     a = np.full(f.size, 0.01)
     a[f == 108.0] = 1.0  # 0.65 % above the 107.3 Hz target
     a[f == 215.0] = 0.02  # weak line: 6 dB
-    from bearingsim.signal.core import Spectrum
-
     sp = Spectrum(f, a)
     pk = match_peaks(sp, [("BPFO", 107.3), ("2xBPFO", 214.6), ("far", 150.0)], 29.93, tol_rel=0.01)
     d = {p.label: p for p in pk}
@@ -128,3 +138,96 @@ def test_match_peaks_tolerance_and_snr():
 def test_band_validation(band, match):
     with pytest.raises(ConfigError, match=match):
         check_band(band, FS)
+
+
+# ---------------------------------------------------------------- one convention per primitive
+
+
+def test_order_spectrum_reads_sinusoid_amplitude_with_and_without_padding():
+    """The one amplitude convention in the order domain: sinusoids of amplitude A at integer
+    orders read A (on a line), zero padding keeps the amplitudes and the resolution 1/n_revs."""
+    spr, revs = 64, 128  # long enough for the symmetric window's leakage to stay < 1e-9
+    ang = np.arange(spr * revs) * TWO_PI / spr
+    sig = AngleSignal(ang, 3.0 + 0.8 * np.sin(5 * ang) + 0.05 * np.cos(11 * ang), spr)
+    for pad, lines_per_order in ((None, revs), (16, 16 * revs)):
+        s = order_spectrum(sig, pad_factor=pad)
+        assert s.domain is Domain.ORDER
+        assert_allclose(s.resolution, 1.0 / revs, rtol=1e-12, err_msg="1 / n_revs")
+        assert_allclose(s.bin_width, 1.0 / lines_per_order, rtol=1e-12)
+        assert_allclose(s.amplitude[5 * lines_per_order], 0.8, rtol=1e-9, err_msg=f"pad {pad}")
+        assert_allclose(s.amplitude[11 * lines_per_order], 0.05, rtol=1e-9, err_msg=f"pad {pad}")
+        assert s.amplitude[0] < 1e-9, "mean removed"
+    per = amplitude_spectrum(sig.value, spr, domain=Domain.ORDER, sym=False)
+    assert_allclose(per.amplitude[5 * revs], 0.8, rtol=1e-9, err_msg="periodic Hann, same scaling")
+
+
+def test_spectrum_domain_is_an_enum():
+    f = np.arange(32.0)
+    assert Spectrum(f, f, domain="order").domain is Domain.ORDER
+    assert Spectrum(f, f).domain is Domain.HZ
+    with pytest.raises(ConfigError, match=r"domain = 'rev' is invalid; valid: Hz, order"):
+        Spectrum(f, f, domain="rev")
+    with pytest.raises(ConfigError, match=r"n_fft = 10 is invalid; valid range \[32, inf\)"):
+        amplitude_spectrum(np.ones(32), 1.0, n_fft=10)
+
+
+def _tone_revs(order, density=1000, revs=64):
+    ang = np.arange(density * revs) * TWO_PI / density
+    return ang, np.sin(order * ang)
+
+
+def test_resample_to_angle_attenuates_above_the_new_nyquist():
+    """1000 samples/rev resampled to 256/rev: order 375 (above the output's Nyquist order 128)
+    would alias to order 119 with plain interpolation; anti-aliased it is > 60 dB down, while
+    order 20 keeps its amplitude."""
+    ang, x = _tone_revs(375)
+    ang, x20 = _tone_revs(20)
+    sig = resample_to_angle(ang, x + x20, 256)
+    s = order_spectrum(sig, pad_factor=None)
+    at = lambda o: s.amplitude[int(np.argmin(np.abs(s.freq - o)))]  # noqa: E731
+    assert at(119) < 1e-3, "alias of order 375"
+    assert_allclose(at(20), 1.0, atol=2e-3, err_msg="pass band (linear interpolation)")
+    naive = amplitude_spectrum(np.interp(sig.angle, ang, x + x20), 256, domain=Domain.ORDER)
+    assert naive.amplitude[int(np.argmin(np.abs(naive.freq - 119)))] > 0.5, "aliases without"
+    cub = resample_to_angle(ang, x20, 256, interpolation=Interpolation.CUBIC)
+    core = slice(50, -50)  # the FIR's end transients
+    assert_allclose(cub.value[core], np.sin(20 * cub.angle[core]), atol=1e-3)
+
+
+def test_resample_to_angle_does_not_filter_when_the_output_is_as_dense():
+    """An encoder with as many lines per revolution as output samples: plain interpolation."""
+    ang = np.arange(1024 * 8 + 1) * TWO_PI / 1024
+    v = np.sin(3 * ang) + 0.1 * np.sign(np.sin(50 * ang))
+    sig = resample_to_angle(ang, v)
+    assert sig.samples_per_rev == 1024, "default: power of two at least the mean density"
+    assert_allclose(sig.value, np.interp(sig.angle, ang, v), rtol=0, atol=0)
+    ang2 = np.sort(np.random.default_rng(1).uniform(0, 4 * TWO_PI, 20_000))
+    assert resample_to_angle(ang2, np.ones_like(ang2)).samples_per_rev == 8192
+    with pytest.raises(ConfigError, match="interpolation = 'spline' is invalid; valid: linear"):
+        resample_to_angle(ang, v, interpolation="spline")
+
+
+def test_refine_peak_vertex_of_parabola_and_gaussian():
+    x = np.arange(-3.0, 4.0)
+    y = 3.0 - 2.0 * (x - 0.3) ** 2
+    d, h = refine_peak(y, 3)
+    assert_allclose([d, h], [0.3, 3.0], rtol=1e-12, err_msg="exact on a parabola")
+    g = 2.0 * np.exp(-((x + 0.2) ** 2) / 1.5)
+    assert_allclose(refine_peak(g, 3, log=True), [-0.2, 2.0], rtol=1e-12, err_msg="log: Gaussian")
+    assert refine_peak(y, 0) == (0.0, y[0]), "no neighbour: no refinement"
+    assert refine_peak(np.array([0.0, 1.0, 0.5]), 1, log=True) == (0.0, 1.0), "log of 0"
+
+
+def test_spectrum_peaks_and_strongest_peak():
+    spr, revs = 64, 16
+    ang = np.arange(spr * revs) * TWO_PI / spr
+    sig = AngleSignal(ang, 0.5 * np.sin(4.25 * ang) + 0.2 * np.sin(9.5 * ang), spr)
+    s = order_spectrum(sig)
+    pk = spectrum_peaks(s, 3, f_min=0.5)
+    assert len(pk) == 2, pk
+    assert_allclose([p.order for p in pk], [4.25, 9.5], atol=2e-3)
+    assert_allclose([p.amplitude for p in pk], [0.5, 0.2], rtol=2e-3)
+    sp = strongest_peak(s, 9.0)
+    assert_allclose(sp.freq, 9.5, atol=2e-3)
+    with pytest.raises(ConfigError, match="expected_order = 100 is beyond the spectrum"):
+        strongest_peak(s, 100.0)

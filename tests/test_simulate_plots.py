@@ -15,7 +15,7 @@ import bearingsim  # noqa: E402
 from bearingsim.dynamics.ring.base import ModelInputs  # noqa: E402
 from bearingsim.dynamics.ring.trace import stiffness_trace  # noqa: E402
 from bearingsim.geometry import defect_at_edge  # noqa: E402
-from bearingsim.signal.core import fast_kurtogram  # noqa: E402
+from bearingsim.signal import fast_kurtogram  # noqa: E402
 
 
 def test_package_level_simulate_and_plots():

@@ -360,7 +360,7 @@ class SimulationResult(Result):
         self, channel: str = "acc_y", band: tuple[float, float] | None = None, f_max: float = 600.0
     ):
         """Envelope spectrum of ``channel`` (band from the kurtogram unless given)."""
-        from .signal.core import envelope_spectrum, fast_kurtogram
+        from .signal import envelope_spectrum, fast_kurtogram
 
         x = self[channel]
         if band is None:

@@ -337,14 +337,14 @@ def analyze_cmd(
     "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous.
     """
     from ..catalog import resolve_bearing
-    from ..signal.diagnosis import analyze_record, load_signal
+    from ..signal import analyze_record, load_signal
 
     path, band_v = _parse_band(inputs, band)
     if rpm is not None:
         check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
     if fs_hz is not None:
         check_range("fs_hz", fs_hz, 0.0, lo_open=True, unit="Hz")
-    rec = load_signal(path, channel=channel, fs=fs_hz, rpm=rpm)
+    rec = load_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
     if bearing_id or bearing_file:
         bearing = resolve_bearing(bearing_id, bearing_file)
     elif rec.bearing is not None:

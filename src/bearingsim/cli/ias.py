@@ -13,6 +13,7 @@ import numpy as np
 from ..catalog import resolve_bearing
 from ..errors import ConfigError, check_range
 from ..geometry import RollerBearing
+from ..signal.order import ShaftSignalKind
 from .common import cli, emit_json, json_option
 
 TWO_PI = 2.0 * math.pi
@@ -41,7 +42,7 @@ def _summary_figure(summary, title: str):
     marks = []
     if summary.bpfo_order:
         marks = summary.bpfo_order * np.arange(1, int(30 / summary.bpfo_order) + 1)
-    summary.spectrum.plot(ax=ax[1], marks=marks)
+    summary.spectrum.plot(30.0, ax=ax[1], scale=60 / TWO_PI, unit="r/min", marks=marks)
     e = summary.estimate
     if e is not None:
         ax[2].plot(e.phase, e.average * 60 / TWO_PI, lw=1.0)
@@ -195,51 +196,7 @@ def ias_cmd(
     click.echo(f"wrote {out}")
 
 
-_KINDS = ("angle_rad", "angle_deg", "angle_rev", "speed_rad_s", "speed_rpm")
-_TO_SI = {
-    "angle_rad": 1.0,
-    "angle_deg": math.pi / 180.0,
-    "angle_rev": TWO_PI,
-    "speed_rad_s": 1.0,
-    "speed_rpm": TWO_PI / 60.0,
-}
-
-
-def read_signal_csv(path: str | Path, kind: str | None) -> tuple[np.ndarray, np.ndarray, str]:
-    """Read a two-column text file ``time [s], value`` (comma, semicolon or blank separated,
-    optional header naming the columns, e.g. ``time_s,angle_rad``); returns ``(t, value in SI,
-    kind)``."""
-    p = Path(path)
-    try:
-        lines = p.read_text(encoding="utf-8").splitlines()
-    except OSError as exc:
-        raise ConfigError(f"file = {str(p)!r} cannot be read ({exc.strerror})") from None
-    rows: list[list[float]] = []
-    header: list[str] | None = None
-    for ln in lines:
-        s = ln.strip()
-        if not s or s.startswith("#"):
-            continue
-        parts = [
-            x for x in s.replace(";", ",").replace("\t", ",").replace(" ", ",").split(",") if x
-        ]
-        try:
-            rows.append([float(x) for x in parts])
-        except ValueError:
-            if rows or header is not None:
-                raise ConfigError(f"file = {str(p)!r}: non-numeric line {s[:40]!r}") from None
-            header = [x.strip().lower() for x in parts]
-    if not rows or any(len(r) != 2 for r in rows):
-        raise ConfigError(f"file = {str(p)!r} must have two numeric columns (time [s], value)")
-    if kind is None and header is not None and len(header) == 2 and header[1] in _KINDS:
-        kind = header[1]
-    if kind is None:
-        raise ConfigError(
-            f"file = {str(p)!r}: give --kind (one of {', '.join(_KINDS)}) or name "
-            "the second column in a header line"
-        )
-    a = np.asarray(rows, dtype=float)
-    return a[:, 0], a[:, 1] * _TO_SI[kind], kind
+_KINDS = tuple(k.value for k in ShaftSignalKind)
 
 
 @cli.command("analyze-ias")
@@ -287,7 +244,13 @@ def analyze_ias_cmd(
     ripple, order peaks and, with a roller bearing, the outer-race spall width (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
-    from ..signal.angle import analyze_speed_signal, resample_to_angle, speed_from_angle
+    from ..dynamics.ias.spall import analyze_speed_signal
+    from ..signal.order import (
+        angle_from_speed,
+        read_shaft_signal,
+        resample_to_angle,
+        speed_from_angle,
+    )
 
     bearing = None
     if bearing_id is not None or bearing_file is not None:
@@ -307,16 +270,14 @@ def analyze_ias_cmd(
     else:
         if not p.is_file():
             raise ConfigError(f"file = {str(p)!r} does not exist")
-        t, v, kind = read_signal_csv(p, kind)
+        t, v, kind = read_shaft_signal(p, kind)
         if skip_s is not None:
             skip = check_range("skip_s", skip_s, 0.0, float(t[-1] - t[0]), hi_open=True, unit="s")
             m = t >= t[0] + skip
             t, v = t[m], v[m]
-        if kind.startswith("angle"):
+        if kind.is_angle:
             angle, speed = v, speed_from_angle(t, v)
         else:
-            from ..signal.angle import angle_from_speed
-
             angle, speed = angle_from_speed(t, v), v
         sig = resample_to_angle(angle, speed, samples_per_rev)
     kw: dict[str, Any] = {}

@@ -1,18 +1,34 @@
 """Input and output: atomic writers, JSON conversion, signal-file readers.
 
-Imports only :mod:`bearingsim.errors` (and NumPy/SciPy); every layer may import it.
+- :mod:`.atomic` — atomic writers (an output file is complete or absent).
+- :mod:`.jsonable` — JSON conversion of NumPy values.
+- :mod:`.cwru` — CWRU Bearing Data Center ``.mat`` records.
+- :mod:`.text` — numeric text tables (CSV and the like).
+- :mod:`.signal` — :func:`read_signal`, the one reader of signal files (CWRU ``.mat``,
+  bearingsim results, text tables).
+
+Imports only :mod:`bearingsim.errors` (and NumPy/SciPy) at import time, so every layer may import
+it; :func:`read_signal` imports :mod:`bearingsim.geometry`, :mod:`bearingsim.materials` and
+:mod:`bearingsim.results` when it reads a result file.
 """
 
 from .atomic import atomic_open, atomic_path, write_json
 from .cwru import CwruRecord, read_cwru_mat
 from .jsonable import dumps_jsonable, to_jsonable
+from .signal import CWRU_DEFAULT_FS, SignalRecord, read_signal
+from .text import TextTable, read_table
 
 __all__ = [
+    "CWRU_DEFAULT_FS",
     "CwruRecord",
+    "SignalRecord",
+    "TextTable",
     "atomic_open",
     "atomic_path",
     "dumps_jsonable",
     "read_cwru_mat",
+    "read_signal",
+    "read_table",
     "to_jsonable",
     "write_json",
 ]

@@ -12,8 +12,9 @@ per cage revolution over ``cage_revs`` revolutions. Three scalar stiffnesses are
   [N m/rad].
 
 Each series is analysed in orders: ``order_cage`` = cycles per cage revolution, ``order_shaft =
-order_cage * FTF order`` (cycles per shaft revolution). The amplitude spectrum is the one-sided
-Hann-windowed DFT of the mean-removed series, scaled so a sinusoid of amplitude ``a`` reads ``a``.
+order_cage * FTF order`` (cycles per shaft revolution). The amplitude spectrum is
+:func:`bearingsim.signal.amplitude_spectrum` (mean removed, Hann window corrected for its coherent
+gain: a sinusoid of amplitude ``a`` reads ``a``), with the periodic Hann window.
 Peaks are labelled with the nearest named component within 1.5 frequency bins: ``cage``, ``m×cage``,
 ``Z×cage (VC)`` (the outer-race ball pass, variable compliance), ``n×shaft`` and their
 combinations ``kZ×cage ± n×shaft``.
@@ -28,11 +29,12 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks
-from scipy.signal.windows import hann
 
 from ..errors import ConfigError, check_range
 from ..geometry import Bearing, parse_enum
 from ..results import Result, json_attr, read_json_attr
+from ..signal.peaks import refine_peak
+from ..signal.spectrum import Domain, amplitude_spectrum
 from .inputs import Method
 from .jones import run_quasi_static
 from .result import QuasiStaticSolution
@@ -161,12 +163,10 @@ def order_spectrum(
 ) -> StiffnessSpectrum:
     """Hann-windowed amplitude spectrum of a stiffness series sampled ``points_per_rev`` times
     per cage revolution, in cage and shaft orders, with its ``n_components`` largest peaks
-    labelled (parabolic interpolation of the log amplitude around each peak)."""
+    labelled (:func:`bearingsim.signal.refine_peak` on the log amplitude around each peak)."""
     x = np.asarray(series, dtype=float)
-    n = x.size
-    w = hann(n, sym=False)
-    amp = 2.0 * np.abs(np.fft.rfft((x - x.mean()) * w)) / w.sum()
-    oc = np.fft.rfftfreq(n, d=1.0 / points_per_rev)
+    sp = amplitude_spectrum(x, points_per_rev, domain=Domain.ORDER, sym=False)
+    amp, oc = sp.amplitude, sp.freq
     os_ = oc * cage_ratio
     mean = abs(float(x.mean())) or 1.0
     floor = 1e-9 * max(float(amp.max()), 1e-300)
@@ -175,11 +175,7 @@ def order_spectrum(
     df = oc[1] - oc[0]
     comps = []
     for p in peaks:
-        shift = 0.0
-        if 0 < p < amp.size - 1 and min(amp[p - 1], amp[p + 1]) > 0:
-            la, lb, lc = np.log(amp[p - 1]), np.log(amp[p]), np.log(amp[p + 1])
-            den = la - 2 * lb + lc
-            shift = 0.5 * (la - lc) / den if den < 0 else 0.0
+        shift, _ = refine_peak(amp, int(p), log=True)
         o_c = (p + shift) * df
         o_s = o_c * cage_ratio
         comps.append(

@@ -1,46 +1,69 @@
-"""Signal processing for bearing diagnosis, on simulated and measured signals alike.
+"""Signal processing for bearing diagnosis, on simulated and measured signals alike; one
+implementation of each primitive.
 
-- :mod:`.core` — spectra, envelope, fast kurtogram, computed order tracking, peak matching.
-- :mod:`.angle` — angle-domain analysis of speed signals (IAS): resampling, order spectrum,
-  synchronous average, spall-width estimate.
-- :mod:`.diagnosis` — fault diagnosis from the envelope spectrum; signal-file loading.
+- :mod:`.spectrum` — :class:`Domain` (Hz or order), :class:`Spectrum`, and
+  :func:`amplitude_spectrum`, the one window and scaling convention (mean removed, Hann window
+  corrected for its coherent gain, optional zero padding) of every spectrum here and in the
+  models (IAS order spectra, stiffness order spectra).
+- :mod:`.envelope` — band-pass, Hilbert envelope, envelope spectrum.
+- :mod:`.kurtogram` — Antoni's fast kurtogram.
+- :mod:`.order` — shaft speed/angle conversion, the anti-aliased angular resampler (computed
+  order tracking), the order spectrum, synchronous averaging, shaft angle/speed files.
+- :mod:`.peaks` — the parabolic peak refinement, largest and strongest peaks, peak matching.
+- :mod:`.diagnosis` — fault diagnosis from the envelope spectrum; loading a record to diagnose.
 
-May import: errors, geometry, materials, io (and :mod:`bearingsim.results` lazily, for reading
-result files).
+Signal files are read by :func:`bearingsim.io.read_signal`.
+
+May import: errors, geometry, materials, io — never a model family (the IAS spall-width
+estimate, a model analysis, is :mod:`bearingsim.dynamics.ias.spall`).
 """
 
-from .angle import AngleSignal, analyze_speed_signal, estimate_spall_width, resample_to_angle
-from .core import (
-    EnvelopeKind,
-    Kurtogram,
-    Peak,
-    Spectrum,
-    amplitude_spectrum,
-    angular_resample,
-    envelope,
-    envelope_spectrum,
-    fast_kurtogram,
-    match_peaks,
+from .diagnosis import Diagnosis, DiagnosisRule, analyze_record, diagnose, load_signal
+from .envelope import EnvelopeKind, check_band, envelope, envelope_spectrum
+from .kurtogram import Kurtogram, fast_kurtogram, kurtogram_levels
+from .order import (
+    AngleSignal,
+    Interpolation,
+    ShaftSignalKind,
+    angle_from_speed,
+    order_spectrum,
+    read_shaft_signal,
+    resample_to_angle,
+    speed_from_angle,
+    synchronous_average,
 )
-from .diagnosis import Diagnosis, analyze_record, diagnose, load_signal
+from .peaks import Peak, SpectralPeak, match_peaks, refine_peak, spectrum_peaks, strongest_peak
+from .spectrum import Domain, Spectrum, amplitude_spectrum
 
 __all__ = [
     "AngleSignal",
     "Diagnosis",
+    "DiagnosisRule",
+    "Domain",
     "EnvelopeKind",
+    "Interpolation",
     "Kurtogram",
     "Peak",
+    "ShaftSignalKind",
+    "SpectralPeak",
     "Spectrum",
     "amplitude_spectrum",
     "analyze_record",
-    "analyze_speed_signal",
-    "angular_resample",
+    "angle_from_speed",
+    "check_band",
     "diagnose",
     "envelope",
     "envelope_spectrum",
-    "estimate_spall_width",
     "fast_kurtogram",
+    "kurtogram_levels",
     "load_signal",
     "match_peaks",
+    "order_spectrum",
+    "read_shaft_signal",
+    "refine_peak",
     "resample_to_angle",
+    "speed_from_angle",
+    "spectrum_peaks",
+    "strongest_peak",
+    "synchronous_average",
 ]

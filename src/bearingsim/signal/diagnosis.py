@@ -1,16 +1,17 @@
-"""Envelope-analysis diagnosis of a rolling-bearing vibration signal, and signal file loading.
+"""Envelope-analysis diagnosis of a rolling-bearing vibration signal, and loading a record to
+diagnose (:func:`load_signal`, over :func:`bearingsim.io.read_signal`).
 
 One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or simulated):
 
-1. **Band.** The band is given or chosen by the fast kurtogram (:func:`.signal.fast_kurtogram`)
-   among bands at least ``3 f_max + f_s`` wide (``f_max`` the largest of BPFO, BPFI, 2×BSF), so
+1. **Band.** The band is given or chosen by the fast kurtogram (:func:`.kurtogram.fast_kurtogram`)
+   among bands at least ``3 f_max + f_r`` wide (``f_max`` the largest of BPFO, BPFI, 2×BSF), so
    that the envelope keeps the first three harmonics and the shaft sidebands.
-2. **Envelope spectrum** of that band (:func:`.signal.envelope_spectrum`).
+2. **Envelope spectrum** of that band (:func:`.envelope.envelope_spectrum`).
 3. **Lines** (:func:`find_lines`). The fundamentals of BPFO (outer), BPFI (inner), 2×BSF (ball),
-   FTF (cage) and f_s (shaft) are searched within ``max(1 % of the target, 2 bins)`` (1 %:
+   FTF (cage) and f_r (shaft) are searched within ``max(1 % of the target, 2 bins)`` (1 %:
    allowance for the speed uncertainty and the 1–2 % slip of rolling elements, Randall & Antoni
    2011); harmonics 2 and 3 at exact multiples of the *found* fundamental within
-   ``max(2, h)`` bins; sidebands ±f_s of BPFO and BPFI and ±FTF of 2×BSF (first two
+   ``max(2, h)`` bins; sidebands ±f_r of BPFO and BPFI and ±FTF of 2×BSF (first two
    harmonics). Each line's SNR is taken against the median amplitude within ±10 % of the target
    (at least five tolerances), without the tolerance band. A line is *detected* at
    SNR >= 12 dB: for Gaussian noise the envelope-spectrum amplitudes are Rayleigh distributed
@@ -21,7 +22,7 @@ One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or 
    fundamental and at least one of its 2nd/3rd harmonics are detected; its *evidence* is the
    summed envelope amplitude of its detected harmonics, its *quality* the mean over the three
    harmonics of ``0.5 + 0.5 clip((SNR - 12 dB)/20 dB, 0, 1)`` (0 when not detected) plus 0.1 per
-   detected sideband (BPFI ± f_s, 2×BSF ± FTF), capped at 1.
+   detected sideband (BPFI ± f_r, 2×BSF ± FTF), capped at 1.
 
    * the supported family with the largest evidence, if that evidence is at least twice every
      other family's → that fault, ``confidence = quality × (1 − runner-up evidence / evidence)``;
@@ -29,16 +30,14 @@ One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or 
    * no supported family and no detected fault line → ``"none"``, ``confidence =
      clip((12 dB − strongest fault-line SNR) / 10 dB, 0, 1)``;
    * no supported family but isolated fault lines → ``"uncertain"`` (confidence 0);
-   * a record too short to resolve the lines (resolution > f_s/4) → ``"uncertain"``.
+   * a record too short to resolve the lines (resolution > f_r/4) → ``"uncertain"``.
 
 The rule never looks at the file name or the expected answer.
 """
 
 from __future__ import annotations
 
-import csv
 import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -47,17 +46,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ConfigError, check_positive
-from ..geometry import Bearing, characteristic_frequencies
-from .core import (
-    Kurtogram,
-    Peak,
-    Spectrum,
-    angular_resample,
-    check_band,
-    envelope_spectrum,
-    fast_kurtogram,
-    match_peaks,
-)
+from ..geometry import Bearing, characteristic_frequencies, parse_enum
+from ..io.signal import SignalRecord, read_signal
+from .envelope import check_band, envelope_spectrum
+from .kurtogram import Kurtogram, fast_kurtogram
+from .order import Interpolation, angle_from_speed, resample_to_angle
+from .peaks import Peak, match_peaks
+from .spectrum import MIN_SAMPLES, Domain, Spectrum
+
+__all__ = [
+    "FAMILIES",
+    "Diagnosis",
+    "DiagnosisRule",
+    "analyze_record",
+    "diagnose",
+    "find_lines",
+    "load_signal",
+]
 
 FAMILIES = ("outer", "inner", "ball")
 
@@ -104,7 +109,7 @@ class Diagnosis:
     confidence : float
         0..1 [-].
     band_hz : tuple[float, float]
-        Envelope band [Hz] (orders when ``domain == "order"``).
+        Envelope band [Hz] (orders when ``domain`` is :attr:`Domain.ORDER`).
     shaft_hz : float
         Shaft frequency [Hz] (1 in the order domain).
     peaks : list[Peak]
@@ -134,7 +139,7 @@ class Diagnosis:
     spectrum: Spectrum
     kurtogram: Kurtogram | None = None
     notes: list[str] = field(default_factory=list)
-    domain: str = "Hz"
+    domain: Domain = Domain.HZ
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready summary (the ``analyze --json`` object)."""
@@ -147,7 +152,7 @@ class Diagnosis:
             "scores": self.scores,
             "supported": self.supported,
             "kurtosis": self.kurtosis,
-            "domain": self.domain,
+            "domain": self.domain.value,
             "notes": self.notes,
         }
 
@@ -198,16 +203,19 @@ def _family(label: str) -> str:
     return "shaft"
 
 
-#: fundamental of each family: (label, characteristic-frequency attribute or "fs")
+#: label of the shaft rotation frequency f_r (Randall & Antoni 2011's notation; ``fs`` is the
+#: sample rate)
+SHAFT = "fr"
+#: fundamental of each family: (label, characteristic-frequency attribute, multiple)
 _FUNDAMENTALS = (
     ("BPFO", "bpfo_hz", 1.0),
     ("BPFI", "bpfi_hz", 1.0),
     ("2xBSF", "bsf_hz", 2.0),
     ("FTF", "ftf_hz", 1.0),
-    ("fs", "shaft_hz", 1.0),
+    (SHAFT, "shaft_hz", 1.0),
 )
 #: sidebands: family fundamental -> modulating line
-_SIDEBANDS = {"BPFO": "fs", "BPFI": "fs", "2xBSF": "FTF"}
+_SIDEBANDS = {"BPFO": SHAFT, "BPFI": SHAFT, "2xBSF": "FTF"}
 
 
 def _label(name: str, h: int) -> str:
@@ -219,11 +227,11 @@ def find_lines(
 ) -> list[Peak]:
     """Harmonic-series line search in an envelope spectrum.
 
-    Stage 1: each family's fundamental (BPFO, BPFI, 2×BSF, FTF, f_s) within
+    Stage 1: each family's fundamental (BPFO, BPFI, 2×BSF, FTF, f_r) within
     ``max(tol_rel f, tol_min_bins df)``. Stage 2: harmonics ``h`` at exact multiples of the
     *found* fundamental (when detected; else of the nominal one) within ``max(tol_min_bins, h)``
     bins (the fundamental's position is known to half a bin), and the first two harmonics'
-    sidebands (±f_s for BPFO and BPFI, ±FTF for 2×BSF) at the found spacings. Finally a line
+    sidebands (±f_r for BPFO and BPFI, ±FTF for 2×BSF) at the found spacings. Finally a line
     claimed by targets of two families goes to the nearer target.
     """
     k = characteristic_frequencies(bearing, shaft_hz)
@@ -310,7 +318,7 @@ def diagnose(
     *,
     band: tuple[float, float] | str = "auto",
     rule: DiagnosisRule | None = None,
-    domain: str = "Hz",
+    domain: Domain | str = Domain.HZ,
 ) -> Diagnosis:
     """Envelope-analysis diagnosis of ``x`` with the fixed :class:`DiagnosisRule`.
 
@@ -328,10 +336,11 @@ def diagnose(
         Envelope band [Hz]; ``"auto"`` = fast kurtogram.
     rule : DiagnosisRule, optional
         Decision rule (default: the documented one).
-    domain : str
-        ``"Hz"`` or ``"order"`` (label of the spectra).
+    domain : Domain
+        :attr:`Domain.HZ` or :attr:`Domain.ORDER` (abscissa of the spectra).
     """
     rule = rule or DiagnosisRule()
+    domain = parse_enum(Domain, domain, "domain")
     fs = check_positive("fs_hz", fs, "Hz")
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
     kin = characteristic_frequencies(bearing, shaft_hz)
@@ -360,7 +369,7 @@ def diagnose(
     es = envelope_spectrum(x, fs, band_t, domain=domain)
     if es.resolution > 0.25 * shaft_hz:
         notes.append(
-            f"record too short: resolution {es.resolution:.3g} > f_s/4; cannot resolve "
+            f"record too short: resolution {es.resolution:.3g} > f_r/4; cannot resolve "
             "the fault lines"
         )
         return Diagnosis(
@@ -371,7 +380,7 @@ def diagnose(
     base = {"outer": "BPFO", "inner": "BPFI", "ball": "2xBSF"}
     side = {
         "outer": [],
-        "inner": ["BPFI-fs", "BPFI+fs", "2xBPFI-fs", "2xBPFI+fs"],
+        "inner": [f"BPFI-{SHAFT}", f"BPFI+{SHAFT}", f"2xBPFI-{SHAFT}", f"2xBPFI+{SHAFT}"],
         "ball": ["2xBSF-FTF", "2xBSF+FTF", "2x2xBSF-FTF", "2x2xBSF+FTF"],
     }
     scores: dict[str, float] = {}
@@ -426,216 +435,40 @@ def diagnose(
 # --------------------------------------------------------------------------- signal files
 
 
-@dataclass(frozen=True)
-class SignalRecord:
-    """A vibration signal read from a file.
-
-    Attributes
-    ----------
-    x : ndarray
-        Samples (acceleration [m/s^2] for CWRU and our results).
-    fs : float
-        Sample rate [Hz].
-    rpm : float or None
-        Shaft speed [r/min] (None when a speed channel is given).
-    source : str
-        File path.
-    channel : str
-        Channel read.
-    bearing : Bearing or None
-        Bearing stored in the file (our results).
-    speed_hz : ndarray or None
-        Shaft speed per sample [Hz] (CSV speed column) for order tracking.
-    info : dict
-        How fs/rpm were obtained.
-    """
-
-    x: NDArray[np.float64]
-    fs: float
-    rpm: float | None
-    source: str
-    channel: str
-    bearing: Bearing | None = None
-    speed_hz: NDArray[np.float64] | None = None
-    info: dict[str, Any] = field(default_factory=dict)
-
-
-#: CWRU sample rate when neither ``--fs`` nor the file name ("12k"/"48k") says it: the 48 kHz
-#: normal baselines and 48k drive-end records (/work/shared/data/cwru/SOURCES.md)
-CWRU_DEFAULT_FS = 48000.0
-
-
-def _cwru_fs_from_name(name: str) -> float | None:
-    m = re.search(r"(?<![0-9])(12|48)k", name, flags=re.IGNORECASE)
-    return float(m.group(1)) * 1000.0 if m else None
-
-
 def load_signal(
     path: str | Path,
     *,
     channel: str | None = None,
-    fs: float | None = None,
+    fs_hz: float | None = None,
     rpm: float | None = None,
 ) -> SignalRecord:
-    """Read a CWRU ``.mat`` record, a bearingsim result (``.nc``/``.h5``) or a CSV file.
+    """A record to diagnose: :func:`bearingsim.io.read_signal` (see there for the formats and
+    parameters), which must give the shaft speed (``rpm``, a file's ``X###RPM`` key or rpm, or
+    a ``speed_hz``/``rpm`` column) and, for a text file, at least 16 rows.
 
-    * ``.mat``: channel ``DE`` (default) or ``FE``; rpm from ``X###RPM`` unless ``rpm`` is
-      given; fs from ``fs``, else from ``12k``/``48k`` in the file name, else 48 kHz.
-    * ``.nc``/``.h5``: channel ``x`` or ``y`` (default ``y``; rotor results also ``x_fe``,
-      ``y_fe``, the fan-end housing); fs, rpm and bearing from the file.
-    * ``.csv``: optional header; a ``time``/``t`` column gives fs, a ``speed_hz`` or ``rpm``
-      column gives a per-sample speed (order tracking); the signal is the column named by
-      ``channel`` or the first other column. Without a time column ``fs`` is required.
+    Parameters
+    ----------
+    path : str or Path
+        CWRU ``.mat``, bearingsim result ``.nc``/``.h5``, or ``.csv``/``.txt``.
+    channel : str, optional
+        Channel or column.
+    fs_hz : float, optional
+        Sample rate [Hz].
+    rpm : float, optional
+        Shaft speed [r/min].
     """
-    p = Path(path)
-    if not p.is_file():
-        raise ConfigError(f"file = {str(p)!r} does not exist or is not a file")
-    suffix = p.suffix.lower()
-    info: dict[str, Any] = {}
-    if suffix == ".mat":
-        from ..io.cwru import read_cwru_mat
-
-        rec = read_cwru_mat(p)
-        ch = (channel or "DE").upper()
-        if ch not in rec.channels or ch not in ("DE", "FE", "BA"):
-            raise ConfigError(
-                f"channel = {ch!r} not in {p.name} (keys X###_{ch}_time); valid: "
-                + ", ".join(sorted(rec.channels))
-            )
-        r = rpm if rpm is not None else rec.rpm
-        if r is None:
-            raise ConfigError(
-                f"file = {p.name!r} has no X###RPM key and no --rpm was given; "
-                "valid: give --rpm R (> 0 r/min)"
-            )
-        info["rpm_source"] = "option" if rpm is not None else "file"
-        if fs is None:
-            fs_name = _cwru_fs_from_name(p.name)
-            fs = fs_name or CWRU_DEFAULT_FS
-            info["fs_source"] = "file name" if fs_name else "default (CWRU 48 kHz)"
-        else:
-            info["fs_source"] = "option"
-        return SignalRecord(
-            rec.acceleration(ch),
-            check_positive("fs_hz", fs, "Hz"),
-            check_positive("rpm", r, "r/min"),
-            str(p),
-            ch,
-            None,
-            None,
-            info,
-        )
-    if suffix in (".nc", ".h5", ".nc4"):
-        from ..results import SimulationResult
-
-        res = SimulationResult.load(p)
-        ch = (channel or "y").lower()
-        # rotor results also carry the fan-end housing (acc_x_fe, acc_y_fe) and its bearing
-        valid = ("x", "y", "x_fe", "y_fe") if "acc_y_fe" in res.channels else ("x", "y")
-        if ch not in valid:
-            raise ConfigError(
-                f"channel = {channel!r} is invalid for this simulation result; valid: "
-                + ", ".join(valid)
-            )
-        meta = {"bearing": res.meta.get("bearing_fe")} if ch.endswith("_fe") else res.meta
-        b = _bearing_from_meta(meta)
-        r = rpm if rpm is not None else float(res.scenario["rpm"])
-        return SignalRecord(
-            res[f"acc_{ch}"],
-            fs or res.fs_hz,
-            r,
-            str(p),
-            ch,
-            b,
-            None,
-            {"fs_source": "file", "rpm_source": "file"},
-        )
-    if suffix in (".csv", ".txt"):
-        return _load_csv(p, channel, fs, rpm)
-    raise ConfigError(
-        f"file = {p.name!r} has an unknown type; valid: .mat (CWRU), .nc/.h5 "
-        "(bearingsim result), .csv"
-    )
-
-
-def _bearing_from_meta(meta: dict[str, Any]) -> Bearing | None:
-    from ..geometry import BallBearing, RollerBearing
-    from ..materials import Material
-
-    d = dict(meta.get("bearing") or {})
-    if not d:
-        return None
-    try:
-        d["material"] = Material(**d["material"])
-        cls = BallBearing if "inner_groove_radius" in d else RollerBearing
-        return cls(**d)
-    except (TypeError, KeyError) as exc:
-        raise ConfigError(f"bearing metadata in the result is invalid ({exc})") from None
-
-
-def _load_csv(p: Path, channel: str | None, fs: float | None, rpm: float | None) -> SignalRecord:
-    with open(p, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(line for line in fh if not line.startswith("#")) if r]
-    if not rows:
-        raise ConfigError(f"file = {p.name!r} is empty")
-    try:
-        float(rows[0][0])
-        header = [f"col{i}" for i in range(len(rows[0]))]
-    except ValueError:
-        header = [h.strip() for h in rows[0]]
-        rows = rows[1:]
-    try:
-        data = np.array([[float(v) for v in r] for r in rows])
-    except ValueError:
-        raise ConfigError(f"file = {p.name!r} has non-numeric values") from None
-    if data.ndim != 2 or data.shape[0] < 16:
-        raise ConfigError(f"file = {p.name!r} has too few rows; valid range [16, inf) rows")
-    cols = {h.lower(): i for i, h in enumerate(header)}
-    info: dict[str, Any] = {}
-    tcol = cols.get("time_s", cols.get("time", cols.get("t")))
-    if tcol is not None and fs is None:
-        dt = np.diff(data[:, tcol])
-        if not np.all(dt > 0):
-            raise ConfigError(f"file = {p.name!r}: the time column must increase")
-        fs = 1.0 / float(np.median(dt))
-        info["fs_source"] = "time column"
-    if fs is None:
-        raise ConfigError(f"file = {p.name!r} has no time column; give --fs HZ (> 0)")
-    speed = None
-    scol = cols.get("speed_hz")
-    rcol = cols.get("rpm")
-    if scol is not None:
-        speed = data[:, scol]
-    elif rcol is not None:
-        speed = data[:, rcol] / 60.0
-    skip = {c for c in (tcol, scol, rcol) if c is not None}
-    if channel is not None:
-        if channel.lower() not in cols:
-            raise ConfigError(
-                f"channel = {channel!r} not in {p.name}; valid: "
-                + ", ".join(h for i, h in enumerate(header) if i not in skip)
-            )
-        xcol = cols[channel.lower()]
-    else:
-        rest = [i for i in range(len(header)) if i not in skip]
-        if not rest:
-            raise ConfigError(f"file = {p.name!r} has no signal column")
-        xcol = rest[0]
-    if speed is None and rpm is None:
+    rec = read_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
+    name = Path(path).name
+    if rec.rpm is None and rec.speed_hz is None:
+        what = "no X###RPM key" if rec.source.lower().endswith(".mat") else "no rpm/speed_hz column"
         raise ConfigError(
-            f"file = {p.name!r} has no rpm/speed_hz column and no --rpm was given; "
-            "valid: give --rpm R (> 0 r/min)"
+            f"file = {name!r} has {what} and no --rpm was given; valid: give --rpm R (> 0 r/min)"
         )
-    return SignalRecord(
-        data[:, xcol],
-        check_positive("fs_hz", fs, "Hz"),
-        rpm,
-        str(p),
-        header[xcol],
-        None,
-        speed,
-        info,
-    )
+    if rec.columns and rec.x.size < MIN_SAMPLES:
+        raise ConfigError(
+            f"file = {name!r} has too few rows; valid range [{MIN_SAMPLES}, inf) rows"
+        )
+    return rec
 
 
 def analyze_record(
@@ -647,12 +480,36 @@ def analyze_record(
     samples_per_rev: int = 512,
 ) -> Diagnosis:
     """Diagnose a :class:`SignalRecord`; with a per-sample speed the signal is first order
-    tracked (:func:`.signal.angular_resample`) and analysed in the order domain."""
+    tracked (:func:`.resample_to_angle`, cubic interpolation) and analysed in the order domain.
+
+    Parameters
+    ----------
+    rec : SignalRecord
+        The signal (:func:`load_signal`).
+    bearing : Bearing
+        Geometry for the characteristic frequencies.
+    band : (lo, hi) or "auto"
+        Envelope band [Hz] (orders when order tracked); ``"auto"`` = fast kurtogram.
+    rule : DiagnosisRule, optional
+        Decision rule.
+    samples_per_rev : int
+        Order-tracking density [1/rev].
+    """
     if rec.speed_hz is not None and rec.rpm is None:
-        _theta, xr = angular_resample(
-            rec.x, rec.fs, speed_hz=rec.speed_hz, samples_per_rev=samples_per_rev
+        sp = np.asarray(rec.speed_hz, dtype=float)
+        if sp.shape != rec.x.shape or not np.all(np.isfinite(sp)) or np.any(sp <= 0):
+            raise ConfigError(
+                "speed_hz must be finite, > 0 and as long as the signal; valid range (0, inf) Hz"
+            )
+        t = np.arange(rec.x.size) / rec.fs
+        sig = resample_to_angle(
+            angle_from_speed(t, 2.0 * math.pi * sp),
+            rec.x,
+            samples_per_rev,
+            interpolation=Interpolation.CUBIC,
         )
         return diagnose(
-            xr, float(samples_per_rev), bearing, 1.0, band=band, rule=rule, domain="order"
-        )
+            sig.value, float(samples_per_rev), bearing, 1.0, band=band, rule=rule,
+            domain=Domain.ORDER,
+        )  # fmt: skip
     return diagnose(rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band, rule=rule)

@@ -14,6 +14,7 @@ from ...errors import ConfigError, check_range
 from ...geometry import Defect, RollerBearing
 from ...results import Result, json_attr, read_json_attr, var_attrs
 from .model import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
+from .spall import IasSummary, SpallEstimator
 
 __all__ = ["IasResult"]
 
@@ -162,9 +163,11 @@ class IasResult(Result):
         return p.torque - p.torsional_damping * w - sgn * (self.bearing_torque + self.spall_torque)
 
     def angle_signal(self, skip_s: float | None = None, samples_per_rev: int | None = None):
-        """IAS resampled to uniform shaft angle after ``skip_s`` (an
-        :class:`~bearingsim.angle_domain.AngleSignal`)."""
-        from ...signal.angle import resample_to_angle
+        """IAS resampled to uniform shaft angle after ``skip_s`` [s] (an
+        :class:`~bearingsim.signal.AngleSignal`, anti-aliased:
+        :func:`bearingsim.signal.resample_to_angle`); ``samples_per_rev`` [1/rev] defaults to
+        the smallest power of two at least the samples per revolution of the output rate."""
+        from ...signal.order import resample_to_angle
 
         m = self.steady(skip_s)
         wmin = float(self.omega[m].min())
@@ -175,10 +178,25 @@ class IasResult(Result):
             )
         return resample_to_angle(self.theta[m], self.omega[m], samples_per_rev)
 
-    def analyze(self, skip_s: float | None = None, n_peaks: int = 5, method: str = "steps"):
-        """Angle-domain summary (:func:`bearingsim.angle_domain.analyze_speed_signal`) with the
-        bearing's kinematic BPFO order, D_o and cage ratio."""
-        from ...signal.angle import analyze_speed_signal
+    def analyze(
+        self,
+        skip_s: float | None = None,
+        n_peaks: int = 5,
+        method: SpallEstimator | str = SpallEstimator.STEPS,
+    ) -> IasSummary:
+        """Angle-domain summary (:func:`.spall.analyze_speed_signal`) with the bearing's
+        kinematic BPFO order, D_o and cage ratio.
+
+        Parameters
+        ----------
+        skip_s : float, optional
+            Start-up left out [s] (default :meth:`default_skip`).
+        n_peaks : int
+            Order peaks reported [-].
+        method : SpallEstimator
+            Crossing-angle reading of the spall-width estimate.
+        """
+        from .spall import analyze_speed_signal
 
         b = self.params.bearing
         return analyze_speed_signal(
@@ -212,12 +230,18 @@ class IasResult(Result):
         return fig
 
     def plot_order_spectrum(self, skip_s: float | None = None, max_order: float = 30.0):
-        """IAS order spectrum with the BPFO harmonics marked (seed fig. 9 analogue)."""
-        from ...signal.angle import order_spectrum
+        """IAS order spectrum up to ``max_order`` [-] with the BPFO harmonics marked (seed fig. 9
+        analogue)."""
+        from ...signal.order import order_spectrum
 
-        spec = order_spectrum(self.angle_signal(skip_s))
+        spec = order_spectrum(self.angle_signal(skip_s), unit="rad/s")
         bp = self.constants.bpfo_order
-        fig = spec.plot(max_order=max_order, marks=bp * np.arange(1, int(max_order / bp) + 1))
+        fig = spec.plot(
+            max_order,
+            scale=60.0 / (2 * np.pi),
+            unit="r/min",
+            marks=bp * np.arange(1, int(max_order / bp) + 1),
+        )
         fig.axes[0].set_title(f"IAS order spectrum (BPFO order {bp:.4f} and harmonics dashed)")
         return fig
 

@@ -8,7 +8,8 @@
 - :mod:`.response` — :class:`RotorResponse`.
 - :mod:`.scenario` — the runner behind ``bearingsim.simulate`` for ``model = "rotor"``.
 
-May import: errors, geometry, catalog, contact, io, results, :mod:`bearingsim.dynamics.integrate`.
+May import: errors, geometry, catalog, contact, io, signal, results,
+:mod:`bearingsim.dynamics.integrate`.
 """
 
 from ...geometry import DefectProfile

@@ -96,13 +96,12 @@ class RotorResponse(Result):
         return fig
 
     def spectrum(self, end: str = "DE", axis: str = "y", unit_g: bool = True):
-        """One-sided amplitude spectrum (Hann window, amplitude-corrected) of a channel:
-        ``(f [Hz], amplitude [g or m/s^2])``."""
-        a = self.channel(end, axis) / (G0 if unit_g else 1.0)
-        a = a - a.mean()
-        w = np.hanning(a.size)
-        amp = 2.0 * np.abs(np.fft.rfft(a * w)) / w.sum()
-        return np.fft.rfftfreq(a.size, 1.0 / self.sample_rate), amp
+        """One-sided amplitude spectrum (:func:`bearingsim.signal.amplitude_spectrum`: Hann
+        window, amplitude-corrected) of a channel: ``(f [Hz], amplitude [g or m/s^2])``."""
+        from ...signal.spectrum import amplitude_spectrum
+
+        sp = amplitude_spectrum(self.channel(end, axis) / (G0 if unit_g else 1.0), self.sample_rate)
+        return sp.freq, sp.amplitude
 
     def plot_spectrum(self, end: str = "DE", axis: str = "y", f_max: float = 1000.0,
                       mark: str = "bpfo", n_harmonics: int = 3):  # fmt: skip

@@ -16,6 +16,7 @@ from ...dynamics.ias.model import (
     impact_force,
     simulate_ias,
 )
+from ...dynamics.ias.spall import SpallEstimator
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 
@@ -111,7 +112,7 @@ def run(ctx: Context) -> Section:
                 0.10,
             )
         )
-    ext = runs[1e-3].analyze(method="extent").estimate
+    ext = runs[1e-3].analyze(method=SpallEstimator.EXTENT).estimate
     rows.append(
         compare(
             "estimated width, 'extent' reading (2 % threshold) [mm]",
@@ -193,8 +194,8 @@ def run(ctx: Context) -> Section:
     # --- fig. 9 analogue
     fig, ax = plt.subplots(2, 1, figsize=(8, 6))
     marks = k.bpfo_order * np.arange(1, 8)
-    h.spectrum.plot(ax=ax[0], marks=marks)
-    f.spectrum.plot(ax=ax[1], marks=marks)
+    for a, s in zip(ax, (h, f), strict=True):
+        s.spectrum.plot(30.0, ax=a, scale=60 / TWO_PI, unit="r/min", marks=marks)
     ax[0].set_title("healthy")
     ax[1].set_title(
         "1 mm spall: peaks " + ", ".join(f"{o:.3f}" for o in top3) + " (paper 4.22, 8.44, 12.66)"

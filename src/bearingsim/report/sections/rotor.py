@@ -23,8 +23,7 @@ from ...dynamics.rotor.config import (
 from ...dynamics.rotor.fe import Disk, assemble_rotor, complex_modes
 from ...dynamics.rotor.model import rotor_modes, simulate_rotor
 from ...geometry import Defect
-from ...signal.core import amplitude_spectrum, envelope, envelope_spectrum
-from ...signal.diagnosis import load_signal
+from ...signal import amplitude_spectrum, envelope, envelope_spectrum, load_signal
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
 

@@ -16,8 +16,7 @@ from ...dynamics.ring.base import ModelInputs
 from ...dynamics.ring.trace import stiffness_trace
 from ...geometry import characteristic_frequencies, defect_at_edge
 from ...load_distribution import radial_load_distribution
-from ...signal.core import envelope_spectrum, fast_kurtogram
-from ...signal.diagnosis import analyze_record, diagnose, load_signal
+from ...signal import analyze_record, diagnose, envelope_spectrum, fast_kurtogram, load_signal
 from ...simulation import simulate
 from .. import Context, Row, Section, compare
 from ..figures import save_figure

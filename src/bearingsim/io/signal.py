@@ -1,0 +1,267 @@
+"""Signal files: one reader, :func:`read_signal`, for the vibration and shaft records the
+analyses take — CWRU ``.mat`` records, bearingsim simulation results (``.nc``/``.h5``) and text
+tables (``.csv``/``.txt``, through :func:`.read_table`)."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ConfigError, check_positive
+from .text import read_table
+
+if TYPE_CHECKING:
+    from ..geometry import Bearing
+
+__all__ = ["CWRU_DEFAULT_FS", "SignalRecord", "read_signal"]
+
+#: CWRU sample rate when neither ``fs_hz`` nor the file name ("12k"/"48k") says it: the 48 kHz
+#: normal baselines and 48k drive-end records (/work/shared/data/cwru/SOURCES.md) [Hz]
+CWRU_DEFAULT_FS = 48000.0
+
+#: names of a time column [s] in a text file (lower case)
+_TIME_NAMES = ("time_s", "time", "t")
+
+
+@dataclass(frozen=True)
+class SignalRecord:
+    """A signal read from a file.
+
+    Attributes
+    ----------
+    x : ndarray
+        Samples (acceleration [m/s^2] for CWRU and our results; a text file's column as written).
+    fs : float
+        Sample rate [Hz].
+    rpm : float or None
+        Shaft speed [r/min] (None when unknown or when a speed column is given).
+    source : str
+        File path.
+    channel : str
+        Channel (column) read.
+    bearing : Bearing or None
+        Bearing stored in the file (our results).
+    speed_hz : ndarray or None
+        Shaft speed per sample [Hz] (text ``speed_hz`` or ``rpm`` column) for order tracking.
+    info : dict
+        How fs/rpm were obtained (``fs_source``, ``rpm_source``).
+    time : ndarray or None
+        Sample times [s] (text time column).
+    columns : tuple of str
+        Column names of a text file (header or ``col0``, ``col1``, ...); empty otherwise.
+    """
+
+    x: NDArray[np.float64]
+    fs: float
+    rpm: float | None
+    source: str
+    channel: str
+    bearing: Bearing | None = None
+    speed_hz: NDArray[np.float64] | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+    time: NDArray[np.float64] | None = None
+    columns: tuple[str, ...] = ()
+
+
+def _cwru_fs_from_name(name: str) -> float | None:
+    m = re.search(r"(?<![0-9])(12|48)k", name, flags=re.IGNORECASE)
+    return float(m.group(1)) * 1000.0 if m else None
+
+
+def read_signal(
+    path: str | Path,
+    *,
+    channel: str | None = None,
+    fs_hz: float | None = None,
+    rpm: float | None = None,
+    time_column: int | None = None,
+) -> SignalRecord:
+    """Read a signal file.
+
+    * ``.mat`` (CWRU Bearing Data Center): channel ``DE`` (default), ``FE`` or ``BA``,
+      acceleration in [m/s^2]; rpm from ``X###RPM`` unless ``rpm`` is given; fs from ``fs_hz``,
+      else from ``12k``/``48k`` in the file name, else 48 kHz.
+    * ``.nc``/``.h5`` (bearingsim simulation result): channel ``x`` or ``y`` (default ``y``;
+      rotor results also ``x_fe``, ``y_fe``, the fan-end housing); fs, rpm and bearing from the
+      file (``fs_hz``, ``rpm`` override).
+    * ``.csv``/``.txt`` (:func:`.read_table`): a time column (named ``time_s``, ``time`` or
+      ``t``, or the one at index ``time_column``) gives the sample times and fs (from the median
+      step, unless ``fs_hz`` is given); a ``speed_hz`` or ``rpm`` column gives a per-sample
+      shaft speed (order tracking); the signal is the column named ``channel`` or the first
+      other one. Without a time column ``fs_hz`` is required.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    channel : str, optional
+        Channel or column name (see above).
+    fs_hz : float, optional
+        Sample rate [Hz].
+    rpm : float, optional
+        Shaft speed [r/min].
+    time_column : int, optional
+        Index of the time column of a text file whose header does not name it (or that has no
+        header).
+
+    Returns
+    -------
+    SignalRecord
+        Samples with what the file says of them; ``rpm`` and ``speed_hz`` are both ``None``
+        when the file gives no speed and ``rpm`` is not given.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise ConfigError(f"file = {str(p)!r} does not exist or is not a file")
+    suffix = p.suffix.lower()
+    if suffix == ".mat":
+        return _read_cwru(p, channel, fs_hz, rpm)
+    if suffix in (".nc", ".h5", ".nc4"):
+        return _read_result(p, channel, fs_hz, rpm)
+    if suffix in (".csv", ".txt"):
+        return _read_text(p, channel, fs_hz, rpm, time_column)
+    raise ConfigError(
+        f"file = {p.name!r} has an unknown type; valid: .mat (CWRU), .nc/.h5 "
+        "(bearingsim result), .csv/.txt"
+    )
+
+
+def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None) -> SignalRecord:
+    from .cwru import read_cwru_mat
+
+    rec = read_cwru_mat(p)
+    ch = (channel or "DE").upper()
+    if ch not in rec.channels or ch not in ("DE", "FE", "BA"):
+        raise ConfigError(
+            f"channel = {ch!r} not in {p.name} (keys X###_{ch}_time); valid: "
+            + ", ".join(sorted(rec.channels))
+        )
+    info: dict[str, Any] = {}
+    r = rpm if rpm is not None else rec.rpm
+    if r is not None:
+        info["rpm_source"] = "option" if rpm is not None else "file"
+    if fs is None:
+        fs_name = _cwru_fs_from_name(p.name)
+        fs = fs_name or CWRU_DEFAULT_FS
+        info["fs_source"] = "file name" if fs_name else "default (CWRU 48 kHz)"
+    else:
+        info["fs_source"] = "option"
+    return SignalRecord(
+        rec.acceleration(ch),
+        check_positive("fs_hz", fs, "Hz"),
+        None if r is None else check_positive("rpm", r, "r/min"),
+        str(p),
+        ch,
+        None,
+        None,
+        info,
+    )
+
+
+def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | None):
+    from ..results import SimulationResult
+
+    res = SimulationResult.load(p)
+    ch = (channel or "y").lower()
+    # rotor results also carry the fan-end housing (acc_x_fe, acc_y_fe) and its bearing
+    valid = ("x", "y", "x_fe", "y_fe") if "acc_y_fe" in res.channels else ("x", "y")
+    if ch not in valid:
+        raise ConfigError(
+            f"channel = {channel!r} is invalid for this simulation result; valid: "
+            + ", ".join(valid)
+        )
+    meta = {"bearing": res.meta.get("bearing_fe")} if ch.endswith("_fe") else res.meta
+    r = rpm if rpm is not None else float(res.scenario["rpm"])
+    return SignalRecord(
+        res[f"acc_{ch}"],
+        fs or res.fs_hz,
+        r,
+        str(p),
+        ch,
+        _bearing_from_meta(meta),
+        None,
+        {"fs_source": "file", "rpm_source": "file"},
+    )
+
+
+def _bearing_from_meta(meta: dict[str, Any]) -> Bearing | None:
+    from ..geometry import BallBearing, RollerBearing
+    from ..materials import Material
+
+    d = dict(meta.get("bearing") or {})
+    if not d:
+        return None
+    try:
+        d["material"] = Material(**d["material"])
+        cls = BallBearing if "inner_groove_radius" in d else RollerBearing
+        return cls(**d)
+    except (TypeError, KeyError) as exc:
+        raise ConfigError(f"bearing metadata in the result is invalid ({exc})") from None
+
+
+def _read_text(
+    p: Path, channel: str | None, fs: float | None, rpm: float | None, time_column: int | None
+) -> SignalRecord:
+    table = read_table(p)
+    data = table.data
+    header = list(table.names)
+    cols = {h.lower(): i for i, h in enumerate(header)}
+    info: dict[str, Any] = {}
+    if time_column is not None:
+        tcol = int(time_column)
+        if not 0 <= tcol < len(header):
+            raise ConfigError(
+                f"time_column = {time_column!r} is invalid for {p.name}; valid range "
+                f"[0, {len(header) - 1}]"
+            )
+    else:
+        tcol = next((cols[n] for n in _TIME_NAMES if n in cols), None)
+    t = None if tcol is None else data[:, tcol]
+    if t is not None and fs is None:
+        dt = np.diff(t)
+        if not (dt.size and np.all(dt > 0)):
+            raise ConfigError(
+                f"file = {str(p)!r}: the time column must increase; valid: strictly increasing "
+                "times [s]"
+            )
+        fs = 1.0 / float(np.median(dt))
+        info["fs_source"] = "time column"
+    if fs is None:
+        raise ConfigError(f"file = {str(p)!r} has no time column; give --fs HZ (> 0)")
+    speed = None
+    scol = cols.get("speed_hz")
+    rcol = cols.get("rpm")
+    if scol is not None:
+        speed = data[:, scol]
+    elif rcol is not None:
+        speed = data[:, rcol] / 60.0
+    skip = {c for c in (tcol, scol, rcol) if c is not None}
+    if channel is not None:
+        if channel.lower() not in cols:
+            raise ConfigError(
+                f"channel = {channel!r} not in {p.name}; valid: "
+                + ", ".join(h for i, h in enumerate(header) if i not in skip)
+            )
+        xcol = cols[channel.lower()]
+    else:
+        rest = [i for i in range(len(header)) if i not in skip]
+        if not rest:
+            raise ConfigError(f"file = {str(p)!r} has no signal column")
+        xcol = rest[0]
+    return SignalRecord(
+        data[:, xcol],
+        check_positive("fs_hz", fs, "Hz"),
+        rpm,
+        str(p),
+        header[xcol],
+        None,
+        speed,
+        info,
+        t,
+        tuple(header),
+    )
