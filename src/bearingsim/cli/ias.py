@@ -13,7 +13,14 @@ import numpy as np
 from ..catalog import resolve_bearing
 from ..errors import ConfigError, check_range
 from ..geometry import RollerBearing
-from .common import cli, emit_json, json_option
+from .common import (
+    DeferredDefaultOption,
+    cli,
+    deprecated,
+    emit_json,
+    json_option,
+    output_option,
+)
 
 TWO_PI = 2.0 * math.pi
 
@@ -64,13 +71,40 @@ def _summary_figure(summary, title: str):
     return fig
 
 
+def _default(key: str) -> dict[str, Any]:
+    """``cls`` and ``show_default`` of an option that sets IAS scenario key ``key``: its default
+    (the seed's case, :class:`~bearingsim.dynamics.ias.IasParams`), looked up only when help is
+    shown (``analyze-ias`` of a text file does not load the IAS model)."""
+
+    def text() -> str:
+        from ..dynamics.ias.model import SEED_SPALL, IasParams
+        from ..dynamics.ias.scenario import RUN_DEFAULTS
+
+        f = IasParams.__dataclass_fields__
+        v = {
+            "torque_nm": f["torque"].default,
+            "initial_rpm": f["initial_speed"].default * 60.0 / TWO_PI,
+            "spall_width_m": SEED_SPALL.width,
+            "spall_angle_deg": math.degrees(SEED_SPALL.angle),
+            "fx_n": f["fx"].default,
+            "fy_n": f["fy"].default,
+            "contact_law": f["contact_law"].default.value,
+            "spall_load": f["spall_load"].default.value,
+            **RUN_DEFAULTS,
+        }[key]
+        return format(v, "g") if isinstance(v, float) else str(v)
+
+    return {"cls": DeferredDefaultOption, "show_default": text}
+
+
 @cli.command("ias")
 @click.argument("scenario", required=False, type=click.Path(dir_okay=False))
 @click.option(
     "--bearing",
     "bearing_id",
     default=None,
-    help="Catalogue id of a cylindrical roller bearing [default NU204-ECP].",
+    show_default="NU204-ECP",
+    help="Catalogue id of a cylindrical roller bearing.",
 )
 @click.option(
     "--bearing-file", type=click.Path(dir_okay=False), default=None, help="User bearing TOML file."
@@ -79,58 +113,113 @@ def _summary_figure(summary, title: str):
     "--rpm",
     type=float,
     default=None,
+    show_default="set by --torque-n-m",
     help="Target speed [r/min]: sets M_z = C_T * speed (the speed itself comes out of "
     "the torque balance).",
 )
-@click.option("--torque-nm", type=float, default=None, help="Motor torque M_z [N m] [9.54].")
-@click.option("--initial-rpm", type=float, default=None, help="Initial shaft speed [r/min] [0].")
+@click.option(
+    "--torque-n-m",
+    "torque_nm",
+    type=float,
+    default=None,
+    **_default("torque_nm"),
+    help="Motor torque M_z [N m].",
+)
+@deprecated("--torque-nm", "--torque-n-m")
+@click.option(
+    "--initial-rpm",
+    type=float,
+    default=None,
+    **_default("initial_rpm"),
+    help="Initial shaft speed [r/min].",
+)
 @click.option(
     "--spall-width-m",
     type=float,
     default=None,
-    help="Outer-race spall width L_d [m]; 0 = healthy [1e-3].",
+    **_default("spall_width_m"),
+    help="Outer-race spall width L_d [m]; 0 = healthy.",
 )
 @click.option(
     "--spall-angle-deg",
     type=float,
     default=None,
-    help="Spall centre azimuth from +y towards +x [deg] [180 = bottom].",
+    **_default("spall_angle_deg"),
+    help="Spall centre azimuth from +y towards +x [deg] (180 = bottom).",
 )
-@click.option("--fx", "fx_n", type=float, default=None, help="Radial load along +x [N] [0].")
 @click.option(
-    "--fy",
+    "--fx-n",
+    "fx_n",
+    type=float,
+    default=None,
+    **_default("fx_n"),
+    help="Radial load along +x [N].",
+)
+@deprecated("--fx", "--fx-n")
+@click.option(
+    "--fy-n",
     "fy_n",
     type=float,
     default=None,
-    help="Radial load pushing the shaft down (-y) [N] [400].",
+    **_default("fy_n"),
+    help="Radial load pushing the shaft down (-y) [N].",
 )
-@click.option("--duration-s", type=float, default=None, help="Simulated time [s] [10].")
-@click.option("--dt-s", type=float, default=None, help="RK4 step [s] [1e-6].")
-@click.option("--output-rate-hz", type=float, default=None, help="Output sample rate [Hz] [48000].")
+@deprecated("--fy", "--fy-n")
 @click.option(
-    "--method", type=click.Choice(["rk4", "dopri5"]), default=None, help="Integrator [rk4]."
+    "--duration-s",
+    type=float,
+    default=None,
+    **_default("duration_s"),
+    help="Simulated time [s].",
 )
+@click.option(
+    "--dt-s",
+    type=float,
+    default=None,
+    **_default("dt_s"),
+    help="RK4 step [s].",
+)
+@click.option(
+    "--fs-hz",
+    "output_rate_hz",
+    type=float,
+    default=None,
+    **_default("output_rate_hz"),
+    help="Output sample rate [Hz].",
+)
+@deprecated("--output-rate-hz", "--fs-hz")
+@click.option(
+    "--solver",
+    "method",
+    type=click.Choice(["rk4", "dopri5"]),
+    default=None,
+    **_default("method"),
+    help="Integrator.",
+)
+@deprecated("--method", "--solver")
 @click.option(
     "--contact-law",
     type=click.Choice(["seed", "harris"]),
     default=None,
-    help="Roller stiffness: seed eqs. (5)-(12) or Harris/Palmgren [seed].",
+    **_default("contact_law"),
+    help="Roller stiffness: seed IAS eqs. (5)-(12) or Harris/Palmgren.",
 )
 @click.option(
     "--spall-load",
     type=click.Choice(["stribeck", "dynamic"]),
     default=None,
-    help="Roller load in the spall force, seed eq. (30) [stribeck].",
+    **_default("spall_load"),
+    help="Roller load in the spall force, seed IAS eq. (30).",
 )
 @click.option(
     "--skip-s",
     type=float,
     default=None,
-    help="Start-up left out of the analysis [s] [10 % of the run].",
+    show_default="10 % of the run",
+    help="Start-up left out of the analysis [s].",
 )
-@click.option(
-    "-o", "--out", required=True, type=click.Path(dir_okay=False), help="Result file (netCDF)."
-)
+@output_option("Result file (netCDF).", required=True, dest="out")
+@deprecated("--out", "--output")
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),
@@ -147,8 +236,11 @@ def ias_cmd(
     as_json: bool,
     **opts: Any,
 ) -> None:
-    """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP with an outer-race spall) and analyse
-    the instantaneous angular speed in the angle domain."""
+    """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP, outer-race spall) and analyse the
+    instantaneous angular speed.
+
+    The analysis is in the angle domain (order spectrum, spall-width estimate); SCENARIO is an
+    IAS scenario file whose keys the options override."""
     from ..dynamics.ias.model import simulate_ias
     from ..dynamics.ias.scenario import build_scenario, read_scenario
 
@@ -159,7 +251,7 @@ def ias_cmd(
         settings.update(bearing=bearing_id, bearing_file=bearing_file)
     if opts.get("rpm") is not None or opts.get("torque_nm") is not None:
         if opts.get("rpm") is not None and opts.get("torque_nm") is not None:
-            raise ConfigError("give at most one of --rpm and --torque-nm")
+            raise ConfigError("give at most one of --rpm and --torque-n-m")
         settings.pop("rpm", None)
         settings.pop("torque_nm", None)
     settings.update({k: v for k, v in opts.items() if v is not None})
@@ -248,7 +340,8 @@ def read_signal_csv(path: str | Path, kind: str | None) -> tuple[np.ndarray, np.
     "--kind",
     type=click.Choice(_KINDS),
     default=None,
-    help="What the second column of a text file is (default: from its header).",
+    show_default="from the header",
+    help="What the second column of a text file is.",
 )
 @click.option(
     "--bearing",
@@ -263,13 +356,15 @@ def read_signal_csv(path: str | Path, kind: str | None) -> tuple[np.ndarray, np.
     "--skip-s",
     type=float,
     default=None,
-    help="Leading time left out [s] (default 0; for an IAS result 10 % of the run).",
+    show_default="0; for an IAS result 10 % of the run",
+    help="Leading time left out [s].",
 )
 @click.option(
     "--samples-per-rev",
     type=int,
     default=None,
-    help="Angular resampling density [1/rev] (default from the data).",
+    show_default="from the data",
+    help="Angular resampling density [1/rev].",
 )
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG.")
 @json_option
@@ -283,8 +378,10 @@ def analyze_ias_cmd(
     plot: str | None,
     as_json: bool,
 ) -> None:
-    """Angle-domain analysis of a shaft angle or speed signal vs time (encoder/IAS): mean speed,
-    ripple, order peaks and, with a roller bearing, the outer-race spall width (seed IAS eq. (37)).
+    """Angle-domain analysis of a shaft angle or speed signal vs time (encoder/IAS).
+
+    Mean speed, ripple, order peaks and, with a roller bearing, the outer-race spall width
+    (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
     from ..signal.angle import analyze_speed_signal, resample_to_angle, speed_from_angle
