@@ -154,7 +154,8 @@ class LazyGroup(Group):
         rows = []
         for name in names:
             if name in self.lazy:
-                text = click.utils.make_default_short_help(self.lazy[name][1], limit)
+                # truncated exactly as click shortens a loaded command's help
+                text = click.Command(name, help=self.lazy[name][1]).get_short_help_str(limit)
             else:
                 cmd = self.commands[name]
                 if cmd.hidden:

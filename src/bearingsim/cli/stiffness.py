@@ -103,7 +103,7 @@ def _parse_errors(text: str | None) -> list[float] | None:
     "--conformities",
     type=click.Choice(["bearing", "iso"]),
     default="bearing",
-    help="iso16281: groove radii of the bearing or ISO defaults.",
+    help="iso16281 only: the bearing's groove radii or the ISO/TS 16281 values.",
 )
 @click.option(
     "--rpm",
