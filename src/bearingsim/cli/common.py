@@ -303,3 +303,20 @@ def bearing_summary(b: Bearing) -> dict[str, Any]:
         out["inner_raceway_diameter_m"] = b.inner_raceway_diameter
         out["outer_raceway_diameter_m"] = b.outer_raceway_diameter
     return out
+
+
+__all__ = [
+    "Command",
+    "DeferredDefaultOption",
+    "Group",
+    "LazyGroup",
+    "bearing_options",
+    "bearing_summary",
+    "cli",
+    "deprecated",
+    "emit_json",
+    "json_option",
+    "output_option",
+    "rad_to_deg",
+    "scenario_default",
+]
