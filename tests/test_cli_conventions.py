@@ -298,3 +298,23 @@ def test_analyze_never_calls_the_shaft_frequency_fs(run_cli):
     names = {n for p in _visible_options(cmd) for n in p.opts}
     assert "--fs" not in names and "--fs-hz" in names
     assert "shaft" not in cmd.params[[p.name for p in cmd.params].index("fs_hz")].help.lower()
+
+
+def test_choices_written_out_match_their_enums():
+    """Choices the CLI spells out (so that its modules need not import the models) are exactly
+    the values of the library's enums."""
+    from bearingsim.config import Solver
+    from bearingsim.dynamics.ias import ContactLaw, SpallLoad
+    from bearingsim.dynamics.rotor import ShaftMassModel
+
+    ctx = click.Context(cli)
+
+    def choices(command: str, option: str) -> list[str]:
+        cmd = cli.get_command(ctx, command)
+        return list(next(p for p in cmd.params if option in p.opts).type.choices)
+
+    assert choices("rotor-modes", "--shaft-mass-model") == [m.value for m in ShaftMassModel]
+    assert choices("simulate", "--shaft-mass-model") == [m.value for m in ShaftMassModel]
+    assert choices("ias", "--contact-law") == [m.value for m in ContactLaw]
+    assert choices("ias", "--spall-load") == [m.value for m in SpallLoad]
+    assert choices("ias", "--solver") == [m.value for m in Solver]
