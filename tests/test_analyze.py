@@ -61,12 +61,12 @@ def test_cwru_ball_records_report_what_they_show(run_cli, record):
 
 
 def test_cwru_fs_from_name_and_band(run_cli):
-    r = run_cli("analyze", _cwru("107"), "--band", "2000", "5000", "--json")
+    r = run_cli("analyze", _cwru("107"), "--band-hz", "2000", "5000", "--json")
     assert r.code == 0, r.err
     d = r.json()
     assert d["fs_hz"] == 12000.0 and d["band_hz"] == [2000.0, 5000.0]
     assert d["diagnosis"] == "inner"
-    r2 = run_cli("analyze", _cwru("107"), "--band", "2000,5000", "--channel", "FE", "--json")
+    r2 = run_cli("analyze", _cwru("107"), "--band-hz", "2000,5000", "--channel", "FE", "--json")
     assert r2.code == 0 and r2.json()["channel"] == "FE"
 
 
@@ -209,10 +209,10 @@ def test_bad_mat_files(tmp_path, capsys):
 
 def test_bad_band_and_options(capsys):
     f = _cwru("109")
-    msg = _run_bad(capsys, [f, "--band", "1000", "30000"])
+    msg = _run_bad(capsys, [f, "--band-hz", "1000", "30000"])
     assert "band_hz high = 30000 Hz is above the Nyquist frequency" in msg
     assert "fs too low for the requested band" in msg
-    assert "band" in _run_bad(capsys, [f, "--band", "low"])
+    assert "band" in _run_bad(capsys, [f, "--band-hz", "low"])
     assert "rpm = -3 r/min is out of range" in _run_bad(capsys, [f, "--rpm", "-3"])
-    msg = _run_bad(capsys, [f, "--fs", "1000"])
+    msg = _run_bad(capsys, [f, "--fs-hz", "1000"])
     assert "fs_hz = 1000 Hz is too low for an envelope band" in msg

@@ -41,7 +41,7 @@ def test_info_json(run_cli):
 
 
 def test_contact_json_ball_load(run_cli):
-    r = run_cli("contact", "6206", "--ball-load", str(4.37 * 5000 / 9), "--json")
+    r = run_cli("contact", "6206", "--ball-load-n", str(4.37 * 5000 / 9), "--json")
     assert r.code == 0, r.err
     d = r.json()
     keys = {
@@ -61,7 +61,7 @@ def test_contact_json_ball_load(run_cli):
 
 
 def test_contact_json_radial_load(run_cli):
-    r = run_cli("contact", "6206", "--radial-load", "5000", "--json")
+    r = run_cli("contact", "6206", "--radial-load-n", "5000", "--json")
     assert r.code == 0, r.err
     d = r.json()
     assert_allclose(d["q_max_stribeck_n"], 4.37 * 5000 / 9, rtol=1e-12)
@@ -71,14 +71,14 @@ def test_contact_json_radial_load(run_cli):
 
 
 def test_contact_roller(run_cli):
-    r = run_cli("contact", "NU204-ECP", "--ball-load", "200", "--json")
+    r = run_cli("contact", "NU204-ECP", "--ball-load-n", "200", "--json")
     assert r.code == 0, r.err
     assert_allclose(r.json()["inner"]["exponent"], 10 / 9)
 
 
 def test_load_json(run_cli, tmp_path):
     png = tmp_path / "l.png"
-    r = run_cli("load", "6205", "--fx", "10", "--fy", "50", "--plot", png, "--json")
+    r = run_cli("load", "6205", "--fx-n", "10", "--fy-n", "50", "--plot", png, "--json")
     assert r.code == 0, r.err
     d = r.json()
     for k in (
@@ -111,13 +111,13 @@ def test_user_bearing_file(run_cli, tmp_path):
 
 
 def test_material_override(run_cli):
-    a = run_cli("contact", "6205", "--ball-load", "100", "--json").json()
-    b = run_cli("contact", "6205", "--ball-load", "100", "--E-pa", "100e9", "--json").json()
+    a = run_cli("contact", "6205", "--ball-load-n", "100", "--json").json()
+    b = run_cli("contact", "6205", "--ball-load-n", "100", "--E-pa", "100e9", "--json").json()
     assert b["inner"]["p_max_pa"] < a["inner"]["p_max_pa"]
 
 
 def test_json_output_is_one_object(run_cli):
-    r = run_cli("load", "6205", "--fy", "100", "--json")
+    r = run_cli("load", "6205", "--fy-n", "100", "--json")
     assert r.out.count("\n") == 1 and isinstance(json.loads(r.out), dict)
 
 
@@ -127,11 +127,11 @@ BAD = [
     (["info", "6205", "--rpm", "0"], "rpm"),
     (["info", "6205", "--rpm", "nan"], "rpm"),
     (["info", "6205", "--rpm", "abc"], "rpm"),
-    (["contact", "6205", "--ball-load", "-3"], "ball_load_n"),
-    (["contact", "6205", "--radial-load", "inf"], "radial_load_n"),
-    (["contact", "6205"], "--ball-load"),
-    (["load", "6205", "--fx", "nan", "--fy", "1"], "fx_n"),
-    (["load", "6205", "--fy", "10", "--clearance-m", "0.01"], "clearance_m"),
+    (["contact", "6205", "--ball-load-n", "-3"], "ball_load_n"),
+    (["contact", "6205", "--radial-load-n", "inf"], "radial_load_n"),
+    (["contact", "6205"], "--ball-load-n"),
+    (["load", "6205", "--fx-n", "nan", "--fy-n", "1"], "fx_n"),
+    (["load", "6205", "--fy-n", "10", "--clearance-m", "0.01"], "clearance_m"),
     (["info", "6205", "--rpm", "100", "--E-pa", "-1"], "youngs_modulus_pa"),
     (["info", "6205", "--rpm", "100", "--nu", "0.7"], "poisson_ratio"),
 ]

@@ -12,7 +12,7 @@ from bearingsim.cli import main
 from bearingsim.dynamics.ias.model import IasResult
 
 #: short runs: dt 1e-5 s (valid, see tests/test_ias.py), 1.5 s simulated, 10 kHz output
-FAST = ["--duration-s", "1.5", "--dt-s", "1e-5", "--output-rate-hz", "10000"]
+FAST = ["--duration-s", "1.5", "--dt-s", "1e-5", "--fs-hz", "10000"]
 KEYS = {
     "mean_speed_rpm",
     "ias_ripple_rel",
@@ -29,9 +29,9 @@ def test_ias_json_and_files(run_cli, tmp_path):
         "ias",
         "--bearing",
         "NU204-ECP",
-        "--torque-nm",
+        "--torque-n-m",
         "9.54",
-        "--fy",
+        "--fy-n",
         "400",
         "--spall-width-m",
         "1e-3",
@@ -60,7 +60,7 @@ def test_ias_scenario_file_and_rpm(run_cli, tmp_path):
     r = run_cli("ias", sc, "--rpm", "60", "-o", tmp_path / "h.nc", "--json")
     assert r.code == 0, r.err
     d = r.json()
-    assert_allclose(d["torque_nm"], 1.52 * 2 * math.pi, rtol=1e-12, err_msg="M_z = C_T w")
+    assert_allclose(d["torque_n_m"], 1.52 * 2 * math.pi, rtol=1e-12, err_msg="M_z = C_T w")
     assert d["spall_width_estimate_m"] is None
     assert_allclose(d["order_peaks"][0]["order"], 4.22, atol=0.02, err_msg="healthy ripple")
 
@@ -146,11 +146,11 @@ def _bad(capsys, args, *needles, out=None):
         (["--dt-s", "-1e-6"], ["dt_s = -1e-06 s", "valid range"]),
         (["--duration-s", "0"], ["duration_s = 0 s", "valid range (0, inf) s"]),
         (["--dt-s", "1e-3"], ["dt_s = 0.001 s is too large for stability", "valid range (0, "]),
-        (["--torque-nm", "0"], ["torque_nm = 0 N m with zero initial speed"]),
-        (["--torque-nm", "0", "--initial-rpm", "60", "--dt-s", "1e-5"], ["needs a turning shaft"]),
+        (["--torque-n-m", "0"], ["torque_nm = 0 N m with zero initial speed"]),
+        (["--torque-n-m", "0", "--initial-rpm", "60", "--dt-s", "1e-5"], ["needs a turning shaft"]),
         (["--rpm", "0"], ["rpm = 0 r/min", "valid range (0, inf)"]),
-        (["--rpm", "60", "--torque-nm", "9"], ["at most one of --rpm and --torque-nm"]),
-        (["--fy", "0"], ["radial load = 0 N"]),
+        (["--rpm", "60", "--torque-n-m", "9"], ["at most one of --rpm and --torque-n-m"]),
+        (["--fy-n", "0"], ["radial load = 0 N"]),
         (["--bearing", "6205"], ["not a cylindrical roller bearing"]),
         (["--bearing", "nope"], ["bearing = 'nope' is not in the catalogue"]),
     ],

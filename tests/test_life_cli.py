@@ -34,7 +34,7 @@ def test_life_json(run_cli, tmp_path):
     r = run_cli(
         "life",
         "6206",
-        "--radial-load",
+        "--radial-load-n",
         "5000",
         "--rpm",
         "12000",
@@ -62,7 +62,7 @@ def test_life_json(run_cli, tmp_path):
 
 
 def test_life_text_output(run_cli, tmp_path):
-    r = run_cli("life", "6206", "--radial-load", "5000", *QUICK, "-o", tmp_path / "a.nc")
+    r = run_cli("life", "6206", "--radial-load-n", "5000", *QUICK, "-o", tmp_path / "a.nc")
     assert r.code == 0, r.err
     assert "damage life: initiation" in r.out and "ISO 281: C =" in r.out
 
@@ -83,14 +83,14 @@ def _bad(capsys, args, tmp_path, match):
 @pytest.mark.parametrize(
     "args, match",
     [
-        (["--radial-load", "5000", "--kappa", "0"], "kappa = 0"),
-        (["--radial-load", "5000", "--kappa", "-2"], "kappa = -2"),
-        (["--radial-load", "5000", "--sigma-t-pa", "0"], "sigma_t_pa = 0"),
-        (["--radial-load", "5000", "--sigma-t-pa", "-5e9"], "sigma_t_pa = -5e+09"),
-        (["--radial-load", "0"], "radial_load_n = 0"),
-        (["--radial-load", "5000", "--element-size-um", "100"], "does not resolve"),
-        (["--radial-load", "5000", "--delta-d", "0"], "delta_d = 0"),
-        (["--radial-load", "5000", "--mesh", "huge"], "Invalid value for '--mesh'"),
+        (["--radial-load-n", "5000", "--kappa", "0"], "kappa = 0"),
+        (["--radial-load-n", "5000", "--kappa", "-2"], "kappa = -2"),
+        (["--radial-load-n", "5000", "--sigma-t-pa", "0"], "sigma_t_pa = 0"),
+        (["--radial-load-n", "5000", "--sigma-t-pa", "-5e9"], "sigma_t_pa = -5e+09"),
+        (["--radial-load-n", "0"], "radial_load_n = 0"),
+        (["--radial-load-n", "5000", "--element-size-um", "100"], "does not resolve"),
+        (["--radial-load-n", "5000", "--delta-d", "0"], "delta_d = 0"),
+        (["--radial-load-n", "5000", "--mesh", "huge"], "Invalid value for '--mesh'"),
     ],
 )
 def test_life_bad_input(capsys, tmp_path, args, match):
@@ -101,12 +101,12 @@ def test_life_bad_input(capsys, tmp_path, args, match):
 
 def test_life_overload_error_and_warning(capsys, tmp_path, run_cli):
     c0 = static_capacity(get_bearing("6206")).c0
-    line = _bad(capsys, ["--radial-load", f"{2.5 * c0:.0f}"], tmp_path, "static capacity")
+    line = _bad(capsys, ["--radial-load-n", f"{2.5 * c0:.0f}"], tmp_path, "static capacity")
     assert "valid range (0," in line
     r = run_cli(
         "life",
         "6206",
-        "--radial-load",
+        "--radial-load-n",
         f"{1.3 * c0:.0f}",
         *QUICK,
         "-o",
@@ -121,7 +121,7 @@ def test_life_overload_error_and_warning(capsys, tmp_path, run_cli):
 def test_too_coarse_message_names_the_needed_size(capsys, tmp_path):
     line = _bad(
         capsys,
-        ["--radial-load", "5000", "--element-size-um", "60"],
+        ["--radial-load-n", "5000", "--element-size-um", "60"],
         tmp_path,
         "need element size <= b/4",
     )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -10,11 +11,16 @@ from bearingsim.cli import main
 from bearingsim.quasistatic import StiffnessResult
 from bearingsim.results import load_result
 
-BASE = ["stiffness", "6205", "--fy", "500", "--cage-revs", "2", "--points-per-rev", "90"]
+BASE = ["stiffness", "6205", "--fy-n", "500", "--cage-revs", "2", "--points-per-rev", "90"]
+
+
+def deg(rad: float) -> str:
+    """An angle given in rad before the CLI took degrees, as the option's text [deg]."""
+    return repr(math.degrees(rad))
 
 
 def test_json_contract(run_cli):
-    r = run_cli(*BASE, "--inner-tilt-rad", "3e-3", "--json")
+    r = run_cli(*BASE, "--inner-tilt-deg", deg(3e-3), "--json")
     assert r.code == 0, r.err
     d = r.json()
     assert set(d["displacement"]) == {"x_m", "y_m", "z_m", "theta_x_rad", "theta_y_rad"}
@@ -41,8 +47,8 @@ def test_files_and_iso_method(run_cli, tmp_path):
         out,
         "--plot",
         png,
-        "--ball-errors-rad",
-        "0.05,0,0,0,-0.03,0,0,0,0",
+        "--ball-errors-deg",
+        f"{deg(0.05)},0,0,0,{deg(-0.03)},0,0,0,0",
         "--json",
     )
     assert r.code == 0, r.err
@@ -63,21 +69,24 @@ def test_text_output(run_cli):
 @pytest.mark.parametrize(
     ("args", "needle"),
     [
-        (["--outer-tilt-rad", "0.1"], "outer_tilt_rad = 0.1 rad is beyond what the clearance"),
-        (["--inner-tilt-rad", "0.05", "--outer-tilt-rad", "0.02"], "inner_tilt_rad = 0.05 rad"),
-        (["--ball-errors-rad", "0.5,0,0,0,0,0,0,0,0"], "overlap or pass each other"),
-        (["--ball-errors-rad", "0,0,0"], "has 3 values; valid: exactly n_elements = 9"),
-        (["--ball-errors-rad", "0,0,0,0,nan,0,0,0,0"], "ball_errors_rad[4] = nan"),
-        (["--ball-errors-rad", "0,0,a,0,0,0,0,0,0"], "ball_errors_rad[2] = 'a' is not a number"),
-        (["--fx", "inf"], "fx_n = inf is not finite"),
-        (["--inner-tilt-rad", "nan"], "inner_tilt_rad = nan is not finite"),
-        (["--outer-tilt-azimuth-rad", "inf"], "outer_tilt_azimuth_rad = inf is not finite"),
+        (["--outer-tilt-deg", deg(0.1)], "outer_tilt_rad = 0.1 rad is beyond what the clearance"),
+        (
+            ["--inner-tilt-deg", deg(0.05), "--outer-tilt-deg", deg(0.02)],
+            "inner_tilt_rad = 0.05 rad",
+        ),
+        (["--ball-errors-deg", f"{deg(0.5)},0,0,0,0,0,0,0,0"], "overlap or pass each other"),
+        (["--ball-errors-deg", "0,0,0"], "has 3 values; valid: exactly n_elements = 9"),
+        (["--ball-errors-deg", "0,0,0,0,nan,0,0,0,0"], "ball_errors_rad[4] = nan"),
+        (["--ball-errors-deg", "0,0,a,0,0,0,0,0,0"], "ball_errors_deg[2] = 'a' is not a number"),
+        (["--fx-n", "inf"], "fx_n = inf is not finite"),
+        (["--inner-tilt-deg", "nan"], "inner_tilt_rad = nan is not finite"),
+        (["--outer-tilt-azimuth-deg", "inf"], "outer_tilt_azimuth_rad = inf is not finite"),
         (["--clearance-m", "1e-3"], "clearance_m = 0.001 m is out of range"),
-        (["--fz", "1e6"], "beyond the groove limit"),
+        (["--fz-n", "1e6"], "beyond the groove limit"),
         (["--cage-revs", "0"], "cage_revs = 0"),
         (["--points-per-rev", "10"], "points_per_rev = 10"),
         (["--centrifugal"], "need --rpm"),
-        (["--mx", "1", "--inner-tilt-rad", "1e-3"], "held by a misalignment"),
+        (["--mx-n-m", "1", "--inner-tilt-deg", deg(1e-3)], "held by a misalignment"),
     ],
     ids=[
         "outer-tilt",
@@ -111,7 +120,7 @@ def test_bad_input_exit_2_one_line(args, needle, capsys, tmp_path):
 
 
 def test_reproduce_section_qs5(run_cli, tmp_path):
-    r = run_cli("reproduce", "--quick", "--section", "qs5", "--out", tmp_path, "--json")
+    r = run_cli("reproduce", "--quick", "--section", "qs5", "-o", tmp_path, "--json")
     assert r.code == 0, r.err
     rows = json.loads((tmp_path / "results.json").read_text())
     assert rows and all(row["section"] == "qs5" for row in rows)

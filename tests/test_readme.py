@@ -42,5 +42,6 @@ def test_readme_cli_examples_run(run_cli, tmp_path, monkeypatch):
             assert args[0] == "bearingsim"
             r = run_cli(*args[1:])
             assert r.code == 0, f"{line}: {r.err}"
+            assert "deprecated" not in r.err, f"{line}: old option spelling ({r.err})"
             n += 1
     assert n >= 4

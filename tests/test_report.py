@@ -43,9 +43,7 @@ def test_foundation_rows(report_dir):
 
 
 def test_reproduce_cli_json(run_cli, tmp_path):
-    r = run_cli(
-        "reproduce", "--quick", "--section", "foundation", "--out", tmp_path / "o", "--json"
-    )
+    r = run_cli("reproduce", "--quick", "--section", "foundation", "-o", tmp_path / "o", "--json")
     assert r.code == 0, r.err
     d = r.json()
     assert d["sections"] == ["foundation"] and d["counts"]["match"] > 10

@@ -14,7 +14,7 @@ from bearingsim.config import Scenario
 from bearingsim.errors import ConfigError
 from bearingsim.results import SimulationResult
 
-BASE = ["simulate", "--model", "rotor", "--duration-s", "0.5", "--fs", "12000"]
+BASE = ["simulate", "--model", "rotor", "--duration-s", "0.5", "--fs-hz", "12000"]
 
 
 def test_cli_simulate_rotor_json_file_and_api_agree(run_cli, tmp_path):
@@ -82,8 +82,8 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
          "disk_position_m = 0.25 m is out of range; valid range (0, 0.2032) m"),
         (["--disk-positions-mm", "0,100"], "disk_position_m = 0 m is out of range"),
         (["--housing-mass-kg", "0"], "housing_mass_kg = 0 kg is out of range; valid range (0,"),
-        (["--housing-stiffness-n-m", "-3"], "housing_stiffness_n_m = -3 N/m is out of range"),
-        (["--contact-damping", "-1"], "contact_damping_n_s_m = -1 N s/m is out of range"),
+        (["--housing-stiffness-n-per-m", "-3"], "housing_stiffness_n_m = -3 N/m is out of range"),
+        (["--contact-damping-n-s-per-m", "-1"], "contact_damping_n_s_m = -1 N s/m is out of range"),
         (["--disks", "9", "--elements", "4"], "n_elements = 4 is too few; valid range [10, inf)"),
         (["--disks", "0"], "disks = 0 is invalid; valid range [1, inf) integer"),
         (["--fault", "outer"], "unknown key 'fault' (a key of model vsm/dem/tvsm)"),

@@ -222,7 +222,7 @@ def test_cli_simulate_json(run_cli, tmp_path):
         "1796",
         "--duration-s",
         "0.02",
-        "--fs",
+        "--fs-hz",
         "48000",
         "--seed",
         "1",
@@ -258,7 +258,7 @@ def test_cli_scenario_file_and_override(run_cli, tmp_path):
         (["--rpm", "-100"], "rpm = -100 r/min is out of range"),
         (["--duration-s", "0"], "duration_s = 0 s is out of range; valid range (0, inf) s"),
         (
-            ["--fs", "2000", "--dt-s", "5e-4", "--duration-s", "0.05"],
+            ["--fs-hz", "2000", "--dt-s", "5e-4", "--duration-s", "0.05"],
             "dt_s = 0.0005 s is too large",
         ),
     ],

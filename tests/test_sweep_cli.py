@@ -52,7 +52,7 @@ def test_plan_json_and_text(run_cli, spec_file):
 
 def test_run_summary_resume(run_cli, spec_file, tmp_path):
     out = tmp_path / "ds.zarr"
-    r = run_cli("sweep", "run", spec_file, "--out", out, "--workers", "1", "--json")
+    r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1", "--json")
     assert r.code == 0, r.err
     d = r.json()
     assert (d["n_runs"], d["n_computed"], d["n_ok"], d["n_pending"], d["created"]) == (
@@ -73,11 +73,11 @@ def test_run_summary_resume(run_cli, spec_file, tmp_path):
     assert s["by_axis"]["rpm"]["1797.0"]["ok"] == 2 and s["complete"] and s["failures"] == []
     r = run_cli("sweep", "summary", out, "--label", "rpm")
     assert r.code == 0 and "4 runs: 4 ok, 0 failed, 0 pending" in r.out and "1730.0" in r.out
-    r = run_cli("sweep", "run", spec_file, "--out", out)
+    r = run_cli("sweep", "run", spec_file, "-o", out)
     assert r.code == 0 and "4 already committed, 0 computed" in r.out
     # the same spec file, reformatted, is the same sweep
     spec_file.write_text(SPEC.replace('["outer", "inner"]', '{ values = ["outer", "inner"] }'))
-    assert run_cli("sweep", "run", spec_file, "--out", out, "--json").json()["n_skipped"] == 4
+    assert run_cli("sweep", "run", spec_file, "-o", out, "--json").json()["n_skipped"] == 4
 
 
 def _dataset_spec(tmp_path):
@@ -89,26 +89,26 @@ def _dataset_spec(tmp_path):
 @pytest.mark.parametrize(
     "args, match",
     [
-        (["sweep", "run", "{missing}", "--out", "{out}"], r"sweep file '.*nope.toml' cannot be"),
-        (["sweep", "run", "{bad_toml}", "--out", "{out}"], r"is not valid TOML"),
+        (["sweep", "run", "{missing}", "-o", "{out}"], r"sweep file '.*nope.toml' cannot be"),
+        (["sweep", "run", "{bad_toml}", "-o", "{out}"], r"is not valid TOML"),
         (
-            ["sweep", "run", "{bad_axis}", "--out", "{out}"],
+            ["sweep", "run", "{bad_axis}", "-o", "{out}"],
             r"axis 'rmp' is not a scenario key; valid: model",
         ),
         (
-            ["sweep", "run", "{bad_value}", "--out", "{out}"],
+            ["sweep", "run", "{bad_value}", "-o", "{out}"],
             r"run 1: rpm = -5 r/min is out of range; valid range \(0, inf\) r/min",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{out}", "--workers", "0"],
+            ["sweep", "run", "{spec}", "-o", "{out}", "--workers", "0"],
             r"workers = 0 is out of range; valid range \[1, inf\)",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{out}", "--runs-per-task", "0"],
+            ["sweep", "run", "{spec}", "-o", "{out}", "--runs-per-task", "0"],
             r"runs_per_task = 0 is out of range; valid range \[1, inf\)",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{out}", "--scheduler", "my-laptop"],
+            ["sweep", "run", "{spec}", "-o", "{out}", "--scheduler", "my-laptop"],
             r"scheduler = 'my-laptop' is invalid; valid: an address like tcp://HOST:PORT",
         ),
         (
@@ -116,7 +116,7 @@ def _dataset_spec(tmp_path):
                 "sweep",
                 "run",
                 "{spec}",
-                "--out",
+                "-o",
                 "{out}",
                 "--scheduler",
                 "tcp://127.0.0.1:9",
@@ -130,7 +130,7 @@ def _dataset_spec(tmp_path):
                 "sweep",
                 "run",
                 "{spec}",
-                "--out",
+                "-o",
                 "{out}",
                 "--scheduler",
                 "tcp://127.0.0.1:9",
@@ -141,19 +141,19 @@ def _dataset_spec(tmp_path):
             r"address printed by a running 'dask scheduler'",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{out}", "--connect-timeout-s", "0"],
+            ["sweep", "run", "{spec}", "-o", "{out}", "--connect-timeout-s", "0"],
             r"connect_timeout_s = 0 s is out of range; valid range \(0, inf\) s",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{afile}"],
+            ["sweep", "run", "{spec}", "-o", "{afile}"],
             r"out = '.*afile.txt' is a file; valid: a dataset directory",
         ),
         (
-            ["sweep", "run", "{spec}", "--out", "{notds}"],
+            ["sweep", "run", "{spec}", "-o", "{notds}"],
             r"dataset = '.*notds' is not a bearingsim sweep dataset \(no readable .zattrs\)",
         ),
         (
-            ["sweep", "run", "{bad_channel}", "--out", "{out}", "--workers", "1"],
+            ["sweep", "run", "{bad_channel}", "-o", "{out}", "--workers", "1"],
             r"channel 'acc_z' is not produced by the runs with model = 'dem', per_ball = False; "
             r"valid: disp_x",
         ),
@@ -203,15 +203,15 @@ def test_bad_input(args, match, run_cli, spec_file, tmp_path):
 
 def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
     out = tmp_path / "ds.zarr"
-    assert run_cli("sweep", "run", spec_file, "--out", out, "--workers", "1", "--json").code == 0
+    assert run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1", "--json").code == 0
     other = _dataset_spec(tmp_path)
-    r = run_cli("sweep", "run", other, "--out", out, "--workers", "1")
+    r = run_cli("sweep", "run", other, "-o", out, "--workers", "1")
     assert r.code == 2 and r.out == ""
     assert r.err.strip() == (
         f"error: out = '{out}' holds a dataset of a different sweep spec (differs in: axes.rpm); "
         "use another --out, or --force-new to replace it"
     )
-    r = run_cli("sweep", "run", other, "--out", out, "--workers", "1", "--force-new", "--json")
+    r = run_cli("sweep", "run", other, "-o", out, "--workers", "1", "--force-new", "--json")
     assert r.code == 0 and r.json()["created"] and r.json()["n_ok"] == 4
     s = json.loads(run_cli("sweep", "summary", out, "--json").out)
     assert set(s["by_axis"]["rpm"]) == {"1730.0", "1772.0"}

@@ -89,7 +89,7 @@ def wait_for(cond, proc: subprocess.Popen | None, what: str, timeout: float = TI
 
 
 def sweep_cmd(spec: Path, out: Path, *extra: str) -> list[str]:
-    return ["-m", "bearingsim", "sweep", "run", str(spec), "--out", str(out), "--json", *extra]
+    return ["-m", "bearingsim", "sweep", "run", str(spec), "-o", str(out), "--json", *extra]
 
 
 def same_data(a: Path, b: Path) -> None:

@@ -1,32 +1,238 @@
-"""Shared CLI pieces: the root group, bearing options, JSON output."""
+"""Shared CLI pieces: the root group (commands loaded on first use), deprecated option
+spellings, bearing options, JSON output. The conventions are written down in ``docs/cli.md``.
+
+This module imports nothing heavy (no NumPy, SciPy, Numba, xarray, Dask, Matplotlib): it runs
+for every command, ``--help`` and ``--version`` included.
+"""
 
 from __future__ import annotations
 
 import functools
+import importlib
 import json
-from collections.abc import Callable
-from typing import Any
+import math
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .._version import __version__
-from ..catalog import resolve_bearing
-from ..geometry import Bearing
-from ..io.jsonable import to_jsonable
+
+if TYPE_CHECKING:
+    from ..geometry import Bearing
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _DeprecatedOption(click.Option):
+    """A hidden, deprecated spelling of another option of the same command.
+
+    When given, it prints ``warning: OLD is deprecated; use NEW`` on stderr and hands its
+    value to NEW (after ``convert`` when the unit changed), so NEW's type, callback, range
+    checks and required flag apply as if NEW had been given.
+    """
+
+    def __init__(self, old: str, new: str, convert: Callable[[Any], Any] | None) -> None:
+        dest = "deprecated_" + old.lstrip("-").replace("-", "_").lower()
+        super().__init__([old, dest], hidden=True, expose_value=False, type=click.UNPROCESSED)
+        self.old, self.new, self.convert = old, new, convert
+
+
+def deprecated(old: str, new: str, convert: Callable[[Any], Any] | None = None) -> Callable:
+    """Decorator: keep ``old`` as a hidden alias of option ``new`` for one release.
+
+    Parameters
+    ----------
+    old : str
+        The old spelling, e.g. ``"--torque-nm"``.
+    new : str
+        An option string of the replacement on the same command, e.g. ``"--torque-n-m"``.
+    convert : callable, optional
+        Maps the raw value given to ``old`` to a value in ``new``'s unit (e.g. radians to
+        degrees); ``None`` when only the name changed.
+    """
+
+    def deco(f: Callable) -> Callable:
+        params = f.__dict__.setdefault("__click_params__", [])
+        params.append(_DeprecatedOption(old, new, convert))
+        return f
+
+    return deco
+
+
+def rad_to_deg(raw: Any) -> Any:
+    """Convert one value, or a comma-separated list, from radians to degrees (``convert`` of a
+    deprecated ``-rad`` option); what is not a number is passed on for NEW to reject."""
+
+    def one(v: str) -> str:
+        try:
+            return repr(math.degrees(float(v)))
+        except ValueError:
+            return v
+
+    if isinstance(raw, str) and "," in raw:
+        return ",".join(one(v) for v in raw.split(","))
+    return one(raw) if isinstance(raw, str) else raw
+
+
+class Command(click.Command):
+    """A command whose deprecated option spellings (:func:`deprecated`) warn and work."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        by_opt = {o: p for p in self.params for o in getattr(p, "opts", ()) + p.secondary_opts}
+        self._aliases: list[tuple[_DeprecatedOption, click.Parameter]] = []
+        for p in self.params:
+            if isinstance(p, _DeprecatedOption):
+                target = by_opt.get(p.new)
+                if target is None or isinstance(target, _DeprecatedOption):
+                    raise TypeError(f"{self.name}: deprecated {p.old} names no option {p.new}")
+                self._aliases.append((p, target))
+
+    @property
+    def deprecated_spellings(self) -> dict[str, str]:
+        """``{old: new}`` for every deprecated option spelling of this command."""
+        return {a.old: a.new for a, _ in self._aliases}
+
+    def make_parser(self, ctx: click.Context) -> Any:
+        parser = super().make_parser(ctx)
+        if not self._aliases:
+            return parser
+        parse = parser.parse_args
+
+        def parse_args(args: list[str]) -> tuple[dict[str, Any], list[str], list[Any]]:
+            opts, largs, order = parse(args=args)
+            for alias, target in self._aliases:
+                if alias.name not in opts:
+                    continue
+                raw = opts.pop(alias.name)
+                if target.name in opts and not ctx.resilient_parsing:
+                    raise click.UsageError(
+                        f"give {alias.new}, not both {alias.new} and its old spelling {alias.old}",
+                        ctx,
+                    )
+                if not ctx.resilient_parsing:
+                    click.echo(f"warning: {alias.old} is deprecated; use {alias.new}", err=True)
+                opts[target.name] = raw if alias.convert is None else alias.convert(raw)
+                order = [target if p is alias else p for p in order]
+            return opts, largs, order
+
+        parser.parse_args = parse_args
+        return parser
+
+
+class Group(click.Group):
+    """A group whose commands are :class:`Command` (sub-groups: this class again)."""
+
+    command_class = Command
+    group_class = type
+
+
+class LazyGroup(Group):
+    """The root group: a command's module is imported only when that command runs (or shows
+    its help), so ``--help``, ``--version``, ``bearings`` and ``info`` start fast.
+
+    ``lazy`` maps a command name to ``(module, one-line help)``; the module registers the
+    command on this group when imported. ``--help`` lists every command from this table without
+    importing anything (``tests/test_cli_conventions.py`` checks the table against the modules).
+    """
+
+    group_class = Group
+    lazy: Mapping[str, tuple[str, str]] = {}
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(self.commands) | set(self.lazy))
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in self.commands and cmd_name in self.lazy:
+            importlib.import_module(self.lazy[cmd_name][0])
+        return self.commands.get(cmd_name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        names = self.list_commands(ctx)
+        if not names:
+            return
+        limit = formatter.width - 6 - max(len(n) for n in names)
+        rows = []
+        for name in names:
+            if name in self.lazy:
+                # truncated exactly as click shortens a loaded command's help
+                text = click.Command(name, help=self.lazy[name][1]).get_short_help_str(limit)
+            else:
+                cmd = self.commands[name]
+                if cmd.hidden:
+                    continue
+                text = cmd.get_short_help_str(limit)
+            rows.append((name, text))
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+@click.group(
+    cls=LazyGroup,
+    context_settings={"help_option_names": ["-h", "--help"], "show_default": True},
+)
 @click.version_option(__version__, "--version", prog_name="bearingsim")
 def cli() -> None:
-    """bearingsim: physics-based rolling-bearing analysis (SI units inside)."""
+    """bearingsim: physics-based rolling-bearing analysis (SI units inside).
+
+    Conventions of every command (docs/cli.md): -o/--output names the main output; an option
+    with a unit ends in it (--fy-n [N], --torque-n-m [N m], --housing-stiffness-n-per-m [N/m]);
+    angles are in degrees; --json prints exactly one JSON object (SI) on stdout; bad input
+    prints one line on stderr and exits with code 2.
+    """
+
+
+class DeferredDefaultOption(click.Option):
+    """An option whose ``[default: ...]`` text (``show_default``, a callable returning it) is
+    computed only when help is shown, so a command module need not import a model to describe
+    its defaults (``cls=DeferredDefaultOption``)."""
+
+    def get_help_record(self, ctx: click.Context) -> tuple[str, str] | None:
+        if callable(self.show_default):
+            self.show_default = self.show_default()
+        return super().get_help_record(ctx)
+
+
+def scenario_default(key: str, model: str = "vsm") -> str | bool:
+    """What ``[default: ...]`` shows for an option that overrides scenario key ``key``: the
+    default of the family of ``model`` that has the key (else of the first family that has it,
+    :mod:`bearingsim.config`) when neither the option nor the scenario file sets it (``False``,
+    i.e. nothing shown, for a default of ``None`` or ``False``)."""
+    import dataclasses
+    import enum
+
+    from ..config import IasScenario, RingScenario, RotorScenario, family
+
+    fams = [family(model), RingScenario, RotorScenario, IasScenario]
+    fam = next(f for f in fams if key in f.KEYS)
+    v = {f.name: f.default for f in dataclasses.fields(fam)}[key]
+    if v is None or v is False:
+        return False
+    if v is True:
+        return key.replace("_", "-")
+    if isinstance(v, enum.Enum):
+        v = v.value
+    return format(v, "g") if isinstance(v, float) else str(v)
 
 
 def emit_json(obj: Any) -> None:
     """Print exactly one JSON object on stdout."""
+    from ..io.jsonable import to_jsonable
+
     click.echo(json.dumps(to_jsonable(obj)))
 
 
-json_option = click.option("--json", "as_json", is_flag=True, help="Print one JSON object (SI).")
+json_option = click.option(
+    "--json", "as_json", is_flag=True, help="Print one JSON object (SI) on stdout."
+)
+
+
+def output_option(
+    help: str, *, required: bool = False, kind: click.Path | None = None, dest: str = "output"
+) -> Callable:
+    """``-o/--output``: the main output of a command; a file unless ``kind`` says otherwise.
+    The command receives it as ``dest``."""
+    kind = click.Path(dir_okay=False) if kind is None else kind
+    return click.option("-o", "--output", dest, type=kind, required=required, help=help)
 
 
 def bearing_options(required: bool = True) -> Callable:
@@ -44,9 +250,20 @@ def bearing_options(required: bool = True) -> Callable:
             help="User bearing TOML file (instead of a catalogue id).",
         )
         @click.option(
-            "--E-pa", "e_pa", type=float, default=None, help="Override Young's modulus [Pa]."
+            "--E-pa",
+            "e_pa",
+            type=float,
+            default=None,
+            show_default="the bearing's",
+            help="Young's modulus [Pa].",
         )
-        @click.option("--nu", type=float, default=None, help="Override Poisson's ratio [-].")
+        @click.option(
+            "--nu",
+            type=float,
+            default=None,
+            show_default="the bearing's",
+            help="Poisson's ratio [-].",
+        )
         @functools.wraps(f)
         def wrapper(
             bearing_id: str | None,
@@ -57,6 +274,8 @@ def bearing_options(required: bool = True) -> Callable:
         ) -> Any:
             if bearing_id is None and bearing_file is None and not required:
                 return f(bearing=None, **kw)
+            from ..catalog import resolve_bearing
+
             b = resolve_bearing(bearing_id, bearing_file, youngs_modulus=e_pa, poisson_ratio=nu)
             return f(bearing=b, **kw)
 
@@ -88,3 +307,20 @@ def bearing_summary(b: Bearing) -> dict[str, Any]:
         out["inner_raceway_diameter_m"] = b.inner_raceway_diameter
         out["outer_raceway_diameter_m"] = b.outer_raceway_diameter
     return out
+
+
+__all__ = [
+    "Command",
+    "DeferredDefaultOption",
+    "Group",
+    "LazyGroup",
+    "bearing_options",
+    "bearing_summary",
+    "cli",
+    "deprecated",
+    "emit_json",
+    "json_option",
+    "output_option",
+    "rad_to_deg",
+    "scenario_default",
+]

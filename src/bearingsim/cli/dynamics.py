@@ -10,18 +10,23 @@ from typing import Any
 
 import click
 
+from ..config import Model, Solver
 from ..errors import ConfigError, check_range
-from .common import cli, emit_json, json_option
+from .common import cli, deprecated, emit_json, json_option, output_option
+from .common import scenario_default as _d
 from .rotor import rotor_simulate_options
 
-_MODELS = ["vsm", "dem", "tvsm", "rotor"]
 _FAULTS = ["none", "outer", "inner"]
 
 
 def _opt(f):
-    """Options shared by ``simulate`` and ``vsm-trace`` (each overrides the scenario key)."""
+    """Options shared by ``simulate`` and ``vsm-trace``; each overrides the scenario key of the
+    same name (``--fx-n`` sets ``fx_n``); ``[default: ...]`` is the value when neither the option
+    nor the scenario file sets it."""
     opts = [
-        click.option("--bearing", "bearing", default=None, help="Catalogue bearing id [6205]."),
+        click.option(
+            "--bearing", "bearing", default=None, show_default=_d("bearing"), help="Catalogue id."
+        ),
         click.option(
             "--bearing-file",
             default=None,
@@ -29,54 +34,85 @@ def _opt(f):
             help="User bearing TOML file.",
         ),
         click.option(
-            "--fault", type=click.Choice(_FAULTS), default=None, help="Defect location [none]."
+            "--fault",
+            type=click.Choice(_FAULTS),
+            default=None,
+            show_default=_d("fault"),
+            help="Defect location.",
         ),
         click.option(
             "--defect-width-m",
             type=float,
             default=None,
-            help="Defect width b along the raceway [m] (CWRU 0.007 in = 1.778e-4).",
+            show_default=_d("defect_width_m"),
+            help="Defect width b along the raceway [m] (CWRU 0.007 in).",
         ),
         click.option(
             "--defect-depth-m",
             type=float,
             default=None,
-            help="Defect depth h_d [m] (CWRU 0.011 in = 2.794e-4).",
+            show_default=_d("defect_depth_m"),
+            help="Defect depth h_d [m] (CWRU 0.011 in).",
         ),
         click.option(
-            "--defect-angle-deg",
+            "--defect-edge-angle-deg",
             type=float,
             default=None,
-            help="Defect left edge at t = 0, beta_0 [deg] (seed: 10).",
+            show_default=_d("defect_edge_angle_deg"),
+            help="Azimuth of the defect's left edge at t = 0, beta_0 [deg] (seed VSM table 1).",
         ),
-        click.option("--rpm", type=float, default=None, help="Shaft speed [r/min] (1750)."),
-        click.option("--fx", "fx_n", type=float, default=None, help="Radial force x [N] (10)."),
-        click.option("--fy", "fy_n", type=float, default=None, help="Radial force y [N] (50)."),
+        deprecated("--defect-angle-deg", "--defect-edge-angle-deg"),
         click.option(
-            "--stiffness",
+            "--rpm", type=float, default=None, show_default=_d("rpm"), help="Shaft speed [r/min]."
+        ),
+        click.option(
+            "--fx-n",
+            "fx_n",
+            type=float,
+            default=None,
+            show_default=_d("fx_n"),
+            help="Radial force x [N].",
+        ),
+        deprecated("--fx", "--fx-n"),
+        click.option(
+            "--fy-n",
+            "fy_n",
+            type=float,
+            default=None,
+            show_default=_d("fy_n"),
+            help="Radial force y [N].",
+        ),
+        deprecated("--fy", "--fy-n"),
+        click.option(
+            "--stiffness-n-per-m1.5",
             "stiffness_n_m15",
             type=float,
             default=None,
-            help="Ball constant K [N/m^1.5] instead of the Hertz value.",
+            show_default="Hertz value",
+            help="Ball load-deflection constant K [N/m^1.5] (seed VSM eq. (10)).",
         ),
+        deprecated("--stiffness", "--stiffness-n-per-m1.5"),
         click.option(
             "--clearance-m",
             type=float,
             default=None,
-            help="Diametral clearance P_d [m] instead of the bearing's.",
+            show_default="the bearing's",
+            help="Diametral clearance P_d [m].",
         ),
         click.option(
             "--retention-factor",
             type=float,
             default=None,
-            help="Prescribed gamma in [0, 1] for a ball over the defect (seed figs 6-7).",
+            show_default="seed VSM eq. (11)",
+            help="Prescribed gamma in [0, 1] for a ball over the defect (seed VSM figs. 6-7) [-].",
         ),
         click.option(
             "--load-zone-deg",
             "load_zone_half_angle_deg",
             type=float,
             default=None,
-            help="Fixed load-zone half angle psi_L [deg] (seed eq. 14 literal).",
+            show_default="from the contact",
+            help="Fixed load-zone half angle psi_L [deg] (seed VSM eq. (14) literal).",
         ),
     ]
     for o in reversed(opts):
@@ -101,32 +137,73 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @click.argument(
     "scenario_file", metavar="[SCENARIO.toml]", required=False, type=click.Path(dir_okay=False)
 )
-@click.option("--model", type=click.Choice(_MODELS), default=None, help="Model [vsm].")
+@click.option(
+    "--model",
+    type=click.Choice([m.value for m in Model]),
+    default=None,
+    show_default=_d("model"),
+    help="Model.",
+)
 @_opt
 @rotor_simulate_options
-@click.option("--duration-s", type=float, default=None, help="Simulated time [s] (1).")
-@click.option("--fs", "fs_hz", type=float, default=None, help="Output sample rate [Hz] (48000).")
-@click.option("--seed", type=int, default=None, help="Seed of the measurement noise (0).")
 @click.option(
-    "--noise-rms",
+    "--duration-s",
+    type=float,
+    default=None,
+    show_default=_d("duration_s"),
+    help="Simulated time [s].",
+)
+@click.option(
+    "--fs-hz",
+    "fs_hz",
+    type=float,
+    default=None,
+    show_default=_d("fs_hz"),
+    help="Output sample rate [Hz].",
+)
+@deprecated("--fs", "--fs-hz")
+@click.option(
+    "--seed",
+    type=int,
+    default=None,
+    show_default=_d("seed"),
+    help="Seed of the measurement noise.",
+)
+@click.option(
+    "--noise-rms-m-per-s2",
     "noise_rms_m_s2",
     type=float,
     default=None,
-    help="RMS of white measurement noise added to the accelerations [m/s^2] (0).",
+    show_default=_d("noise_rms_m_s2"),
+    help="RMS of white measurement noise added to the accelerations [m/s^2].",
 )
-@click.option("--mass-kg", type=float, default=None, help="Vibrating mass [kg] (seed table 1).")
-@click.option("--damping", "damping_n_s_m", type=float, default=None, help="c_eq [N s/m] (300).")
-@click.option("--dt-s", type=float, default=None, help="RK4 step [s] (automatic).")
+@deprecated("--noise-rms", "--noise-rms-m-per-s2")
+@click.option(
+    "--mass-kg",
+    type=float,
+    default=None,
+    show_default="seed VSM table 1",
+    help="Vibrating mass [kg].",
+)
+@click.option(
+    "--damping-n-s-per-m",
+    "damping_n_s_m",
+    type=float,
+    default=None,
+    show_default=_d("damping_n_s_m"),
+    help="Equivalent damping c_eq [N s/m].",
+)
+@deprecated("--damping", "--damping-n-s-per-m")
+@click.option("--dt-s", type=float, default=None, show_default="automatic", help="RK4 step [s].")
 @click.option(
     "--solver",
-    type=click.Choice(["rk4", "dopri5"]),
+    type=click.Choice([s.value for s in Solver]),
     default=None,
-    help="Integrator [rk4]; dopri5 = adaptive check.",
+    show_default=_d("solver"),
+    help="Integrator; dopri5 = adaptive check.",
 )
 @click.option("--per-ball", is_flag=True, default=None, help="Store per-ball loads/deformations.")
-@click.option(
-    "-o", "--output", required=True, type=click.Path(dir_okay=False), help="Output file (netCDF-4)."
-)
+@output_option("Output file (netCDF-4).", required=True)
 @json_option
 def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: Any) -> None:
     """Simulate a (faulty) bearing and write a self-describing netCDF file.
@@ -185,37 +262,21 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
 
 @cli.command("vsm-trace")
 @_opt
-@click.option(
-    "--first-ball-deg",
-    type=float,
-    default=0.0,
-    show_default=True,
-    help="Ball 1 azimuth alpha_0 [deg].",
-)
-@click.option(
-    "--cage-revs", type=float, default=1.0, show_default=True, help="Cage revolutions to trace."
-)
-@click.option(
-    "--step-deg", type=float, default=0.05, show_default=True, help="Cage-angle step [deg]."
-)
-@click.option(
-    "-o",
-    "--output",
-    default=None,
-    type=click.Path(dir_okay=False),
-    help="CSV output (one row per cage angle).",
-)
+@click.option("--first-ball-deg", type=float, default=0.0, help="Ball 1 azimuth alpha_0 [deg].")
+@click.option("--cage-revs", type=float, default=1.0, help="Cage revolutions to trace [-].")
+@click.option("--step-deg", type=float, default=0.05, help="Cage-angle step [deg].")
+@output_option("CSV output (one row per cage angle).")
 @click.option(
     "--plot",
     default=None,
     type=click.Path(dir_okay=False),
-    help="PNG: total stiffness (seed figs 5-8).",
+    help="PNG: total stiffness (seed VSM figs. 5-8).",
 )
 @click.option(
     "--ball",
     type=int,
     default=None,
-    help="Also plot this ball's stiffness/force/deformation (seed figs 9, 11) "
+    help="Also plot this ball's stiffness/force/deformation (seed VSM figs. 9, 11) "
     "to PLOT with suffix _ballN.",
 )
 @json_option
@@ -236,7 +297,7 @@ def vsm_trace_cmd(
     from ..dynamics.ring.trace import stiffness_trace
 
     if output is None and plot is None and not as_json:
-        raise ConfigError("vsm-trace: give -o OUT.csv, --plot PNG and/or --json")
+        raise ConfigError("vsm-trace: give -o/--output OUT.csv, --plot PNG and/or --json")
     revs = check_range("cage_revs", cage_revs, 0.0, 100.0, lo_open=True)
     step = check_range("step_deg", step_deg, 0.0, 10.0, lo_open=True, unit="deg")
     sc = _scenario(None, {**kw, "first_ball_angle_deg": first_ball_deg, "duration_s": 1.0})
@@ -288,31 +349,37 @@ def vsm_trace_cmd(
     "--bearing",
     "bearing_id",
     default=None,
-    help="Catalogue bearing id [6205-cwru for .mat; the file's for results].",
+    show_default="6205-cwru for .mat, the result's for .nc",
+    help="Catalogue bearing id.",
 )
 @click.option(
     "--bearing-file", default=None, type=click.Path(dir_okay=False), help="User bearing TOML file."
 )
-@click.option("--rpm", type=float, default=None, help="Shaft speed [r/min] (else from the file).")
 @click.option(
-    "--fs",
+    "--rpm", type=float, default=None, show_default="from the file", help="Shaft speed [r/min]."
+)
+@click.option(
+    "--fs-hz",
     "fs_hz",
     type=float,
     default=None,
-    help="Sample rate [Hz] (else from the file; CWRU: 12k/48k in the name, else 48k).",
+    show_default="from the file; CWRU: 12k/48k in the name, else 48000",
+    help="Sample rate of the signal [Hz].",
 )
+@deprecated("--fs", "--fs-hz")
 @click.option(
     "--channel",
     default=None,
-    help="DE|FE (CWRU .mat, default DE), x|y (result, default y; rotor results also "
-    "x_fe|y_fe), or a CSV column.",
+    show_default="DE for .mat, y for results",
+    help="DE|FE (CWRU .mat), x|y (result; rotor results also x_fe|y_fe), or a CSV column.",
 )
 @click.option(
-    "--band",
+    "--band-hz",
+    "band",
     default="auto",
-    show_default=True,
     help="Envelope band: 'auto' (fast kurtogram) or LO HI [Hz].",
 )
+@deprecated("--band", "--band-hz")
 @click.option(
     "--plot",
     default=None,
@@ -333,8 +400,9 @@ def analyze_cmd(
 ) -> None:
     """Envelope analysis and diagnosis of a measured (CWRU .mat), simulated (.nc) or CSV signal.
 
-    Prints {"diagnosis": outer|inner|ball|none|uncertain, "confidence", "band_hz", "shaft_hz",
-    "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous.
+    Prints {"diagnosis": outer|inner|ball|none|uncertain, "confidence", "band_hz", "shaft_hz"
+    (shaft frequency), "fs_hz" (sample rate), "peaks": [...]}; "uncertain" when the evidence is
+    weak or ambiguous.
     """
     from ..catalog import resolve_bearing
     from ..signal import analyze_record, load_signal
@@ -385,8 +453,8 @@ def analyze_cmd(
 
 
 def _parse_band(inputs: tuple[str, ...], band: str) -> tuple[str, tuple[float, float] | str]:
-    """``--band auto``, ``--band LO,HI`` or ``--band LO HI`` (HI then arrives as a positional
-    argument beside FILE)."""
+    """``--band-hz auto``, ``--band-hz LO,HI`` or ``--band-hz LO HI`` (HI then arrives as a
+    positional argument beside FILE)."""
     items = list(inputs)
     b = band.strip().lower()
     if b == "auto":
@@ -398,13 +466,15 @@ def _parse_band(inputs: tuple[str, ...], band: str) -> tuple[str, tuple[float, f
         nums = [v for v in items if _is_float(v) and not Path(v).exists()]
         if len(nums) != 1 or len(items) != 2:
             raise ConfigError(
-                f"band = {band!r} is invalid; valid: --band auto or --band LO HI "
+                f"band = {band!r} is invalid; valid: --band-hz auto or --band-hz LO HI "
                 "(two numbers in Hz)"
             )
         parts.append(nums[0])
         items.remove(nums[0])
     if len(parts) != 2 or not all(_is_float(v) for v in parts):
-        raise ConfigError(f"band = {band!r} is invalid; valid: --band auto or --band LO HI [Hz]")
+        raise ConfigError(
+            f"band = {band!r} is invalid; valid: --band-hz auto or --band-hz LO HI [Hz]"
+        )
     if len(items) != 1:
         raise ConfigError(f"analyze: expected one FILE, got {len(items)}: {' '.join(items)}")
     return items[0], (float(parts[0]), float(parts[1]))

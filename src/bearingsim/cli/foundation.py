@@ -1,4 +1,4 @@
-"""Foundation commands: bearings, info, contact, load."""
+"""Foundation commands: ``contact`` (Hertz contact) and ``load`` (load distribution)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,6 @@ from typing import Any
 import click
 import numpy as np
 
-from ..catalog import list_bearings
 from ..contact.hertz import (
     EllipticMethod,
     ball_contact,
@@ -18,41 +17,9 @@ from ..contact.hertz import (
     subsurface_stresses,
 )
 from ..errors import ConfigError, check_range
-from ..geometry import BallBearing, Bearing, Race, characteristic_frequencies
+from ..geometry import BallBearing, Bearing, Race
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
-from .common import bearing_options, bearing_summary, cli, emit_json, json_option
-
-
-@cli.command("bearings")
-@json_option
-def bearings_cmd(as_json: bool) -> None:
-    """List the catalogue bearings with their sources."""
-    items = [bearing_summary(b) for b in list_bearings()]
-    if as_json:
-        emit_json({"bearings": items})
-        return
-    for b in items:
-        click.echo(
-            f"{b['id']:<16} {b['type']:<18} Z={b['n_elements']:<3} "
-            f"d={b['element_diameter_m'] * 1e3:.3f} mm"
-            f"  D={b['pitch_diameter_m'] * 1e3:.3f} mm  ({b['source'][:70]})"
-        )
-
-
-@cli.command("info")
-@bearing_options()
-@click.option("--rpm", type=float, required=True, help="Shaft (inner-ring) speed [r/min].")
-@json_option
-def info_cmd(bearing: Bearing, rpm: float, as_json: bool) -> None:
-    """Kinematic frequencies of BEARING at --rpm (outer ring fixed)."""
-    rpm = check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
-    kin = characteristic_frequencies(bearing, rpm / 60.0).as_dict()
-    if as_json:
-        emit_json(kin)
-        return
-    click.echo(bearing_summary(bearing)["id"] + f" at {rpm:g} r/min (shaft {rpm / 60:.4f} Hz)")
-    for k in ("ftf", "bpfo", "bpfi", "bsf"):
-        click.echo(f"  {k.upper():<5} {kin[k + '_hz']:10.4f} Hz   order {kin[k + '_order']:.5f}")
+from .common import bearing_options, cli, deprecated, emit_json, json_option
 
 
 def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[str, Any]:
@@ -88,18 +55,20 @@ def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[st
 
 @cli.command("contact")
 @bearing_options()
-@click.option("--ball-load", type=float, default=None, help="Element load Q [N].")
+@click.option("--ball-load-n", "ball_load", type=float, default=None, help="Element load Q [N].")
+@deprecated("--ball-load", "--ball-load-n")
 @click.option(
-    "--radial-load",
+    "--radial-load-n",
+    "radial_load",
     type=float,
     default=None,
     help="Bearing radial load F_r [N]; the most-loaded element is used.",
 )
+@deprecated("--radial-load", "--radial-load-n")
 @click.option(
     "--method",
     type=click.Choice([m.value for m in EllipticMethod]),
     default="exact",
-    show_default=True,
     help="Point-contact solution.",
 )
 @json_option
@@ -108,7 +77,7 @@ def contact_cmd(
 ) -> None:
     """Hertz contact of the most-loaded element with both raceways."""
     if (ball_load is None) == (radial_load is None):
-        raise ConfigError("contact: give exactly one of --ball-load Q or --radial-load FR")
+        raise ConfigError("contact: give exactly one of --ball-load-n Q or --radial-load-n F_R")
     extra: dict[str, Any] = {}
     if radial_load is not None:
         fr = check_range("radial_load_n", radial_load, 0.0, lo_open=True, unit="N")
@@ -134,19 +103,22 @@ def contact_cmd(
 
 @cli.command("load")
 @bearing_options()
-@click.option("--fx", type=float, default=0.0, show_default=True, help="Radial force x [N].")
-@click.option("--fy", type=float, default=0.0, show_default=True, help="Radial force y [N].")
+@click.option("--fx-n", "fx", type=float, default=0.0, help="Radial force x [N].")
+@deprecated("--fx", "--fx-n")
+@click.option("--fy-n", "fy", type=float, default=0.0, help="Radial force y [N].")
+@deprecated("--fy", "--fy-n")
+@click.option("--cage-angle-deg", type=float, default=0.0, help="Cage angle [deg].")
 @click.option(
-    "--cage-angle-deg", type=float, default=0.0, show_default=True, help="Cage angle [deg]."
-)
-@click.option(
-    "--clearance-m", type=float, default=None, help="Diametral clearance [m] (negative = preload)."
+    "--clearance-m",
+    type=float,
+    default=None,
+    show_default="the bearing's",
+    help="Diametral clearance [m] (negative = preload).",
 )
 @click.option(
     "--motion",
     type=click.Choice([m.value for m in RingMotion]),
     default="free",
-    show_default=True,
     help="Ring DOF: free in the plane, or along the load line (seed form).",
 )
 @click.option(

@@ -14,7 +14,15 @@ from ..catalog import resolve_bearing
 from ..errors import ConfigError, check_range
 from ..geometry import RollerBearing
 from ..signal.order import ShaftSignalKind
-from .common import cli, emit_json, json_option
+from .common import (
+    DeferredDefaultOption,
+    cli,
+    deprecated,
+    emit_json,
+    json_option,
+    output_option,
+    scenario_default,
+)
 
 TWO_PI = 2.0 * math.pi
 
@@ -65,13 +73,29 @@ def _summary_figure(summary, title: str):
     return fig
 
 
+def _default(key: str) -> dict[str, Any]:
+    """``cls`` and ``show_default`` of an option that sets IAS scenario key ``key``: its default
+    (the seed's case, :class:`~bearingsim.config.IasScenario`), looked up only when help is
+    shown."""
+
+    def text() -> str | bool:
+        from ..config import SEED_IAS_TORQUE_N_M
+
+        if key == "torque_n_m":
+            return format(SEED_IAS_TORQUE_N_M, "g")
+        return scenario_default(key, model="ias")
+
+    return {"cls": DeferredDefaultOption, "show_default": text}
+
+
 @cli.command("ias")
 @click.argument("scenario", required=False, type=click.Path(dir_okay=False))
 @click.option(
     "--bearing",
     "bearing_id",
     default=None,
-    help="Catalogue id of a cylindrical roller bearing [default NU204-ECP].",
+    show_default="NU204-ECP",
+    help="Catalogue id of a cylindrical roller bearing.",
 )
 @click.option(
     "--bearing-file", type=click.Path(dir_okay=False), default=None, help="User bearing TOML file."
@@ -80,58 +104,113 @@ def _summary_figure(summary, title: str):
     "--rpm",
     type=float,
     default=None,
+    show_default="set by --torque-n-m",
     help="Target speed [r/min]: sets M_z = C_T * speed (the speed itself comes out of "
     "the torque balance).",
 )
-@click.option("--torque-nm", type=float, default=None, help="Motor torque M_z [N m] [9.54].")
-@click.option("--initial-rpm", type=float, default=None, help="Initial shaft speed [r/min] [0].")
+@click.option(
+    "--torque-n-m",
+    "torque_n_m",
+    type=float,
+    default=None,
+    **_default("torque_n_m"),
+    help="Motor torque M_z [N m].",
+)
+@deprecated("--torque-nm", "--torque-n-m")
+@click.option(
+    "--initial-rpm",
+    type=float,
+    default=None,
+    **_default("initial_rpm"),
+    help="Initial shaft speed [r/min].",
+)
 @click.option(
     "--spall-width-m",
     type=float,
     default=None,
-    help="Outer-race spall width L_d [m]; 0 = healthy [1e-3].",
+    **_default("spall_width_m"),
+    help="Outer-race spall width L_d [m]; 0 = healthy.",
 )
 @click.option(
     "--spall-angle-deg",
     type=float,
     default=None,
-    help="Spall centre azimuth from +y towards +x [deg] [180 = bottom].",
+    **_default("spall_angle_deg"),
+    help="Spall centre azimuth from +y towards +x [deg] (180 = bottom).",
 )
-@click.option("--fx", "fx_n", type=float, default=None, help="Radial load along +x [N] [0].")
 @click.option(
-    "--fy",
+    "--fx-n",
+    "fx_n",
+    type=float,
+    default=None,
+    **_default("fx_n"),
+    help="Radial load along +x [N].",
+)
+@deprecated("--fx", "--fx-n")
+@click.option(
+    "--fy-n",
     "fy_n",
     type=float,
     default=None,
-    help="Radial load pushing the shaft down (-y) [N] [400].",
+    **_default("fy_n"),
+    help="Radial load pushing the shaft down (-y) [N].",
 )
-@click.option("--duration-s", type=float, default=None, help="Simulated time [s] [10].")
-@click.option("--dt-s", type=float, default=None, help="RK4 step [s] [1e-6].")
-@click.option("--output-rate-hz", type=float, default=None, help="Output sample rate [Hz] [48000].")
+@deprecated("--fy", "--fy-n")
 @click.option(
-    "--method", type=click.Choice(["rk4", "dopri5"]), default=None, help="Integrator [rk4]."
+    "--duration-s",
+    type=float,
+    default=None,
+    **_default("duration_s"),
+    help="Simulated time [s].",
 )
+@click.option(
+    "--dt-s",
+    type=float,
+    default=None,
+    **_default("dt_s"),
+    help="RK4 step [s].",
+)
+@click.option(
+    "--fs-hz",
+    "fs_hz",
+    type=float,
+    default=None,
+    **_default("fs_hz"),
+    help="Output sample rate [Hz].",
+)
+@deprecated("--output-rate-hz", "--fs-hz")
+@click.option(
+    "--solver",
+    "solver",
+    type=click.Choice(["rk4", "dopri5"]),
+    default=None,
+    **_default("solver"),
+    help="Integrator.",
+)
+@deprecated("--method", "--solver")
 @click.option(
     "--contact-law",
     type=click.Choice(["seed", "harris"]),
     default=None,
-    help="Roller stiffness: seed eqs. (5)-(12) or Harris/Palmgren [seed].",
+    **_default("contact_law"),
+    help="Roller stiffness: seed IAS eqs. (5)-(12) or Harris/Palmgren.",
 )
 @click.option(
     "--spall-load",
     type=click.Choice(["stribeck", "dynamic"]),
     default=None,
-    help="Roller load in the spall force, seed eq. (30) [stribeck].",
+    **_default("spall_load"),
+    help="Roller load in the spall force, seed IAS eq. (30).",
 )
 @click.option(
     "--skip-s",
     type=float,
     default=None,
-    help="Start-up left out of the analysis [s] [10 % of the run].",
+    show_default="10 % of the run",
+    help="Start-up left out of the analysis [s].",
 )
-@click.option(
-    "-o", "--out", required=True, type=click.Path(dir_okay=False), help="Result file (netCDF)."
-)
+@output_option("Result file (netCDF).", required=True, dest="out")
+@deprecated("--out", "--output")
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),
@@ -148,25 +227,31 @@ def ias_cmd(
     as_json: bool,
     **opts: Any,
 ) -> None:
-    """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP with an outer-race spall) and analyse
-    the instantaneous angular speed in the angle domain."""
-    from ..dynamics.ias.model import simulate_ias
-    from ..dynamics.ias.scenario import build_scenario, read_scenario
+    """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP, outer-race spall) and analyse the
+    instantaneous angular speed.
+
+    The analysis is in the angle domain (order spectrum, spall-width estimate); SCENARIO is an
+    IAS scenario file whose keys the options override."""
+    from ..config import IasScenario
+    from ..dynamics.ias.scenario import read_scenario, run_ias
 
     settings: dict[str, Any] = read_scenario(scenario) if scenario else {}
     if bearing_id is not None or bearing_file is not None:
         settings.pop("bearing", None)
         settings.pop("bearing_file", None)
         settings.update(bearing=bearing_id, bearing_file=bearing_file)
-    if opts.get("rpm") is not None or opts.get("torque_nm") is not None:
-        if opts.get("rpm") is not None and opts.get("torque_nm") is not None:
-            raise ConfigError("give at most one of --rpm and --torque-nm")
+    if opts.get("rpm") is not None or opts.get("torque_n_m") is not None:
+        if opts.get("rpm") is not None and opts.get("torque_n_m") is not None:
+            raise ConfigError("give at most one of --rpm and --torque-n-m")
         settings.pop("rpm", None)
-        settings.pop("torque_nm", None)
+        settings.pop("torque_n_m", None)
     settings.update({k: v for k, v in opts.items() if v is not None})
-    params, run = build_scenario(settings)
-    res = simulate_ias(params, run["duration_s"], run["dt_s"], run["output_rate_hz"], run["method"])
-    summary = res.analyze(run["skip_s"])
+    settings = {k: v for k, v in settings.items() if v is not None}
+    settings["model"] = "ias"
+    sc = IasScenario.from_dict(settings, origin=Path(scenario).name if scenario else "options")
+    res = run_ias(sc)
+    params = res.params
+    summary = res.analyze(sc.skip_s)
     if plot:
         from ..report.figures import save_figure
 
@@ -178,7 +263,7 @@ def ias_cmd(
         wall_s=res.solver["wall_s"],
         cpu_s=res.solver["cpu_s"],
         free_speed_rpm=res.constants.free_speed * 60 / TWO_PI,
-        torque_nm=params.torque,
+        torque_n_m=params.torque,
         spall_width_m=params.spall_width,
         bearing=params.bearing.id,
         solver={k: res.solver[k] for k in ("method", "dt_s", "n_steps", "output_rate_hz")},
@@ -188,8 +273,8 @@ def ias_cmd(
         emit_json(d)
         return
     click.echo(
-        f"{params.bearing.id}: {run['duration_s']:g} s simulated in {d['wall_s']:.2f} s "
-        f"({run['method']}, dt {run['dt_s']:g} s); M_z {params.torque:g} N m, free speed "
+        f"{params.bearing.id}: {sc.duration_s:g} s simulated in {d['wall_s']:.2f} s "
+        f"({sc.solver.value}, dt {res.solver['dt_s']:g} s); M_z {params.torque:g} N m, free speed "
         f"{d['free_speed_rpm']:.4f} r/min"
     )
     _print_summary(d)
@@ -205,7 +290,8 @@ _KINDS = tuple(k.value for k in ShaftSignalKind)
     "--kind",
     type=click.Choice(_KINDS),
     default=None,
-    help="What the second column of a text file is (default: from its header).",
+    show_default="from the header",
+    help="What the second column of a text file is.",
 )
 @click.option(
     "--bearing",
@@ -220,13 +306,15 @@ _KINDS = tuple(k.value for k in ShaftSignalKind)
     "--skip-s",
     type=float,
     default=None,
-    help="Leading time left out [s] (default 0; for an IAS result 10 % of the run).",
+    show_default="0; for an IAS result 10 % of the run",
+    help="Leading time left out [s].",
 )
 @click.option(
     "--samples-per-rev",
     type=int,
     default=None,
-    help="Angular resampling density [1/rev] (default from the data).",
+    show_default="from the data",
+    help="Angular resampling density [1/rev].",
 )
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG.")
 @json_option
@@ -240,8 +328,10 @@ def analyze_ias_cmd(
     plot: str | None,
     as_json: bool,
 ) -> None:
-    """Angle-domain analysis of a shaft angle or speed signal vs time (encoder/IAS): mean speed,
-    ripple, order peaks and, with a roller bearing, the outer-race spall width (seed IAS eq. (37)).
+    """Angle-domain analysis of a shaft angle or speed signal vs time (encoder/IAS).
+
+    Mean speed, ripple, order peaks and, with a roller bearing, the outer-race spall width
+    (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
     from ..dynamics.ias.spall import analyze_speed_signal

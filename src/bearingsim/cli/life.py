@@ -11,78 +11,80 @@ import click
 
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import Bearing
-from .common import bearing_options, cli, emit_json, json_option
+from .common import bearing_options, cli, deprecated, emit_json, json_option, output_option
 
 
 @cli.command("life")
 @bearing_options()
 @click.option(
-    "--radial-load", "radial_load", type=float, required=True, help="Radial load F_r [N]."
+    "--radial-load-n", "radial_load", type=float, required=True, help="Radial load F_r [N]."
 )
-@click.option("--rpm", type=float, default=None, help="Shaft speed [r/min] (lives in hours).")
+@deprecated("--radial-load", "--radial-load-n")
+@click.option(
+    "--rpm",
+    type=float,
+    default=None,
+    show_default="lives in revolutions only",
+    help="Shaft speed [r/min]; adds the lives in hours.",
+)
 @click.option(
     "--mesh",
     type=click.Choice(["coarse", "default", "fine", "finer"]),
     default="default",
-    show_default=True,
     help="Fine-zone elements per contact semi-width b: 5, 10, 16, 24.",
 )
 @click.option(
     "--element-size-um",
     type=float,
     default=None,
+    show_default="from --mesh",
     help="Explicit fine element size [um] instead of --mesh (must be <= b/4).",
 )
 @click.option(
     "--delta-d",
     type=float,
     default=0.001,
-    show_default=True,
     help="Damage block: increment of the fastest element [-] (seed LIFE eq. (7)).",
 )
 @click.option(
     "--delta-d-spall",
     type=float,
     default=0.01,
-    show_default=True,
     help="Damage block after initiation, growth of the failed zone to the surface [-].",
 )
 @click.option(
     "--measure",
     type=click.Choice(["orthogonal", "critical_plane", "max_shear"]),
     default="orthogonal",
-    show_default=True,
     help="Shear range driving damage (orthogonal = tau_xz in the rolling plane).",
 )
 @click.option(
     "--load-method",
     type=click.Choice(["stribeck", "distribution"]),
     default="stribeck",
-    show_default=True,
     help="Most-loaded element: Stribeck 4.37 F_r/Z (seed) or discrete distribution.",
 )
 @click.option(
     "--kappa",
     type=float,
     default=None,
-    help="Damage exponent kappa [-] (default: GCr15 fit, 11.1).",
+    show_default="GCr15 fit, seed LIFE eqs. (5)-(6)",
+    help="Damage exponent kappa [-].",
 )
 @click.option(
     "--sigma-t-pa",
     type=float,
     default=None,
-    help="Damage resistance sigma_t [Pa] (default: GCr15 fit, 5979 MPa).",
+    show_default="GCr15 fit, seed LIFE eqs. (5)-(6)",
+    help="Damage resistance sigma_t [Pa].",
 )
 @click.option(
     "--stop",
     type=click.Choice(["spall", "initiation"]),
     default="spall",
-    show_default=True,
     help="Stop at the spall or at the first failed element.",
 )
-@click.option(
-    "--max-steps", type=int, default=20000, show_default=True, help="Limit on damage blocks."
-)
+@click.option("--max-steps", type=int, default=20000, help="Limit on damage blocks.")
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),
@@ -95,14 +97,10 @@ from .common import bearing_options, cli, emit_json, json_option
     default=None,
     help="Write the damage-vs-cycles PNG.",
 )
-@click.option(
-    "-o",
-    "--out",
-    "out",
-    type=click.Path(dir_okay=False),
-    required=True,
-    help="Result file (netCDF .nc, lossless; LifeResult.load reads it).",
+@output_option(
+    "Result file (netCDF .nc, lossless; LifeResult.load reads it).", required=True, dest="out"
 )
+@deprecated("--out", "--output")
 @json_option
 def life_cmd(
     bearing: Bearing,
@@ -123,8 +121,10 @@ def life_cmd(
     out: str,
     as_json: bool,
 ) -> None:
-    """Contact-fatigue life of BEARING's most loaded inner contact by damage mechanics on a
-    plane-strain FE section (seed LIFE), with ISO 281 L10 and the ISO/TS 16281-style L10r."""
+    """Contact-fatigue life of BEARING by damage mechanics, beside ISO 281 and ISO/TS 16281.
+
+    Damage mechanics on a plane-strain FE section of the most loaded inner contact (seed LIFE),
+    with ISO 281 L10 and the ISO/TS 16281-style L10r."""
     from ..life.damage import DamageLaw
     from ..life.fatigue import contact_fatigue_life, default_damage_law
     from ..life.iso281 import (

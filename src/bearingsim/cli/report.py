@@ -5,18 +5,18 @@ from __future__ import annotations
 import click
 
 from ..report import SECTIONS, run_report
-from .common import cli, emit_json, json_option
+from .common import cli, deprecated, emit_json, json_option, output_option
 
 
 @cli.command("reproduce")
 @click.option("--quick", is_flag=True, help="Reduced-size variants of long computations.")
-@click.option(
-    "--out",
-    "out_dir",
-    type=click.Path(file_okay=False),
+@output_option(
+    "Output directory for results.json, figures and report.html.",
     required=True,
-    help="Output directory for results.json, figures and report.html.",
+    kind=click.Path(file_okay=False),
+    dest="out_dir",
 )
+@deprecated("--out", "--output")
 @click.option(
     "--section",
     "sections",

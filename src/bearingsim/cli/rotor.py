@@ -1,7 +1,10 @@
 """Rotor commands: ``rotor-modes`` (natural frequencies of the rotor alone); the options that
-build a :class:`~bearingsim.dynamics.rotor_config.RotorConfig` from the command line; and the
+build a :class:`~bearingsim.dynamics.rotor.RotorConfig` from the command line; and the
 rotor options of ``bearingsim simulate --model rotor`` (:func:`rotor_simulate_options`, keys of
-:class:`bearingsim.config.Scenario`). Lengths in millimetres at this edge, SI inside."""
+:class:`bearingsim.config.Scenario`). Lengths in millimetres at this edge, SI inside.
+
+``simulate`` imports this module for its options, so the rotor model (and its compiled kernels)
+is imported only inside the functions that need it."""
 
 from __future__ import annotations
 
@@ -11,20 +14,13 @@ from typing import Any
 
 import click
 
-from ..dynamics.rotor.config import (
-    SEED_DISK_DIAMETER_M,
-    SEED_ROTOR_MASS_KG,
-    SEED_SHAFT_DIAMETER_M,
-    SEED_SHAFT_E_PA,
-    SEED_SHAFT_LENGTH_M,
-    SEED_SHAFT_MASS_KG,
-    Armature,
-    Shaft,
-    ShaftMassModel,
-    cwru_rotor_config,
-)
 from ..errors import ConfigError
-from .common import cli, emit_json, json_option
+from .common import DeferredDefaultOption, cli, deprecated, emit_json, json_option
+from .common import scenario_default as _d
+
+#: values of :class:`~bearingsim.dynamics.rotor.ShaftMassModel` (checked by the CLI tests; the
+#: enum's module loads the rotor kernels, which ``simulate --model vsm`` does not need)
+_SHAFT_MASS_MODELS = ["lumped", "distributed"]
 
 
 def _positions_mm(text: str | None) -> tuple[float, ...] | None:
@@ -49,68 +45,130 @@ def rotor_simulate_options(f: Callable) -> Callable:
     name (None = the scenario file's value or the default)."""
     faults = click.Choice(["none", "outer", "inner"])
     opts = [
-        click.option("--de-bearing", default=None, help="Drive-end bearing id [6205-cwru]."),
-        click.option("--fe-bearing", default=None, help="Fan-end bearing id [6203-cwru]."),
-        click.option("--de-fault", type=faults, default=None, help="Drive-end defect [none]."),
-        click.option("--fe-fault", type=faults, default=None, help="Fan-end defect [none]."),
+        click.option(
+            "--de-bearing",
+            default=None,
+            show_default=_d("de_bearing"),
+            help="Drive-end bearing id.",
+        ),
+        click.option(
+            "--fe-bearing", default=None, show_default=_d("fe_bearing"), help="Fan-end bearing id."
+        ),
+        click.option(
+            "--de-fault",
+            type=faults,
+            default=None,
+            show_default=_d("de_fault"),
+            help="Drive-end defect.",
+        ),
+        click.option(
+            "--fe-fault",
+            type=faults,
+            default=None,
+            show_default=_d("fe_fault"),
+            help="Fan-end defect.",
+        ),
         click.option(
             "--de-defect-angle-deg",
             type=float,
             default=None,
+            show_default=_d("de_defect_angle_deg"),
             help="DE defect centre azimuth at t = 0 from +y towards +x [deg] (180 = 6 o'clock).",
         ),
         click.option(
-            "--fe-defect-angle-deg", type=float, default=None, help="FE defect centre [deg] (180)."
+            "--fe-defect-angle-deg",
+            type=float,
+            default=None,
+            show_default=_d("fe_defect_angle_deg"),
+            help="FE defect centre azimuth at t = 0 [deg].",
         ),
-        click.option("--disks", type=int, default=None, help="Number of rotor disks [9]."),
+        click.option(
+            "--disks",
+            type=int,
+            default=None,
+            show_default=_d("disks"),
+            help="Number of rotor disks [-].",
+        ),
         click.option(
             "--disk-positions-mm",
             default=None,
             callback=_positions_option,
-            help="Disk positions from the DE bearing, comma-separated [mm] (equal spacing).",
+            show_default="equal spacing",
+            help="Disk positions from the DE bearing, comma-separated [mm].",
         ),
         click.option(
             "--distributed-rotor/--disk-rotor",
             default=None,
+            show_default="disk-rotor",
             help="Rotor mass spread along the shaft instead of on disks.",
         ),
         click.option(
-            "--elements", "n_elements", type=int, default=None, help="Min. beam elements (auto)."
+            "--elements",
+            "n_elements",
+            type=int,
+            default=None,
+            show_default="automatic",
+            help="Minimum number of beam elements [-].",
         ),
         click.option(
             "--shaft-mass-model",
-            type=click.Choice(["lumped", "distributed"]),
+            type=click.Choice(_SHAFT_MASS_MODELS),
             default=None,
-            help="Half the shaft mass at each bearing (seed) or distributed [lumped].",
+            show_default=_d("shaft_mass_model"),
+            help="Half the shaft mass at each bearing (seed ROTOR) or distributed.",
         ),
         click.option(
-            "--housing-mass-kg", type=float, default=None, help="Housing mass [kg] (6.638)."
-        ),
-        click.option(
-            "--housing-stiffness-n-m",
+            "--housing-mass-kg",
             type=float,
             default=None,
-            help="Housing mount stiffness, X and Y [N/m] (1.51e7).",
+            show_default=_d("housing_mass_kg"),
+            help="Housing mass [kg].",
         ),
         click.option(
-            "--housing-damping-n-s-m",
+            "--housing-stiffness-n-per-m",
+            "housing_stiffness_n_m",
             type=float,
             default=None,
-            help="Housing mount damping, X and Y [N s/m] (2210.7).",
+            show_default=_d("housing_stiffness_n_m"),
+            help="Housing mount stiffness, X and Y [N/m].",
         ),
+        deprecated("--housing-stiffness-n-m", "--housing-stiffness-n-per-m"),
         click.option(
-            "--contact-damping",
+            "--housing-damping-n-s-per-m",
+            "housing_damping_n_s_m",
+            type=float,
+            default=None,
+            show_default=_d("housing_damping_n_s_m"),
+            help="Housing mount damping, X and Y [N s/m].",
+        ),
+        deprecated("--housing-damping-n-s-m", "--housing-damping-n-s-per-m"),
+        click.option(
+            "--contact-damping-n-s-per-m",
             "contact_damping_n_s_m",
             type=float,
             default=None,
-            help="Damping of each ball-race contact [N s/m] (50).",
+            show_default=_d("contact_damping_n_s_m"),
+            help="Damping of each ball-race contact [N s/m].",
         ),
-        click.option("--gravity/--no-gravity", default=None, help="Gravity on every mass [on]."),
-        click.option("--unbalance-kg-m", type=float, default=None, help="Rotor unbalance m e."),
+        deprecated("--contact-damping", "--contact-damping-n-s-per-m"),
+        click.option(
+            "--gravity/--no-gravity",
+            default=None,
+            show_default=_d("gravity"),
+            help="Gravity on every mass.",
+        ),
+        click.option(
+            "--unbalance-kg-m",
+            type=float,
+            default=None,
+            show_default=_d("unbalance_kg_m"),
+            help="Static rotor unbalance m e [kg m].",
+        ),
         click.option(
             "--antialias/--no-antialias",
             default=None,
-            help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations [on].",
+            show_default=_d("antialias"),
+            help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations.",
         ),
     ]
     for o in reversed(opts):
@@ -118,41 +176,80 @@ def rotor_simulate_options(f: Callable) -> Callable:
     return f
 
 
+def _seed(name: str, scale: float = 1.0) -> dict[str, Any]:
+    """``default``, ``cls`` and ``show_default`` of a rotor option whose default is
+    ``scale * dynamics.rotor.config.<name>`` (seed ROTOR table 1), looked up when needed."""
+
+    def text() -> str:
+        from ..dynamics.rotor import config
+
+        return format(getattr(config, name) * scale, "g")
+
+    return {"default": None, "cls": DeferredDefaultOption, "show_default": text}
+
+
 def rotor_options(f: Callable) -> Callable:
     """Options describing the rotor (shaft, armature, mesh); the command receives
     ``rotor_kw`` (keyword arguments for :func:`cwru_rotor_config`) instead."""
 
-    @click.option("--disks", type=int, default=9, show_default=True, help="Number of disks.")
+    @click.option("--disks", type=int, default=9, help="Number of disks [-].")
     @click.option(
         "--disk-positions-mm",
         default=None,
-        help="Disk positions from the drive-end bearing, comma-separated [mm] "
-        "(default: equally spaced).",
+        show_default="equal spacing",
+        help="Disk positions from the drive-end bearing, comma-separated [mm].",
     )
     @click.option(
         "--distributed-rotor",
         is_flag=True,
         help="Spread the rotor mass uniformly along the shaft instead of disks.",
     )
-    @click.option("--elements", type=int, default=None, help="Minimum number of beam elements.")
+    @click.option(
+        "--elements",
+        type=int,
+        default=None,
+        show_default="automatic",
+        help="Minimum number of beam elements [-].",
+    )
     @click.option(
         "--shaft-mass-model",
-        type=click.Choice([m.value for m in ShaftMassModel]),
+        type=click.Choice(_SHAFT_MASS_MODELS),
         default="lumped",
-        show_default=True,
-        help="Half the shaft mass at each bearing (seed) or distributed.",
+        help="Half the shaft mass at each bearing (seed ROTOR) or distributed.",
     )
     @click.option(
-        "--shaft-length-mm", type=float, default=SEED_SHAFT_LENGTH_M * 1e3, show_default=True
+        "--shaft-length-mm",
+        type=float,
+        help="Shaft length between the bearings [mm].",
+        **_seed("SEED_SHAFT_LENGTH_M", 1e3),
     )
     @click.option(
-        "--shaft-diameter-mm", type=float, default=SEED_SHAFT_DIAMETER_M * 1e3, show_default=True
+        "--shaft-diameter-mm",
+        type=float,
+        help="Shaft diameter [mm].",
+        **_seed("SEED_SHAFT_DIAMETER_M", 1e3),
     )
-    @click.option("--shaft-E-pa", "shaft_e", type=float, default=SEED_SHAFT_E_PA, show_default=True)
-    @click.option("--shaft-mass-kg", type=float, default=SEED_SHAFT_MASS_KG, show_default=True)
-    @click.option("--rotor-mass-kg", type=float, default=SEED_ROTOR_MASS_KG, show_default=True)
     @click.option(
-        "--disk-diameter-mm", type=float, default=SEED_DISK_DIAMETER_M * 1e3, show_default=True
+        "--shaft-E-pa",
+        "shaft_e",
+        type=float,
+        help="Young's modulus of the shaft [Pa].",
+        **_seed("SEED_SHAFT_E_PA"),
+    )
+    @click.option(
+        "--shaft-mass-kg", type=float, help="Shaft mass [kg].", **_seed("SEED_SHAFT_MASS_KG")
+    )
+    @click.option(
+        "--rotor-mass-kg",
+        type=float,
+        help="Armature (rotor) mass [kg].",
+        **_seed("SEED_ROTOR_MASS_KG"),
+    )
+    @click.option(
+        "--disk-diameter-mm",
+        type=float,
+        help="Diameter of the disks [mm].",
+        **_seed("SEED_DISK_DIAMETER_M", 1e3),
     )
     @functools.wraps(f)
     def wrapper(
@@ -161,21 +258,29 @@ def rotor_options(f: Callable) -> Callable:
         distributed_rotor: bool,
         elements: int | None,
         shaft_mass_model: str,
-        shaft_length_mm: float,
-        shaft_diameter_mm: float,
-        shaft_e: float,
-        shaft_mass_kg: float,
-        rotor_mass_kg: float,
-        disk_diameter_mm: float,
+        shaft_length_mm: float | None,
+        shaft_diameter_mm: float | None,
+        shaft_e: float | None,
+        shaft_mass_kg: float | None,
+        rotor_mass_kg: float | None,
+        disk_diameter_mm: float | None,
         **kw: Any,
     ) -> Any:
-        shaft = Shaft(
-            shaft_length_mm * 1e-3, shaft_diameter_mm * 1e-3, shaft_e, shaft_mass_kg,
-            shaft_mass_model,
+        from ..dynamics.rotor import config as rc
+
+        def given(v: float | None, seed: float) -> float:
+            return seed if v is None else v
+
+        shaft_length_mm = given(shaft_length_mm, rc.SEED_SHAFT_LENGTH_M * 1e3)
+        shaft_diameter_mm = given(shaft_diameter_mm, rc.SEED_SHAFT_DIAMETER_M * 1e3)
+        disk_diameter_mm = given(disk_diameter_mm, rc.SEED_DISK_DIAMETER_M * 1e3)
+        shaft = rc.Shaft(
+            shaft_length_mm * 1e-3, shaft_diameter_mm * 1e-3, given(shaft_e, rc.SEED_SHAFT_E_PA),
+            given(shaft_mass_kg, rc.SEED_SHAFT_MASS_KG), shaft_mass_model,
         )  # fmt: skip
         pos = _positions_mm(disk_positions_mm)
-        arm = Armature(
-            rotor_mass_kg,
+        arm = rc.Armature(
+            given(rotor_mass_kg, rc.SEED_ROTOR_MASS_KG),
             disk_diameter_mm * 1e-3,
             n_disks=len(pos) if pos else disks,
             positions=pos or None,
@@ -193,16 +298,16 @@ def rotor_options(f: Callable) -> Callable:
     "--supports",
     type=click.Choice(["pinned", "free"]),
     default="pinned",
-    show_default=True,
     help="Bearing nodes held in x, y (simply supported) or free-free.",
 )
-@click.option("--rpm", type=float, default=0.0, show_default=True, help="Spin speed [r/min].")
-@click.option("--n-modes", type=int, default=8, show_default=True)
+@click.option("--rpm", type=float, default=0.0, help="Spin speed [r/min].")
+@click.option("--n-modes", type=int, default=8, help="Number of modes [-].")
 @json_option
 def rotor_modes_cmd(
     rotor_kw: dict[str, Any], supports: str, rpm: float, n_modes: int, as_json: bool
 ) -> None:
     """Natural frequencies of the CWRU rotor alone (seed ROTOR table 2 by default)."""
+    from ..dynamics.rotor.config import cwru_rotor_config
     from ..dynamics.rotor.model import rotor_modes
 
     if n_modes < 1:

@@ -11,94 +11,108 @@ from ..geometry import Bearing
 from ..quasistatic.inputs import Method, Misalignment, SpeedEffects
 from ..quasistatic.iso16281 import Conformities
 from ..quasistatic.stiffness import SERIES, stiffness_vs_cage
-from .common import bearing_options, cli, emit_json, json_option
+from .common import (
+    bearing_options,
+    cli,
+    deprecated,
+    emit_json,
+    json_option,
+    output_option,
+    rad_to_deg,
+)
 
 
 def _parse_errors(text: str | None) -> list[float] | None:
+    """``--ball-errors-deg "E1,E2,..."`` -> the errors in radians."""
     if text is None:
         return None
     out = []
     for i, item in enumerate(text.split(",")):
         try:
-            out.append(float(item))
+            out.append(math.radians(float(item)))
         except ValueError:
             raise ConfigError(
-                f"ball_errors_rad[{i}] = {item.strip()!r} is not a number; valid: comma-separated "
-                "angles in rad, one per ball"
+                f"ball_errors_deg[{i}] = {item.strip()!r} is not a number; valid: comma-separated "
+                "angles in deg, one per ball"
             ) from None
     return out
 
 
 @cli.command("stiffness")
 @bearing_options()
-@click.option("--fx", type=float, default=0.0, show_default=True, help="Force x [N].")
-@click.option("--fy", type=float, default=0.0, show_default=True, help="Force y [N].")
-@click.option("--fz", type=float, default=0.0, show_default=True, help="Axial force [N].")
-@click.option("--mx", type=float, default=0.0, show_default=True, help="Moment about x [N m].")
-@click.option("--my", type=float, default=0.0, show_default=True, help="Moment about y [N m].")
+@click.option("--fx-n", "fx", type=float, default=0.0, help="Force x [N].")
+@deprecated("--fx", "--fx-n")
+@click.option("--fy-n", "fy", type=float, default=0.0, help="Force y [N].")
+@deprecated("--fy", "--fy-n")
+@click.option("--fz-n", "fz", type=float, default=0.0, help="Axial force [N].")
+@deprecated("--fz", "--fz-n")
+@click.option("--mx-n-m", "mx", type=float, default=0.0, help="Moment about x [N m].")
+@deprecated("--mx", "--mx-n-m")
+@click.option("--my-n-m", "my", type=float, default=0.0, help="Moment about y [N m].")
+@deprecated("--my", "--my-n-m")
 @click.option(
     "--clearance-m",
     type=float,
     default=None,
+    show_default="the bearing's",
     help="Diametral clearance P_d [m] (negative = preload).",
 )
+@click.option("--outer-tilt-deg", type=float, default=0.0, help="Outer-ring misalignment [deg].")
+@deprecated("--outer-tilt-rad", "--outer-tilt-deg", rad_to_deg)
 @click.option(
-    "--outer-tilt-rad",
+    "--outer-tilt-azimuth-deg",
     type=float,
     default=0.0,
-    show_default=True,
-    help="Outer-ring misalignment [rad].",
+    help="Azimuth of the outer tilt axis, from +y towards +x [deg].",
 )
+@deprecated("--outer-tilt-azimuth-rad", "--outer-tilt-azimuth-deg", rad_to_deg)
 @click.option(
-    "--outer-tilt-azimuth-rad",
+    "--inner-tilt-deg",
     type=float,
     default=0.0,
-    show_default=True,
-    help="Azimuth of the outer tilt axis, from +y towards +x [rad].",
+    help="Inner-ring misalignment, rotating with the shaft [deg].",
 )
+@deprecated("--inner-tilt-rad", "--inner-tilt-deg", rad_to_deg)
 @click.option(
-    "--inner-tilt-rad",
+    "--inner-tilt-azimuth-deg",
     type=float,
     default=0.0,
-    show_default=True,
-    help="Inner-ring misalignment, rotating with the shaft [rad].",
+    help="Azimuth of the inner tilt axis at shaft angle 0 [deg].",
 )
+@deprecated("--inner-tilt-azimuth-rad", "--inner-tilt-azimuth-deg", rad_to_deg)
 @click.option(
-    "--inner-tilt-azimuth-rad",
-    type=float,
-    default=0.0,
-    show_default=True,
-    help="Azimuth of the inner tilt axis at shaft angle 0 [rad].",
-)
-@click.option(
-    "--ball-errors-rad",
+    "--ball-errors-deg",
     default=None,
     metavar="E1,E2,...",
-    help="Ball-distribution errors, one angle per ball [rad].",
+    help="Ball-distribution errors, one angle per ball [deg].",
 )
-@click.option("--cage-revs", type=int, default=10, show_default=True, help="Cage revolutions [-].")
+@deprecated("--ball-errors-rad", "--ball-errors-deg", rad_to_deg)
+@click.option("--cage-revs", type=int, default=10, help="Cage revolutions [-].")
 @click.option(
     "--points-per-rev",
     type=int,
     default=360,
-    show_default=True,
     help="Cage positions per revolution [-].",
 )
 @click.option(
     "--method",
     type=click.Choice([m.value for m in Method]),
     default="jones",
-    show_default=True,
     help="Jones/Harris model or the ISO/TS 16281 method.",
 )
 @click.option(
     "--conformities",
     type=click.Choice([c.value for c in Conformities]),
     default=Conformities.BEARING.value,
-    show_default=True,
-    help="iso16281: groove radii of the bearing or ISO defaults.",
+    help="iso16281 only: the bearing's groove radii or the ISO/TS 16281 values.",
 )
-@click.option("--rpm", type=float, default=None, help="Shaft speed for inertia loads [r/min].")
+@click.option(
+    "--rpm",
+    type=float,
+    default=None,
+    show_default="no inertia loads",
+    help="Shaft speed for inertia loads [r/min].",
+)
 @click.option("--centrifugal", is_flag=True, help="Include ball centrifugal forces (needs --rpm).")
 @click.option("--gyroscopic", is_flag=True, help="Include gyroscopic moments (needs --rpm).")
 @click.option(
@@ -107,14 +121,10 @@ def _parse_errors(text: str | None) -> list[float] | None:
     default=None,
     help="Write stiffness series and spectra as PNG.",
 )
-@click.option(
-    "-o",
-    "--out",
-    "out",
-    type=click.Path(dir_okay=False),
-    default=None,
-    help="Write the full result (netCDF-4, lossless; StiffnessResult.load reads it).",
+@output_option(
+    "Write the full result (netCDF-4, lossless; StiffnessResult.load reads it).", dest="out"
 )
+@deprecated("--out", "--output")
 @json_option
 def stiffness_cmd(
     bearing: Bearing,
@@ -124,11 +134,11 @@ def stiffness_cmd(
     mx: float,
     my: float,
     clearance_m: float | None,
-    outer_tilt_rad: float,
-    outer_tilt_azimuth_rad: float,
-    inner_tilt_rad: float,
-    inner_tilt_azimuth_rad: float,
-    ball_errors_rad: str | None,
+    outer_tilt_deg: float,
+    outer_tilt_azimuth_deg: float,
+    inner_tilt_deg: float,
+    inner_tilt_azimuth_deg: float,
+    ball_errors_deg: str | None,
     cage_revs: int,
     points_per_rev: int,
     method: str,
@@ -140,12 +150,15 @@ def stiffness_cmd(
     out: str | None,
     as_json: bool,
 ) -> None:
-    """5x5 stiffness of BEARING at equilibrium and its fluctuation over the cage revolutions."""
+    """5x5 stiffness of BEARING at equilibrium and its fluctuation over the cage revolutions.
+
+    Angles are given in degrees; errors from the model name the field in SI (``outer_tilt_rad``).
+    """
     mis = Misalignment(
-        outer_tilt=outer_tilt_rad,
-        outer_azimuth=outer_tilt_azimuth_rad,
-        inner_tilt=inner_tilt_rad,
-        inner_azimuth=inner_tilt_azimuth_rad,
+        outer_tilt=math.radians(outer_tilt_deg),
+        outer_azimuth=math.radians(outer_tilt_azimuth_deg),
+        inner_tilt=math.radians(inner_tilt_deg),
+        inner_azimuth=math.radians(inner_tilt_azimuth_deg),
     )
     if (centrifugal or gyroscopic) and rpm is None:
         raise ConfigError(
@@ -156,7 +169,7 @@ def stiffness_cmd(
     kw: dict[str, object] = dict(
         clearance=clearance_m,
         misalignment=mis,
-        ball_errors=_parse_errors(ball_errors_rad),
+        ball_errors=_parse_errors(ball_errors_deg),
         speed=speed,
     )
     if Method(method) is Method.ISO16281:

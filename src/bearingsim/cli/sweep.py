@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_range
-from .common import cli, emit_json, json_option
+from .common import cli, deprecated, emit_json, json_option, output_option
 
 
 def _count(name: str, value: int | None, lo: int = 1) -> int | None:
@@ -47,17 +47,21 @@ def sweep_group() -> None:
     "--timing-runs",
     type=int,
     default=3,
-    show_default=True,
     help="Short timing runs for the estimate (0: count only).",
 )
 @click.option(
     "--timing-duration-s",
     type=float,
     default=0.1,
-    show_default=True,
     help="Longest simulated time of a timing run [s].",
 )
-@click.option("--workers", type=int, default=None, help="Workers for the wall-time estimate.")
+@click.option(
+    "--workers",
+    type=int,
+    default=None,
+    show_default="CPU count",
+    help="Workers for the wall-time estimate.",
+)
 @json_option
 def plan_cmd(
     spec_file: str,
@@ -100,14 +104,14 @@ def plan_cmd(
 
 @sweep_group.command("run")
 @click.argument("spec_file", metavar="SWEEP.toml", type=click.Path(dir_okay=False))
-@click.option(
-    "-o", "--out", required=True, type=click.Path(), help="Dataset directory (Zarr store)."
-)
+@output_option("Dataset directory (Zarr store).", required=True, kind=click.Path(), dest="out")
+@deprecated("--out", "--output")
 @click.option(
     "--workers",
     type=int,
     default=None,
-    help="Process workers of the local Dask cluster [CPU count].",
+    show_default="CPU count",
+    help="Process workers of the local Dask cluster.",
 )
 @click.option(
     "--scheduler",
@@ -118,17 +122,21 @@ def plan_cmd(
     "--connect-timeout-s",
     type=float,
     default=20.0,
-    show_default=True,
     help="How long to try reaching --scheduler [s].",
 )
 @click.option("--force-new", is_flag=True, help="Replace an existing dataset of a different spec.")
 @click.option("--retry-failed", is_flag=True, help="Compute the failed runs again.")
-@click.option("--runs-per-task", type=int, default=None, help="Runs per Dask task [automatic].")
+@click.option(
+    "--runs-per-task",
+    type=int,
+    default=None,
+    show_default="automatic",
+    help="Runs per Dask task.",
+)
 @click.option(
     "--writer",
     type=click.Choice(["auto", "client"]),
     default="auto",
-    show_default=True,
     help="auto: workers that see the dataset commit their runs; client: the client commits.",
 )
 @json_option
@@ -189,10 +197,13 @@ def run_cmd(
 
 @sweep_group.command("summary")
 @click.argument("dataset", metavar="DATASET", type=click.Path())
-@click.option("--label", default=None, help="Label key(s), comma-separated [the dataset's].")
 @click.option(
-    "--max-failures", type=int, default=10, show_default=True, help="Failures listed (text)."
+    "--label",
+    default=None,
+    show_default="the dataset's",
+    help="Label key(s), comma-separated.",
 )
+@click.option("--max-failures", type=int, default=10, help="Failures listed (text).")
 @json_option
 def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: bool) -> None:
     """Counts by label and axis value, failures with their errors."""

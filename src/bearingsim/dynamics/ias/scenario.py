@@ -21,14 +21,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ...catalog import resolve_bearing
-from ...config import IasScenario, Model
+from ...config import IasScenario
 from ...errors import ConfigError, read_toml
 from .model import SEED_SPALL, ContactLaw, IasParams, SpallLoad, check_step, simulate_ias
 
 if TYPE_CHECKING:
     from .result import IasResult
 
-__all__ = ["build_scenario", "ias_params", "output_grid", "read_scenario", "run_ias"]
+__all__ = ["ias_params", "output_grid", "read_scenario", "run_ias"]
 
 
 def ias_params(sc: IasScenario) -> IasParams:
@@ -79,10 +79,6 @@ def run_ias(sc: IasScenario, progress: Callable[[int], None] | None = None) -> I
 
 
 # ------------------------------------------------------------------ the `ias` command's files
-#: scenario keys of the IAS files before 0.2.0 that the ``ias`` command still passes internally
-_OLD_SETTINGS = {"torque_nm": "torque_n_m", "output_rate_hz": "fs_hz", "method": "solver"}
-
-
 def read_scenario(path: str | Path) -> dict[str, Any]:
     """Read an IAS scenario TOML (keys of :class:`~bearingsim.config.IasScenario`; ``model`` may
     be left out) into a dict of validated keys; ``bearing_file`` is made absolute."""
@@ -96,23 +92,3 @@ def read_scenario(path: str | Path) -> dict[str, Any]:
     sc = IasScenario.from_dict(data, origin=p.name)
     given = set(data) | {IasScenario.RENAMED.get(k, k) for k in data}
     return {k: v for k, v in sc.to_dict().items() if k in given}
-
-
-def build_scenario(settings: dict[str, Any]) -> tuple[IasParams, dict[str, Any]]:
-    """Turn scenario settings (file keys, CLI overrides merged; ``None`` = not given) into
-    :class:`IasParams` and the run options ``duration_s, dt_s, output_rate_hz, method,
-    skip_s``."""
-    s = {_OLD_SETTINGS.get(k, k): v for k, v in settings.items() if v is not None}
-    if s.get("bearing_file") is not None:
-        s.pop("bearing", None)
-    s.setdefault("model", Model.IAS.value)
-    sc = IasScenario.from_dict(s, origin="scenario")
-    params = ias_params(sc)
-    run = {
-        "duration_s": sc.duration_s,
-        "dt_s": sc.dt_s,
-        "output_rate_hz": sc.fs_hz,
-        "method": sc.solver.value,
-        "skip_s": sc.skip_s,
-    }
-    return params, run
