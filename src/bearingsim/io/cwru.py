@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -72,3 +73,25 @@ def read_cwru_mat(path: str | Path) -> CwruRecord:
         if re.match(r"^X\d+RPM$", key):
             rpm = float(np.asarray(val).ravel()[0])
     return CwruRecord(p, number, channels, rpm)
+
+
+#: environment variable naming the ``shared/`` folder that holds ``data/cwru``
+SHARED_ENV = "BEARINGSIM_SHARED"
+
+
+def cwru_data_dir() -> Path:
+    """The folder of the measured CWRU records, ``<shared>/data/cwru`` (it may not exist).
+
+    ``<shared>`` is ``$BEARINGSIM_SHARED`` when that variable is set (it overrides the search,
+    even when it names a missing folder); otherwise the first ``shared`` folder holding
+    ``data/cwru`` beside this package or one of its parent folders (a clone with ``shared/``
+    beside it). Without either it is ``shared/data/cwru`` in the working directory.
+    """
+    env = os.environ.get(SHARED_ENV)
+    if env:
+        return Path(env) / "data" / "cwru"
+    for parent in Path(__file__).resolve().parents:
+        d = parent / "shared" / "data" / "cwru"
+        if d.is_dir():
+            return d
+    return Path("shared") / "data" / "cwru"

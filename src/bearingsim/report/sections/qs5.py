@@ -14,6 +14,7 @@ from ...quasistatic.jones import Misalignment, run_quasi_static
 from ...quasistatic.stiffness import stiffness_vs_cage
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import value
 
 TITLE = "QS5 (SPEC §5): quasi-static 5-DOF stiffness with misalignment and ball-distribution error"
 
@@ -80,7 +81,7 @@ def run(ctx: Context) -> Section:
                 cases["inner"],
                 s,
                 f"inner misalignment: dominant order of k_{s} [shaft orders]",
-                2.0,
+                value("qs5.abstract.inner_misalignment_order"),
                 "half the inner-ring rotation period",
                 src,
             )
