@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import CWRU
+from conftest import cwru_record
 from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
@@ -23,10 +23,7 @@ NOISE_97 = value("cwru.record97.de_rms")
 
 
 def _cwru(name):
-    matches = sorted(CWRU.glob(f"*_{name}.mat"))
-    if not matches:
-        pytest.skip(f"CWRU record {name} not available in {CWRU}")
-    return matches[0]
+    return cwru_record(name)
 
 
 @pytest.mark.parametrize(

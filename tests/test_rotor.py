@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import CWRU
+from conftest import cwru_record
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 from scipy.signal import butter, find_peaks, hilbert, sosfiltfilt
@@ -45,7 +45,7 @@ from bearingsim.io.cwru import read_cwru_mat
 from bearingsim.report.published import value
 
 G0 = 9.80665
-REC132 = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
+REC132 = "12k_Drive_End_OR007@6_2_132.mat"
 
 
 # ------------------------------------------------------------------ signal helpers (test-only)
@@ -280,9 +280,7 @@ def sim9():
 
 @pytest.fixture(scope="module")
 def rec132():
-    if not REC132.exists():
-        pytest.skip(f"CWRU record not found: {REC132}")
-    return read_cwru_mat(REC132)
+    return read_cwru_mat(cwru_record(REC132))
 
 
 def test_fault_frequency_equals_measured_132(sim9, rec132):
@@ -515,10 +513,7 @@ def test_cli_rotor_modes_json(run_cli):
 def test_48k_record_135_fault_frequency_and_impacts():
     """CWRU 135 (DE outer race 0.007 in at 6 o'clock, 0 hp, 1796 r/min, 48 kHz): 1 s simulated
     at 48 kHz; envelope line within one bin of the measured one, same impact count."""
-    path = CWRU / "48k_Drive_End_OR007@6_0_135.mat"
-    if not path.exists():
-        pytest.skip(f"CWRU record not found: {path}")
-    rec = read_cwru_mat(path)
+    rec = read_cwru_mat(cwru_record("48k_Drive_End_OR007@6_0_135.mat"))
     fs = 48000.0
     r = simulate_rotor(cwru_rotor_config(9, de_fault=Defect("outer"), speed_rpm=1796.0),
                        duration=1.0, sample_rate=fs)  # fmt: skip

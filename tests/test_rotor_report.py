@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 
 import pytest
+from conftest import cwru_record
 
 from bearingsim.report.published import value
 
@@ -13,6 +14,10 @@ from bearingsim.report.published import value
 @pytest.fixture(scope="module")
 def rotor_rows(tmp_path_factory):
     from bearingsim.report import run_report
+
+    # the section compares with CWRU record 132: without it the measured rows and figure are
+    # missing, so these tests need it
+    cwru_record("12k_Drive_End_OR007@6_2_132.mat")
 
     out = tmp_path_factory.mktemp("rotor_rep")
     run_report(out, quick=True, sections=["rotor"], progress=False)

@@ -79,18 +79,25 @@ def read_cwru_mat(path: str | Path) -> CwruRecord:
 SHARED_ENV = "BEARINGSIM_SHARED"
 
 
-def cwru_data_dir() -> Path:
+def cwru_data_dir(near: str | Path | None = None) -> Path:
     """The folder of the measured CWRU records, ``<shared>/data/cwru`` (it may not exist).
 
     ``<shared>`` is ``$BEARINGSIM_SHARED`` when that variable is set (it overrides the search,
     even when it names a missing folder); otherwise the first ``shared`` folder holding
-    ``data/cwru`` beside this package or one of its parent folders (a clone with ``shared/``
-    beside it). Without either it is ``shared/data/cwru`` in the working directory.
+    ``data/cwru`` beside ``near`` (default: this package) or one of its parent folders, as in
+    a clone with ``shared/`` beside it. Without either it is ``shared/data/cwru`` in the
+    working directory.
+
+    Parameters
+    ----------
+    near : path, optional
+        File or folder to search upwards from.
     """
     env = os.environ.get(SHARED_ENV)
     if env:
         return Path(env) / "data" / "cwru"
-    for parent in Path(__file__).resolve().parents:
+    start = Path(near if near is not None else __file__).resolve()
+    for parent in start.parents:
         d = parent / "shared" / "data" / "cwru"
         if d.is_dir():
             return d
