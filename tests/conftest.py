@@ -1,17 +1,44 @@
-"""Shared test fixtures: the ``../shared`` folder beside the repository and a CLI runner."""
+"""Shared test fixtures: the measured CWRU records of ``../shared/data`` (skipped cleanly when
+absent) and a CLI runner."""
 
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import pytest
 
-#: ``../shared`` beside the repository root (CI clones the repo with shared/ beside it);
-#: ``BEARINGSIM_SHARED`` overrides it.
-SHARED = Path(os.environ.get("BEARINGSIM_SHARED", Path(__file__).resolve().parents[2] / "shared"))
-CWRU = SHARED / "data" / "cwru"
+from bearingsim.io.cwru import SHARED_ENV, cwru_data_dir
+
+#: ``<shared>/data/cwru``: ``$BEARINGSIM_SHARED/data/cwru`` when that variable is set, else the
+#: ``shared/`` found beside the repository (CI clones the repo with shared/ beside it); it may
+#: be missing, and the tests that need it skip (:func:`cwru_record`)
+CWRU = cwru_data_dir(near=__file__)
+SHARED = CWRU.parents[1]
+
+
+def cwru_record(name: str) -> Path:
+    """Path of a measured CWRU record: a record number (``"132"`` finds ``*_132.mat``) or a
+    file name. The calling test (or fixture) skips, with the reason, when the shared data
+    folder or the record is missing."""
+    if not CWRU.is_dir():
+        pytest.skip(
+            f"shared data not available: {CWRU} does not exist (put shared/ beside the "
+            f"repository or set {SHARED_ENV})"
+        )
+    if name.endswith(".mat"):
+        found = [CWRU / name] if (CWRU / name).is_file() else []
+    else:
+        found = sorted(CWRU.glob(f"*_{name}.mat"))
+    if not found:
+        pytest.skip(f"CWRU record {name} not available in {CWRU}")
+    return found[0]
+
+
+@pytest.fixture
+def cwru():
+    """:func:`cwru_record` as a fixture: ``cwru("132")`` is the record's path (or a skip)."""
+    return cwru_record
 
 
 class CliResult:

@@ -5,26 +5,24 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import CWRU
+from conftest import cwru_record
 from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
 from bearingsim.config import Scenario
 from bearingsim.geometry import characteristic_frequencies
+from bearingsim.report.published import value
 from bearingsim.signal import diagnose, envelope_spectrum, fast_kurtogram
 from bearingsim.simulation import simulate
 
 ALLOWED = {"outer", "inner", "ball", "none", "uncertain"}
 #: RMS of the drive-end acceleration of the CWRU normal baseline 97 [m/s^2] (0.0727 g):
 #: the measurement noise added to the simulations that are diagnosed
-NOISE_97 = 0.713
+NOISE_97 = value("cwru.record97.de_rms")
 
 
 def _cwru(name):
-    matches = sorted(CWRU.glob(f"*_{name}.mat"))
-    if not matches:
-        pytest.skip(f"CWRU record {name} not available in {CWRU}")
-    return matches[0]
+    return cwru_record(name)
 
 
 @pytest.mark.parametrize(
@@ -45,7 +43,7 @@ def test_cwru_records(run_cli, record, expected):
         fam = "BPFI" if expected == "inner" else "BPFO"
         p = {q["label"]: q for q in d["peaks"]}[fam]
         assert p["detected"]
-        order = 5.4152 if expected == "inner" else 3.5848  # CWRU defect orders
+        order = value(f"cwru.drive_end.{fam.lower()}_order")  # CWRU defect orders
         assert_allclose(p["order"], order, rtol=0.01, err_msg=f"{fam} order vs CWRU table")
 
 
@@ -98,14 +96,14 @@ def test_simulations_are_diagnosed(run_cli, tmp_path, model, fault):
             assert peaks[lab]["detected"], lab
         assert_allclose(
             peaks["BPFI"]["freq_hz"],
-            157.76,
+            value("vsm.eq20.bpfi_6205_1748rpm"),
             atol=2.0,
             err_msg="BPFI at 1748 r/min vs seed VSM eq. (20)",
         )
     if fault == "outer":
         assert_allclose(
             peaks["BPFO"]["freq_hz"],
-            107.30,
+            value("vsm.eq21.bpfo_6205_1796rpm"),
             atol=2.0,
             err_msg="BPFO at 1796 r/min vs seed VSM eq. (21)",
         )
@@ -172,7 +170,8 @@ def test_csv_input_time_and_speed_columns(run_cli, tmp_path):
     d2 = r2.json()
     assert d2["domain"] == "order" and d2["shaft_hz"] == 1.0 and d2["diagnosis"] == "outer"
     bpfo = {p["label"]: p for p in d2["peaks"]}["BPFO"]
-    assert_allclose(bpfo["order"], 3.5848, rtol=0.01, err_msg="BPFO order vs CWRU table")
+    bpfo_order = value("cwru.drive_end.bpfo_order")
+    assert_allclose(bpfo["order"], bpfo_order, rtol=0.01, err_msg="BPFO order vs CWRU table")
 
 
 # ---------------------------------------------------------------------------- bad input

@@ -15,6 +15,7 @@ from bearingsim.dynamics.ias.spall import (
     estimate_spall_width,
     spall_width_from_angle,
 )
+from bearingsim.report.published import entry, value
 from bearingsim.signal import (
     AngleSignal,
     angle_from_speed,
@@ -119,8 +120,8 @@ def test_spall_width_estimate_on_synthetic_events(crossing):
 def test_seed_eq37_numbers():
     # seed IAS §3.1: 0.12 rad of shaft angle -> 0.96 mm
     assert_allclose(
-        spall_width_from_angle(0.12, DO, RHO),
-        0.96e-3,
+        spall_width_from_angle(value("ias.fig10.crossing_angle"), DO, RHO),
+        entry("ias.eq37.spall_width_estimate").si,
         rtol=0.01,
         err_msg="seed IAS eq. (37) with theta_shaft = 0.12 rad",
     )

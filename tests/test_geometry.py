@@ -10,6 +10,7 @@ from numpy.testing import assert_allclose
 
 from bearingsim import BallBearing, ConfigError, characteristic_frequencies, get_bearing
 from bearingsim.catalog import bearing_from_dict, list_bearings, load_bearing_file
+from bearingsim.report.published import value
 
 
 def test_catalogue_has_required_entries_with_sources():
@@ -48,8 +49,8 @@ def test_seed_raceway_radii():
 @pytest.mark.parametrize(
     "rpm, key, published, source",
     [
-        (1748, "bpfi_hz", 157.76, "seed VSM eq (20), 1748 r/min"),
-        (1796, "bpfo_hz", 107.30, "seed VSM eq (21), 1796 r/min"),
+        (1748, "bpfi_hz", value("vsm.eq20.bpfi_6205_1748rpm"), "seed VSM eq (20), 1748 r/min"),
+        (1796, "bpfo_hz", value("vsm.eq21.bpfo_6205_1796rpm"), "seed VSM eq (21), 1796 r/min"),
     ],
 )
 def test_seed_vsm_fault_frequencies(rpm, key, published, source):
@@ -57,11 +58,18 @@ def test_seed_vsm_fault_frequencies(rpm, key, published, source):
     assert_allclose(k[key], published, rtol=1e-3, err_msg=f"{key} vs {source}")
 
 
+#: CWRU bearing-table defect orders (BPFI, BPFO, FTF, 2xBSF) of each end
+CWRU_ORDERS = {
+    end: [value(f"cwru.{end}.{k}_order") for k in ("bpfi", "bpfo", "ftf", "2xbsf")]
+    for end in ("drive_end", "fan_end")
+}
+
+
 @pytest.mark.parametrize(
     "bid, bpfi, bpfo, ftf, two_bsf",
     [
-        ("6205-cwru", 5.4152, 3.5848, 0.39828, 4.7135),  # CWRU drive-end defect orders
-        ("6203-cwru", 4.9469, 3.0530, 0.3817, 3.9874),  # CWRU fan-end defect orders
+        ("6205-cwru", *CWRU_ORDERS["drive_end"]),  # CWRU drive-end defect orders
+        ("6203-cwru", *CWRU_ORDERS["fan_end"]),  # CWRU fan-end defect orders
     ],
 )
 def test_cwru_defect_orders(bid, bpfi, bpfo, ftf, two_bsf):
@@ -74,7 +82,12 @@ def test_cwru_defect_orders(bid, bpfi, bpfo, ftf, two_bsf):
 
 def test_nu204_bpfo_order():
     k = characteristic_frequencies(get_bearing("NU204-ECP"), 1.0)
-    assert_allclose(k.bpfo_order, 4.22, rtol=2e-3, err_msg="NU204 BPFO order vs seed IAS eq (36)")
+    assert_allclose(
+        k.bpfo_order,
+        value("ias.eq36.bpfo_order"),
+        rtol=2e-3,
+        err_msg="NU204 BPFO order vs seed IAS eq (36)",
+    )
 
 
 def test_frequency_identities():

@@ -23,11 +23,15 @@ from bearingsim.contact.hertz import (
 )
 from bearingsim.geometry import Race
 from bearingsim.load_distribution import stribeck_qmax
+from bearingsim.report.published import entry
 
 
 @pytest.mark.parametrize(
     "race, published, rtol",
-    [("inner", 2890e6, 0.01), ("outer", 2554e6, 0.02)],
+    [
+        ("inner", entry("life.table2.inner_pmax_theory").si, 0.01),
+        ("outer", entry("life.table2.outer_pmax_theory").si, 0.02),
+    ],
     ids=["inner-2890MPa", "outer-2554MPa"],
 )
 def test_seed_life_table2_pmax(race, published, rtol):

@@ -10,6 +10,7 @@ from numpy.testing import assert_allclose
 
 from bearingsim.cli import main
 from bearingsim.dynamics.ias.model import IasResult
+from bearingsim.report.published import value
 
 #: short runs: dt 1e-5 s (valid, see tests/test_ias.py), 1.5 s simulated, 10 kHz output
 FAST = ["--duration-s", "1.5", "--dt-s", "1e-5", "--fs-hz", "10000"]
@@ -45,8 +46,12 @@ def test_ias_json_and_files(run_cli, tmp_path):
     assert r.code == 0, r.err
     d = r.json()
     assert KEYS <= set(d)
-    assert_allclose(d["mean_speed_rpm"], 60.0, rtol=0.01, err_msg="seed IAS §3.1")
-    assert_allclose(d["bpfo_order_theory"], 4.22, atol=5e-3, err_msg="seed IAS eq. (36)")
+    assert_allclose(
+        d["mean_speed_rpm"], value("ias.s3_1.mean_speed"), rtol=0.01, err_msg="seed IAS §3.1"
+    )
+    assert_allclose(
+        d["bpfo_order_theory"], value("ias.eq36.bpfo_order"), atol=5e-3, err_msg="seed IAS eq. (36)"
+    )
     assert_allclose(d["spall_width_estimate_m"], 1e-3, rtol=0.1, err_msg="seed IAS eq. (37)")
     assert {"order", "amplitude"} == set(d["order_peaks"][0])
     assert out.stat().st_size > 0 and png.stat().st_size > 0
@@ -62,7 +67,12 @@ def test_ias_scenario_file_and_rpm(run_cli, tmp_path):
     d = r.json()
     assert_allclose(d["torque_n_m"], 1.52 * 2 * math.pi, rtol=1e-12, err_msg="M_z = C_T w")
     assert d["spall_width_estimate_m"] is None
-    assert_allclose(d["order_peaks"][0]["order"], 4.22, atol=0.02, err_msg="healthy ripple")
+    assert_allclose(
+        d["order_peaks"][0]["order"],
+        value("ias.eq36.bpfo_order"),
+        atol=0.02,
+        err_msg="healthy ripple",
+    )
 
 
 def test_ias_text_output(run_cli, tmp_path):
@@ -119,7 +129,7 @@ def test_analyze_speed_without_bearing(run_cli, encoder_csv):
     d = r.json()
     assert d["bpfo_order_theory"] is None and d["spall_width_estimate_m"] is None
     top = max(d["order_peaks"], key=lambda p: p["amplitude"])
-    assert_allclose(top["order"], 4.22, atol=0.02)
+    assert_allclose(top["order"], value("ias.eq36.bpfo_order"), atol=0.02)
 
 
 def _bad(capsys, args, *needles, out=None):

@@ -11,14 +11,20 @@ from numpy.testing import assert_allclose
 from bearingsim import ConfigError, get_bearing
 from bearingsim.contact.hertz import ball_stiffness
 from bearingsim.load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
+from bearingsim.report.published import value
 
 CAGE = np.radians(np.linspace(0.0, 360.0, 721))
 
 
 def test_seed_vsm_load_and_angle():
     ld = radial_load_distribution(get_bearing("6205"), 10.0, 50.0)
-    assert_allclose(ld.fr, 50.99, rtol=1e-3, err_msg="F_r vs seed VSM §2.1")
-    assert_allclose(math.degrees(ld.theta0), 11.3, atol=0.05, err_msg="theta_0 vs seed VSM §2.1")
+    assert_allclose(ld.fr, value("vsm.s2_1.radial_load"), rtol=1e-3, err_msg="F_r vs seed VSM §2.1")
+    assert_allclose(
+        math.degrees(ld.theta0),
+        value("vsm.s2_1.load_angle"),
+        atol=0.05,
+        err_msg="theta_0 vs seed VSM §2.1",
+    )
 
 
 def test_seed_vsm_psi_l_is_ours_not_papers():

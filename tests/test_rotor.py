@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import CWRU
+from conftest import cwru_record
 from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 from scipy.signal import butter, find_peaks, hilbert, sosfiltfilt
@@ -42,9 +42,10 @@ from bearingsim.dynamics.rotor.scenario import rotor_config_from_scenario
 from bearingsim.errors import ConfigError
 from bearingsim.geometry import Defect, Race, defect_geometry
 from bearingsim.io.cwru import read_cwru_mat
+from bearingsim.report.published import value
 
 G0 = 9.80665
-REC132 = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
+REC132 = "12k_Drive_End_OR007@6_2_132.mat"
 
 
 # ------------------------------------------------------------------ signal helpers (test-only)
@@ -279,9 +280,7 @@ def sim9():
 
 @pytest.fixture(scope="module")
 def rec132():
-    if not REC132.exists():
-        pytest.skip(f"CWRU record not found: {REC132}")
-    return read_cwru_mat(REC132)
+    return read_cwru_mat(cwru_record(REC132))
 
 
 def test_fault_frequency_equals_measured_132(sim9, rec132):
@@ -300,7 +299,8 @@ def test_impacts_between_0p10_and_0p20_s_equal_measured(sim9, rec132):
     period = 1.0 / sim9.kinematics["DE"].bpfo_hz
     n_sim = count_impacts(sim9.channel("DE", "y"), 12000.0, 0.10, 0.20, period)
     n_meas = count_impacts(rec132.channels["DE"], 12000.0, 0.10, 0.20, period)
-    assert n_meas == 11, "CWRU 132 shows 11 impacts in 0.10-0.20 s (seed ROTOR fig. 5a)"
+    impacts_132 = value("cwru.record132.impacts")
+    assert n_meas == impacts_132, "CWRU 132 shows 11 impacts in 0.10-0.20 s (seed ROTOR fig. 5a)"
     assert n_sim == n_meas
     # phase-free: the window holds 10.46 periods, so the count alone also depends on the cage
     # phase; the spacing of the impacts does not
@@ -327,21 +327,23 @@ def test_fan_end_outer_fault_shows_fan_end_bpfo():
     bpfo = cfg.kinematics()["FE"].bpfo_hz
     r = simulate_rotor(cfg, duration=round(0.5 * bpfo) / bpfo)
     f, df = envelope_peak(r.channel("FE", "y"), 12000.0)
-    assert abs(f - 3.0530 * 1750 / 60) <= df, "FE BPFO, CWRU bearing table order 3.0530"
+    bpfo_fe = value("cwru.fan_end.bpfo_order") * 1750 / 60
+    assert abs(f - bpfo_fe) <= df, "FE BPFO, CWRU bearing table order 3.0530"
 
 
 def test_inner_race_fault_bpfi_with_shaft_sidebands():
     r = simulate_rotor(cwru_rotor_config(3, de_fault=Defect("inner")), duration=1.0)
     fs_hz = 1750 / 60
     f, df = envelope_peak(r.channel("DE", "y"), 12000.0, 140.0, 175.0)
-    assert abs(f - 5.4152 * fs_hz) <= df, "BPFI, CWRU bearing table order 5.4152"
+    bpfi_order = value("cwru.drive_end.bpfi_order")
+    assert abs(f - bpfi_order * fs_hz) <= df, "BPFI, CWRU bearing table order 5.4152"
     # the load zone modulates the impacts once per shaft turn: lines at f_s and BPFI - f_s
     e = envelope(r.channel("DE", "y"), 12000.0)
     e = e - e.mean()
     spec = np.abs(np.fft.rfft(e * np.hanning(e.size)))
     fr = np.fft.rfftfreq(e.size, 1 / 12000.0)
     top = fr[(fr > 20) & (fr < 200)][np.argsort(spec[(fr > 20) & (fr < 200)])[::-1][:6]]
-    for line in (fs_hz, 5.4152 * fs_hz - fs_hz):
+    for line in (fs_hz, bpfi_order * fs_hz - fs_hz):
         assert np.min(np.abs(top - line)) <= df, f"line at {line:.2f} Hz among {top}"
 
 
@@ -511,10 +513,7 @@ def test_cli_rotor_modes_json(run_cli):
 def test_48k_record_135_fault_frequency_and_impacts():
     """CWRU 135 (DE outer race 0.007 in at 6 o'clock, 0 hp, 1796 r/min, 48 kHz): 1 s simulated
     at 48 kHz; envelope line within one bin of the measured one, same impact count."""
-    path = CWRU / "48k_Drive_End_OR007@6_0_135.mat"
-    if not path.exists():
-        pytest.skip(f"CWRU record not found: {path}")
-    rec = read_cwru_mat(path)
+    rec = read_cwru_mat(cwru_record("48k_Drive_End_OR007@6_0_135.mat"))
     fs = 48000.0
     r = simulate_rotor(cwru_rotor_config(9, de_fault=Defect("outer"), speed_rpm=1796.0),
                        duration=1.0, sample_rate=fs)  # fmt: skip

@@ -20,6 +20,7 @@ from bearingsim.dynamics.rotor.fe import (
     mesh_nodes,
 )
 from bearingsim.errors import ConfigError
+from bearingsim.report.published import value
 
 # a steel shaft (Friswell et al. 2010, Example 5.9.1: 1.5 m, diameter 50 mm, E 211 GPa, 7810 kg/m3)
 E, RHO, D, L = 211e9, 7810.0, 0.05, 1.5
@@ -110,10 +111,7 @@ def _friswell_591(n_el: int = 6):
 
 #: Friswell et al. (2010) Example 5.9.1 natural frequencies [rad/s] at 0 and 4000 r/min as
 #: computed by ROSS with 6 Timoshenko elements (petrobras/ross docs/examples/example_05_09_01.rst)
-ROSS_591 = {
-    0: [86.658, 86.658, 274.313, 274.313, 716.786, 716.786],
-    4000: [85.389, 87.796, 251.785, 294.713, 600.179, 827.075],
-}
+ROSS_591 = {rpm: value(f"friswell.ex5_9_1.ross_{rpm}rpm") for rpm in (0, 4000)}
 
 
 @pytest.mark.parametrize("rpm", [0, 4000], ids=["0rpm", "4000rpm"])

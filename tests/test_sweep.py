@@ -43,6 +43,11 @@ NOISY = make_spec(
 )
 
 
+#: the module shares one local cluster of two process workers (``client``); all its tests but
+#: two small unit tests use it
+pytestmark = pytest.mark.integration
+
+
 @pytest.fixture(scope="module")
 def client():
     with connect(workers=2) as (cl, _):

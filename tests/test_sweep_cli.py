@@ -50,6 +50,7 @@ def test_plan_json_and_text(run_cli, spec_file):
     assert "disk ~" in r.out and "timing runs" not in r.out
 
 
+@pytest.mark.integration
 def test_run_summary_resume(run_cli, spec_file, tmp_path):
     out = tmp_path / "ds.zarr"
     r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1", "--json")
@@ -201,6 +202,7 @@ def test_bad_input(args, match, run_cli, spec_file, tmp_path):
     assert sorted(p.name for p in files["notds"].iterdir()) == ["data.csv"]
 
 
+@pytest.mark.integration
 def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
     out = tmp_path / "ds.zarr"
     assert run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1", "--json").code == 0
@@ -219,6 +221,7 @@ def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
     assert r.code == 2 and "label = 'speed' is not stored per run; valid: fault, rpm" in r.err
 
 
+@pytest.mark.integration
 def test_docs_python_example_runs(tmp_path, monkeypatch):
     """The Python block of docs/sweeps.md runs as written (on a small sweep.toml)."""
     import re

@@ -41,6 +41,8 @@ N_RUNS = 8
 SRC = str(Path(bearingsim.__file__).resolve().parents[1])
 ENV = {**os.environ, "PYTHONPATH": SRC}
 TIMEOUT_S = 120.0
+#: every test here starts real processes (CLI clients, a scheduler, workers) and kills some
+pytestmark = pytest.mark.integration
 
 
 def n_committed(out: Path) -> int:

@@ -17,12 +17,13 @@ from bearingsim.dynamics.ring.trace import stiffness_trace
 from bearingsim.errors import ConfigError
 from bearingsim.geometry import Defect, defect_at_edge, defect_geometry
 from bearingsim.load_distribution import radial_load_distribution
+from bearingsim.report.published import entry, value
 
 B6205 = get_bearing("6205")
 #: seed VSM table 1 / §2.1 loads and speed
 FX, FY, SHAFT = 10.0, 50.0, 1750.0 / 60.0
 #: seed VSM §2.1: psi_L = 68.2 deg stated for table 1 inputs
-PSI_L_PAPER = math.radians(68.2)
+PSI_L_PAPER = entry("vsm.s2_1.load_zone_half_angle").si
 STEP = np.radians(np.arange(0.0, 360.0 + 1e-9, 0.01))
 
 
@@ -32,7 +33,7 @@ def k_paper() -> float:
 
     def f(k):
         ld = radial_load_distribution(B6205, FX, FY, 0.0, stiffness=k)
-        return math.degrees(float(ld.psi_l[0])) - 68.2
+        return math.degrees(float(ld.psi_l[0])) - value("vsm.s2_1.load_zone_half_angle")
 
     return brentq(f, 1e8, 9.4e9, xtol=1e-3)
 
@@ -113,32 +114,9 @@ def test_in_defect_window():
 # ------------------------------------------------------------------ table 2 / table 3 angles
 
 #: seed VSM table 2 (outer defect b = 1 mm, gamma = 0.38): key positions of ball 5
-TABLE2 = [
-    (143.1, 5, "enters_zone"),
-    (159.5, 8, "leaves_zone"),
-    (170.0, 6, "enters_defect"),
-    (183.1, 4, "enters_zone"),
-    (199.5, 7, "leaves_zone"),
-    (210.0, 5, "enters_defect"),
-    (223.1, 3, "enters_zone"),
-    (239.5, 6, "leaves_zone"),
-    (250.0, 4, "enters_defect"),
-    (263.1, 2, "enters_zone"),
-    (279.5, 5, "leaves_zone"),
-]
+TABLE2 = entry("vsm.table2.outer_defect_events").rows("ball", "event")
 #: seed VSM table 3 (inner defect): key positions of ball 7 (defect entries in the zone only)
-TABLE3 = [
-    (63.1, 7, "enters_zone"),
-    (79.6, 1, "leaves_zone"),
-    (103.1, 6, "enters_zone"),
-    (119.6, 9, "leaves_zone"),
-    (123.3, 6, "enters_defect"),
-    (143.1, 5, "enters_zone"),
-    (149.8, 7, "enters_defect"),
-    (159.6, 8, "leaves_zone"),
-    (183.1, 4, "enters_zone"),
-    (199.6, 7, "leaves_zone"),
-]
+TABLE3 = entry("vsm.table3.inner_defect_events").rows("ball", "event")
 
 
 def test_table2_event_angles_with_paper_psi_l():

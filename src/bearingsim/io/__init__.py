@@ -13,7 +13,7 @@ it; :func:`read_signal` imports :mod:`bearingsim.geometry`, :mod:`bearingsim.mat
 """
 
 from .atomic import atomic_open, atomic_path, write_json
-from .cwru import CwruRecord, read_cwru_mat
+from .cwru import CwruRecord, cwru_data_dir, read_cwru_mat
 from .jsonable import dumps_jsonable, to_jsonable
 from .signal import CWRU_DEFAULT_FS, SignalRecord, read_signal
 from .text import TextTable, read_table
@@ -25,6 +25,7 @@ __all__ = [
     "TextTable",
     "atomic_open",
     "atomic_path",
+    "cwru_data_dir",
     "dumps_jsonable",
     "read_cwru_mat",
     "read_signal",

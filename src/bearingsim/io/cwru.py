@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -72,3 +73,32 @@ def read_cwru_mat(path: str | Path) -> CwruRecord:
         if re.match(r"^X\d+RPM$", key):
             rpm = float(np.asarray(val).ravel()[0])
     return CwruRecord(p, number, channels, rpm)
+
+
+#: environment variable naming the ``shared/`` folder that holds ``data/cwru``
+SHARED_ENV = "BEARINGSIM_SHARED"
+
+
+def cwru_data_dir(near: str | Path | None = None) -> Path:
+    """The folder of the measured CWRU records, ``<shared>/data/cwru`` (it may not exist).
+
+    ``<shared>`` is ``$BEARINGSIM_SHARED`` when that variable is set (it overrides the search,
+    even when it names a missing folder); otherwise the first ``shared`` folder holding
+    ``data/cwru`` beside ``near`` (default: this package) or one of its parent folders, as in
+    a clone with ``shared/`` beside it. Without either it is ``shared/data/cwru`` in the
+    working directory.
+
+    Parameters
+    ----------
+    near : path, optional
+        File or folder to search upwards from.
+    """
+    env = os.environ.get(SHARED_ENV)
+    if env:
+        return Path(env) / "data" / "cwru"
+    start = Path(near if near is not None else __file__).resolve()
+    for parent in start.parents:
+        d = parent / "shared" / "data" / "cwru"
+        if d.is_dir():
+            return d
+    return Path("shared") / "data" / "cwru"

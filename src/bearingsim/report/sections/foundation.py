@@ -13,6 +13,7 @@ from ...geometry import Race, characteristic_frequencies
 from ...load_distribution import radial_load_distribution, stribeck_qmax
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import value
 
 TITLE = "Foundations (SPEC §0): kinematics, Hertz contact, radial load distribution"
 
@@ -32,15 +33,25 @@ def run(ctx: Context) -> Section:
     k1748 = characteristic_frequencies(b6205, 1748 / 60)
     k1796 = characteristic_frequencies(b6205, 1796 / 60)
     rows.append(
-        compare("6205 BPFI at 1748 r/min [Hz]", "seed VSM eq. (20)", 157.76, k1748.bpfi_hz, 1e-3)
+        compare(
+            "6205 BPFI at 1748 r/min [Hz]",
+            "seed VSM eq. (20)",
+            value("vsm.eq20.bpfi_6205_1748rpm"),
+            k1748.bpfi_hz,
+            1e-3,
+        )
     )
     rows.append(
-        compare("6205 BPFO at 1796 r/min [Hz]", "seed VSM eq. (21)", 107.30, k1796.bpfo_hz, 1e-3)
+        compare(
+            "6205 BPFO at 1796 r/min [Hz]",
+            "seed VSM eq. (21)",
+            value("vsm.eq21.bpfo_6205_1796rpm"),
+            k1796.bpfo_hz,
+            1e-3,
+        )
     )
-    for bid, pub in (
-        ("6205-cwru", {"bpfi": 5.4152, "bpfo": 3.5848, "ftf": 0.39828, "2xbsf": 4.7135}),
-        ("6203-cwru", {"bpfi": 4.9469, "bpfo": 3.0530, "ftf": 0.3817, "2xbsf": 3.9874}),
-    ):
+    for bid, end in (("6205-cwru", "drive_end"), ("6203-cwru", "fan_end")):
+        pub = {key: value(f"cwru.{end}.{key}_order") for key in ("bpfi", "bpfo", "ftf", "2xbsf")}
         k = characteristic_frequencies(get_bearing(bid), 1.0)
         ours = {
             "bpfi": k.bpfi_order,
@@ -56,7 +67,13 @@ def run(ctx: Context) -> Section:
             )
     knu = characteristic_frequencies(get_bearing("NU204-ECP"), 1.0)
     rows.append(
-        compare("NU204-ECP BPFO order [-]", "seed IAS eq. (36)", 4.22, knu.bpfo_order, 2e-3)
+        compare(
+            "NU204-ECP BPFO order [-]",
+            "seed IAS eq. (36)",
+            value("ias.eq36.bpfo_order"),
+            knu.bpfo_order,
+            2e-3,
+        )
     )
     # --- Hertz: seed LIFE table 2
     b6206 = get_bearing("6206")
@@ -67,7 +84,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 inner p_max, Q=4.37*5000/9 N [MPa]",
             "seed LIFE table 2 (theory)",
-            2890.0,
+            value("life.table2.inner_pmax_theory"),
             float(ci.p_max) / 1e6,
             0.01,
         )
@@ -76,7 +93,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 outer p_max, Q=4.37*5000/9 N [MPa]",
             "seed LIFE table 2 (theory)",
-            2554.0,
+            value("life.table2.outer_pmax_theory"),
             float(co.p_max) / 1e6,
             0.02,
         )
@@ -89,7 +106,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 inner p_max [MPa]",
             "seed LIFE table 2 (ABAQUS FE)",
-            2904.0,
+            value("life.table2.inner_pmax_fe"),
             float(ci.p_max) / 1e6,
             0.01,
             fe_note,
@@ -99,7 +116,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 outer p_max [MPa]",
             "seed LIFE table 2 (ABAQUS FE)",
-            2501.0,
+            value("life.table2.outer_pmax_fe"),
             float(co.p_max) / 1e6,
             0.01,
             fe_note,
@@ -107,17 +124,34 @@ def run(ctx: Context) -> Section:
     )
     # --- load distribution: seed VSM §2.1
     ld = radial_load_distribution(b6205, 10.0, 50.0, 0.0)
-    rows.append(compare("6205 F_r for F_rx=10, F_ry=50 N [N]", "seed VSM §2.1", 50.99, ld.fr, 1e-3))
-    rows.append(compare("6205 theta_0 [deg]", "seed VSM §2.1", 11.3, math.degrees(ld.theta0), 5e-3))
+    rows.append(
+        compare(
+            "6205 F_r for F_rx=10, F_ry=50 N [N]",
+            "seed VSM §2.1",
+            value("vsm.s2_1.radial_load"),
+            ld.fr,
+            1e-3,
+        )
+    )
+    rows.append(
+        compare(
+            "6205 theta_0 [deg]",
+            "seed VSM §2.1",
+            value("vsm.s2_1.load_angle"),
+            math.degrees(ld.theta0),
+            5e-3,
+        )
+    )
     psi = math.degrees(float(ld.psi_l[0]))
     K = ld.stiffness
-    k_needed = brentq(lambda kk: psi_l_seed_case(stiffness=kk) - 68.2, 1e8, K)
-    pd_needed = brentq(lambda pd: psi_l_seed_case(clearance=pd) - 68.2, 1e-8, 6e-6)
+    psi_pub = value("vsm.s2_1.load_zone_half_angle")
+    k_needed = brentq(lambda kk: psi_l_seed_case(stiffness=kk) - psi_pub, 1e8, K)
+    pd_needed = brentq(lambda pd: psi_l_seed_case(clearance=pd) - psi_pub, 1e-8, 6e-6)
     rows.append(
         compare(
             "6205 load-zone half angle psi_L [deg]",
             "seed VSM §2.1 / eq. (8)",
-            68.2,
+            psi_pub,
             psi,
             0.01,
             f"Hertz K = {K:.4g} N/m^1.5 (exact elliptic integrals, E 207 GPa) with P_d = 6 um "

@@ -21,13 +21,14 @@ from ...life.reference_life import reference_rating_life
 from ...life.validation import validate_against_hertz
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import entry, value
 
 TITLE = "LIFE (SPEC §4): damage-mechanics contact-fatigue life of the 6206; ISO 281 / ISO/TS 16281"
 
-#: seed LIFE table 4: predicted life and the three test bearings [cycles]
-SEED_PREDICTED = 2.72e8
-SEED_TESTS = (2.1e8, 2.64e8, 5.57e8)
-SEED_ERRORS_PCT = (29.52, 3.03, 51.16)
+#: seed LIFE table 4: predicted life and the three test bearings [cycles], the seed's errors [%]
+SEED_PREDICTED = value("life.table4.predicted_life")
+SEED_TESTS = value("life.table4.test_lives")
+SEED_ERRORS_PCT = value("life.table4.relative_errors")
 
 
 def _fe_figure(section, st):
@@ -73,16 +74,16 @@ def run(ctx: Context) -> Section:
         compare(
             "kappa from the GCr15 torsional S-N fit [-]",
             "seed LIFE §1.1",
-            11.1,
+            value("life.s1_1.kappa"),
             law.kappa,
-            0.05 / 11.1,
+            0.05 / value("life.s1_1.kappa"),
         )
     )
     rows.append(
         compare(
             "sigma_t from the GCr15 torsional S-N fit [MPa]",
             "seed LIFE §1.1",
-            5979.0,
+            value("life.s1_1.sigma_t"),
             law.sigma_t / 1e6,
             5e-3,
         )
@@ -126,7 +127,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 inner p_max at 5 kN used by the FE [MPa]",
             "seed LIFE table 3 (ABAQUS)",
-            2904.0,
+            value("life.table3.pmax"),
             c.p_max / 1e6,
             0.01,
             "ours is Hertz theory with Stribeck Q_max = 4.37 F_r/Z = 2428 N; it "
@@ -137,7 +138,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 inner contact semi-axis b (along rolling) [mm]",
             "seed LIFE table 3",
-            0.23,
+            value("life.table3.semi_axis_b"),
             c.b * 1e3,
             0.03,
             f"Hertz gives b = {c.b * 1e3:.3f} mm (a = {c.a * 1e3:.2f} mm) for "
@@ -172,7 +173,7 @@ def run(ctx: Context) -> Section:
         compare(
             "6206 max shear stress at 5 kN [MPa]",
             "seed LIFE table 3",
-            459.0,
+            value("life.table3.max_shear"),
             v.tau_max_fe / 1e6,
             0.03,
             "ours is the orthogonal shear amplitude 0.25 p_max of the Hertz field "
@@ -276,7 +277,7 @@ def run(ctx: Context) -> Section:
             "459 MPa (Delta_tau = 918 MPa) [cycles]",
             "derived from seed LIFE table 3",
             None,
-            float(law.cycles_to_failure(918e6)),
+            float(law.cycles_to_failure(2 * entry("life.table3.max_shear").si)),
             None,
             "explained",
             "shows the order of magnitude of the seed's 2.72e8 follows from its "
@@ -301,7 +302,8 @@ def run(ctx: Context) -> Section:
     )
     # ---------------------------------------------------------------- ISO 281 / 16281
     u = inner_race_cycles_per_revolution(b6206)
-    for bid, nsk, skf in (("6206", 19.5, 20.3), ("6205", 14.0, 14.8)):
+    for bid in ("6206", "6205"):
+        nsk, skf = value(f"catalogue.nsk.{bid}.c_r"), value(f"catalogue.skf.{bid}.c_r")
         r = dynamic_load_rating(get_bearing(bid))
         rows.append(
             compare(

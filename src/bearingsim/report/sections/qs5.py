@@ -18,6 +18,7 @@ from ...quasistatic import (
 )
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import value
 
 TITLE = "QS5 (SPEC §5): quasi-static 5-DOF stiffness with misalignment and ball-distribution error"
 
@@ -84,7 +85,7 @@ def run(ctx: Context) -> Section:
                 cases["inner"],
                 s,
                 f"inner misalignment: dominant order of k_{s} [shaft orders]",
-                2.0,
+                value("qs5.abstract.inner_misalignment_order"),
                 "half the inner-ring rotation period",
                 src,
             )

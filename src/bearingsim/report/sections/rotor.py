@@ -5,7 +5,6 @@ figs. 5–6) and the fault-frequency amplitude against the number of disks (seed
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -23,9 +22,11 @@ from ...dynamics.rotor.config import (
 from ...dynamics.rotor.fe import Disk, assemble_rotor, complex_modes
 from ...dynamics.rotor.model import rotor_modes, simulate_rotor
 from ...geometry import Defect
+from ...io.cwru import cwru_data_dir
 from ...signal import amplitude_spectrum, envelope, envelope_spectrum, load_signal
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import value
 
 TITLE = "ROTOR: bearing–rotor–housing system with a multi-disk rotor (SPEC §2, seed ROTOR)"
 
@@ -34,19 +35,13 @@ BAND = (2000.0, 5000.0)
 FS = 12000.0
 G0 = 9.80665
 #: seed ROTOR §3: fault-frequency amplitude from the highest to the lowest disk case [%]
-SEED_DROP_PCT = -52.9
+SEED_DROP_PCT = value("rotor.s3.amplitude_drop")
 RECORD = "12k_Drive_End_OR007@6_2_132.mat"
 
 
 def _record_path() -> Path | None:
-    shared = os.environ.get("BEARINGSIM_SHARED")
-    cands = [Path(shared)] if shared else []
-    cands += [p / "shared" for p in Path(__file__).resolve().parents]
-    for c in cands:
-        p = c / "data" / "cwru" / RECORD
-        if p.is_file():
-            return p
-    return None
+    p = cwru_data_dir() / RECORD
+    return p if p.is_file() else None
 
 
 def _near(spec, f0: float, tol: float = 0.01) -> tuple[float, float]:
@@ -131,7 +126,9 @@ def _rotor_alone(sec: Section) -> None:
         K[r.dof(nd, "x"), r.dof(nd, "x")] += 1e6
         K[r.dof(nd, "y"), r.dof(nd, "y")] += 1e6
     m = complex_modes(r.M, K, r.G, 4000 * math.pi / 30)
-    for i, ross in ((0, 85.389), (1, 87.796), (3, 294.713)):
+    ross_4000 = value("friswell.ex5_9_1.ross_4000rpm")
+    for i in (0, 1, 3):
+        ross = ross_4000[i]
         sec.rows.append(
             compare(
                 f"Friswell Example 5.9.1 at 4000 r/min, mode {i + 1} [rad/s]",
@@ -206,17 +203,19 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
     # the whole record (10 s, 0.1 Hz bins) locates the measured fault line precisely
     es_all = envelope_spectrum(rec.x, rec.fs, BAND)
     order_m = _near(es_all, bpfo, 0.02)[0] / (rec.rpm / 60)
+    bpfo_order = value("cwru.drive_end.bpfo_order")
+    true_rpm = 1750 * order_m / bpfo_order
     speed_note = (
         f"the measured line is at order {order_m:.4f} of the stored 1750 r/min (whole "
         "record), 0.4 % above the CWRU BPFO order 3.5848: the record's true speed was "
-        f"about {1750 * order_m / 3.5848:.0f} r/min (slip would lower, not raise it); the model "
+        f"about {true_rpm:.0f} r/min (slip would lower, not raise it); the model "
         "runs at the stored 1750 r/min"
     )
     sec.rows.append(
         compare(
             "measured 132 fault frequency as an order of the stored speed [-]",
             "CWRU bearing table BPFO order 3.5848",
-            3.5848,
+            bpfo_order,
             order_m,
             1e-3,
             speed_note,

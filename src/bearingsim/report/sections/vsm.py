@@ -4,7 +4,6 @@ the measured CWRU records (seed VSM figs. 5–15, tables 2–3)."""
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -15,30 +14,20 @@ from ...config import Scenario
 from ...dynamics.ring.base import ModelInputs
 from ...dynamics.ring.trace import stiffness_trace
 from ...geometry import characteristic_frequencies, defect_at_edge
+from ...io.cwru import cwru_data_dir
 from ...load_distribution import radial_load_distribution
 from ...signal import analyze_record, diagnose, envelope_spectrum, fast_kurtogram, load_signal
 from ...simulation import simulate
 from .. import Context, Row, Section, compare
 from ..figures import save_figure
+from ..published import entry, value
 
 TITLE = "VSM / DEM / TVSM fault dynamics and CWRU diagnosis (SPEC §1, seed VSM)"
 
 B6205 = get_bearing("6205")
 FX, FY = 10.0, 50.0  # seed VSM table 1
-#: seed VSM table 2, ball 5 (outer defect, b = 1 mm, gamma = 0.38)
-TABLE2 = [
-    (143.1, 5, "enters_zone"),
-    (159.5, 8, "leaves_zone"),
-    (170.0, 6, "enters_defect"),
-    (183.1, 4, "enters_zone"),
-    (199.5, 7, "leaves_zone"),
-    (210.0, 5, "enters_defect"),
-    (223.1, 3, "enters_zone"),
-    (239.5, 6, "leaves_zone"),
-    (250.0, 4, "enters_defect"),
-    (263.1, 2, "enters_zone"),
-    (279.5, 5, "leaves_zone"),
-]
+#: seed VSM table 2, ball 5 (outer defect, b = 1 mm, gamma = 0.38): (angle [deg], ball, event)
+TABLE2 = entry("vsm.table2.outer_defect_events").rows("ball", "event")
 #: CWRU records (SOURCES.md) and their labels
 RECORDS = {
     "109": "inner",
@@ -50,23 +39,11 @@ RECORDS = {
     "120": "ball",
 }
 #: RMS of the CWRU normal baseline 97 drive-end signal [m/s^2]: noise added to the simulations
-NOISE_97 = 0.713
-
-
-def _cwru_dir() -> Path:
-    shared = os.environ.get("BEARINGSIM_SHARED")
-    cands = [Path(shared)] if shared else []
-    here = Path(__file__).resolve()
-    cands += [p / "shared" for p in here.parents]
-    for c in cands:
-        d = c / "data" / "cwru"
-        if d.is_dir():
-            return d
-    return Path("shared/data/cwru")
+NOISE_97 = value("cwru.record97.de_rms")
 
 
 def _record(num: str) -> Path | None:
-    m = sorted(_cwru_dir().glob(f"*_{num}.mat"))
+    m = sorted(cwru_data_dir().glob(f"*_{num}.mat"))
     return m[0] if m else None
 
 
@@ -75,7 +52,7 @@ def k_paper() -> float:
 
     def f(k):
         ld = radial_load_distribution(B6205, FX, FY, 0.0, stiffness=k)
-        return math.degrees(float(ld.psi_l[0])) - 68.2
+        return math.degrees(float(ld.psi_l[0])) - value("vsm.s2_1.load_zone_half_angle")
 
     return brentq(f, 1e8, 9.4e9, xtol=1e-3)
 
@@ -99,7 +76,8 @@ def _traces(ctx: Context, sec: Section) -> None:
     cage = np.radians(np.arange(0.0, 360.0 + 1e-9, step))
     kp = k_paper()
     # ---- table 2 with the paper's psi_L (eq. 14 fixed window) and ours
-    fixed = stiffness_trace(_inputs("outer", load_zone_half_angle=math.radians(68.2)), cage)
+    psi_pub = entry("vsm.s2_1.load_zone_half_angle").si
+    fixed = stiffness_trace(_inputs("outer", load_zone_half_angle=psi_pub), cage)
     contact_kp = stiffness_trace(_inputs("outer", stiffness=kp), cage)
     ours = stiffness_trace(_inputs("outer"), cage)
 
@@ -138,13 +116,14 @@ def _traces(ctx: Context, sec: Section) -> None:
         "our Hertz K = 9.37e9 N/m^1.5 gives psi_L = 56.0 deg (foundation row), so the "
         "zone is 24 deg narrower and ball 5 enters 10 deg later"
     )
+    pub = TABLE2[0][0]  # ball 5 enters the zone
     sec.rows.append(
         compare(
             "table 2: ball 5 enters the zone [deg], ours (Hertz K, contact)",
             "seed VSM table 2",
-            143.1,
+            pub,
             e_ours.get((5, "enters_zone"), math.nan),
-            0.5 / 143.1,
+            0.5 / pub,
             note_ours,
         )
     )
@@ -282,11 +261,7 @@ def _dynamics(ctx: Context, sec: Section) -> None:
         # published envelope peaks (seed VSM §2.5) vs the measured record and the VSM
         if rec is not None:
             es, _b = _envelope_peaks(rec.x, rec.fs, kin.shaft_hz, kin)
-            pubs = (
-                [107.70, 215.30, 323.00]
-                if fault == "outer"
-                else [157.70, 315.50, 473.10, 29.11, 58.23, 128.50, 186.80]
-            )
+            pubs = value(f"vsm.s2_5.{fault}_envelope_peaks")
             for f0 in pubs:
                 note = (
                     ""
@@ -306,7 +281,7 @@ def _dynamics(ctx: Context, sec: Section) -> None:
                     )
                 )
         es_v, _b = _envelope_peaks(sims["vsm"]["acc_y"], sims["vsm"].fs_hz, kin.shaft_hz, kin)
-        f_pub = 107.70 if fault == "outer" else 157.70
+        f_pub = value(f"vsm.s2_5.{fault}_envelope_peaks")[0]
         f_th = kin.bpfo_hz if fault == "outer" else kin.bpfi_hz
         sec.rows.append(
             compare(
@@ -491,10 +466,22 @@ def run(ctx: Context) -> Section:
     kin1796 = characteristic_frequencies(B6205, 1796 / 60)
     kin1748 = characteristic_frequencies(B6205, 1748 / 60)
     sec.rows.append(
-        compare("6205 BPFO at 1796 r/min [Hz]", "seed VSM eq. (21)", 107.30, kin1796.bpfo_hz, 1e-3)
+        compare(
+            "6205 BPFO at 1796 r/min [Hz]",
+            "seed VSM eq. (21)",
+            value("vsm.eq21.bpfo_6205_1796rpm"),
+            kin1796.bpfo_hz,
+            1e-3,
+        )
     )
     sec.rows.append(
-        compare("6205 BPFI at 1748 r/min [Hz]", "seed VSM eq. (20)", 157.76, kin1748.bpfi_hz, 1e-3)
+        compare(
+            "6205 BPFI at 1748 r/min [Hz]",
+            "seed VSM eq. (20)",
+            value("vsm.eq20.bpfi_6205_1748rpm"),
+            kin1748.bpfi_hz,
+            1e-3,
+        )
     )
     _traces(ctx, sec)
     _dynamics(ctx, sec)
