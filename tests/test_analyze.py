@@ -75,7 +75,7 @@ def _sim(tmp_path, model, fault, noise=NOISE_97):
         "none": {"rpm": 1796.0},
     }[fault]
     res = simulate(
-        Scenario(model=model, fault=fault, duration_s=0.5, noise_rms_m_s2=noise, seed=1, **case)
+        Scenario(model=model, fault=fault, duration_s=0.5, noise_rms_m_per_s2=noise, seed=1, **case)
     )
     return res, res.save(tmp_path / f"{model}_{fault}.nc")
 

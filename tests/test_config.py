@@ -79,6 +79,14 @@ def test_family_class_refuses_a_model_of_another_family():
     ("cls", "old", "new", "value"),
     [
         (RingScenario, "defect_angle_deg", "defect_edge_angle_deg", 12.0),
+        (RingScenario, "noise_rms_m_s2", "noise_rms_m_per_s2", 0.5),
+        (RingScenario, "damping_n_s_m", "damping_n_s_per_m", 200.0),
+        (RingScenario, "stiffness_n_m15", "stiffness_n_per_m1_5", 5e9),
+        (RotorScenario, "housing_stiffness_n_m", "housing_stiffness_n_per_m", 2e7),
+        (RotorScenario, "housing_damping_n_s_m", "housing_damping_n_s_per_m", 1e3),
+        (RotorScenario, "contact_damping_n_s_m", "contact_damping_n_s_per_m", 20.0),
+        (IasScenario, "radial_damping_n_s_m", "radial_damping_n_s_per_m", 300.0),
+        (IasScenario, "torsional_damping_n_m_s_rad", "torsional_damping_n_m_s_per_rad", 1.0),
         (IasScenario, "torque_nm", "torque_n_m", 9.0),
         (IasScenario, "output_rate_hz", "fs_hz", 20000.0),
         (IasScenario, "method", "solver", "dopri5"),
@@ -87,6 +95,8 @@ def test_family_class_refuses_a_model_of_another_family():
 def test_renamed_keys_warn_and_work(cls, old, new, value):
     with pytest.warns(DeprecatedKeyWarning, match=f"'{old}' is deprecated; use '{new}'"):
         sc = cls.from_dict({old: value})
+    with pytest.raises(ConfigError, match=f"keys '{old}' and '{new}' given"):
+        cls.from_dict({old: value, new: value})
     expect = Solver(value) if new == "solver" else value
     assert getattr(sc, new) == expect
 

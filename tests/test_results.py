@@ -41,7 +41,9 @@ def results() -> dict[str, Result]:
     ias = IasParams(get_bearing("NU204-ECP"))
     return {
         "ring": simulate(
-            Scenario(model="vsm", fault="outer", duration_s=0.01, per_ball=True, noise_rms_m_s2=0.1)
+            Scenario(
+                model="vsm", fault="outer", duration_s=0.01, per_ball=True, noise_rms_m_per_s2=0.1
+            )
         ),
         "rotor_simulation": simulate(
             Scenario(model="rotor", de_fault="inner", duration_s=0.01, fs_hz=12000.0, per_ball=True)

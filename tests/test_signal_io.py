@@ -98,7 +98,7 @@ def test_read_signal_text_time_speed_and_channel(tmp_path):
 def test_read_signal_text_needs_fs_or_a_time_column(tmp_path):
     p = tmp_path / "x.txt"
     np.savetxt(p, np.column_stack([np.arange(20.0), np.ones(20)]))
-    with pytest.raises(ConfigError, match="has no time column; give --fs HZ"):
+    with pytest.raises(ConfigError, match="has no time column; give fs_hz, its sample rate"):
         read_signal(p)
     rec = read_signal(p, fs_hz=100.0)
     assert rec.channel == "col0" and rec.time is None

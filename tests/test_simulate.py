@@ -27,7 +27,7 @@ INNER = {"fault": "inner", "rpm": 1748.0, "defect_width_m": 3.556e-4}
 
 def test_scenario_defaults_are_seed_table1():
     sc = Scenario()
-    assert (sc.bearing, sc.fx_n, sc.fy_n, sc.rpm, sc.damping_n_s_m) == (
+    assert (sc.bearing, sc.fx_n, sc.fy_n, sc.rpm, sc.damping_n_s_per_m) == (
         "6205",
         10.0,
         50.0,
@@ -80,7 +80,7 @@ def test_defect_too_wide_for_ball():
 @pytest.mark.parametrize("model", ["vsm", "tvsm", "dem"])
 def test_result_roundtrip_lossless(tmp_path, model):
     res = simulate(
-        Scenario(model=model, duration_s=0.02, per_ball=True, noise_rms_m_s2=0.1, **OUTER)
+        Scenario(model=model, duration_s=0.02, per_ball=True, noise_rms_m_per_s2=0.1, **OUTER)
     )
     path = res.save(tmp_path / "r.nc")
     back = SimulationResult.load(path)
@@ -98,14 +98,14 @@ def test_result_roundtrip_lossless(tmp_path, model):
 
 
 def test_bit_reproducible_and_seeded_noise():
-    sc = Scenario(duration_s=0.02, noise_rms_m_s2=0.5, seed=7, **OUTER)
+    sc = Scenario(duration_s=0.02, noise_rms_m_per_s2=0.5, seed=7, **OUTER)
     a, b = simulate(sc), simulate(sc)
     for k in a.channels:
         assert np.array_equal(a.channels[k], b.channels[k]), k
     c = simulate(sc.replace(seed=8))
     assert not np.array_equal(a["acc_y"], c["acc_y"])
     assert np.array_equal(a["disp_y"], c["disp_y"]), "noise only on the accelerations"
-    clean = simulate(sc.replace(noise_rms_m_s2=0.0))
+    clean = simulate(sc.replace(noise_rms_m_per_s2=0.0))
     assert_allclose(np.std(a["acc_y"] - clean["acc_y"]), 0.5, rtol=0.05)
 
 

@@ -39,7 +39,7 @@ def make_spec(axes, sweep=None, base=None) -> SweepSpec:
 NOISY = make_spec(
     {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1797.0]},
     {"per_run_seed": True},
-    {"noise_rms_m_s2": 0.5, "seed": 11},
+    {"noise_rms_m_per_s2": 0.5, "seed": 11},
 )
 
 
@@ -257,7 +257,7 @@ def test_spec_change_refused_or_replaced(client, noisy, tmp_path):
     other = make_spec(
         {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1750.0]},
         {"per_run_seed": True},
-        {"noise_rms_m_s2": 0.5, "seed": 11},
+        {"noise_rms_m_per_s2": 0.5, "seed": 11},
     )
     with pytest.raises(
         ConfigError,

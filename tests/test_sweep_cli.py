@@ -211,7 +211,7 @@ def test_spec_change_refused_then_force_new(run_cli, spec_file, tmp_path):
     assert r.code == 2 and r.out == ""
     assert r.err.strip() == (
         f"error: out = '{out}' holds a dataset of a different sweep spec (differs in: axes.rpm); "
-        "use another --out, or --force-new to replace it"
+        "use another -o/--output, or --force-new to replace it"
     )
     r = run_cli("sweep", "run", other, "-o", out, "--workers", "1", "--force-new", "--json")
     assert r.code == 0 and r.json()["created"] and r.json()["n_ok"] == 4

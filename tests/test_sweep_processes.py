@@ -30,7 +30,7 @@ model = "dem"
 duration_s = 0.1
 fs_hz = 4000.0
 dt_s = 2e-7
-noise_rms_m_s2 = 0.2
+noise_rms_m_per_s2 = 0.2
 [sweep]
 per_run_seed = true
 [axes]

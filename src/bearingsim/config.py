@@ -321,43 +321,46 @@ def _check_bearing(sc: Any, default: str) -> None:
 class RingScenario(Scenario):
     """One ball bearing with a local raceway defect: VSM (seed VSM), DEM, TVSM.
 
-    ============================  ==============  ==============================================
-    key                           default         meaning
-    ============================  ==============  ==============================================
-    ``model``                     ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm``
-    ``bearing``                   ``"6205"``      catalogue id (seed VSM table 1 bearing)
-    ``bearing_file``              –               user bearing TOML (instead of ``bearing``)
-    ``fault``                     ``"none"``      ``none`` | ``outer`` | ``inner``
-    ``defect_width_m``            1.778e-4        defect width b along the raceway [m] (CWRU
-                                                  0.007 in)
-    ``defect_depth_m``            2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
-    ``defect_edge_angle_deg``     10.0            the defect's **left edge** at t = 0, seed VSM
-                                                  beta_0 [deg] (table 1); its centre is half the
-                                                  defect's extent further on
-    ``first_ball_angle_deg``      0.0             ball 1 azimuth at t = 0, alpha_0 [deg]
-    ``rpm``                       1750.0          shaft speed [r/min] (seed table 1)
-    ``fx_n``, ``fy_n``            10.0, 50.0      radial force on the inner ring [N] (table 1)
-    ``duration_s``                1.0             simulated time [s]
-    ``fs_hz``                     48000.0         output sample rate [Hz] (CWRU rate)
-    ``seed``                      0               seed of the measurement noise (integer >= 0)
-    ``noise_rms_m_s2``            0.0             RMS of white measurement noise on the
-                                                  accelerations [m/s^2]
-    ``mass_kg``                   by fault        vibrating mass m [kg]; seed table 1: 0.063
-                                                  (outer ring, also ``none``), 0.045 (inner)
-    ``damping_n_s_m``             300.0           c_eq [N s/m] (seed table 1)
-    ``stiffness_n_m15``           Hertz           ball constant K [N/m^1.5] override (eq. (10))
-    ``clearance_m``               bearing         diametral clearance P_d [m] override (>= 0)
-    ``retention_factor``          eq. (11)        prescribed constant gamma in [0, 1] for a ball
-                                                  over the defect (seed figs. 6–7)
-    ``load_zone_half_angle_deg``  contact         fixed load-zone half angle psi_L (seed eq. (14)
-                                                  literal); default: the contact decides
-    ``dt_s``                      auto            RK4 step [s], rounded to divide 1/fs_hz;
-                                                  auto: omega_max dt <= 0.35
-    ``solver``                    ``"rk4"``       ``rk4`` | ``dopri5`` (adaptive check)
-    ``per_ball``                  false           also store per-ball loads and deformations
-    ============================  ==============  ==============================================
+    ==============================  ==============  ================================================
+    key                             default         meaning
+    ==============================  ==============  ================================================
+    ``model``                       ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm``
+    ``bearing``                     ``"6205"``      catalogue id (seed VSM table 1 bearing)
+    ``bearing_file``                –               user bearing TOML (instead of ``bearing``)
+    ``fault``                       ``"none"``      ``none`` | ``outer`` | ``inner``
+    ``defect_width_m``              1.778e-4        defect width b along the raceway [m] (CWRU
+                                                    0.007 in)
+    ``defect_depth_m``              2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``defect_edge_angle_deg``       10.0            the defect's **left edge** at t = 0, seed VSM
+                                                    beta_0 [deg] (table 1); its centre is half the
+                                                    defect's extent further on
+    ``first_ball_angle_deg``        0.0             ball 1 azimuth at t = 0, alpha_0 [deg]
+    ``rpm``                         1750.0          shaft speed [r/min] (seed table 1)
+    ``fx_n``, ``fy_n``              10.0, 50.0      radial force on the inner ring [N] (table 1)
+    ``duration_s``                  1.0             simulated time [s]
+    ``fs_hz``                       48000.0         output sample rate [Hz] (CWRU rate)
+    ``seed``                        0               seed of the measurement noise (integer >= 0)
+    ``noise_rms_m_per_s2``          0.0             RMS of white measurement noise on the
+                                                    accelerations [m/s^2]
+    ``mass_kg``                     by fault        vibrating mass m [kg]; seed table 1: 0.063
+                                                    (outer ring, also ``none``), 0.045 (inner)
+    ``damping_n_s_per_m``           300.0           c_eq [N s/m] (seed table 1)
+    ``stiffness_n_per_m1_5``        Hertz           ball constant K [N/m^1.5] override (eq. (10))
+    ``clearance_m``                 bearing         diametral clearance P_d [m] override (>= 0)
+    ``retention_factor``            eq. (11)        prescribed constant gamma in [0, 1] for a ball
+                                                    over the defect (seed figs. 6–7)
+    ``load_zone_half_angle_deg``    contact         fixed load-zone half angle psi_L (seed eq. (14)
+                                                    literal); default: the contact decides
+    ``dt_s``                        auto            RK4 step [s], rounded to divide 1/fs_hz;
+                                                    auto: omega_max dt <= 0.35
+    ``solver``                      ``"rk4"``       ``rk4`` | ``dopri5`` (adaptive check)
+    ``per_ball``                    false           also store per-ball loads and deformations
+    ==============================  ==============  ================================================
 
-    Renamed in 0.2.0: ``defect_angle_deg`` → ``defect_edge_angle_deg`` (same meaning).
+    Renamed in 0.2.0 (same meanings; the old keys warn): ``defect_angle_deg`` →
+    ``defect_edge_angle_deg``, ``noise_rms_m_s2`` → ``noise_rms_m_per_s2``, ``damping_n_s_m`` →
+    ``damping_n_s_per_m``, ``stiffness_n_m15`` → ``stiffness_n_per_m1_5`` (the unit-suffix rule
+    of ``docs/cli.md``: ``_per_`` divides).
     """
 
     MODELS: ClassVar[tuple[Model, ...]] = (Model.VSM, Model.DEM, Model.TVSM)
@@ -376,10 +379,10 @@ class RingScenario(Scenario):
         "duration_s",
         "fs_hz",
         "seed",
-        "noise_rms_m_s2",
+        "noise_rms_m_per_s2",
         "mass_kg",
-        "damping_n_s_m",
-        "stiffness_n_m15",
+        "damping_n_s_per_m",
+        "stiffness_n_per_m1_5",
         "clearance_m",
         "retention_factor",
         "load_zone_half_angle_deg",
@@ -387,7 +390,12 @@ class RingScenario(Scenario):
         "solver",
         "per_ball",
     )
-    RENAMED: ClassVar[dict[str, str]] = {"defect_angle_deg": "defect_edge_angle_deg"}
+    RENAMED: ClassVar[dict[str, str]] = {
+        "defect_angle_deg": "defect_edge_angle_deg",
+        "noise_rms_m_s2": "noise_rms_m_per_s2",
+        "damping_n_s_m": "damping_n_s_per_m",
+        "stiffness_n_m15": "stiffness_n_per_m1_5",
+    }
 
     model: Model = Model.VSM
     bearing: str | None = "6205"
@@ -401,10 +409,10 @@ class RingScenario(Scenario):
     fx_n: float = SEED_VSM_FX_N
     fy_n: float = SEED_VSM_FY_N
     seed: int = 0
-    noise_rms_m_s2: float = 0.0
+    noise_rms_m_per_s2: float = 0.0
     mass_kg: float | None = None
-    damping_n_s_m: float = SEED_VSM_DAMPING_N_S_M
-    stiffness_n_m15: float | None = None
+    damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
+    stiffness_n_per_m1_5: float | None = None
     clearance_m: float | None = None
     retention_factor: float | None = None
     load_zone_half_angle_deg: float | None = None
@@ -428,21 +436,21 @@ class RingScenario(Scenario):
         _int("seed", self.seed, 0)
         s(
             self,
-            "noise_rms_m_s2",
-            check_range("noise_rms_m_s2", self.noise_rms_m_s2, 0.0, unit="m/s^2"),
+            "noise_rms_m_per_s2",
+            check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
         s(
             self,
-            "damping_n_s_m",
-            check_range("damping_n_s_m", self.damping_n_s_m, 0.0, unit="N s/m"),
+            "damping_n_s_per_m",
+            check_range("damping_n_s_per_m", self.damping_n_s_per_m, 0.0, unit="N s/m"),
         )
-        if self.stiffness_n_m15 is not None:
+        if self.stiffness_n_per_m1_5 is not None:
             s(
                 self,
-                "stiffness_n_m15",
-                check_positive("stiffness_n_m15", self.stiffness_n_m15, "N/m^1.5"),
+                "stiffness_n_per_m1_5",
+                check_positive("stiffness_n_per_m1_5", self.stiffness_n_per_m1_5, "N/m^1.5"),
             )
         if self.clearance_m is not None:
             s(self, "clearance_m", check_range("clearance_m", self.clearance_m, 0.0, unit="m"))
@@ -491,41 +499,51 @@ class RingScenario(Scenario):
 class RotorScenario(Scenario):
     """The bearing–rotor–housing system of the CWRU rig (seed ROTOR, SPEC §2).
 
-    ============================  ==============  ==============================================
-    key                           default         meaning
-    ============================  ==============  ==============================================
-    ``model``                     ``"rotor"``
-    ``de_bearing``, ``fe_bearing``  6205-cwru,    drive-end / fan-end catalogue ids (CWRU motor)
-                                    6203-cwru
-    ``de_fault``, ``fe_fault``    ``"none"``      defect of each bearing: none | outer | inner
-    ``defect_width_m``            1.778e-4        defect width b [m] (CWRU 0.007 in)
-    ``defect_depth_m``            2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
-    ``de_defect_angle_deg``,      180.0           defect **centre** azimuth at t = 0 [deg]
-    ``fe_defect_angle_deg``                       (180 = 6 o'clock, CWRU ``OR@6``)
-    ``rpm``                       1750.0          shaft speed [r/min]
-    ``duration_s``, ``fs_hz``     1.0, 48000.0    simulated time [s], output sample rate [Hz]
-    ``seed``, ``noise_rms_m_s2``  0, 0.0          white measurement noise on the accelerations
-    ``disks``                     9               number of equal disks carrying the rotor mass
-    ``disk_positions_mm``         equal spacing   disk positions from the DE bearing [mm] (list)
-    ``distributed_rotor``         false           rotor mass spread along the shaft instead
-    ``n_elements``                auto            minimum number of beam elements
-    ``shaft_mass_model``          ``"lumped"``    lumped (half at each bearing, seed) |
-                                                  distributed
-    ``housing_mass_kg``           6.638           mass of each housing [kg] (Sawalhi & Randall
-                                                  2008 pedestal, values of Ruan et al. 2022)
-    ``housing_stiffness_n_m``     1.51e7          housing mount stiffness, X and Y [N/m]
-    ``housing_damping_n_s_m``     2210.7          housing mount damping, X and Y [N s/m]
-    ``contact_damping_n_s_m``     50.0            damping of each ball–race contact [N s/m]
-    ``gravity``                   true            gravity (-y) on every mass
-    ``unbalance_kg_m``            0.0             static unbalance m e of the rotor [kg m]
-    ``antialias``                 true            4x (2x above 24 kHz) internal sampling and FIR
-                                                  decimation of the accelerations (like a DAQ)
-    ``dt_s``, ``solver``          auto, rk4       integration step [s] and integrator
-    ``per_ball``                  false           also store per-ball contact forces
-    ============================  ==============  ==============================================
+    ==================================  ==============  ============================================
+    key                                 default         meaning
+    ==================================  ==============  ============================================
+    ``model``                           ``"rotor"``
+    ``de_bearing``, ``fe_bearing``      6205-cwru,      drive-end / fan-end catalogue ids (CWRU
+                                        6203-cwru       motor)
+    ``de_fault``, ``fe_fault``          ``"none"``      defect of each bearing: none | outer | inner
+    ``defect_width_m``                  1.778e-4        defect width b [m] (CWRU 0.007 in)
+    ``defect_depth_m``                  2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``de_defect_angle_deg``,            180.0           defect **centre** azimuth at t = 0 [deg]
+    ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``)
+    ``rpm``                             1750.0          shaft speed [r/min]
+    ``duration_s``, ``fs_hz``           1.0, 48000.0    simulated time [s], output sample rate [Hz]
+    ``seed``, ``noise_rms_m_per_s2``    0, 0.0          white measurement noise on the accelerations
+    ``disks``                           9               number of equal disks carrying the rotor
+                                                        mass
+    ``disk_positions_mm``               equal spacing   disk positions from the DE bearing [mm]
+                                                        (list)
+    ``distributed_rotor``               false           rotor mass spread along the shaft instead
+    ``n_elements``                      auto            minimum number of beam elements
+    ``shaft_mass_model``                ``"lumped"``    lumped (half at each bearing, seed) |
+                                                        distributed
+    ``housing_mass_kg``                 6.638           mass of each housing [kg] (Sawalhi &
+                                                        Randall 2008 pedestal, values of Ruan et
+                                                        al. 2022)
+    ``housing_stiffness_n_per_m``       1.51e7          housing mount stiffness, X and Y [N/m]
+    ``housing_damping_n_s_per_m``       2210.7          housing mount damping, X and Y [N s/m]
+    ``contact_damping_n_s_per_m``       50.0            damping of each ball–race contact [N s/m]
+    ``gravity``                         true            gravity (-y) on every mass
+    ``unbalance_kg_m``                  0.0             static unbalance m e of the rotor [kg m]
+    ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
+                                                        FIR decimation of the accelerations (like
+                                                        a DAQ)
+    ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
+    ``per_ball``                        false           also store per-ball contact forces
+    ==================================  ==============  ============================================
     """
 
     MODELS: ClassVar[tuple[Model, ...]] = (Model.ROTOR,)
+    RENAMED: ClassVar[dict[str, str]] = {
+        "noise_rms_m_s2": "noise_rms_m_per_s2",
+        "housing_stiffness_n_m": "housing_stiffness_n_per_m",
+        "housing_damping_n_s_m": "housing_damping_n_s_per_m",
+        "contact_damping_n_s_m": "contact_damping_n_s_per_m",
+    }
     KEYS: ClassVar[tuple[str, ...]] = (
         "model",
         "de_bearing",
@@ -540,16 +558,16 @@ class RotorScenario(Scenario):
         "duration_s",
         "fs_hz",
         "seed",
-        "noise_rms_m_s2",
+        "noise_rms_m_per_s2",
         "disks",
         "disk_positions_mm",
         "distributed_rotor",
         "n_elements",
         "shaft_mass_model",
         "housing_mass_kg",
-        "housing_stiffness_n_m",
-        "housing_damping_n_s_m",
-        "contact_damping_n_s_m",
+        "housing_stiffness_n_per_m",
+        "housing_damping_n_s_per_m",
+        "contact_damping_n_s_per_m",
         "gravity",
         "unbalance_kg_m",
         "antialias",
@@ -569,16 +587,16 @@ class RotorScenario(Scenario):
     fe_defect_angle_deg: float = 180.0
     rpm: float = DEFAULT_RPM
     seed: int = 0
-    noise_rms_m_s2: float = 0.0
+    noise_rms_m_per_s2: float = 0.0
     disks: int = SEED_ROTOR_DISKS
     disk_positions_mm: tuple[float, ...] | None = None
     distributed_rotor: bool = False
     n_elements: int | None = None
     shaft_mass_model: str = "lumped"
     housing_mass_kg: float = HOUSING_MASS_KG
-    housing_stiffness_n_m: float = HOUSING_STIFFNESS_N_M
-    housing_damping_n_s_m: float = HOUSING_DAMPING_N_S_M
-    contact_damping_n_s_m: float = CONTACT_DAMPING_N_S_M
+    housing_stiffness_n_per_m: float = HOUSING_STIFFNESS_N_M
+    housing_damping_n_s_per_m: float = HOUSING_DAMPING_N_S_M
+    contact_damping_n_s_per_m: float = CONTACT_DAMPING_N_S_M
     gravity: bool = True
     unbalance_kg_m: float = 0.0
     antialias: bool = True
@@ -601,8 +619,8 @@ class RotorScenario(Scenario):
         _int("seed", self.seed, 0)
         s(
             self,
-            "noise_rms_m_s2",
-            check_range("noise_rms_m_s2", self.noise_rms_m_s2, 0.0, unit="m/s^2"),
+            "noise_rms_m_per_s2",
+            check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
         _int("disks", self.disks, 1)
         if self.n_elements is not None:
@@ -622,10 +640,10 @@ class RotorScenario(Scenario):
         s(self, "housing_mass_kg", check_positive("housing_mass_kg", self.housing_mass_kg, "kg"))
         s(
             self,
-            "housing_stiffness_n_m",
-            check_positive("housing_stiffness_n_m", self.housing_stiffness_n_m, "N/m"),
+            "housing_stiffness_n_per_m",
+            check_positive("housing_stiffness_n_per_m", self.housing_stiffness_n_per_m, "N/m"),
         )
-        for name in ("housing_damping_n_s_m", "contact_damping_n_s_m"):
+        for name in ("housing_damping_n_s_per_m", "contact_damping_n_s_per_m"):
             s(self, name, check_range(name, getattr(self, name), 0.0, unit="N s/m"))
         s(
             self,
@@ -648,46 +666,47 @@ class IasScenario(Scenario):
     SPEC §3). The shaft speed is not imposed: the motor torque drives the shaft against the
     torsional damping and the bearing, and the speed comes out of the torque balance.
 
-    ================================  ===========  =============================================
-    key                               default      meaning
-    ================================  ===========  =============================================
-    ``model``                         ``"ias"``
-    ``bearing``                       NU204-ECP    catalogue id (seed IAS table 1)
-    ``bearing_file``                  –            user bearing TOML (a roller bearing)
-    ``rpm``                           –            target speed [r/min]: sets the motor torque
-                                                   ``M_z = C_T 2 pi rpm/60`` (the free speed)
-    ``torque_n_m``                    9.54         motor torque M_z [N m] (seed; exclusive with
-                                                   ``rpm``)
-    ``initial_rpm``                   0.0          initial shaft speed [r/min]
-    ``spall_width_m``                 1e-3         outer-race spall width L_d [m]; 0 = healthy
-    ``spall_angle_deg``               180.0        spall centre azimuth [deg] (the bottom; the
-                                                   seed's ``phi_os = 1.5 pi`` from +x)
-    ``fx_n``, ``fy_n``                0.0, 400.0   radial load [N]; ``fy_n`` pushes the shaft
-                                                   **down** (seed IAS eq. (1))
-    ``duration_s``                    10.0         simulated time [s] (seed)
-    ``dt_s``                          1e-6         RK4 step [s] (seed)
-    ``fs_hz``                         50000.0      output sample rate [Hz] (a whole number of
-                                                   seed steps per sample, module
-                                                   :mod:`~bearingsim.dynamics.ias.scenario`)
-    ``solver``                        ``"rk4"``    ``rk4`` (seed) | ``dopri5``
-    ``contact_law``                   ``"seed"``   ``seed`` (eqs. (5)–(12)) | ``harris``
-    ``spall_load``                    stribeck     roller load in eq. (30): ``stribeck`` |
-                                                   ``dynamic``
-    ``skip_s``                        10 % of run  start-up left out of the analysis [s]
-    ``mass_kg``                       1.3          inner ring + shaft mass m [kg] (seed)
-    ``inertia_kg_m2``                 6.5e-5       polar inertia I [kg m^2] (assumed)
-    ``radial_damping_n_s_m``          400.0        C_s [N s/m] (seed)
-    ``torsional_damping_n_m_s_rad``   1.52         C_T [N m s/rad] (seed)
-    ``rolling_resistance``            0.0015       mu [-] (seed eq. (14))
-    ``first_roller_angle_deg``        90.0         roller 1 azimuth at t = 0 [deg] (the seed's
-                                                   ``Phi_0 = 0`` from +x)
-    ``reference_load_n``              F_r / Z      roller load of the seed contact stiffness [N]
-    ================================  ===========  =============================================
+    ===================================  ===========  ============================================
+    key                                  default      meaning
+    ===================================  ===========  ============================================
+    ``model``                            ``"ias"``
+    ``bearing``                          NU204-ECP    catalogue id (seed IAS table 1)
+    ``bearing_file``                     –            user bearing TOML (a roller bearing)
+    ``rpm``                              –            target speed [r/min]: sets the motor
+                                                      torque ``M_z = C_T 2 pi rpm/60``
+    ``torque_n_m``                       9.54         motor torque M_z [N m] (seed; exclusive
+                                                      with ``rpm``)
+    ``initial_rpm``                      0.0          initial shaft speed [r/min]
+    ``spall_width_m``                    1e-3         outer-race spall width L_d [m]; 0 = healthy
+    ``spall_angle_deg``                  180.0        spall centre azimuth [deg] (the bottom;
+                                                      the seed's ``phi_os = 1.5 pi`` from +x)
+    ``fx_n``, ``fy_n``                   0.0, 400.0   radial load [N]; ``fy_n`` pushes the shaft
+                                                      **down** (seed IAS eq. (1))
+    ``duration_s``                       10.0         simulated time [s] (seed)
+    ``dt_s``                             1e-6         RK4 step [s] (seed)
+    ``fs_hz``                            50000.0      output sample rate [Hz] (a whole number of
+                                                      seed steps per sample)
+    ``solver``                           ``"rk4"``    ``rk4`` (seed) | ``dopri5``
+    ``contact_law``                      ``"seed"``   ``seed`` (eqs. (5)–(12)) | ``harris``
+    ``spall_load``                       stribeck     roller load in eq. (30): ``stribeck`` |
+                                                      ``dynamic``
+    ``skip_s``                           10 % of run  start-up left out of the analysis [s]
+    ``mass_kg``                          1.3          inner ring + shaft mass m [kg] (seed)
+    ``inertia_kg_m2``                    6.5e-5       polar inertia I [kg m^2] (assumed)
+    ``radial_damping_n_s_per_m``         400.0        C_s [N s/m] (seed)
+    ``torsional_damping_n_m_s_per_rad``  1.52         C_T [N m s/rad] (seed)
+    ``rolling_resistance``               0.0015       mu [-] (seed eq. (14))
+    ``first_roller_angle_deg``           90.0         roller 1 azimuth at t = 0 [deg] (the
+                                                      seed's ``Phi_0 = 0`` from +x)
+    ``reference_load_n``                 F_r / Z      roller load of the seed contact stiffness
+                                                      [N]
+    ===================================  ===========  ============================================
 
     Renamed in 0.2.0: ``torque_nm`` → ``torque_n_m``, ``output_rate_hz`` → ``fs_hz``,
-    ``method`` → ``solver`` (same meanings); ``spall_angle_rad`` and ``first_roller_angle_rad``
-    (from +x, counter-clockwise) → ``spall_angle_deg`` and ``first_roller_angle_deg`` (project
-    convention).
+    ``method`` → ``solver``, ``radial_damping_n_s_m`` → ``radial_damping_n_s_per_m``,
+    ``torsional_damping_n_m_s_rad`` → ``torsional_damping_n_m_s_per_rad`` (same meanings);
+    ``spall_angle_rad`` and ``first_roller_angle_rad`` (from +x, counter-clockwise) →
+    ``spall_angle_deg`` and ``first_roller_angle_deg`` (project convention).
     """
 
     MODELS: ClassVar[tuple[Model, ...]] = (Model.IAS,)
@@ -714,14 +733,16 @@ class IasScenario(Scenario):
         "skip_s",
         "mass_kg",
         "inertia_kg_m2",
-        "radial_damping_n_s_m",
-        "torsional_damping_n_m_s_rad",
+        "radial_damping_n_s_per_m",
+        "torsional_damping_n_m_s_per_rad",
         "rolling_resistance",
         "first_roller_angle_deg",
         "reference_load_n",
     )
     RENAMED: ClassVar[dict[str, str]] = {
         "torque_nm": "torque_n_m",
+        "radial_damping_n_s_m": "radial_damping_n_s_per_m",
+        "torsional_damping_n_m_s_rad": "torsional_damping_n_m_s_per_rad",
         "output_rate_hz": "fs_hz",
         "method": "solver",
         "spall_angle_rad": "spall_angle_deg (centre azimuth from +y towards +x [deg]; the old "
@@ -748,8 +769,8 @@ class IasScenario(Scenario):
     skip_s: float | None = None
     mass_kg: float = SEED_IAS_MASS_KG
     inertia_kg_m2: float = IAS_INERTIA_KG_M2
-    radial_damping_n_s_m: float = SEED_IAS_RADIAL_DAMPING_N_S_M
-    torsional_damping_n_m_s_rad: float = SEED_IAS_TORSIONAL_DAMPING_N_M_S
+    radial_damping_n_s_per_m: float = SEED_IAS_RADIAL_DAMPING_N_S_M
+    torsional_damping_n_m_s_per_rad: float = SEED_IAS_TORSIONAL_DAMPING_N_M_S
     rolling_resistance: float = SEED_IAS_ROLLING_RESISTANCE
     first_roller_angle_deg: float = 90.0
     reference_load_n: float | None = None
@@ -800,7 +821,7 @@ class IasScenario(Scenario):
         if self.torque_n_m is not None:
             return self.torque_n_m
         if self.rpm is not None:
-            return self.torsional_damping_n_m_s_rad * 2.0 * math.pi * self.rpm / 60.0
+            return self.torsional_damping_n_m_s_per_rad * 2.0 * math.pi * self.rpm / 60.0
         return SEED_IAS_TORQUE_N_M
 
 

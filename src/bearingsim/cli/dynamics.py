@@ -85,7 +85,7 @@ def _opt(f):
         deprecated("--fy", "--fy-n"),
         click.option(
             "--stiffness-n-per-m1.5",
-            "stiffness_n_m15",
+            "stiffness_n_per_m1_5",
             type=float,
             default=None,
             show_default="Hertz value",
@@ -171,10 +171,10 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 )
 @click.option(
     "--noise-rms-m-per-s2",
-    "noise_rms_m_s2",
+    "noise_rms_m_per_s2",
     type=float,
     default=None,
-    show_default=_d("noise_rms_m_s2"),
+    show_default=_d("noise_rms_m_per_s2"),
     help="RMS of white measurement noise added to the accelerations [m/s^2].",
 )
 @deprecated("--noise-rms", "--noise-rms-m-per-s2")
@@ -187,10 +187,10 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 )
 @click.option(
     "--damping-n-s-per-m",
-    "damping_n_s_m",
+    "damping_n_s_per_m",
     type=float,
     default=None,
-    show_default=_d("damping_n_s_m"),
+    show_default=_d("damping_n_s_per_m"),
     help="Equivalent damping c_eq [N s/m].",
 )
 @deprecated("--damping", "--damping-n-s-per-m")

@@ -232,7 +232,10 @@ def _read_text(
         fs = 1.0 / float(np.median(dt))
         info["fs_source"] = "time column"
     if fs is None:
-        raise ConfigError(f"file = {str(p)!r} has no time column; give --fs HZ (> 0)")
+        raise ConfigError(
+            f"file = {str(p)!r} has no time column; give fs_hz, its sample rate [Hz] (> 0; "
+            "CLI --fs-hz)"
+        )
     speed = None
     scol = cols.get("speed_hz")
     rcol = cols.get("rpm")

@@ -602,7 +602,7 @@ def run_sweep(
                 diff = ", ".join(spec_differences(old, new)[:6]) or "content"
                 raise ConfigError(
                     f"out = {str(out)!r} holds a dataset of a different sweep spec (differs in: "
-                    f"{diff}); use another --out, or --force-new to replace it"
+                    f"{diff}); use another -o/--output, or --force-new to replace it"
                 )
             replace_old = True
         else:

@@ -29,7 +29,7 @@ def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
     from ..simulation import simulate
 
     sc = Scenario.from_dict(scenario)
-    quiet = {"noise_rms_m_s2": 0.0} if hasattr(sc, "noise_rms_m_s2") else {}
+    quiet = {"noise_rms_m_per_s2": 0.0} if hasattr(sc, "noise_rms_m_per_s2") else {}
     res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet))
     out = {}
     for name, x in res.channels.items():

@@ -107,7 +107,7 @@ class ModelInputs:
         object.__setattr__(self, "shaft_hz", check_positive("shaft_hz", self.shaft_hz, "Hz"))
         object.__setattr__(self, "mass", check_positive("mass_kg", self.mass, "kg"))
         object.__setattr__(
-            self, "damping", check_range("damping_n_s_m", self.damping, 0.0, unit="N s/m")
+            self, "damping", check_range("damping_n_s_per_m", self.damping, 0.0, unit="N s/m")
         )
         object.__setattr__(
             self,
@@ -116,7 +116,7 @@ class ModelInputs:
         )
         if self.stiffness is not None:
             object.__setattr__(
-                self, "stiffness", check_positive("stiffness_n_m15", self.stiffness, "N/m^1.5")
+                self, "stiffness", check_positive("stiffness_n_per_m1_5", self.stiffness, "N/m^1.5")
             )
         pd = b.diametral_clearance if self.clearance is None else self.clearance
         pd = check_range("clearance_m", pd, 0.0, 0.5 * b.element_diameter, unit="m")

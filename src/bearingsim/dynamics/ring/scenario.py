@@ -65,8 +65,8 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         defect=defect,
         first_ball_angle=math.radians(scenario.first_ball_angle_deg),
         mass=scenario.resolved_mass_kg,
-        damping=scenario.damping_n_s_m,
-        stiffness=scenario.stiffness_n_m15,
+        damping=scenario.damping_n_s_per_m,
+        stiffness=scenario.stiffness_n_per_m1_5,
         clearance=scenario.clearance_m,
         retention_factor=scenario.retention_factor,
         load_zone_half_angle=(
@@ -159,9 +159,9 @@ def run_ring(
         ch["ball_deformation"] = aux[:, 7 + Z : 7 + 2 * Z].copy()
         units["ball_load"] = "N"
         units["ball_deformation"] = "m"
-    if scenario.noise_rms_m_s2 > 0:
+    if scenario.noise_rms_m_per_s2 > 0:
         rng = np.random.default_rng(scenario.seed)
-        noise = scenario.noise_rms_m_s2 * rng.standard_normal((n, 2))
+        noise = scenario.noise_rms_m_per_s2 * rng.standard_normal((n, 2))
         ch["acc_x"] = ch["acc_x"] + noise[:, 0]
         ch["acc_y"] = ch["acc_y"] + noise[:, 1]
     kin = characteristic_frequencies(inputs.bearing, inputs.shaft_hz)
@@ -194,7 +194,7 @@ def run_ring(
         "defect": geo,
         "resolved": {
             "mass_kg": inputs.mass,
-            "stiffness_n_m15": inputs.k_ball,
+            "stiffness_n_per_m1_5": inputs.k_ball,
             "clearance_m": inputs.diametral_clearance,
             "theta0_rad": inputs.theta0,
             "initial_displacement_m": [float(y0[0]), float(y0[1])],
@@ -208,7 +208,7 @@ def run_ring(
             float(res0.max()) if kernel.needs_table is False else raw.static_residual_max
         ),
         "noise": {
-            "rms_m_s2": scenario.noise_rms_m_s2,
+            "rms_m_s2": scenario.noise_rms_m_per_s2,
             "seed": scenario.seed,
             "generator": "numpy.random.default_rng(seed).standard_normal((n, 2))",
         },

@@ -89,7 +89,7 @@ class BearingSupport:
                 f"bearing = {getattr(self.bearing, 'id', self.bearing)!r} is not a ball "
                 "bearing; the rotor model needs ball bearings"
             )
-        check_range("contact_damping_n_s_m", self.contact_damping, 0.0, unit="N s/m")
+        check_range("contact_damping_n_s_per_m", self.contact_damping, 0.0, unit="N s/m")
         check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad")
         if self.ball_density is not None:
             check_positive("ball_density_kg_m3", self.ball_density, "kg/m^3")
@@ -310,7 +310,7 @@ class RotorConfig:
         check_range("unbalance_kg_m", self.unbalance, 0.0, unit="kg m")
         check_range("unbalance_phase_rad", self.unbalance_phase, unit="rad")
         check_range("shaft_damping_ratio", self.shaft_damping_ratio, 0.0, 1.0)
-        check_range("disk_damping_n_s_m", self.disk_damping, 0.0, unit="N s/m")
+        check_range("disk_damping_n_s_per_m", self.disk_damping, 0.0, unit="N s/m")
         if self.mode_cutoff_hz is not None:
             check_positive("mode_cutoff_hz", self.mode_cutoff_hz, "Hz")
         for fx, fy in self.bearing_loads:

@@ -34,7 +34,7 @@ def _support(bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario) -
     f = None
     if fault != "none":
         f = Defect(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
-    return BearingSupport(get_bearing(bearing_id), f, contact_damping=sc.contact_damping_n_s_m)
+    return BearingSupport(get_bearing(bearing_id), f, contact_damping=sc.contact_damping_n_s_per_m)
 
 
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
@@ -47,7 +47,7 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
         n_disks=len(pos) if pos else sc.disks, positions=pos, distributed=sc.distributed_rotor
     )
     housing = default_housing(
-        sc.housing_mass_kg, sc.housing_stiffness_n_m, sc.housing_damping_n_s_m
+        sc.housing_mass_kg, sc.housing_stiffness_n_per_m, sc.housing_damping_n_s_per_m
     )
     return RotorConfig(
         de=_support(sc.de_bearing, sc.de_fault, sc.de_defect_angle_deg, sc),
@@ -98,9 +98,9 @@ def run_rotor(
                 ch[name] = arr[:, sl].copy()
                 units[name] = "N"
                 dims[name] = ("time", f"ball_{end}")
-    if scenario.noise_rms_m_s2 > 0:
+    if scenario.noise_rms_m_per_s2 > 0:
         rng = np.random.default_rng(scenario.seed)
-        noise = scenario.noise_rms_m_s2 * rng.standard_normal((r.time.size, 4))
+        noise = scenario.noise_rms_m_per_s2 * rng.standard_normal((r.time.size, 4))
         for k, name in enumerate(names):
             ch[name] = ch[name] + noise[:, k]
     kin = r.kinematics
@@ -119,7 +119,7 @@ def run_rotor(
         "dt_s": r.meta.get("dt_s", math.nan),
         "n_steps": r.meta["n_steps"],
         "noise": {
-            "rms_m_s2": scenario.noise_rms_m_s2,
+            "rms_m_s2": scenario.noise_rms_m_per_s2,
             "seed": scenario.seed,
             "generator": "numpy.random.default_rng(seed).standard_normal((n, 4)) on "
             "acc_x, acc_y, acc_x_fe, acc_y_fe",

@@ -445,7 +445,7 @@ def _diagnosis(ctx: Context, sec: Section) -> None:
         ):
             s = simulate(
                 Scenario(
-                    model=m, fault=fault, duration_s=0.5, noise_rms_m_s2=NOISE_97, seed=1, **kw
+                    model=m, fault=fault, duration_s=0.5, noise_rms_m_per_s2=NOISE_97, seed=1, **kw
                 )
             )
             d = diagnose(s["acc_y"], s.fs_hz, B6205, s.shaft_hz)
