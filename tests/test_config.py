@@ -153,3 +153,34 @@ def test_sweep_refuses_a_model_axis_across_families():
 
     with pytest.raises(ConfigError, match="axis model = 'rotor' is a rotor model but the base"):
         SweepSpec.from_dict({"base": {"model": "vsm"}, "axes": {"model": ["vsm", "rotor"]}})
+
+
+def test_cli_simulate_runs_the_ias_model(run_cli, tmp_path):
+    """``bearingsim simulate --model ias`` works like the other models: the family's keys come
+    from the scenario file or ``--set KEY=VALUE``; the file reads back as an IasResult."""
+    from bearingsim.results import load_result
+
+    out = tmp_path / "ias.nc"
+    args = ["--model", "ias", "--duration-s", "0.2", "--dt-s", "1e-5", "--fs-hz", "10000"]
+    r = run_cli("simulate", *args, "--set", "spall_width_m=2e-3", "-o", out, "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["model"] == "ias" and d["n_samples"] == 2000 and d["spall_width_m"] == 2e-3
+    back = load_result(out)
+    assert type(back).__name__ == "IasResult" and back.params.spall_width == 2e-3
+    assert_allclose(d["mean_speed_rpm"], back.omega.mean() * 30 / math.pi, rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--model", "ias", "--disks", "3"], "unknown key 'disks' (a key of model rotor)"),
+        (["--set", "rpn=3"], "unknown key 'rpn'"),
+        (["--set", "rpm"], "--set 'rpm' is invalid; valid: KEY=VALUE"),
+        (["--rpm", "1700", "--set", "rpm=1800"], "--set rpm=... and its option given together"),
+    ],
+)
+def test_cli_simulate_bad_keys_one_line(run_cli, tmp_path, args, needle):
+    r = run_cli("simulate", *args, "--duration-s", "0.01", "-o", tmp_path / "x.nc")
+    assert r.code == 2 and r.err.startswith("error: ") and needle in r.err, r.err
+    assert len(r.err.strip().splitlines()) == 1 and not (tmp_path / "x.nc").exists()

@@ -130,6 +130,11 @@ class IasResult(Result):
             "bearingsim_version": self.version,
         }
 
+    def rms(self, name: str) -> float:
+        """Root mean square of a channel (its unit)."""
+        x = self[name]
+        return float(np.sqrt(np.mean(x * x)))
+
     def __getitem__(self, name: str) -> NDArray[np.float64]:
         ch = self.channels
         if name not in ch:
