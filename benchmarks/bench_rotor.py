@@ -15,7 +15,7 @@ import time
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from bearingsim.dynamics.integrate import run_fixed  # noqa: E402
-from bearingsim.dynamics.rotor import kernel as rk  # noqa: E402
+from bearingsim.dynamics.rotor import _kernel as rk  # noqa: E402
 from bearingsim.dynamics.rotor.config import cwru_rotor_config
 from bearingsim.dynamics.rotor.model import pack_model, simulate_rotor, stable_step, static_state
 from bearingsim.geometry import Defect

@@ -17,7 +17,7 @@ from bearingsim.catalog import get_bearing
 from bearingsim.config import Scenario
 from bearingsim.contact.hertz import ball_contact
 from bearingsim.dynamics.integrate import run_fixed
-from bearingsim.dynamics.rotor import kernel as rk
+from bearingsim.dynamics.rotor import _kernel as rk
 from bearingsim.dynamics.rotor.config import (
     BAND_TUNED_HOUSING,
     Armature,

@@ -262,7 +262,7 @@ def test_spec_change_refused_or_replaced(client, noisy, tmp_path):
     with pytest.raises(
         ConfigError,
         match=r"holds a dataset of a different sweep spec \(differs in: axes.rpm\); use another "
-        r"--out, or --force-new to replace it",
+        r"-o/--output, or --force-new to replace it",
     ):
         run_sweep(other, out, client=client)
     assert open_dataset(out).attrs["spec_hash"] == NOISY.spec_hash  # untouched

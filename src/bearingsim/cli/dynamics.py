@@ -271,7 +271,6 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     wall = time.perf_counter() - t0
     out = {
         "output": str(output),
-        "model": sc.model.value,
         "fs_hz": res.fs_hz,
         "n_samples": int(res.time.size),
         "wall_s": wall,

@@ -2,8 +2,8 @@
 
 - :mod:`.base` — the physical inputs (:class:`ModelInputs`), the compiled-kernel record and the
   integration drivers.
-- :mod:`.balance` — the static balance of the inner ring over the discrete balls (seed VSM
-  eq. (16)) and the ball-frame helpers, compiled.
+- :mod:`._balance` (private) — the static balance of the inner ring over the discrete balls
+  (seed VSM eq. (16)) and the ball-frame helpers, compiled.
 - :mod:`.defects` — defect geometry and the retention factor (seed VSM eqs. (1)–(3), (11)).
 - :mod:`.vsm`, :mod:`.dem`, :mod:`.tvsm` — the variable-stiffness model and its two baselines.
 - :mod:`.trace` — quasi-static stiffness traces vs cage angle (seed VSM figs. 5–12).

@@ -3,7 +3,7 @@
 Every model of this package is a 2-DOF ring (seed VSM eq. (19)) with state
 ``y = (u_x, u_y, v_x, v_y)`` — displacement [m] and velocity [m/s] of the inner ring relative to
 the outer ring — whose right-hand side is a Numba ``cfunc`` (:data:`..integrate.RHS_SIG`)
-reading the flat parameter vector laid out in :mod:`.balance`. The VSM and TVSM need the
+reading the flat parameter vector laid out in :mod:`._balance`. The VSM and TVSM need the
 quasi-static solution at every RK4 stage time; :func:`integrate_model` tabulates it on the
 half-step grid (compiled, warm-started) chunk by chunk, so that the whole stepping loop stays
 compiled and memory stays bounded for long runs.
@@ -28,7 +28,7 @@ from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import BallBearing, Bearing, Defect, characteristic_frequencies, defect_geometry
 from ..integrate import run_adaptive, run_fixed
-from . import balance as bl
+from . import _balance as bl
 from .defects import FAULT_CODE
 
 #: number of fixed auxiliary outputs before the per-ball block
@@ -171,7 +171,7 @@ class ModelInputs:
         return math.atan2(self.fx, self.fy)
 
     def header(self, per_ball: bool = False) -> NDArray[np.float64]:
-        """The parameter vector header (layout :mod:`.balance`), without a table."""
+        """The parameter vector header (layout :mod:`._balance`), without a table."""
         p = np.zeros(bl.HEADER)
         p[bl.P_MASS] = self.mass
         p[bl.P_DAMP] = self.damping
@@ -313,7 +313,7 @@ def integrate_model(
         Divergence guard on every state component (|u| [m], |v| [m/s]).
     cell_average : bool
         Average the defect and fixed-zone indicators over each RK4 stage's quadrature cell
-        (:func:`.balance.cell_halfwidth`), which resolves the instants a ball enters or leaves
+        (:func:`._balance.cell_halfwidth`), which resolves the instants a ball enters or leaves
         the defect to second order; ``False`` = point evaluation (first order).
     progress : callable, optional
         Called with the number of samples done after each chunk.

@@ -9,7 +9,7 @@ ring displacement ``u``:
 
 with ``o_j = h_min`` (seed VSM eqs. (1)–(2)) for a ball over the defect (eq. (15)) and 0
 otherwise (or ``f_j = gamma`` when a constant retention factor is prescribed). Same inputs,
-defect geometry and kinematics as the VSM (:mod:`.balance`).
+defect geometry and kinematics as the VSM (:mod:`._balance`).
 """
 
 from __future__ import annotations
@@ -19,16 +19,18 @@ import math
 from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
-from . import balance as bl
+from . import _balance as bl
 from .base import ModelKernel
+
+__all__ = ["KERNEL"]
 
 
 @njit(cache=True, inline="always")
 def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
     ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
-    cell half-widths ``hd, hw`` (the ball frame of :func:`.balance.frame_cached`), with the
-    model's parameters read once from the packed vector ``p`` (layout :mod:`.balance`). This is
+    cell half-widths ``hd, hw`` (the ball frame of :func:`._balance.frame_cached`), with the
+    model's parameters read once from the packed vector ``p`` (layout :mod:`._balance`). This is
     the DEM's hot loop: inlined, scalars only inside the loop."""
     Z = int(p[bl.P_Z])
     fault = int(p[bl.P_FAULT])
@@ -66,7 +68,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
 
 
 @njit(cache=True)
-def dem_force(t, ux, uy, p, point):
+def _dem_force(t, ux, uy, p, point):
     """Bearing force on the ring ``sum Q_j e_j`` [N] and tangent stiffness entries [N/m] at
     displacement ``u`` and time ``t`` (cell-averaged defect indicator, or point values when
     ``point``)."""
@@ -78,12 +80,12 @@ def dem_force(t, ux, uy, p, point):
 
 
 @cfunc(RHS_SIG, cache=True)
-def dem_rhs(t, y, p, dydt):
+def _dem_rhs(t, y, p, dydt):
     """DEM right-hand side: nonlinear Hertz forces at the dynamic displacement (written out
     with scalar helpers only, so that nothing but arithmetic runs per call).
 
     The ball-frame block below is a hand-inlined copy of ``bl.frame_cached`` (the same
-    arithmetic: results are bitwise equal); calling ``frame_cached`` or :func:`dem_force`
+    arithmetic: results are bitwise equal); calling ``frame_cached`` or :func:`_dem_force`
     instead made DEM 15-20 % slower in ``benchmarks/bench_dynamics.py`` (2026-11-21), so keep
     the two in step when either changes."""
     if t == p[bl.P_CT]:  # the ball frame at this instant was computed for the previous stage
@@ -130,9 +132,9 @@ def dem_rhs(t, y, p, dydt):
 
 
 @cfunc(RHS_SIG, cache=True)
-def dem_aux(t, y, p, out):
+def _dem_aux(t, y, p, out):
     """DEM auxiliary outputs (point values at t); the stiffness is the tangent at the state."""
-    gx, gy, jxx, jxy, jyy = dem_force(t, y[0], y[1], p, True)
+    gx, gy, jxx, jxy, jyy = _dem_force(t, y[0], y[1], p, True)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     ax = (p[bl.P_FX] - gx - c * y[2]) / m
@@ -140,4 +142,4 @@ def dem_aux(t, y, p, out):
     bl.fill_aux_common(t, p, y[0], y[1], jxx, jxy, jyy, ax, ay, out)
 
 
-KERNEL = ModelKernel("dem", dem_rhs, dem_aux, dem_rhs, dem_aux, False, "state")
+KERNEL = ModelKernel("dem", _dem_rhs, _dem_aux, _dem_rhs, _dem_aux, False, "state")

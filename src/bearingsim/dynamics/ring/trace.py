@@ -1,6 +1,6 @@
 """Quasi-static VSM stiffness traces vs cage angle (seed VSM §2.2–2.4, figs. 5–12, tables 2–3).
 
-The static balance of seed VSM eq. (16) over the discrete balls (:mod:`.balance`) at a sequence
+The static balance of seed VSM eq. (16) over the discrete balls (:mod:`._balance`) at a sequence
 of cage angles: per-ball contact forces, deformations and secant stiffnesses, the effective
 stiffness in the load direction and the load-zone events (a ball entering or leaving the zone
 or the defect).
@@ -28,7 +28,7 @@ from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
 from ...results import Result, json_attr, read_json_attr, var_attrs
-from . import balance as bl
+from . import _balance as bl
 from .base import ModelInputs, static_path
 
 __all__ = ["StiffnessTrace", "stiffness_trace"]

@@ -25,8 +25,10 @@ import numpy as np
 from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
-from . import balance as bl
+from . import _balance as bl
 from .base import ModelKernel
+
+__all__ = ["KERNEL"]
 
 
 @njit(cache=True)
@@ -42,7 +44,7 @@ def _acc(y, p, row, r):
 
 
 @cfunc(RHS_SIG, cache=True)
-def tvsm_rhs(t, y, p, dydt):
+def _tvsm_rhs(t, y, p, dydt):
     """TVSM right-hand side reading the tabulated tangent stiffness and static path
     (written out: no calls)."""
     j = int((t - p[bl.P_T0]) / p[bl.P_HTAB] + 0.5)  # table row of this stage time
@@ -62,7 +64,7 @@ def tvsm_rhs(t, y, p, dydt):
 
 
 @cfunc(RHS_SIG, cache=True)
-def tvsm_aux(t, y, p, out):
+def _tvsm_aux(t, y, p, out):
     """TVSM auxiliary outputs (see :mod:`.common`); point values at the sample instant."""
     buf = np.empty(bl.NCOL)
     src, r = bl.output_row(t, p, buf)
@@ -82,7 +84,7 @@ def tvsm_aux(t, y, p, out):
 
 
 @cfunc(RHS_SIG, cache=True)
-def tvsm_rhs_exact(t, y, p, dydt):
+def _tvsm_rhs_exact(t, y, p, dydt):
     """TVSM right-hand side solving the static balance at ``t``."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
@@ -94,7 +96,7 @@ def tvsm_rhs_exact(t, y, p, dydt):
 
 
 @cfunc(RHS_SIG, cache=True)
-def tvsm_aux_exact(t, y, p, out):
+def _tvsm_aux_exact(t, y, p, out):
     """TVSM auxiliary outputs with the on-the-fly static solve."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
@@ -104,4 +106,6 @@ def tvsm_aux_exact(t, y, p, out):
     )
 
 
-KERNEL = ModelKernel("tvsm", tvsm_rhs, tvsm_aux, tvsm_rhs_exact, tvsm_aux_exact, True, "tangent")
+KERNEL = ModelKernel(
+    "tvsm", _tvsm_rhs, _tvsm_aux, _tvsm_rhs_exact, _tvsm_aux_exact, True, "tangent"
+)

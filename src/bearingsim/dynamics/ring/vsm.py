@@ -4,7 +4,7 @@ Guo, Zhao, Zheng, Li & Duan, "Dynamic modeling of variable stiffness for single 
 fault of rolling bearing", J. Vib. Eng. 38(5) 2025 (seed VSM), SPEC §1.
 
 At every instant the static balance of eq. (16) is solved over the discrete balls with the
-retention factor of eq. (11) for a ball over the defect (:mod:`.balance`); the other loaded balls
+retention factor of eq. (11) for a ball over the defect (:mod:`._balance`); the other loaded balls
 take up the load the defective contact sheds. The effective stiffness of eqs. (17)–(18) is made
 dimensionally consistent as the **secant** stiffness matrix
 
@@ -32,8 +32,10 @@ import numpy as np
 from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
-from . import balance as bl
+from . import _balance as bl
 from .base import ModelKernel
+
+__all__ = ["KERNEL"]
 
 
 @njit(cache=True)
@@ -47,7 +49,7 @@ def _acc(y, p, row, r):
 
 
 @cfunc(RHS_SIG, cache=True)
-def vsm_rhs(t, y, p, dydt):
+def _vsm_rhs(t, y, p, dydt):
     """VSM right-hand side reading the tabulated secant stiffness (written out: no calls)."""
     j = int((t - p[bl.P_T0]) / p[bl.P_HTAB] + 0.5)  # table row of this stage time
     nt = int(p[bl.P_NTAB])
@@ -64,7 +66,7 @@ def vsm_rhs(t, y, p, dydt):
 
 
 @cfunc(RHS_SIG, cache=True)
-def vsm_aux(t, y, p, out):
+def _vsm_aux(t, y, p, out):
     """VSM auxiliary outputs (see :mod:`.common`); point values at the sample instant."""
     buf = np.empty(bl.NCOL)
     src, r = bl.output_row(t, p, buf)
@@ -84,7 +86,7 @@ def vsm_aux(t, y, p, out):
 
 
 @cfunc(RHS_SIG, cache=True)
-def vsm_rhs_exact(t, y, p, dydt):
+def _vsm_rhs_exact(t, y, p, dydt):
     """VSM right-hand side solving the static balance at ``t`` (any time)."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
@@ -96,7 +98,7 @@ def vsm_rhs_exact(t, y, p, dydt):
 
 
 @cfunc(RHS_SIG, cache=True)
-def vsm_aux_exact(t, y, p, out):
+def _vsm_aux_exact(t, y, p, out):
     """VSM auxiliary outputs with the on-the-fly static solve."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
@@ -106,4 +108,4 @@ def vsm_aux_exact(t, y, p, out):
     )
 
 
-KERNEL = ModelKernel("vsm", vsm_rhs, vsm_aux, vsm_rhs_exact, vsm_aux_exact, True, "secant")
+KERNEL = ModelKernel("vsm", _vsm_rhs, _vsm_aux, _vsm_rhs_exact, _vsm_aux_exact, True, "secant")

@@ -4,7 +4,7 @@
   complex modes.
 - :mod:`.config` — the system's inputs (shaft, armature, bearings, housings, defects).
 - :mod:`.model` — assembly, static equilibrium, :func:`simulate_rotor`, :func:`rotor_modes`.
-- :mod:`.kernel` — the compiled right-hand side (ball DOFs, Hertz contacts, defects).
+- :mod:`._kernel` (private) — the compiled right-hand side (ball DOFs, Hertz contacts, defects).
 - :mod:`.response` — :class:`RotorResponse`.
 - :mod:`.scenario` — the runner behind ``bearingsim.simulate`` for ``model = "rotor"``.
 

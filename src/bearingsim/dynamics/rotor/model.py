@@ -36,7 +36,7 @@ from ...geometry import (
     defect_geometry,
 )
 from ..integrate import run_adaptive, run_fixed
-from . import kernel as rk
+from . import _kernel as rk
 from .config import (
     ENDS,
     G0,

@@ -54,6 +54,8 @@ from numba import njit
 
 from ...load_distribution import _solve_1d
 
+__all__: list[str] = []  # private: compiled helpers of the ring models
+
 # ---------------------------------------------------------------- parameter vector layout
 P_MASS = 0  #: vibrating mass m [kg]
 P_DAMP = 1  #: equivalent damping c_eq [N s/m]

@@ -50,6 +50,8 @@ from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
 
+__all__: list[str] = []  # private: the compiled right-hand side of the rotor model
+
 # ----------------------------------------------------------------------------- p layout
 H_NR = 0  # number of reduced rotor coordinates
 H_Z_DE = 1  # balls in the drive-end bearing
