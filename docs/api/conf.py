@@ -27,7 +27,7 @@ extensions = [
 ]
 autosummary_generate = True
 autosummary_imported_members = False
-autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_default_options = {"members": True, "show-inheritance": True, "ignore-module-all": True}
 autodoc_typehints = "none"  # numpydoc sections carry the types and units
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False

@@ -76,7 +76,7 @@ SEED_VSM_DEFECT_EDGE_DEG = 10.0
 #: shaft speed of the ring and rotor scenarios unless given [r/min]: seed VSM table 1
 DEFAULT_RPM = SEED_VSM_RPM
 
-#: Default housing, per end and per direction (X and Y): the bearing pedestal of the 5-DOF
+#: Default housing of each bearing, per direction (X and Y). The bearing pedestal of the 5-DOF
 #: bearing model of Sawalhi & Randall (2008, *Mech. Syst. Signal Process.* 22, 1924–1951,
 #: "pedestal": outer race + housing on a spring and damper to the base), with the values used
 #: for the CWRU drive-end 6205 by Ruan, Chen, Gühmann, Yan & Li (2022), "Dynamics modeling of

@@ -2,27 +2,29 @@
 
 User files use exactly the keys below (SI units, suffix names the unit); any other key is an error.
 
-=============================  =========  ===================================================
-key                            required   meaning
-=============================  =========  ===================================================
-``id``                         yes        identifier (string)
-``type``                       yes        ``"ball"`` or ``"cylindrical_roller"``
-``n_elements``                 yes        number of balls/rollers Z (integer >= 3)
-``element_diameter_m``         yes        ball/roller diameter d [m]
-``pitch_diameter_m``           yes        pitch diameter D [m]
-``contact_angle_rad``          no (0)     nominal contact angle [rad]
-``diametral_clearance_m``      no (0)     diametral clearance P_d [m]; negative = preload
-``inner_groove_radius_m``      ball       inner groove curvature radius R_i [m]
-``outer_groove_radius_m``      ball       outer groove curvature radius R_o [m]
-``roller_length_m``            roller     effective roller length l [m]
-``inner_raceway_diameter_m``   no         roller: inner raceway diameter [m]
-``outer_raceway_diameter_m``   no         roller: outer raceway diameter [m]
-``youngs_modulus_pa``          no (207e9) Young's modulus [Pa]
-``poisson_ratio``              no (0.3)   Poisson's ratio [-]
-``density_kg_m3``              no (7850)  density [kg/m^3]
-``bore_m``, ``outer_diameter_m``, ``width_m``   no   envelope dimensions [m]
-``source``                     no         where the data come from
-=============================  =========  ===================================================
+=============================  ===========  =================================================
+key                            required     meaning
+=============================  ===========  =================================================
+``id``                         yes          identifier (string)
+``type``                       yes          ``"ball"`` or ``"cylindrical_roller"``
+``n_elements``                 yes          number of balls/rollers Z (integer >= 3)
+``element_diameter_m``         yes          ball/roller diameter d [m]
+``pitch_diameter_m``           yes          pitch diameter D [m]
+``contact_angle_rad``          no (0)       nominal contact angle [rad]
+``diametral_clearance_m``      no (0)       diametral clearance P_d [m]; negative = preload
+``inner_groove_radius_m``      ball         inner groove curvature radius R_i [m]
+``outer_groove_radius_m``      ball         outer groove curvature radius R_o [m]
+``roller_length_m``            roller       effective roller length l [m]
+``inner_raceway_diameter_m``   no           roller: inner raceway diameter [m]
+``outer_raceway_diameter_m``   no           roller: outer raceway diameter [m]
+``youngs_modulus_pa``          no (207e9)   Young's modulus [Pa]
+``poisson_ratio``              no (0.3)     Poisson's ratio [-]
+``density_kg_m3``              no (7850)    density [kg/m^3]
+``bore_m``                     no           bore diameter [m]
+``outer_diameter_m``           no           outside diameter [m]
+``width_m``                    no           width [m]
+``source``                     no           where the data come from
+=============================  ===========  =================================================
 """
 
 from __future__ import annotations

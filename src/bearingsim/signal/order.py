@@ -2,9 +2,9 @@
 angle conversion, the anti-aliased angular resampler, the order spectrum, synchronous
 averaging, and reading shaft angle/speed files (encoders, IAS).
 
-Angular resampling (:func:`resample_to_angle`; computed order tracking, Fyfe & Munck 1997,
-"Analysis of computed order tracking", MSSP 11(2), 187–205)
-    A signal given at known, strictly increasing shaft angles (uniform in time, or encoder
+Angular resampling (:func:`resample_to_angle`)
+    Computed order tracking (Fyfe & Munck 1997, "Analysis of computed order tracking", MSSP
+    11(2), 187–205). A signal given at known, strictly increasing shaft angles (uniform in time, or encoder
     timestamps) is resampled at ``samples_per_rev`` uniform angle steps. Where the input is
     denser than the output (slow shaft, high sample rate), orders above the output's Nyquist
     order ``samples_per_rev / 2`` would alias; the signal is then first interpolated onto a grid

@@ -310,7 +310,7 @@ def integrate_model(
     chunk : int
         Output samples per chunk.
     bound : float
-        Divergence guard on every state component (|u| [m], |v| [m/s]).
+        Divergence guard on every state component (``|u|`` [m], ``|v|`` [m/s]).
     cell_average : bool
         Average the defect and fixed-zone indicators over each RK4 stage's quadrature cell
         (:func:`._balance.cell_halfwidth`), which resolves the instants a ball enters or leaves

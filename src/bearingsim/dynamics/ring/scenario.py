@@ -34,7 +34,7 @@ __all__ = ["choose_steps", "model_inputs", "run_ring"]
 
 #: accuracy target of the automatic RK4 step: omega_max * dt <= this [-] (see choose_steps)
 OMEGA_DT = 0.35
-#: RK4 stability limit on the imaginary axis, |omega dt| < 2 sqrt(2) [-]
+#: RK4 stability limit on the imaginary axis, ``|omega dt| < 2 sqrt(2)`` [-]
 RK4_STABILITY = 2.0 * math.sqrt(2.0)
 
 #: compiled kernels of the ring models
