@@ -101,16 +101,30 @@ def _potential(ux, uy, sn, cs, factors, c, K, n, fx, fy):
     return p
 
 
-@njit(cache=True)
-def _residual(ux, uy, sn, cs, factors, c, K, n, fx, fy):
+@njit(cache=True, inline="always")
+def _gradient(ux, uy, sn, cs, factors, c, K, n, fx, fy):
+    """Force residual ``sum Q_j e_j - F`` [N] and its Jacobian entries [N/m] at ``u``."""
     gx = -fx
     gy = -fy
+    jxx = 0.0
+    jxy = 0.0
+    jyy = 0.0
     for j in range(sn.size):
         dj = ux * sn[j] + uy * cs[j] - c
         if dj > 0.0:
             q = factors[j] * K * dj**n
             gx += q * sn[j]
             gy += q * cs[j]
+            kk = n * q / dj
+            jxx += kk * sn[j] * sn[j]
+            jxy += kk * sn[j] * cs[j]
+            jyy += kk * cs[j] * cs[j]
+    return gx, gy, jxx, jxy, jyy
+
+
+@njit(cache=True)
+def _residual(ux, uy, sn, cs, factors, c, K, n, fx, fy):
+    gx, gy, _a, _b, _c = _gradient(ux, uy, sn, cs, factors, c, K, n, fx, fy)
     return math.hypot(gx, gy)
 
 
@@ -121,21 +135,7 @@ def _solve_2d(ux, uy, sn, cs, factors, c, K, n, fx, fy):
     scale = F if F > 0.0 else 1.0
     res = 0.0
     for _ in range(100):
-        gx = -fx
-        gy = -fy
-        jxx = 0.0
-        jxy = 0.0
-        jyy = 0.0
-        for j in range(sn.size):
-            dj = ux * sn[j] + uy * cs[j] - c
-            if dj > 0.0:
-                q = factors[j] * K * dj**n
-                gx += q * sn[j]
-                gy += q * cs[j]
-                kk = n * q / dj
-                jxx += kk * sn[j] * sn[j]
-                jxy += kk * sn[j] * cs[j]
-                jyy += kk * cs[j] * cs[j]
+        gx, gy, jxx, jxy, jyy = _gradient(ux, uy, sn, cs, factors, c, K, n, fx, fy)
         res = math.hypot(gx, gy) / scale
         if res <= 1e-13:
             break

@@ -139,6 +139,8 @@ def external_stiffness(
     return A1 * el / (arg - C1)
 
 
+# (duplicates) the shape of external_stiffness: seed IAS eqs. (9) and (10) are two published
+# formulas with their own constants, one function per equation as the seed writes them
 def internal_stiffness(
     load: ArrayLike, length: float, r_roller: float, r_outer: float, e_eff: float
 ) -> NDArray[np.float64]:

@@ -423,6 +423,8 @@ class CoreSubstructure:
     elements: NDArray[np.int64] = field(repr=False)
     n_dofs: int
     n_interface: int
+    # (duplicates) the operator fields of ContactSection, restricted to the core: the same
+    # assembly (_P, _indptr, _indices) and stress operators (_Bxx, _Byy, _Gxy) on fewer elements
     _P: sp.csr_matrix = field(repr=False)
     _s_data: NDArray[np.float64] = field(repr=False)
     _indptr: NDArray[np.int32] = field(repr=False)

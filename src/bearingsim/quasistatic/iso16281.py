@@ -284,6 +284,8 @@ def _solve_free(
     return out, nfev
 
 
+# (duplicates) the signature of jones.run_quasi_static on purpose: the two methods take the
+# same loads and options, so either can be passed where the other is (method=...)
 def run_iso16281(
     bearing: Bearing,
     cage_angles: ArrayLike = 0.0,

@@ -298,6 +298,7 @@ def run_quasi_static(
     )
 
 
+# (duplicates) the load arguments repeat run_quasi_static's: the one-position shortcut
 def solve_equilibrium(
     bearing: Bearing,
     fx: float = 0.0,

@@ -455,6 +455,7 @@ def _build(
     return StiffnessResult(sol, cage_revs, points_per_rev, n, kr, ka, kt, spectra)
 
 
+# (duplicates) the load arguments repeat run_quasi_static's: the same loads, swept in cage angle
 def stiffness_vs_cage(
     bearing: Bearing,
     fx: float = 0.0,

@@ -4,20 +4,20 @@ averaging, and reading shaft angle/speed files (encoders, IAS).
 
 Angular resampling (:func:`resample_to_angle`)
     Computed order tracking (Fyfe & Munck 1997, "Analysis of computed order tracking", MSSP
-    11(2), 187–205). A signal given at known, strictly increasing shaft angles (uniform in time, or encoder
-    timestamps) is resampled at ``samples_per_rev`` uniform angle steps. Where the input is
-    denser than the output (slow shaft, high sample rate), orders above the output's Nyquist
-    order ``samples_per_rev / 2`` would alias; the signal is then first interpolated onto a grid
-    ``L`` times finer than the output, with ``L samples_per_rev`` at least the densest input
-    (nothing aliases there), and decimated by ``L`` with :func:`scipy.signal.resample_poly`
-    (Kaiser-windowed FIR low-pass at ``samples_per_rev / 2`` orders, zero phase, the ends
-    extended along the line through the first and last samples). Where the output is at least
-    as dense as the input, plain interpolation is exact enough and nothing is filtered. The
-    density is the 1st percentile of the angle steps (robust to timing jitter), and the finer
-    grid holds at most four times the input's samples. The FIR (SciPy's default Kaiser window,
-    beta 5, 10 taps per phase) passes orders below 0.8 of the Nyquist order within 0.2 % and
-    attenuates orders above 1.2 of it by more than 50 dB (the transition band lies between);
-    its end transients span ~10 output samples.
+    11(2), 187–205). A signal given at known, strictly increasing shaft angles (uniform in time,
+    or encoder timestamps) is resampled at ``samples_per_rev`` uniform angle steps. Where the
+    input is denser than the output (slow shaft, high sample rate), orders above the output's
+    Nyquist order ``samples_per_rev / 2`` would alias; the signal is then first interpolated
+    onto a grid ``L`` times finer than the output, with ``L samples_per_rev`` at least the
+    densest input (nothing aliases there), and decimated by ``L`` with
+    :func:`scipy.signal.resample_poly` (Kaiser-windowed FIR low-pass at ``samples_per_rev / 2``
+    orders, zero phase, the ends extended along the line through the first and last samples).
+    Where the output is at least as dense as the input, plain interpolation is exact enough and
+    nothing is filtered. The density is the 1st percentile of the angle steps (robust to timing
+    jitter), and the finer grid holds at most four times the input's samples. The FIR (SciPy's
+    default Kaiser window, beta 5, 10 taps per phase) passes orders below 0.8 of the Nyquist
+    order within 0.2 % and attenuates orders above 1.2 of it by more than 50 dB (the transition
+    band lies between); its end transients span ~10 output samples.
 
 Order spectrum (:func:`order_spectrum`)
     the amplitude spectrum of :mod:`.spectrum` over orders (cycles per shaft revolution), zero

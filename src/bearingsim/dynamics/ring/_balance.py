@@ -568,3 +568,22 @@ def fill_aux_common(t, p, ux, uy, kxx, kxy, kyy, acc_x, acc_y, out):
     c = math.cos(th0)
     out[5] = kxx * s * s + 2.0 * kxy * s * c + kyy * c * c
     out[6] = per_ball(t, p, ux, uy, out, 7, p[P_PERBALL] > 0.5)
+
+
+@njit(cache=True, inline="always")
+def fill_aux_row(t, p, row, r, k0, ax, ay, out):
+    """:func:`fill_aux_common` from the table row ``row[r:]``: the static displacement and the
+    stiffness triple (xx, xy, yy) starting at column ``k0`` (``C_SXX`` secant, ``C_TXX``
+    tangent)."""
+    fill_aux_common(
+        t,
+        p,
+        row[r + C_UX],
+        row[r + C_UY],
+        row[r + k0],
+        row[r + k0 + 1],
+        row[r + k0 + 2],
+        ax,
+        ay,
+        out,
+    )

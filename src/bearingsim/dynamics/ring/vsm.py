@@ -71,18 +71,7 @@ def _vsm_aux(t, y, p, out):
     buf = np.empty(bl.NCOL)
     src, r = bl.output_row(t, p, buf)
     ax, ay = _acc(y, p, src, r)
-    bl.fill_aux_common(
-        t,
-        p,
-        src[r + bl.C_UX],
-        src[r + bl.C_UY],
-        src[r + bl.C_SXX],
-        src[r + bl.C_SXY],
-        src[r + bl.C_SYY],
-        ax,
-        ay,
-        out,
-    )
+    bl.fill_aux_row(t, p, src, r, bl.C_SXX, ax, ay, out)
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -103,9 +92,7 @@ def _vsm_aux_exact(t, y, p, out):
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
     ax, ay = _acc(y, p, row, 0)
-    bl.fill_aux_common(
-        t, p, row[bl.C_UX], row[bl.C_UY], row[bl.C_SXX], row[bl.C_SXY], row[bl.C_SYY], ax, ay, out
-    )
+    bl.fill_aux_row(t, p, row, 0, bl.C_SXX, ax, ay, out)
 
 
 KERNEL = ModelKernel("vsm", _vsm_rhs, _vsm_aux, _vsm_rhs_exact, _vsm_aux_exact, True, "secant")
