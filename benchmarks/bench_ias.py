@@ -36,9 +36,9 @@ from bearingsim.dynamics.ias.reference import ReferenceRhs, simulate_ias_scipy
 
 @njit(cache=True)
 def _rhs_direct(y, p, out):
-    fx, fy, torque, m_t, _a, _b, _c, _d = _forces(y, p)
     w = y[5]
     sgn = w / math.sqrt(w * w + p[30] * p[30])
+    fx, fy, torque, m_t, _a, _b, _c, _d = _forces(y, p, sgn)
     out[0] = y[3]
     out[1] = y[4]
     out[2] = w
