@@ -23,9 +23,9 @@ import numpy as np
 from numba import njit
 
 from bearingsim import get_bearing
+from bearingsim.dynamics.ias.kernel import _forces
 from bearingsim.dynamics.ias.model import (
     IasParams,
-    _forces,
     derive_constants,
     initial_state,
     pack_parameters,

@@ -36,8 +36,8 @@ Model (each term with its seed equation)
       ``sign(theta')`` (``theta'/sqrt(theta'^2 + w_eps^2)``, ``w_eps`` = 0.01 rad/s): the seed
       assumes ``theta' > 0``; the regularisation only matters at standstill.
 
-The right-hand side is a Numba ``cfunc`` integrated by the shared compiled RK4 / Dormand–Prince
-kernels of :mod:`bearingsim.dynamics.integrate`.
+The right-hand side (:mod:`.kernel`) is a Numba ``cfunc`` integrated by the shared compiled
+RK4 / Dormand–Prince kernels of :mod:`bearingsim.dynamics.integrate`.
 """
 
 from __future__ import annotations
@@ -49,7 +49,6 @@ from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numba import cfunc, njit
 from numpy.typing import NDArray
 
 from ..._version import __version__
@@ -58,10 +57,75 @@ from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_referenc
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
-from ..integrate import RHS_SIG, run_adaptive, run_fixed
+from ..integrate import run_adaptive, run_fixed
+from .kernel import (
+    AUX_NAMES,
+    N_AUX,
+    P_BN,
+    P_C,
+    P_COSLAM,
+    P_CS,
+    P_CT,
+    P_DO,
+    P_EPS,
+    P_G,
+    P_HM,
+    P_I,
+    P_KT,
+    P_LAM,
+    P_M,
+    P_MC,
+    P_MU,
+    P_MZ,
+    P_N,
+    P_PHI0,
+    P_PHIC,
+    P_PHIO,
+    P_PHIOS,
+    P_QMAX,
+    P_QMODE,
+    P_QX,
+    P_QY,
+    P_RC,
+    P_RHO,
+    P_RI,
+    P_SINLAM,
+    P_SINLT,
+    P_SPALL,
+    P_THOS,
+    P_TRIG,
+    P_V1C,
+    P_WEPS,
+    P_Z,
+    STATE_NAMES,
+    ias_aux,
+    ias_rhs,
+)
 
 if TYPE_CHECKING:
     from .result import IasResult
+
+__all__ = [
+    "AUX_NAMES",
+    "GRAVITY",
+    "N_AUX",
+    "OMEGA_EPS",
+    "SEED_SPALL",
+    "STATE_NAMES",
+    "ContactLaw",
+    "IasConstants",
+    "IasParams",
+    "IasResult",
+    "SpallLoad",
+    "check_spall_width",
+    "check_step",
+    "derive_constants",
+    "impact_force",
+    "initial_state",
+    "max_spall_width",
+    "pack_parameters",
+    "simulate_ias",
+]
 
 #: standard gravity in the roller energy balance, seed IAS eq. (21) [m/s^2]
 GRAVITY = 9.80665
@@ -89,185 +153,6 @@ class SpallLoad(enum.Enum):
 
 #: the seed's spall (seed IAS §3.1): 1 mm wide at the bottom of the outer race
 SEED_SPALL = Defect(Race.OUTER, 1e-3, CWRU_DEFECT_DEPTH_M, math.pi)
-
-# ------------------------------------------------------------------ parameter vector offsets
-P_M, P_I, P_CS, P_CT, P_QX, P_QY, P_MZ = 0, 1, 2, 3, 4, 5, 6
-P_KT, P_N, P_C, P_Z, P_RHO, P_PHI0 = 7, 8, 9, 10, 11, 12
-P_RI, P_RC, P_MU, P_PHIOS, P_THOS, P_HM, P_LAM, P_DO = 13, 14, 15, 16, 17, 18, 19, 20
-P_MC, P_V1C, P_G, P_QMODE, P_QMAX, P_EPS, P_PHIO, P_PHIC = 21, 22, 23, 24, 25, 26, 27, 28
-P_SPALL, P_WEPS = 29, 30
-#: constants computed once by :func:`pack_parameters`: ``b_n = mu r_c`` (eq. (14)),
-#: ``cos(lambda)``, ``sin(lambda)`` and ``sin(lambda - Theta_os)`` of eq. (31)
-P_BN, P_COSLAM, P_SINLAM, P_SINLT = 31, 32, 33, 34
-#: cos(2 pi k/Z) for k = 0..Z-1 start here, followed by sin(2 pi k/Z)
-P_TRIG = 36
-#: auxiliary outputs per sample (see :class:`IasResult`)
-AUX_NAMES = (
-    "bearing_torque",
-    "spall_torque",
-    "spall_force",
-    "impact_force",
-    "normal_force_sum",
-    "n_loaded",
-)
-N_AUX = len(AUX_NAMES)
-STATE_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
-
-# Kernel notes. The helpers below take scalars, not arrays, and are inlined into the cfuncs
-# (``inline="always"``): an array handed to a non-inlined function, or to an inlined one with
-# several returns, makes Numba keep atomic reference-count updates of y, p and dydt on every
-# call (about a quarter of the step's time). ``error_model="numpy"`` drops Python's
-# ZeroDivisionError checks: a zero divisor gives inf/nan, which the integrator reports as a
-# divergence (a Python exception cannot leave a cfunc anyway).
-
-
-@njit(cache=True, inline="always")
-def _wrap(a):
-    """Angle wrapped to [-pi, pi)."""
-    return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
-
-
-@njit(cache=True, inline="always")
-def _sign(w, eps):
-    """Regularised ``sign(theta')``: ``w / sqrt(w^2 + w_eps^2)``."""
-    return w / math.sqrt(w * w + eps * eps)
-
-
-@njit(cache=True, inline="always")
-def _power(d, n):
-    """``d^n`` for ``d > 0`` (seed eq. (13)), as ``exp(n ln d)``: faster than ``pow``."""
-    return math.exp(n * math.log(d))
-
-
-@njit(cache=True, inline="always")
-def _spall_roller(phi1, phi_os, th_os, Z):
-    """The roller inside the spall (seed eq. (34)) and its angle from the spall centre.
-
-    Returns ``(k, u)``: ``k`` = -1 when no roller is inside. At most one roller is: the spall
-    is narrower than the roller spacing, ``2 Theta_os < 2 pi/Z`` (:func:`check_spall_width`), so
-    only the roller nearest the spall centre needs the test.
-    """
-    dphi = 2.0 * math.pi / Z
-    base = _wrap(phi1 - phi_os)  # angle of roller 1 from the spall centre, [-pi, pi)
-    k = int(math.floor(0.5 - base / dphi))  # nearest roller, in (-Z/2, Z/2]
-    if k < 0:
-        k += Z
-    elif k >= Z:
-        k -= Z
-    u = base + k * dphi
-    if u >= math.pi:
-        u -= 2.0 * math.pi
-    ks = k if -th_os <= u <= th_os else -1
-    return ks, u
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _forces(y, p, sgn):
-    """Forces on the inner ring and torques at state ``y`` with ``sgn`` = :func:`_sign`;
-    returns ``(f_x, f_y, resisting torque, M_T, F_T, impact part, sum N, n loaded)``."""
-    x = y[0]
-    yy = y[1]
-    Z = int(p[P_Z])
-    c = p[P_C]
-    Kt = p[P_KT]
-    n = p[P_N]
-    rc = p[P_RC]
-    bn = p[P_BN]  # seed eq. (14)
-    ri = p[P_RI]
-    phi1 = p[P_PHI0] + p[P_RHO] * y[2]  # seed eq. (3), cage driven by the shaft angle
-    c1 = math.cos(phi1)
-    s1 = math.sin(phi1)
-    ks, u = -1, 0.0
-    if p[P_SPALL] > 0.0:
-        ks, u = _spall_roller(phi1, p[P_PHIOS], p[P_THOS], Z)
-    fx = 0.0
-    fy = 0.0
-    torque = 0.0
-    m_t = 0.0
-    f_t = 0.0
-    f_imp = 0.0
-    nsum = 0.0
-    nload = 0.0
-    for k in range(Z):
-        # phi_k = phi_1 + 2 pi k/Z by angle addition: one cos/sin per call
-        ck = c1 * p[P_TRIG + k] - s1 * p[P_TRIG + Z + k]  # cos(phi_k)
-        sk = s1 * p[P_TRIG + k] + c1 * p[P_TRIG + Z + k]  # sin(phi_k)
-        d0 = x * ck + yy * sk - c  # seed eq. (33) without the spall term
-        dk = d0
-        sh = 0.0
-        if k == ks:  # seed eq. (34)
-            th_os = p[P_THOS]
-            sh = math.sin(0.5 * math.pi * abs(u) / th_os)
-            dk = d0 - p[P_HM] * (1.0 - sh)  # seed eq. (18): C_d = H_m [1 - sin(pi |u|/(2 Theta))]
-        if dk > 0.0:  # seed eq. (35)
-            nk = Kt * _power(dk, n)  # seed eq. (13)
-            tk = nk * bn / rc  # seed eq. (16), T_ik
-            fx -= nk * ck
-            fy -= nk * sk
-            # T on the ring opposes its surface motion: -sgn T e_t, e_t = (-sin, cos)
-            fx += sgn * tk * sk
-            fy -= sgn * tk * ck
-            torque += ri * tk + bn * nk  # seed eq. (17)
-            nsum += nk
-            nload += 1.0
-        if k == ks:
-            if p[P_QMODE] == 0.0:  # seed eqs. (1)-(2)
-                a = _wrap(p[P_PHIC] - (phi1 + k * (2.0 * math.pi / Z)))
-                q = 0.0
-                if abs(a) <= p[P_PHIO]:
-                    br = 1.0 - (1.0 - math.cos(a)) / (2.0 * p[P_EPS])
-                    if br > 0.0:
-                        q = p[P_QMAX] * br**n
-            else:
-                q = Kt * d0**n if d0 > 0.0 else 0.0
-            if u < 0.0:  # seed eq. (30), entering half: Q cos(pi u/(2 Theta) + pi/2)
-                ft = q * sh
-                fi = 0.0
-            else:  # leaving half: (Q + F_os cos(lambda)) (1 + sin(pi u/(2 Theta) + pi))
-                # impact force F_os (derived from seed eqs. (21)-(28)), current cage speed
-                cl = p[P_COSLAM]
-                v1 = abs(p[P_RHO] * y[5]) * p[P_V1C]
-                v2 = math.sqrt(0.6 * v1 * v1 + 0.8 * p[P_G] * rc * (1.0 - cl))
-                fos = 2.0 * p[P_MC] * v1 * v2 / (rc * cl)
-                # only a loaded roller rides on the outer race and hits the trailing edge
-                fi = fos * cl * (1.0 - sh) if q > 0.0 else 0.0
-                ft = q * (1.0 - sh) + fi
-            # inward along the roller radius, tilted by lambda against the rolling direction
-            cl = p[P_COSLAM]
-            sl = p[P_SINLAM] * sgn
-            fx -= ft * (cl * ck - sl * sk)
-            fy -= ft * (cl * sk + sl * ck)
-            m_t += 0.5 * p[P_DO] * ft * p[P_SINLT]  # seed eq. (31)
-            f_t += ft
-            f_imp += fi
-    return fx, fy, torque, m_t, f_t, f_imp, nsum, nload
-
-
-@cfunc(RHS_SIG, cache=True, error_model="numpy")
-def ias_rhs(t, y, p, dydt):
-    """Right-hand side of seed IAS eq. (32); state ``(x, y, theta, x', y', theta')``."""
-    w = y[5]
-    sgn = _sign(w, p[P_WEPS])
-    fx, fy, torque, m_t, _ft, _fi, _ns, _nl = _forces(y, p, sgn)
-    dydt[0] = y[3]
-    dydt[1] = y[4]
-    dydt[2] = w
-    dydt[3] = (p[P_QX] - p[P_CS] * y[3] + fx) / p[P_M]
-    dydt[4] = (p[P_QY] - p[P_CS] * y[4] + fy) / p[P_M]
-    dydt[5] = (p[P_MZ] - p[P_CT] * w - sgn * (torque + m_t)) / p[P_I]
-
-
-@cfunc(RHS_SIG, cache=True, error_model="numpy")
-def ias_aux(t, y, p, out):
-    """Auxiliary outputs :data:`AUX_NAMES`."""
-    _fx, _fy, torque, m_t, ft, fi, ns, nl = _forces(y, p, _sign(y[5], p[P_WEPS]))
-    out[0] = torque
-    out[1] = m_t
-    out[2] = ft
-    out[3] = fi
-    out[4] = ns
-    out[5] = nl
-
 
 # ----------------------------------------------------------------------------- parameters
 
