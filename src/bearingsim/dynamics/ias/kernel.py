@@ -31,9 +31,9 @@ import numpy as np
 from numba import cfunc, njit
 
 from ...contact.pereira import LINE_EXPONENT
-from ..integrate import RHS_SIG
+from ..integrate import RHS_SIG, rk4_inline
 
-__all__ = ["AUX_NAMES", "N_AUX", "STATE_NAMES", "ias_aux", "ias_rhs"]
+__all__ = ["AUX_NAMES", "N_AUX", "STATE_NAMES", "ias_aux", "ias_rhs", "ias_rk4"]
 
 # ------------------------------------------------------------------ parameter vector offsets
 P_M = 0  #: inner ring + shaft mass m [kg]
@@ -67,12 +67,14 @@ P_PHIO = 27  #: load-zone half angle phi_o [rad]
 P_PHIC = 28  #: load-zone centre [rad]
 P_SPALL = 29  #: 1 with a spall, 0 healthy
 P_WEPS = 30  #: speed scale w_eps of the regularised sign [rad/s]
-P_BN = 31  #: rolling-resistance arm b_n = mu r_c [m] (eq. (14))
-P_COSLAM = 32  #: cos(lambda) [-]
-P_SINLAM = 33  #: sin(lambda) [-]
-P_SINLT = 34  #: sin(lambda - Theta_os) [-] (eq. (31))
+P_COSLAM = 31  #: cos(lambda) [-]
+P_SINLAM = 32  #: sin(lambda) [-]
+P_SINLT = 33  #: sin(lambda - Theta_os) [-] (eq. (31))
+P_INVM = 34  #: 1/m [1/kg]
+P_INVI = 35  #: 1/I [1/(kg m^2)]
+P_TARM = 36  #: resisting torque per unit roller load, r_i mu + b_n = mu (r_i + r_c) [m]
 #: cos(2 pi k/Z) for k = 0..Z-1 start here, followed by sin(2 pi k/Z)
-P_TRIG = 36
+P_TRIG = 37
 
 #: auxiliary outputs per sample (see :class:`~bearingsim.dynamics.ias.result.IasResult`)
 AUX_NAMES = (
@@ -193,8 +195,6 @@ def _forces(y, p, sgn):
     Kt = p[P_KT]
     n = p[P_N]
     rc = p[P_RC]
-    bn = p[P_BN]  # seed eq. (14)
-    ri = p[P_RI]
     phi1 = p[P_PHI0] + p[P_RHO] * y[2]  # seed eq. (3), cage driven by the shaft angle
     c1 = math.cos(phi1)
     s1 = math.sin(phi1)
@@ -265,17 +265,17 @@ def _forces(y, p, sgn):
     # back to the (x, y) frame: sum N cos(phi_k), sum N sin(phi_k)
     nx = ncos * c1 - nsin * s1
     ny = ncos * s1 + nsin * c1
-    # rolling resistance T_k = N_k b_n / r_c (seed eq. (16)) on the ring opposes its surface
-    # motion: -sgn T e_t with e_t = (-sin, cos)
-    tr = sgn * (bn / rc)
+    # rolling resistance T_k = N_k b_n / r_c = mu N_k (seed eqs. (14), (16)) on the ring opposes
+    # its surface motion: -sgn T e_t with e_t = (-sin, cos)
+    tr = sgn * p[P_MU]
     fx += tr * ny - nx
     fy -= tr * nx + ny
-    torque = (ri * bn / rc + bn) * nsum  # seed eq. (17), sum of r_i T_k + b_n N_k
+    torque = p[P_TARM] * nsum  # seed eq. (17): sum of r_i T_k + b_n N_k
     return fx, fy, torque, m_t, f_t, f_imp, nsum, nload
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _rhs(y, p, dydt):
+def _rhs(t, y, p, dydt):
     """Seed IAS eq. (32) into ``dydt``; state ``(x, y, theta, x', y', theta')``."""
     w = y[5]
     sgn = _sign(w, p[P_WEPS])
@@ -283,20 +283,13 @@ def _rhs(y, p, dydt):
     dydt[0] = y[3]
     dydt[1] = y[4]
     dydt[2] = w
-    inv_m = 1.0 / p[P_M]
-    dydt[3] = (p[P_QX] - p[P_CS] * y[3] + fx) * inv_m
-    dydt[4] = (p[P_QY] - p[P_CS] * y[4] + fy) * inv_m
-    dydt[5] = (p[P_MZ] - p[P_CT] * w - sgn * (torque + m_t)) * (1.0 / p[P_I])
+    dydt[3] = (p[P_QX] - p[P_CS] * y[3] + fx) * p[P_INVM]
+    dydt[4] = (p[P_QY] - p[P_CS] * y[4] + fy) * p[P_INVM]
+    dydt[5] = (p[P_MZ] - p[P_CT] * w - sgn * (torque + m_t)) * p[P_INVI]
 
 
-@cfunc(RHS_SIG, cache=True, error_model="numpy")
-def ias_rhs(t, y, p, dydt):
-    """Right-hand side of seed IAS eq. (32); state ``(x, y, theta, x', y', theta')`` (SI)."""
-    _rhs(y, p, dydt)
-
-
-@cfunc(RHS_SIG, cache=True, error_model="numpy")
-def ias_aux(t, y, p, out):
+@njit(cache=True, error_model="numpy", inline="always")
+def _aux(t, y, p, out):
     """Auxiliary outputs :data:`AUX_NAMES` at state ``y``."""
     _fx, _fy, torque, m_t, ft, fi, ns, nl = _forces(y, p, _sign(y[5], p[P_WEPS]))
     out[0] = torque
@@ -305,3 +298,22 @@ def ias_aux(t, y, p, out):
     out[3] = fi
     out[4] = ns
     out[5] = nl
+
+
+@cfunc(RHS_SIG, cache=True, error_model="numpy")
+def ias_rhs(t, y, p, dydt):
+    """Right-hand side of seed IAS eq. (32); state ``(x, y, theta, x', y', theta')`` (SI)."""
+    _rhs(t, y, p, dydt)
+
+
+@cfunc(RHS_SIG, cache=True, error_model="numpy")
+def ias_aux(t, y, p, out):
+    """Auxiliary outputs :data:`AUX_NAMES` at state ``y``."""
+    _aux(t, y, p, out)
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def ias_rk4(y0, t0, dt, n_out, decim, p, bound):
+    """RK4 of :func:`bearingsim.dynamics.integrate.rk4_inline` with :func:`ias_rhs` and
+    :func:`ias_aux` inlined (the driver of ``run_fixed``); same arithmetic as ``rk4_fixed``."""
+    return rk4_inline(_rhs, _aux, y0, 6, t0, dt, n_out, decim, p, N_AUX, bound)

@@ -61,7 +61,6 @@ from ..integrate import run_adaptive, run_fixed
 from .kernel import (
     AUX_NAMES,
     N_AUX,
-    P_BN,
     P_C,
     P_COSLAM,
     P_CS,
@@ -71,6 +70,8 @@ from .kernel import (
     P_G,
     P_HM,
     P_I,
+    P_INVI,
+    P_INVM,
     P_KT,
     P_LAM,
     P_M,
@@ -92,6 +93,7 @@ from .kernel import (
     P_SINLAM,
     P_SINLT,
     P_SPALL,
+    P_TARM,
     P_THOS,
     P_TRIG,
     P_V1C,
@@ -100,6 +102,7 @@ from .kernel import (
     STATE_NAMES,
     ias_aux,
     ias_rhs,
+    ias_rk4,
 )
 
 if TYPE_CHECKING:
@@ -548,9 +551,10 @@ def pack_parameters(params: IasParams, const: IasConstants | None = None) -> NDA
     )
     p[P_SPALL] = 1.0 if params.spall_width > 0.0 else 0.0
     p[P_WEPS] = OMEGA_EPS
-    p[P_BN] = params.rolling_resistance * p[P_RC]  # seed eq. (14)
     p[P_COSLAM], p[P_SINLAM] = math.cos(k.impact_angle), math.sin(k.impact_angle)
     p[P_SINLT] = math.sin(k.impact_angle - k.spall_half_angle)
+    p[P_INVM], p[P_INVI] = 1.0 / params.mass, 1.0 / params.inertia
+    p[P_TARM] = params.rolling_resistance * (p[P_RI] + p[P_RC])  # seed eqs. (14)-(17)
     ang = 2.0 * np.pi * np.arange(Z) / Z
     p[P_TRIG : P_TRIG + Z] = np.cos(ang)
     p[P_TRIG + Z : P_TRIG + 2 * Z] = np.sin(ang)
@@ -628,7 +632,16 @@ def simulate_ias(
     c0 = time.process_time()
     if method == "rk4":
         tr = run_fixed(
-            ias_rhs, ias_aux, y0, p, dt=dt, n_out=n_out, decim=decim, n_aux=N_AUX, bound=1e9
+            ias_rhs,
+            ias_aux,
+            y0,
+            p,
+            dt=dt,
+            n_out=n_out,
+            decim=decim,
+            n_aux=N_AUX,
+            bound=1e9,
+            driver=ias_rk4,
         )
     elif method == "dopri5":
         t_eval = np.arange(n_out) * (decim * dt)
