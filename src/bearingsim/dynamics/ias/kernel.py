@@ -154,12 +154,12 @@ _SC_PI = np.longdouble("3.141592653589793238462643383279502884197169399375105820
 _SC_COS = np.cos(_SC_PI * np.arange(_SC_N, dtype=np.longdouble) / (_SC_N // 2)).astype(float)
 _SC_SIN = np.sin(_SC_PI * np.arange(_SC_N, dtype=np.longdouble) / (_SC_N // 2)).astype(float)
 #: 2 pi/N in two parts (fdlibm's pio2_1 and pio2_1t, e_rem_pio2.c, divided by N/4): the first
-#: has 33 significant bits, so k times it is exact for |k| < 2^20
+#: has 31 significant bits, so k times it is exact for |k| < 2^22, i.e. |angle| < 2.5e4 rad
 _SC_HI = 1.57079632673412561417e00 / (_SC_N // 4)
 _SC_LO = 6.07710050650619224932e-11 / (_SC_N // 4)
 #: 1.5 2^52: x + M - M rounds x to an integer, whose low bits stay in the bits of x + M
 _SC_ROUND = 6755399441055744.0
-#: beyond this |angle| [rad] the libm functions are used (k would exceed 2^20 / 64)
+#: beyond this |angle| [rad] the libm functions are used
 _SC_MAX = 2e4
 
 
@@ -234,7 +234,8 @@ def _forces(y, p, sgn):
     ``theta'``; returns ``(f_x, f_y, resisting torque, M_T, F_T, impact part, sum N,
     n loaded)`` [N], [N m], [-].
 
-    ``y`` is read first and the roller loop is the last read of ``p`` (module docstring).
+    ``y`` is read before any branch and ``p`` is last read outside any branch (module
+    docstring: no reference counting).
     """
     x = y[0]
     yy = y[1]

@@ -36,8 +36,9 @@ Model (each term with its seed equation)
       ``sign(theta')`` (``theta'/sqrt(theta'^2 + w_eps^2)``, ``w_eps`` = 0.01 rad/s): the seed
       assumes ``theta' > 0``; the regularisation only matters at standstill.
 
-The right-hand side (:mod:`.kernel`) is a Numba ``cfunc`` integrated by the shared compiled
-RK4 / Dormand–Prince kernels of :mod:`bearingsim.dynamics.integrate`.
+The compiled right-hand side is in :mod:`.kernel`: RK4 runs through its driver ``ias_rk4`` (the
+shared loop :func:`bearingsim.dynamics.integrate.rk4_inline` with the right-hand side inlined),
+Dormand–Prince through the shared adaptive kernel on the ``ias_rhs`` cfunc.
 """
 
 from __future__ import annotations
