@@ -5,9 +5,14 @@ back). The trajectory-level checks against SciPy are in ``test_ias.py``."""
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import subprocess
+import sys
 from dataclasses import replace
 from decimal import Decimal, localcontext
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -179,3 +184,33 @@ def test_inlined_driver_equals_generic_integrator():
     assert generic.aux[:, 2].max() > 100.0  # the spall crossing is in the 0.03 s
     for name in ("t", "y", "aux"):
         assert np.array_equal(getattr(generic, name), getattr(inlined, name)), name
+
+
+def test_second_process_loads_the_ias_kernels_from_the_cache():
+    """The driver and the cfuncs are cached on disk (their lookup tables are compile-time
+    constants, not dynamic globals): a second process compiles nothing."""
+    code = (
+        "import json\n"
+        "from bearingsim import get_bearing\n"
+        "from bearingsim.dynamics.ias import kernel\n"
+        "from bearingsim.dynamics.ias.model import IasParams, simulate_ias\n"
+        "s = IasParams(get_bearing('NU204-ECP'))\n"
+        "simulate_ias(s, 0.002, 1e-6, 10_000.0)\n"
+        "simulate_ias(s, 0.002, 1e-6, 10_000.0, method='dopri5')\n"
+        "miss = sum(kernel.ias_rk4.stats.cache_misses.values())\n"
+        "hits = [f.cache_hits for f in (kernel.ias_rhs, kernel.ias_aux)]\n"
+        "print(json.dumps({'miss': miss, 'cfunc_hits': hits}))\n"
+    )
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    env = {**os.environ, "PYTHONPATH": src}
+    for _ in range(2):
+        p = subprocess.run(
+            [sys.executable, "-W", "error", "-c", code],
+            capture_output=True,
+            text=True,
+            env=env,
+            timeout=600,
+        )
+        assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout.strip().splitlines()[-1])
+    assert d["miss"] == 0 and all(h >= 1 for h in d["cfunc_hits"]), d
