@@ -31,6 +31,7 @@ from bearingsim.dynamics.ias.model import (
 )
 from bearingsim.dynamics.ias.reference import ReferenceRhs
 from bearingsim.dynamics.integrate import RHS_SIG, run_fixed
+from bearingsim.errors import SolverError
 
 B = get_bearing("NU204-ECP")
 #: roller 1 starts 0.04 rad (cage) before the seed's spall: it crosses it within 0.03 s
@@ -184,6 +185,10 @@ def test_inlined_driver_equals_generic_integrator():
     assert generic.aux[:, 2].max() > 100.0  # the spall crossing is in the 0.03 s
     for name in ("t", "y", "aux"):
         assert np.array_equal(getattr(generic, name), getattr(inlined, name)), name
+    # the driver reports a divergence as the generic loop does: theta passes 1e-3 rad
+    with pytest.raises(SolverError, match="integration diverged at t = .* past its bound"):
+        kw["bound"] = 1e-3
+        run_fixed(kernel.ias_rhs, kernel.ias_aux, y0, p, driver=kernel.ias_rk4, **kw)
 
 
 def test_second_process_loads_the_ias_kernels_from_the_cache():
