@@ -2,8 +2,9 @@
 (seed IAS, Han, Guo & Fan 2025): the 3-DOF model, its SciPy reference, its result and the
 spall-width estimate.
 
-- :mod:`.model` — inputs (:class:`IasParams`), derived constants, the compiled right-hand side,
+- :mod:`.model` — inputs (:class:`IasParams`), derived constants, the packed parameter vector,
   :func:`simulate_ias`.
+- :mod:`.kernel` — the compiled right-hand side (Numba cfuncs) and its parameter layout.
 - :mod:`.reference` — a NumPy/SciPy implementation of the same equations (for checks and
   benchmarks).
 - :mod:`.result` — :class:`IasResult`.

@@ -36,8 +36,9 @@ Model (each term with its seed equation)
       ``sign(theta')`` (``theta'/sqrt(theta'^2 + w_eps^2)``, ``w_eps`` = 0.01 rad/s): the seed
       assumes ``theta' > 0``; the regularisation only matters at standstill.
 
-The right-hand side is a Numba ``cfunc`` integrated by the shared compiled RK4 / Dormand–Prince
-kernels of :mod:`bearingsim.dynamics.integrate`.
+The compiled right-hand side is in :mod:`.kernel`: RK4 runs through its driver ``ias_rk4`` (the
+shared loop :func:`bearingsim.dynamics.integrate.rk4_inline` with the right-hand side inlined),
+Dormand–Prince through the shared adaptive kernel on the ``ias_rhs`` cfunc.
 """
 
 from __future__ import annotations
@@ -49,7 +50,6 @@ from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numba import cfunc, njit
 from numpy.typing import NDArray
 
 from ..._version import __version__
@@ -68,10 +68,78 @@ from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_referenc
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
-from ..integrate import RHS_SIG, run_adaptive, run_fixed
+from ..integrate import run_adaptive, run_fixed
+from .kernel import (
+    AUX_NAMES,
+    N_AUX,
+    P_C,
+    P_COSLAM,
+    P_CS,
+    P_CT,
+    P_DO,
+    P_EPS,
+    P_G,
+    P_HM,
+    P_I,
+    P_INVI,
+    P_INVM,
+    P_KT,
+    P_LAM,
+    P_M,
+    P_MC,
+    P_MU,
+    P_MZ,
+    P_N,
+    P_PHI0,
+    P_PHIC,
+    P_PHIO,
+    P_PHIOS,
+    P_QMAX,
+    P_QMODE,
+    P_QX,
+    P_QY,
+    P_RC,
+    P_RHO,
+    P_RI,
+    P_SINLAM,
+    P_SINLT,
+    P_SPALL,
+    P_TARM,
+    P_THOS,
+    P_TRIG,
+    P_V1C,
+    P_WEPS,
+    P_Z,
+    STATE_NAMES,
+    ias_aux,
+    ias_rhs,
+    ias_rk4,
+)
 
 if TYPE_CHECKING:
     from .result import IasResult
+
+__all__ = [
+    "AUX_NAMES",
+    "GRAVITY",
+    "N_AUX",
+    "OMEGA_EPS",
+    "SEED_SPALL",
+    "STATE_NAMES",
+    "ContactLaw",
+    "IasConstants",
+    "IasParams",
+    "IasResult",
+    "SpallLoad",
+    "check_spall_width",
+    "check_step",
+    "derive_constants",
+    "impact_force",
+    "initial_state",
+    "max_spall_width",
+    "pack_parameters",
+    "simulate_ias",
+]
 
 #: standard gravity in the roller energy balance, seed IAS eq. (21) [m/s^2]
 GRAVITY = 9.80665
@@ -99,149 +167,6 @@ class SpallLoad(enum.Enum):
 
 #: the seed's spall (seed IAS §3.1): 1 mm wide at the bottom of the outer race
 SEED_SPALL = Defect(Race.OUTER, SEED_IAS_SPALL_WIDTH_M, CWRU_DEFECT_DEPTH_M, math.pi)
-
-# ------------------------------------------------------------------ parameter vector offsets
-P_M, P_I, P_CS, P_CT, P_QX, P_QY, P_MZ = 0, 1, 2, 3, 4, 5, 6
-P_KT, P_N, P_C, P_Z, P_RHO, P_PHI0 = 7, 8, 9, 10, 11, 12
-P_RI, P_RC, P_MU, P_PHIOS, P_THOS, P_HM, P_LAM, P_DO = 13, 14, 15, 16, 17, 18, 19, 20
-P_MC, P_V1C, P_G, P_QMODE, P_QMAX, P_EPS, P_PHIO, P_PHIC = 21, 22, 23, 24, 25, 26, 27, 28
-P_SPALL, P_WEPS = 29, 30
-#: cos(2 pi k/Z) for k = 0..Z-1 start here, followed by sin(2 pi k/Z)
-P_TRIG = 32
-#: auxiliary outputs per sample (see :class:`IasResult`)
-AUX_NAMES = (
-    "bearing_torque",
-    "spall_torque",
-    "spall_force",
-    "impact_force",
-    "normal_force_sum",
-    "n_loaded",
-)
-N_AUX = len(AUX_NAMES)
-STATE_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
-
-
-@njit(cache=True, inline="always")
-def _wrap(a):
-    """Angle wrapped to [-pi, pi)."""
-    return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
-
-
-@njit(cache=True)
-def _forces(y, p):
-    """Forces on the inner ring and torques; returns
-    ``(f_x, f_y, resisting torque, M_T, F_T, impact part, sum N, n loaded)``."""
-    x = y[0]
-    yy = y[1]
-    w = y[5]
-    Z = int(p[P_Z])
-    c = p[P_C]
-    Kt = p[P_KT]
-    n = p[P_N]
-    mu = p[P_MU]
-    bn = mu * p[P_RC]  # seed eq. (14)
-    ri = p[P_RI]
-    sgn = w / math.sqrt(w * w + p[P_WEPS] * p[P_WEPS])
-    phi1 = p[P_PHI0] + p[P_RHO] * y[2]  # seed eq. (3), cage driven by the shaft angle
-    c1 = math.cos(phi1)
-    s1 = math.sin(phi1)
-    spall = p[P_SPALL] > 0.0
-    th_os = p[P_THOS]
-    base = _wrap(phi1 - p[P_PHIOS])
-    dphi = 2.0 * math.pi / Z
-    fx = 0.0
-    fy = 0.0
-    torque = 0.0
-    m_t = 0.0
-    f_t = 0.0
-    f_imp = 0.0
-    nsum = 0.0
-    nload = 0.0
-    for k in range(Z):
-        ck = c1 * p[P_TRIG + k] - s1 * p[P_TRIG + Z + k]  # cos(phi_k)
-        sk = s1 * p[P_TRIG + k] + c1 * p[P_TRIG + Z + k]  # sin(phi_k)
-        d0 = x * ck + yy * sk - c  # seed eq. (33) without the spall term
-        dk = d0
-        in_spall = False
-        u = 0.0
-        if spall:
-            u = base + k * dphi
-            if u >= math.pi:
-                u -= 2.0 * math.pi
-            if -th_os <= u <= th_os:  # seed eq. (34)
-                in_spall = True
-                # seed eq. (18): C_d = H_m [1 - sin(pi |u| / (2 Theta_os))]
-                dk = d0 - p[P_HM] * (1.0 - math.sin(0.5 * math.pi * abs(u) / th_os))
-        if dk > 0.0:  # seed eq. (35)
-            nk = Kt * math.exp(n * math.log(dk))  # seed eq. (13); exp/log: faster than pow
-            tk = nk * bn / p[P_RC]  # seed eq. (16), T_ik
-            fx -= nk * ck
-            fy -= nk * sk
-            # T on the ring opposes its surface motion: -sgn T e_t, e_t = (-sin, cos)
-            fx += sgn * tk * sk
-            fy -= sgn * tk * ck
-            torque += ri * tk + bn * nk  # seed eq. (17)
-            nsum += nk
-            nload += 1.0
-        if in_spall:
-            if p[P_QMODE] == 0.0:  # seed eqs. (1)-(2)
-                a = _wrap(p[P_PHIC] - (phi1 + k * dphi))
-                q = 0.0
-                if abs(a) <= p[P_PHIO]:
-                    br = 1.0 - (1.0 - math.cos(a)) / (2.0 * p[P_EPS])
-                    if br > 0.0:
-                        q = p[P_QMAX] * br**n
-            else:
-                q = Kt * d0**n if d0 > 0.0 else 0.0
-            lam = p[P_LAM]
-            sh = math.sin(0.5 * math.pi * abs(u) / th_os)
-            if u < 0.0:  # seed eq. (30), entering half: Q cos(pi u/(2 Theta) + pi/2)
-                ft = q * sh
-                fi = 0.0
-            else:  # leaving half: (Q + F_os cos(lambda)) (1 + sin(pi u/(2 Theta) + pi))
-                # impact force F_os (derived from seed eqs. (21)-(28)), current cage speed
-                v1 = abs(p[P_RHO] * w) * p[P_V1C]
-                v2 = math.sqrt(0.6 * v1 * v1 + 0.8 * p[P_G] * p[P_RC] * (1.0 - math.cos(lam)))
-                fos = 2.0 * p[P_MC] * v1 * v2 / (p[P_RC] * math.cos(lam))
-                # only a loaded roller rides on the outer race and hits the trailing edge
-                fi = fos * math.cos(lam) * (1.0 - sh) if q > 0.0 else 0.0
-                ft = q * (1.0 - sh) + fi
-            # inward along the roller radius, tilted by lambda against the rolling direction
-            cl = math.cos(lam)
-            sl = math.sin(lam) * sgn
-            fx -= ft * (cl * ck - sl * sk)
-            fy -= ft * (cl * sk + sl * ck)
-            m_t += 0.5 * p[P_DO] * ft * math.sin(lam - th_os)  # seed eq. (31)
-            f_t += ft
-            f_imp += fi
-    return fx, fy, torque, m_t, f_t, f_imp, nsum, nload
-
-
-@cfunc(RHS_SIG, cache=True)
-def ias_rhs(t, y, p, dydt):
-    """Right-hand side of seed IAS eq. (32); state ``(x, y, theta, x', y', theta')``."""
-    fx, fy, torque, m_t, _ft, _fi, _ns, _nl = _forces(y, p)
-    w = y[5]
-    sgn = w / math.sqrt(w * w + p[P_WEPS] * p[P_WEPS])
-    dydt[0] = y[3]
-    dydt[1] = y[4]
-    dydt[2] = w
-    dydt[3] = (p[P_QX] - p[P_CS] * y[3] + fx) / p[P_M]
-    dydt[4] = (p[P_QY] - p[P_CS] * y[4] + fy) / p[P_M]
-    dydt[5] = (p[P_MZ] - p[P_CT] * w - sgn * (torque + m_t)) / p[P_I]
-
-
-@cfunc(RHS_SIG, cache=True)
-def ias_aux(t, y, p, out):
-    """Auxiliary outputs :data:`AUX_NAMES`."""
-    _fx, _fy, torque, m_t, ft, fi, ns, nl = _forces(y, p)
-    out[0] = torque
-    out[1] = m_t
-    out[2] = ft
-    out[3] = fi
-    out[4] = ns
-    out[5] = nl
-
 
 # ----------------------------------------------------------------------------- parameters
 
@@ -637,6 +562,10 @@ def pack_parameters(params: IasParams, const: IasConstants | None = None) -> NDA
     )
     p[P_SPALL] = 1.0 if params.spall_width > 0.0 else 0.0
     p[P_WEPS] = OMEGA_EPS
+    p[P_COSLAM], p[P_SINLAM] = math.cos(k.impact_angle), math.sin(k.impact_angle)
+    p[P_SINLT] = math.sin(k.impact_angle - k.spall_half_angle)
+    p[P_INVM], p[P_INVI] = 1.0 / params.mass, 1.0 / params.inertia
+    p[P_TARM] = params.rolling_resistance * (p[P_RI] + p[P_RC])  # seed eqs. (14)-(17)
     ang = 2.0 * np.pi * np.arange(Z) / Z
     p[P_TRIG : P_TRIG + Z] = np.cos(ang)
     p[P_TRIG + Z : P_TRIG + 2 * Z] = np.sin(ang)
@@ -714,7 +643,16 @@ def simulate_ias(
     c0 = time.process_time()
     if method == "rk4":
         tr = run_fixed(
-            ias_rhs, ias_aux, y0, p, dt=dt, n_out=n_out, decim=decim, n_aux=N_AUX, bound=1e9
+            ias_rhs,
+            ias_aux,
+            y0,
+            p,
+            dt=dt,
+            n_out=n_out,
+            decim=decim,
+            n_aux=N_AUX,
+            bound=1e9,
+            driver=ias_rk4,
         )
     elif method == "dopri5":
         t_eval = np.arange(n_out) * (decim * dt)
