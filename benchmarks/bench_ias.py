@@ -6,9 +6,9 @@ Prints
   1. the seed's full case (NU204-ECP, 11 rollers, RK4, dt = 1e-6 s, 10 s = 1e7 steps), warm, for
      every entry point in :func:`seed_case_runs`: CPU time of the integration (``solver.cpu_s``)
      and of the whole call, smallest / median / largest of ``--repeat`` runs;
-  2. the same stepping through the generic ``integrate.rk4_fixed`` (the ``ias_rhs``/``ias_aux``
+  2. the same stepping through the generic ``integrate._rk4_fixed`` (the ``ias_rhs``/``ias_aux``
      cfuncs called through their addresses, as every model can) instead of the IAS driver
-     ``kernel.ias_rk4`` (``integrate.rk4_inline`` with the right-hand side inlined), which
+     ``kernel.ias_rk4`` (``integrate._rk4_inline`` with the right-hand side inlined), which
      ``simulate_ias`` uses: what the inlining saves;
   3. on a 0.05 s span, CPU times: the compiled RK4 against the NumPy right-hand side under
      ``scipy.integrate.solve_ivp`` (RK45, rtol 1e-9, atol 1e-13) and against the same RK4 at
@@ -28,7 +28,7 @@ from collections.abc import Callable
 import numpy as np
 
 from bearingsim import get_bearing
-from bearingsim.dynamics.ias.kernel import ias_aux, ias_rhs
+from bearingsim.dynamics.ias._kernel import ias_aux, ias_rhs
 from bearingsim.dynamics.ias.model import (
     N_AUX,
     IasParams,
@@ -109,7 +109,7 @@ def main() -> None:
     tg = generic(len(r.t), decim)
     wg = (time.process_time() - c0) * scale
     print(
-        f"[2] same steps through the generic rk4_fixed (cfuncs called through their addresses): "
+        f"[2] same steps through the generic _rk4_fixed (cfuncs called through their addresses): "
         f"CPU {wg:.2f} s (10 s case); generic / inlined driver = {wg / med:.2f}; max |state "
         f"diff| {np.abs(tg.y - r.state).max():.2e}"
     )

@@ -1,4 +1,4 @@
-"""The compiled IAS kernel (``bearingsim.dynamics.ias.kernel``): its 10/9 power against exact
+"""The compiled IAS kernel (``bearingsim.dynamics.ias._kernel``): its 10/9 power against exact
 arithmetic, its right-hand side against the NumPy reference state by state, and its compiled
 form free of reference counting (which costs a quarter of the seed case's time when it creeps
 back). The trajectory-level checks against SciPy are in ``test_ias.py``."""
@@ -21,7 +21,7 @@ from numpy.testing import assert_allclose, assert_array_less
 
 from bearingsim import get_bearing
 from bearingsim.contact.pereira import LINE_EXPONENT
-from bearingsim.dynamics.ias import kernel
+from bearingsim.dynamics.ias import _kernel as kernel
 from bearingsim.dynamics.ias.model import (
     N_AUX,
     IasParams,
@@ -175,8 +175,8 @@ def test_compiled_rhs_has_no_reference_counting():
 
 
 def test_inlined_driver_equals_generic_integrator():
-    """``kernel.ias_rk4`` (``integrate.rk4_inline`` with the right-hand side inlined, used by
-    ``simulate_ias``) steps exactly as the generic ``rk4_fixed`` with the cfuncs: same bits."""
+    """``kernel.ias_rk4`` (``integrate._rk4_inline`` with the right-hand side inlined, used by
+    ``simulate_ias``) steps exactly as the generic ``_rk4_fixed`` with the cfuncs: same bits."""
     p = pack_parameters(CROSSING)
     y0 = initial_state(CROSSING)
     kw = dict(dt=1e-6, n_out=61, decim=500, n_aux=N_AUX, bound=1e9)
@@ -197,7 +197,7 @@ def test_second_process_loads_the_ias_kernels_from_the_cache():
     code = (
         "import json\n"
         "from bearingsim import get_bearing\n"
-        "from bearingsim.dynamics.ias import kernel\n"
+        "from bearingsim.dynamics.ias import _kernel as kernel\n"
         "from bearingsim.dynamics.ias.model import IasParams, simulate_ias\n"
         "s = IasParams(get_bearing('NU204-ECP'))\n"
         "simulate_ias(s, 0.002, 1e-6, 10_000.0)\n"

@@ -286,7 +286,7 @@ def test_second_process_does_not_recompile(tmp_path):
         "from bearingsim.dynamics.ring import vsm, tvsm, dem, _balance as balance\n"
         "for m in ('vsm', 'tvsm', 'dem'):\n"
         "    simulate(Scenario(model=m, fault='outer', duration_s=0.002))\n"
-        "miss = sum(sum(d.stats.cache_misses.values()) for d in (integrate.rk4_fixed,\n"
+        "miss = sum(sum(d.stats.cache_misses.values()) for d in (integrate._rk4_fixed,\n"
         "           balance.quasi_static_path, integrate._bad))\n"
         "hits = [k.cache_hits for k in\n"
         "        (vsm._vsm_rhs, vsm._vsm_aux, tvsm._tvsm_rhs, dem._dem_rhs)]\n"

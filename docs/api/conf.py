@@ -9,7 +9,9 @@ from __future__ import annotations
 import os
 import sys
 
-sys.path.insert(0, os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "src")))
+_SRC = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "src"))
+if os.path.isdir(_SRC):  # a build from the repository; else bearingsim from PYTHONPATH/site
+    sys.path.insert(0, _SRC)
 
 import bearingsim  # noqa: E402
 

@@ -11,11 +11,14 @@ They release the GIL (``nogil=True``) while they step, so another thread of the 
 
 Integrators
 -----------
-:func:`rk4_fixed`
+The public entry points are :func:`run_fixed` and :func:`run_adaptive`; the compiled loops
+behind them are private:
+
+``_rk4_fixed``
     Classical 4th-order Runge–Kutta with a fixed step, output every ``decim`` steps.
-:func:`rk4_inline`
+``_rk4_inline``
     The same loop, for a model's own compiled driver with its right-hand side inlined.
-:func:`dopri5`
+``_dopri``
     Dormand–Prince 5(4) embedded pair with step-size control (Hairer, Nørsett & Wanner 1993,
     §II.4 and §II.5), stepping exactly onto the output times; for checking fixed-step results.
 
@@ -37,6 +40,17 @@ from ..errors import SolverError
 #: signature of a model right-hand side / auxiliary output: (t, y, p, out) -> None
 RHS_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], types.float64[::1])
 
+__all__ = [
+    "RHS_SIG",
+    "STATUS_BOUND",
+    "STATUS_NONFINITE",
+    "STATUS_OK",
+    "STATUS_STEP_UNDERFLOW",
+    "Trajectory",
+    "run_adaptive",
+    "run_fixed",
+]
+
 STATUS_OK = 0
 STATUS_NONFINITE = 1
 STATUS_BOUND = 2
@@ -55,19 +69,19 @@ def _bad(y, bound):
 
 
 @njit(inline="always")
-def rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
-    """Fixed-step RK4 (the body of :func:`rk4_fixed`), to inline into a model's own driver.
+def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
+    """Fixed-step RK4 (the body of :func:`_rk4_fixed`), to inline into a model's own driver.
 
     For a model whose ``rhs``/``aux`` are Numba ``njit`` functions (signature of
     :data:`RHS_SIG`, ``inline="always"``) and whose state size ``ny`` is a literal::
 
         @njit(cache=True, nogil=True)
         def driver(y0, t0, dt, n_out, decim, p, bound):
-            return rk4_inline(rhs, aux, y0, NY, t0, dt, n_out, decim, p, N_AUX, bound)
+            return _rk4_inline(rhs, aux, y0, NY, t0, dt, n_out, decim, p, N_AUX, bound)
 
     Numba then inlines the right-hand side into the stepping loop and unrolls the stage updates
     (no call through a function pointer, no array passed per call): the IAS seed case steps
-    1.4 times faster than through :func:`rk4_fixed`, with bit-identical results. The inlined
+    1.4 times faster than through :func:`_rk4_fixed`, with bit-identical results. The inlined
     code is compiled with the driver's options: give the driver the right-hand side's
     ``error_model``. Run it with ``run_fixed(..., driver=driver)``; the driver is compiled once
     per model and cached like any kernel.
@@ -114,15 +128,15 @@ def rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
 
 
 @njit(cache=True, nogil=True)
-def rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound):
+def _rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound):
     """Fixed-step RK4; returns ``(t_out, y_out, aux_out, status, n_done)``.
 
     ``n_out`` output samples, the first at ``t0`` (the initial state), then every ``decim``
     steps of size ``dt``. ``aux`` is called at output samples only (``n_aux`` values).
     ``rhs`` and ``aux`` are cfuncs (:data:`RHS_SIG`), called through their addresses: this one
-    compiled loop serves every model (see :func:`rk4_inline` for a model-specific driver).
+    compiled loop serves every model (see :func:`_rk4_inline` for a model-specific driver).
     """
-    return rk4_inline(rhs, aux, y0, y0.size, t0, dt, n_out, decim, p, n_aux, bound)
+    return _rk4_inline(rhs, aux, y0, y0.size, t0, dt, n_out, decim, p, n_aux, bound)
 
 
 # Dormand-Prince 5(4) tableau (Hairer, Norsett & Wanner 1993, table II.5.2)
@@ -236,7 +250,7 @@ def run_fixed(
     t0: float = 0.0,
     driver=None,
 ) -> Trajectory:
-    """Run :func:`rk4_fixed` (or a model's own ``driver``) and raise :class:`SolverError` on
+    """Run :func:`_rk4_fixed` (or a model's own ``driver``) and raise :class:`SolverError` on
     divergence.
 
     Parameters
@@ -261,13 +275,13 @@ def run_fixed(
     t0 : float
         Initial time [s].
     driver : numba dispatcher, optional
-        ``driver(y0, t0, dt, n_out, decim, p, bound)`` built on :func:`rk4_inline` with the
+        ``driver(y0, t0, dt, n_out, decim, p, bound)`` built on :func:`_rk4_inline` with the
         model's right-hand side and ``n_aux`` auxiliary outputs inlined.
     """
     y0 = np.ascontiguousarray(y0, dtype=float)
     p = np.ascontiguousarray(p, dtype=float)
     if driver is None:
-        t, y, a, status, n_done = rk4_fixed(
+        t, y, a, status, n_done = _rk4_fixed(
             rhs, aux, y0, float(t0), float(dt), int(n_out), int(decim), p, int(n_aux), float(bound)
         )
     else:

@@ -4,7 +4,7 @@ spall-width estimate.
 
 - :mod:`.model` — inputs (:class:`IasParams`), derived constants, the packed parameter vector,
   :func:`simulate_ias`.
-- :mod:`.kernel` — the compiled right-hand side (Numba cfuncs) and its parameter layout.
+- :mod:`._kernel` — the compiled right-hand side (Numba cfuncs) and its parameter layout.
 - :mod:`.reference` — a NumPy/SciPy implementation of the same equations (for checks and
   benchmarks).
 - :mod:`.result` — :class:`IasResult`.

@@ -36,8 +36,8 @@ Model (each term with its seed equation)
       ``sign(theta')`` (``theta'/sqrt(theta'^2 + w_eps^2)``, ``w_eps`` = 0.01 rad/s): the seed
       assumes ``theta' > 0``; the regularisation only matters at standstill.
 
-The compiled right-hand side is in :mod:`.kernel`: RK4 runs through its driver ``ias_rk4`` (the
-shared loop :func:`bearingsim.dynamics.integrate.rk4_inline` with the right-hand side inlined),
+The compiled right-hand side is in :mod:`._kernel`: RK4 runs through its driver ``ias_rk4`` (the
+shared loop :func:`bearingsim.dynamics.integrate._rk4_inline` with the right-hand side inlined),
 Dormand–Prince through the shared adaptive kernel on the ``ias_rhs`` cfunc.
 """
 
@@ -69,7 +69,7 @@ from ...errors import ConfigError, check_positive, check_range
 from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
 from ..integrate import run_adaptive, run_fixed
-from .kernel import (
+from ._kernel import (
     AUX_NAMES,
     N_AUX,
     P_C,

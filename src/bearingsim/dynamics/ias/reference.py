@@ -1,7 +1,7 @@
 """Plain NumPy/SciPy reference of the IAS model (seed IAS eq. (32)) for verification.
 
 An independent, vectorised re-implementation of the right-hand side of
-:func:`bearingsim.dynamics.ias.ias_rhs` (same equations, no shared code beyond the derived
+:func:`bearingsim.dynamics.ias._kernel.ias_rhs` (same equations, no shared code beyond the derived
 constants), integrated with :func:`scipy.integrate.solve_ivp`. It is slow (a Python call per
 right-hand-side evaluation) and exists to check the compiled kernel on short spans and to measure
 the compiled kernel's speed-up (``benchmarks/bench_ias.py``).

@@ -5,7 +5,7 @@ The parameter vector ``p`` is packed by :func:`bearingsim.dynamics.ias.model.pac
 at the offsets ``P_*`` below (SI). :func:`ias_rhs` and :func:`ias_aux` are Numba cfuncs with the
 shared signature :data:`bearingsim.dynamics.integrate.RHS_SIG` (for the adaptive integrator and
 any generic caller); :func:`ias_rk4` is the fixed-step RK4 driver with the same right-hand side
-inlined (:func:`bearingsim.dynamics.integrate.rk4_inline`), bit-identical and 1.4 times faster.
+inlined (:func:`bearingsim.dynamics.integrate._rk4_inline`), bit-identical and 1.4 times faster.
 
 Cost per call (the seed case: 11 rollers, about 5 loaded; 4 calls per RK4 step, 1e7 steps)
     * one ``cos``/``sin`` pair, of roller 1's angle: the roller angles ``phi_k = phi_1 +
@@ -37,9 +37,9 @@ import numpy as np
 from numba import cfunc, njit
 
 from ...contact.pereira import LINE_EXPONENT
-from ..integrate import RHS_SIG, rk4_inline
+from ..integrate import RHS_SIG, _rk4_inline
 
-__all__ = ["AUX_NAMES", "N_AUX", "STATE_NAMES", "ias_aux", "ias_rhs", "ias_rk4"]
+__all__: list[str] = []  # private: the IAS model imports what it needs
 
 # ------------------------------------------------------------------ parameter vector offsets
 P_M = 0  #: inner ring + shaft mass m [kg]
@@ -371,6 +371,6 @@ def _aux_sample(t, y, p, out):
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def ias_rk4(y0, t0, dt, n_out, decim, p, bound):
-    """RK4 of :func:`bearingsim.dynamics.integrate.rk4_inline` with the right-hand side of
-    :func:`ias_rhs` inlined (the driver of ``run_fixed``); same arithmetic as ``rk4_fixed``."""
-    return rk4_inline(_rhs, _aux_sample, y0, 6, t0, dt, n_out, decim, p, N_AUX, bound)
+    """RK4 of :func:`bearingsim.dynamics.integrate._rk4_inline` with the right-hand side of
+    :func:`ias_rhs` inlined (the driver of ``run_fixed``); same arithmetic as ``_rk4_fixed``."""
+    return _rk4_inline(_rhs, _aux_sample, y0, 6, t0, dt, n_out, decim, p, N_AUX, bound)
