@@ -11,6 +11,16 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
+__all__ = [
+    "BearingsimError",
+    "check_positive",
+    "check_range",
+    "ConfigError",
+    "DeprecatedKeyWarning",
+    "read_toml",
+    "SolverError",
+]
+
 
 class BearingsimError(ValueError):
     """Base class of every error bearingsim raises on bad input or an impossible request."""

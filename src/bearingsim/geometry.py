@@ -15,6 +15,27 @@ from dataclasses import dataclass, field
 from .errors import ConfigError, check_positive, check_range
 from .materials import Material
 
+__all__ = [
+    "angular_extent",
+    "BallBearing",
+    "Bearing",
+    "characteristic_frequencies",
+    "CWRU_DEFECT_DEPTH_M",
+    "CWRU_DEFECT_WIDTH_M",
+    "Defect",
+    "defect_at_edge",
+    "defect_geometry",
+    "DefectGeometry",
+    "DefectProfile",
+    "ISO_INNER_CONFORMITY",
+    "ISO_OUTER_CONFORMITY",
+    "KinematicFrequencies",
+    "parse_enum",
+    "Race",
+    "raceway_radius",
+    "RollerBearing",
+]
+
 
 def _set(obj: object, name: str, value: object) -> None:
     object.__setattr__(obj, name, value)

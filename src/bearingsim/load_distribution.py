@@ -37,6 +37,14 @@ from .contact.hertz import element_stiffness
 from .errors import ConfigError, SolverError, check_range
 from .geometry import Bearing
 
+__all__ = [
+    "LoadDistribution",
+    "radial_load_distribution",
+    "RingMotion",
+    "STRIBECK_CONSTANT",
+    "stribeck_qmax",
+]
+
 
 class RingMotion(enum.Enum):
     """Degrees of freedom of the inner ring in the radial-load solution."""

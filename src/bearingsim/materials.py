@@ -6,6 +6,12 @@ from dataclasses import dataclass
 
 from .errors import check_positive, check_range
 
+__all__ = [
+    "BEARING_STEEL",
+    "effective_modulus",
+    "Material",
+]
+
 
 @dataclass(frozen=True)
 class Material:

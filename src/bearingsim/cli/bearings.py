@@ -13,6 +13,11 @@ from ..errors import check_range
 from ..geometry import Bearing, characteristic_frequencies
 from .common import bearing_options, bearing_summary, cli, emit_json, json_option
 
+__all__ = [
+    "bearings_cmd",
+    "info_cmd",
+]
+
 
 @cli.command("bearings")
 @json_option

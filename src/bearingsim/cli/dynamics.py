@@ -16,6 +16,12 @@ from .common import cli, deprecated, emit_json, json_option, output_option
 from .common import scenario_default as _d
 from .rotor import rotor_simulate_options
 
+__all__ = [
+    "analyze_cmd",
+    "simulate_cmd",
+    "vsm_trace_cmd",
+]
+
 _FAULTS = ["none", "outer", "inner"]
 
 

@@ -21,6 +21,11 @@ from ..geometry import BallBearing, Bearing, Race
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
 from .common import bearing_options, cli, deprecated, emit_json, json_option
 
+__all__ = [
+    "contact_cmd",
+    "load_cmd",
+]
+
 
 def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[str, Any]:
     out: dict[str, Any] = {}

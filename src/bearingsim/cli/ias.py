@@ -24,6 +24,11 @@ from .common import (
     scenario_default,
 )
 
+__all__ = [
+    "analyze_ias_cmd",
+    "ias_cmd",
+]
+
 TWO_PI = 2.0 * math.pi
 
 

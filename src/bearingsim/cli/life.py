@@ -13,6 +13,10 @@ from ..errors import ConfigError, check_positive, check_range
 from ..geometry import Bearing
 from .common import bearing_options, cli, deprecated, emit_json, json_option, output_option
 
+__all__ = [
+    "life_cmd",
+]
+
 
 @cli.command("life")
 @bearing_options()

@@ -7,6 +7,10 @@ import click
 from ..report import SECTIONS, run_report
 from .common import cli, deprecated, emit_json, json_option, output_option
 
+__all__ = [
+    "reproduce_cmd",
+]
+
 
 @cli.command("reproduce")
 @click.option("--quick", is_flag=True, help="Reduced-size variants of long computations.")

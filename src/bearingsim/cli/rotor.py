@@ -18,6 +18,12 @@ from ..errors import ConfigError
 from .common import DeferredDefaultOption, cli, deprecated, emit_json, json_option
 from .common import scenario_default as _d
 
+__all__ = [
+    "rotor_modes_cmd",
+    "rotor_options",
+    "rotor_simulate_options",
+]
+
 #: values of :class:`~bearingsim.dynamics.rotor.ShaftMassModel` (checked by the CLI tests; the
 #: enum's module loads the rotor kernels, which ``simulate --model vsm`` does not need)
 _SHAFT_MASS_MODELS = ["lumped", "distributed"]

@@ -21,6 +21,10 @@ from .common import (
     rad_to_deg,
 )
 
+__all__ = [
+    "stiffness_cmd",
+]
+
 
 def _parse_errors(text: str | None) -> list[float] | None:
     """``--ball-errors-deg "E1,E2,..."`` -> the errors in radians."""

@@ -10,6 +10,13 @@ import click
 from ..errors import ConfigError, check_range
 from .common import cli, deprecated, emit_json, json_option, output_option
 
+__all__ = [
+    "plan_cmd",
+    "run_cmd",
+    "summary_cmd",
+    "sweep_group",
+]
+
 
 def _count(name: str, value: int | None, lo: int = 1) -> int | None:
     if value is None:

@@ -24,6 +24,27 @@ from ..errors import ConfigError, check_positive
 from ..geometry import BallBearing, Race, RollerBearing, parse_enum
 from ..materials import effective_modulus
 
+__all__ = [
+    "ball_contact",
+    "ball_race_radii",
+    "ball_stiffness",
+    "combined_stiffness",
+    "element_stiffness",
+    "Ellipticity",
+    "ellipticity",
+    "EllipticMethod",
+    "line_contact",
+    "line_subsurface_stresses",
+    "LineContact",
+    "PALMGREN_C_SI",
+    "point_contact",
+    "PointContact",
+    "roller_contact",
+    "roller_race_radius",
+    "subsurface_stresses",
+    "SubsurfaceStresses",
+]
+
 
 class EllipticMethod(enum.Enum):
     """How the ellipticity and elliptic integrals of a point contact are obtained."""

@@ -52,6 +52,27 @@ from ..geometry import RollerBearing
 from ..materials import effective_modulus
 from .hertz import combined_stiffness
 
+__all__ = [
+    "A1",
+    "A2",
+    "C1",
+    "C2",
+    "external_deflection",
+    "external_radius",
+    "external_stiffness",
+    "half_width",
+    "HALF_WIDTH_COEFF",
+    "internal_deflection",
+    "internal_radius",
+    "internal_stiffness",
+    "LINE_EXPONENT",
+    "normal_force",
+    "power_law_constant",
+    "seed_line_stiffness",
+    "seed_reference_load",
+    "SeedLineStiffness",
+]
+
 #: load–deflection exponent of a line contact, seed IAS eq. (1) and (13) (Palmgren 1959)
 LINE_EXPONENT = 10.0 / 9.0
 #: coefficient of seed IAS eq. (5) (Hertz: sqrt(8/pi) = 1.5958)

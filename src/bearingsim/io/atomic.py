@@ -13,6 +13,12 @@ from typing import IO, Any
 
 from .jsonable import to_jsonable
 
+__all__ = [
+    "atomic_open",
+    "atomic_path",
+    "write_json",
+]
+
 
 @contextlib.contextmanager
 def atomic_path(path: str | Path, suffix: str | None = None) -> Iterator[Path]:

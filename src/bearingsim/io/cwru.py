@@ -11,6 +11,13 @@ import numpy as np
 
 from ..errors import ConfigError
 
+__all__ = [
+    "cwru_data_dir",
+    "CwruRecord",
+    "read_cwru_mat",
+    "SHARED_ENV",
+]
+
 
 @dataclass(frozen=True)
 class CwruRecord:
@@ -34,13 +41,16 @@ class CwruRecord:
     rpm: float | None
 
     def acceleration(self, channel: str = "DE") -> np.ndarray:
-        """Acceleration of ``channel`` in [m/s^2] (CWRU stores g; 1 g = 9.80665 m/s^2)."""
+        """Acceleration of ``channel`` in [m/s^2] (CWRU stores g; ``scipy.constants.g`` =
+        9.80665 m/s^2, the standard acceleration of gravity)."""
+        from scipy.constants import g
+
         ch = channel.upper()
         if ch not in self.channels:
             raise ConfigError(
                 f"channel = {channel!r} not in {self.path.name}; valid: {', '.join(self.channels)}"
             )
-        return self.channels[ch] * 9.80665
+        return self.channels[ch] * g
 
 
 _KEY = re.compile(r"^X(\d+)_(DE|FE|BA)_time$")

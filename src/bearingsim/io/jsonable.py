@@ -8,6 +8,11 @@ from typing import Any
 
 import numpy as np
 
+__all__ = [
+    "dumps_jsonable",
+    "to_jsonable",
+]
+
 
 def to_jsonable(obj: Any) -> Any:
     """Convert NumPy scalars/arrays and tuples to plain JSON types; non-finite floats -> None."""

@@ -24,6 +24,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+__all__ = [
+    "LineContactField",
+    "mcewen_stresses",
+]
+
 
 @dataclass(frozen=True)
 class LineContactField:

@@ -26,6 +26,19 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConfigError, check_positive, check_range
 
+__all__ = [
+    "cycles_to_failure",
+    "damage_rate",
+    "DamageLaw",
+    "fit_sn_curve",
+    "GCR15_TORSION",
+    "integrate_uniform",
+    "SNCurve",
+    "SNFit",
+    "torsion_check",
+    "TorsionCheck",
+]
+
 
 @dataclass(frozen=True)
 class DamageLaw:

@@ -43,6 +43,20 @@ from scipy.sparse.linalg import splu
 from ..errors import ConfigError, SolverError, check_positive, check_range
 from ..materials import Material
 
+__all__ = [
+    "build_mesh",
+    "contact_section",
+    "ContactSection",
+    "core_substructure",
+    "CoreSubstructure",
+    "MESH_PRESETS",
+    "MIN_ELEMENTS_PER_B",
+    "section_spec",
+    "SectionSpec",
+    "SectionStresses",
+    "ShearMeasure",
+]
+
 
 class ShearMeasure(enum.Enum):
     """Which shear-stress range ``Delta_tau`` over one load pass drives damage (seed LIFE

@@ -33,6 +33,33 @@ import numpy as np
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import BallBearing, Bearing, RollerBearing
 
+__all__ = [
+    "B_M_BALL",
+    "B_M_ROLLER",
+    "basic_rating_life",
+    "check_static_load",
+    "cycles_to_revolutions",
+    "dynamic_load_rating",
+    "DynamicRating",
+    "fc_ball",
+    "fc_ball_closed_form",
+    "FC_BALL_TABLE",
+    "fc_roller",
+    "fc_roller_closed_form",
+    "FC_ROLLER_TABLE",
+    "gamma",
+    "inner_race_cycles_per_revolution",
+    "revolutions_to_cycles",
+    "revolutions_to_hours",
+    "static_capacity",
+    "STATIC_LIMIT_FACTOR",
+    "STATIC_STRESS_BALL",
+    "STATIC_STRESS_ROLLER",
+    "StaticCapacity",
+    "StaticCapacityWarning",
+    "STRIBECK_STATIC",
+]
+
 #: ISO 281:2007 table 1: b_m for radial ball bearings (other than filling-slot / insert bearings)
 B_M_BALL = 1.3
 #: ISO 281:2007 table 1: b_m for cylindrical roller bearings

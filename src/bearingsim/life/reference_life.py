@@ -48,6 +48,15 @@ from ..geometry import ISO_OUTER_CONFORMITY as F_O
 from ..geometry import BallBearing, Bearing
 from .iso281 import dynamic_load_rating, gamma
 
+__all__ = [
+    "load_integrals",
+    "LoadIntegrals",
+    "raceway_ratings",
+    "RacewayRatings",
+    "reference_rating_life",
+    "ReferenceLife",
+]
+
 
 @dataclass(frozen=True)
 class LoadIntegrals:

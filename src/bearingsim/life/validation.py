@@ -10,6 +10,11 @@ import numpy as np
 from .analytic import mcewen_stresses
 from .fe import ContactSection, SectionStresses, ShearMeasure
 
+__all__ = [
+    "HertzValidation",
+    "validate_against_hertz",
+]
+
 
 @dataclass(frozen=True)
 class HertzValidation:

@@ -16,6 +16,16 @@ from typing import Literal
 
 from ..io.atomic import write_json
 
+__all__ = [
+    "compare",
+    "Context",
+    "Row",
+    "run_report",
+    "Section",
+    "SECTIONS",
+    "Status",
+]
+
 Status = Literal["match", "explained", "mismatch"]
 
 #: preferred order of the report sections; any other module in ``report/sections`` follows

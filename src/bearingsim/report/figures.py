@@ -10,6 +10,10 @@ matplotlib.use("Agg")
 
 from ..io.atomic import atomic_path  # noqa: E402
 
+__all__ = [
+    "save_figure",
+]
+
 
 def save_figure(fig, path: str | Path, dpi: int = 110) -> Path:
     """Save a Matplotlib figure as PNG atomically and close it; returns the path."""

@@ -8,6 +8,10 @@ from pathlib import Path
 from .._version import __version__
 from ..io.atomic import atomic_open
 
+__all__ = [
+    "write_html",
+]
+
 
 def _fmt(v) -> str:
     if v is None:

@@ -23,6 +23,19 @@ from ..io.jsonable import to_jsonable
 from .spec import SweepSpec
 from .store import ChannelLayout, Layout
 
+__all__ = [
+    "coordinates",
+    "extrapolate",
+    "make_layout",
+    "plan_sweep",
+    "probe_first",
+    "probe_groups",
+    "probe_run",
+    "SweepPlan",
+    "timing_probe",
+    "timing_run",
+]
+
 
 def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
     """Two-sample run of ``scenario``: channel names, units and trailing shapes."""

@@ -60,6 +60,21 @@ import numpy as np
 from ..config import IasScenario, RingScenario, RotorScenario, Scenario, family
 from ..errors import ConfigError, check_range, read_toml
 
+__all__ = [
+    "Axis",
+    "canonical_hash",
+    "Combine",
+    "expand_axis",
+    "MAX_AXIS_VALUES",
+    "MAX_RUNS",
+    "RANDOM_KINDS",
+    "SCENARIO_KEYS",
+    "spec_differences",
+    "SPEC_FORMAT",
+    "SWEEP_KEYS",
+    "SweepSpec",
+]
+
 #: identifies the canonical spec
 SPEC_FORMAT = "bearingsim.SweepSpec/1"
 #: guard on the number of runs of one sweep

@@ -73,6 +73,29 @@ from .._version import __version__
 from ..errors import ConfigError
 from ..io.jsonable import dumps_jsonable, to_jsonable
 
+__all__ = [
+    "ChannelLayout",
+    "claim_path",
+    "CLAIM_PREFIX",
+    "client_lock",
+    "create_dataset",
+    "FAILED",
+    "FORMAT",
+    "Layout",
+    "LOCK_NAME",
+    "OK",
+    "PENDING",
+    "read_attrs",
+    "read_claim",
+    "read_status",
+    "RECORDS_DIR",
+    "remove_stale_temporaries",
+    "RUN_ARRAYS",
+    "RunWriter",
+    "STATUS_NAMES",
+    "write_claim",
+]
+
 #: identifies a sweep dataset (root attribute ``format``)
 FORMAT = "bearingsim.Sweep/1"
 #: values of the ``status`` array

@@ -51,6 +51,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.constants import g as STANDARD_GRAVITY
 
 from ..._version import __version__
 from ...config import (
@@ -141,8 +142,9 @@ __all__ = [
     "simulate_ias",
 ]
 
-#: standard gravity in the roller energy balance, seed IAS eq. (21) [m/s^2]
-GRAVITY = 9.80665
+#: gravity in the roller energy balance, seed IAS eq. (21): the standard g_n = 9.80665 m/s^2
+#: (exact; scipy.constants.g) [m/s^2]
+GRAVITY = STANDARD_GRAVITY
 #: speed scale of the regularised sign of the shaft speed [rad/s]
 OMEGA_EPS = 1e-2
 

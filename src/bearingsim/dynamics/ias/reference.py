@@ -18,6 +18,11 @@ from scipy.integrate import solve_ivp
 
 from .model import GRAVITY, OMEGA_EPS, IasConstants, IasParams, SpallLoad, derive_constants
 
+__all__ = [
+    "ReferenceRhs",
+    "simulate_ias_scipy",
+]
+
 
 class ReferenceRhs:
     """Callable ``f(t, y)`` of seed IAS eq. (32) in NumPy (see module docstring).

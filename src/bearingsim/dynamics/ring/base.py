@@ -31,6 +31,19 @@ from ..integrate import run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
 
+__all__ = [
+    "AUX_NAMES",
+    "integrate_model",
+    "integrate_model_adaptive",
+    "max_frequency",
+    "ModelInputs",
+    "ModelKernel",
+    "n_aux",
+    "N_AUX_FIXED",
+    "RawRun",
+    "static_path",
+]
+
 #: number of fixed auxiliary outputs before the per-ball block
 N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")

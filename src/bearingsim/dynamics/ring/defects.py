@@ -21,6 +21,13 @@ from numpy.typing import ArrayLike, NDArray
 from ...errors import check_range
 from ...geometry import Race
 
+__all__ = [
+    "ball_azimuths",
+    "FAULT_CODE",
+    "in_defect",
+    "retention_factor",
+]
+
 #: integer codes of the defect's raceway inside the compiled kernels (0 = no defect)
 FAULT_CODE = {None: 0, Race.OUTER: 1, Race.INNER: 2}
 

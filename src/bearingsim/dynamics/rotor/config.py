@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from scipy.constants import g as STANDARD_GRAVITY
 
 from ...catalog import get_bearing
 from ...config import (
@@ -34,6 +35,29 @@ from ...geometry import (
     parse_enum,
 )
 
+__all__ = [
+    "Armature",
+    "AUX_NAMES",
+    "BAND_TUNED_HOUSING",
+    "BearingSupport",
+    "config_summary",
+    "cwru_rotor_config",
+    "default_housing",
+    "ENDS",
+    "G0",
+    "Housing",
+    "housing_from_frequency",
+    "RotorConfig",
+    "SEED_DISK_DIAMETER_M",
+    "SEED_ROTOR_MASS_KG",
+    "SEED_SHAFT_DIAMETER_M",
+    "SEED_SHAFT_E_PA",
+    "SEED_SHAFT_LENGTH_M",
+    "SEED_SHAFT_MASS_KG",
+    "Shaft",
+    "ShaftMassModel",
+]
+
 #: seed ROTOR table 2 (CWRU motor): shaft mass, rotor (armature) mass [kg], shaft length,
 #: shaft diameter, disk diameter [m], shaft modulus [Pa]
 SEED_SHAFT_MASS_KG = 0.68
@@ -42,8 +66,8 @@ SEED_SHAFT_LENGTH_M = 203.2e-3
 SEED_SHAFT_DIAMETER_M = 12.53e-3
 SEED_DISK_DIAMETER_M = 46.07e-3
 SEED_SHAFT_E_PA = 206e9
-#: standard gravity [m/s^2]
-G0 = 9.80665
+#: standard acceleration of gravity g_n = 9.80665 m/s^2 (exact; scipy.constants.g) [m/s^2]
+G0 = STANDARD_GRAVITY
 
 AUX_NAMES = ("acc_x_DE", "acc_y_DE", "acc_x_FE", "acc_y_FE")
 ENDS = ("DE", "FE")

@@ -41,6 +41,21 @@ from numpy.typing import ArrayLike, NDArray
 
 from ...errors import ConfigError, check_positive, check_range
 
+__all__ = [
+    "assemble_rotor",
+    "beam_element",
+    "complex_modes",
+    "condense_massless",
+    "craig_bampton",
+    "Disk",
+    "DOF_NAMES",
+    "mesh_nodes",
+    "Modes",
+    "NDOF_NODE",
+    "Reduction",
+    "RotorFE",
+]
+
 #: degrees of freedom per node and their names
 NDOF_NODE = 4
 DOF_NAMES = ("x", "y", "theta_x", "theta_y")

@@ -29,6 +29,11 @@ from ...results import SimulationResult
 from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
 from .model import simulate_rotor
 
+__all__ = [
+    "rotor_config_from_scenario",
+    "run_rotor",
+]
+
 
 def _support(bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario) -> BearingSupport:
     f = None

@@ -15,6 +15,8 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "Foundations (SPEC §0): kinematics, Hertz contact, radial load distribution"
 
 

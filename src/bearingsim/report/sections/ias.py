@@ -21,6 +21,8 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "IAS of a cylindrical roller bearing with an outer-race spall (SPEC §3, seed IAS)"
 SRC = "seed IAS"
 TWO_PI = 2.0 * math.pi

@@ -23,6 +23,8 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import entry, value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "LIFE (SPEC §4): damage-mechanics contact-fatigue life of the 6206; ISO 281 / ISO/TS 16281"
 
 #: seed LIFE table 4: predicted life and the three test bearings [cycles], the seed's errors [%]

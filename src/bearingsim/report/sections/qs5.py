@@ -20,6 +20,8 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "QS5 (SPEC §5): quasi-static 5-DOF stiffness with misalignment and ball-distribution error"
 
 #: radial load [N] and tilts [rad] of the cases; the seed's own values are beyond its cut-off

@@ -13,6 +13,7 @@ from scipy.signal import find_peaks
 from ...config import HOUSING_DAMPING_N_S_M, HOUSING_MASS_KG, HOUSING_STIFFNESS_N_M
 from ...dynamics.rotor.config import (
     BAND_TUNED_HOUSING,
+    G0,
     Armature,
     Shaft,
     ShaftMassModel,
@@ -28,12 +29,13 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "ROTOR: bearing–rotor–housing system with a multi-disk rotor (SPEC §2, seed ROTOR)"
 
 #: envelope band at 12 kHz (shared/data/cwru/SOURCES.md sanity check: 2–5 kHz)
 BAND = (2000.0, 5000.0)
 FS = 12000.0
-G0 = 9.80665
 #: seed ROTOR §3: fault-frequency amplitude from the highest to the lowest disk case [%]
 SEED_DROP_PCT = value("rotor.s3.amplitude_drop")
 RECORD = "12k_Drive_End_OR007@6_2_132.mat"

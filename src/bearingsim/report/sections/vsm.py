@@ -22,6 +22,8 @@ from .. import Context, Row, Section, compare
 from ..figures import save_figure
 from ..published import entry, value
 
+__all__ = ["TITLE", "run"]
+
 TITLE = "VSM / DEM / TVSM fault dynamics and CWRU diagnosis (SPEC §1, seed VSM)"
 
 B6205 = get_bearing("6205")
