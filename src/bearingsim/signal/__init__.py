@@ -18,7 +18,14 @@ May import: errors, geometry, materials, io — never a model family (the IAS sp
 estimate, a model analysis, is :mod:`bearingsim.dynamics.ias.spall`).
 """
 
-from .diagnosis import Diagnosis, DiagnosisRule, analyze_record, diagnose, load_signal
+from .diagnosis import (
+    BandSelection,
+    Diagnosis,
+    DiagnosisRule,
+    analyze_record,
+    diagnose,
+    load_signal,
+)
 from .envelope import EnvelopeKind, check_band, envelope, envelope_spectrum
 from .kurtogram import Kurtogram, fast_kurtogram, kurtogram_levels
 from .order import (
@@ -36,6 +43,7 @@ from .peaks import Peak, SpectralPeak, match_peaks, refine_peak, spectrum_peaks,
 from .spectrum import Domain, Spectrum, amplitude_spectrum
 
 __all__ = [
+    "BandSelection",
     "AngleSignal",
     "Diagnosis",
     "DiagnosisRule",

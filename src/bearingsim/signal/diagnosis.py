@@ -37,6 +37,7 @@ The rule never looks at the file name or the expected answer.
 
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -55,6 +56,7 @@ from .peaks import Peak, match_peaks
 from .spectrum import MIN_SAMPLES, Domain, Spectrum
 
 __all__ = [
+    "BandSelection",
     "FAMILIES",
     "Diagnosis",
     "DiagnosisRule",
@@ -65,6 +67,14 @@ __all__ = [
 ]
 
 FAMILIES = ("outer", "inner", "ball")
+
+
+class BandSelection(enum.Enum):
+    """How the envelope band is chosen when it is not given."""
+
+    #: the band of highest spectral kurtosis among bands wide enough for the fault lines (fast
+    #: kurtogram, Antoni 2007; :func:`.kurtogram.fast_kurtogram`)
+    KURTOGRAM = "auto"
 
 
 @dataclass(frozen=True)
@@ -316,7 +326,7 @@ def diagnose(
     bearing: Bearing,
     shaft_hz: float,
     *,
-    band: tuple[float, float] | str = "auto",
+    band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
     domain: Domain | str = Domain.HZ,
 ) -> Diagnosis:
@@ -332,8 +342,9 @@ def diagnose(
         Geometry for the characteristic frequencies.
     shaft_hz : float
         Shaft frequency [Hz] (1 in the order domain).
-    band : (lo, hi) or "auto"
-        Envelope band [Hz]; ``"auto"`` = fast kurtogram.
+    band : (lo, hi) or BandSelection
+        Envelope band [Hz], or how to choose it (:class:`BandSelection`; ``"auto"`` = the fast
+        kurtogram).
     rule : DiagnosisRule, optional
         Decision rule (default: the documented one).
     domain : Domain
@@ -348,8 +359,8 @@ def diagnose(
     notes: list[str] = []
     kg = None
     kurt = None
-    if isinstance(band, str):
-        if band != "auto":
+    if isinstance(band, str | BandSelection):
+        if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
             raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
         min_bw = rule.n_harmonics * f_max + shaft_hz
         if min_bw > 0.5 * fs:
@@ -475,7 +486,7 @@ def analyze_record(
     rec: SignalRecord,
     bearing: Bearing,
     *,
-    band: tuple[float, float] | str = "auto",
+    band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
     samples_per_rev: int = 512,
 ) -> Diagnosis:
@@ -488,8 +499,9 @@ def analyze_record(
         The signal (:func:`load_signal`).
     bearing : Bearing
         Geometry for the characteristic frequencies.
-    band : (lo, hi) or "auto"
-        Envelope band [Hz] (orders when order tracked); ``"auto"`` = fast kurtogram.
+    band : (lo, hi) or BandSelection
+        Envelope band [Hz] (orders when order tracked), or how to choose it
+        (:class:`BandSelection`; ``"auto"`` = the fast kurtogram).
     rule : DiagnosisRule, optional
         Decision rule.
     samples_per_rev : int

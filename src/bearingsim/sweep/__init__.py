@@ -11,7 +11,7 @@ CLI.
 """
 
 from .dataset import open_dataset
-from .execute import SweepInterrupted, SweepReport, connect, run_sweep
+from .execute import SweepInterrupted, SweepReport, Writer, connect, run_sweep
 from .plan import SweepPlan, plan_sweep
 from .spec import SweepSpec
 
@@ -20,6 +20,7 @@ __all__ = [
     "SweepPlan",
     "SweepReport",
     "SweepSpec",
+    "Writer",
     "connect",
     "open_dataset",
     "plan_sweep",

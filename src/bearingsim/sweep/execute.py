@@ -59,6 +59,7 @@ from __future__ import annotations
 import asyncio
 import concurrent.futures
 import contextlib
+import enum
 import json
 import logging
 import math
@@ -82,6 +83,7 @@ import numpy as np
 from .._version import __version__
 from ..config import Scenario
 from ..errors import BearingsimError, ConfigError, check_range
+from ..geometry import parse_enum
 from ..io.jsonable import to_jsonable
 from .plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
 from .spec import SweepSpec, canonical_hash, spec_differences
@@ -133,6 +135,15 @@ LOCAL_CLUSTER_CONFIG = {
     "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
 }
 _ADDRESS = re.compile(r"^((tcp|tls|ws|wss|ucx)://)?[A-Za-z0-9_.\-\[\]:]+:\d{1,5}$")
+
+
+class Writer(enum.Enum):
+    """Who commits a run's arrays to the dataset."""
+
+    #: the workers, when they can open the dataset (a shared file system); else the client
+    AUTO = "auto"
+    #: always the client (workers send the arrays back)
+    CLIENT = "client"
 
 
 class SweepInterrupted(BearingsimError):
@@ -534,7 +545,7 @@ def run_sweep(
     force_new: bool = False,
     retry_failed: bool = False,
     runs_per_task: int | None = None,
-    writer: str = "auto",
+    writer: Writer | str = "auto",
     progress: bool | Callable[[SweepReport], None] = False,
     connect_timeout_s: float = CONNECT_TIMEOUT_S,
     measure_cpu: bool = False,
@@ -559,8 +570,8 @@ def run_sweep(
         Compute the runs recorded as failed again.
     runs_per_task : int, optional
         Fixed number of runs per Dask task (default: automatic, see the module docstring).
-    writer : {"auto", "client"}
-        ``auto``: workers commit when they see the dataset; ``client``: always the client.
+    writer : Writer or {"auto", "client"}
+        Who commits the runs (:class:`Writer`).
     progress : bool or callable
         ``True``: a tqdm bar on stderr (runs done, failed, ETA); a callable gets the report
         after every finished task.
@@ -576,8 +587,7 @@ def run_sweep(
         Counts and timings. Raises :class:`SweepInterrupted` on Ctrl-C (committed runs kept).
     """
     t_start = time.perf_counter()
-    if writer not in ("auto", "client"):
-        raise ConfigError(f"writer = {writer!r} is invalid; valid: auto, client")
+    writer = parse_enum(Writer, writer, "writer").value  # tasks carry the plain value
     if runs_per_task is not None and (
         isinstance(runs_per_task, bool) or not isinstance(runs_per_task, int) or runs_per_task < 1
     ):
@@ -981,6 +991,7 @@ __all__ = [
     "SweepInterrupted",
     "SweepPlan",
     "SweepReport",
+    "Writer",
     "check_cluster_args",
     "connect",
     "plan_sweep",

@@ -63,11 +63,12 @@ from ...config import (
     SEED_IAS_SPALL_WIDTH_M,
     SEED_IAS_TORQUE_N_M,
     SEED_IAS_TORSIONAL_DAMPING_N_M_S,
+    Solver,
 )
 from ...contact.hertz import element_stiffness
 from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_reference_load
 from ...errors import ConfigError, check_positive, check_range
-from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing
+from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing, parse_enum
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
 from ..integrate import run_adaptive, run_fixed
 from ._kernel import (
@@ -602,7 +603,7 @@ def simulate_ias(
     duration: float = 10.0,
     dt: float = 1e-6,
     output_rate: float = 48_000.0,
-    method: str = "rk4",
+    method: Solver | str = Solver.RK4,
     rtol: float = 1e-9,
     atol: float = 1e-13,
 ) -> IasResult:
@@ -620,7 +621,7 @@ def simulate_ias(
         Requested output sample rate [Hz]; the output interval is ``decim dt`` with
         ``decim = max(1, round(1/(output_rate dt)))``; the run covers at least ``duration``
         (up to ``decim - 1`` extra steps).
-    method : {"rk4", "dopri5"}
+    method : Solver or {"rk4", "dopri5"}
         Fixed-step RK4 (the seed's solver) or adaptive Dormand–Prince 5(4) as a check.
     rtol, atol : float
         ``dopri5`` tolerances [-], [state units].
@@ -637,8 +638,7 @@ def simulate_ias(
             f"{decim * dt:.3g} s; valid range [{decim * dt:.3g}, inf) s"
         )
     n_out = -(-n_steps // decim) + 1  # covers at least ``duration``
-    if method not in ("rk4", "dopri5"):
-        raise ConfigError(f"method = {method!r} is not valid; valid: 'rk4', 'dopri5'")
+    method = parse_enum(Solver, method, "solver").value
     p = pack_parameters(params, const)
     y0 = initial_state(params)
     t0 = time.perf_counter()

@@ -17,6 +17,7 @@ frequencies of the rotor alone) and :func:`simulate_rotor` -> :class:`RotorRespo
 
 from __future__ import annotations
 
+import enum
 import math
 import time
 from collections.abc import Callable
@@ -27,6 +28,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares, root
 
 from ..._version import __version__
+from ...config import Solver
 from ...contact.hertz import ball_contact
 from ...errors import ConfigError, SolverError, check_positive, check_range
 from ...geometry import (
@@ -34,6 +36,7 @@ from ...geometry import (
     Race,
     characteristic_frequencies,
     defect_geometry,
+    parse_enum,
 )
 from ..integrate import run_adaptive, run_fixed
 from . import _kernel as rk
@@ -61,6 +64,7 @@ from .response import RotorResponse
 
 __all__ = [
     "PackedModel",
+    "Supports",
     "RotorAssembly",
     "RotorModes",
     "build_fe",
@@ -192,6 +196,16 @@ def build_rotor(config: RotorConfig, cutoff_hz: float = math.inf) -> RotorAssemb
 
 
 @dataclass(frozen=True)
+class Supports(enum.Enum):
+    """Boundary conditions of the rotor alone in :func:`rotor_modes`."""
+
+    #: bearing nodes held in x and y (simply supported)
+    PINNED = "pinned"
+    #: free-free rotor
+    FREE = "free"
+
+
+@dataclass
 class RotorModes:
     """Natural frequencies of the rotor alone.
 
@@ -201,8 +215,8 @@ class RotorModes:
         Natural frequencies [Hz], ascending.
     whirl : ndarray of str
         Whirl direction per mode (``forward``/``backward``/``planar``).
-    supports : str
-        ``"pinned"`` (bearing nodes held in x and y) or ``"free"``.
+    supports : Supports
+        Pinned bearing nodes or a free-free rotor.
     speed_rpm : float
         Speed used for the gyroscopic terms [r/min].
     n_dof : int
@@ -211,12 +225,13 @@ class RotorModes:
 
     frequency_hz: NDArray[np.float64]
     whirl: NDArray[np.str_]
-    supports: str
+    supports: Supports
     speed_rpm: float
     n_dof: int
 
 
-def rotor_modes(config: RotorConfig, supports: str = "pinned", speed_rpm: float = 0.0,
+def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
+                speed_rpm: float = 0.0,
                 n_modes: int = 8) -> RotorModes:  # fmt: skip
     """Natural frequencies of the rotor alone (no bearings, no housings).
 
@@ -224,20 +239,19 @@ def rotor_modes(config: RotorConfig, supports: str = "pinned", speed_rpm: float 
     ----------
     config : RotorConfig
         Rotor data (shaft, armature, mesh).
-    supports : {"pinned", "free"}
+    supports : Supports or {"pinned", "free"}
         Bearing nodes held in x and y (simply supported) or a free-free rotor.
     speed_rpm : float
         Spin speed for the gyroscopic coupling [r/min] (>= 0).
     n_modes : int
         Number of frequencies returned.
     """
-    if supports not in ("pinned", "free"):
-        raise ConfigError(f"supports = {supports!r} is invalid; valid: pinned, free")
+    supports = parse_enum(Supports, supports, "supports")
     spin = check_range("speed_rpm", speed_rpm, 0.0, unit="r/min") * math.pi / 30.0
     fe = build_fe(config)
     last = fe.n_nodes - 1
     fixed = []
-    if supports == "pinned":
+    if supports is Supports.PINNED:
         fixed = [fe.dof(0, "x"), fe.dof(0, "y"), fe.dof(last, "x"), fe.dof(last, "y")]
     free = np.setdiff1d(np.arange(fe.n_dof), fixed)
     M = fe.M[np.ix_(free, free)]
@@ -530,7 +544,7 @@ def simulate_rotor(
     dt: float | None = None,
     ball_forces: bool = False,
     antialias: bool = True,
-    method: str = "rk4",
+    method: Solver | str = Solver.RK4,
     rtol: float = 1e-8,
     atol: float = 1e-13,
     progress: Callable[[int], None] | None = None,
@@ -556,7 +570,7 @@ def simulate_rotor(
         q-th sample (:func:`scipy.signal.decimate`, zero-phase FIR, cut-off at the output
         Nyquist frequency); the other outputs are sampled without filtering. ``False`` samples the
         model's acceleration directly (content above ``sample_rate/2`` then aliases).
-    method : {"rk4", "dopri5"}
+    method : Solver or {"rk4", "dopri5"}
         Compiled fixed-step RK4 (default) or adaptive Dormand–Prince 5(4) with ``rtol``,
         ``atol`` (for checking).
     progress : callable, optional
@@ -570,8 +584,7 @@ def simulate_rotor(
 
     duration = check_positive("duration_s", duration, "s")
     fs = check_positive("sample_rate_hz", sample_rate, "Hz")
-    if method not in ("rk4", "dopri5"):
-        raise ConfigError(f"method = {method!r} is invalid; valid: rk4, dopri5")
+    method = parse_enum(Solver, method, "solver").value
     cutoff = config.mode_cutoff_hz or fs
     t_wall = time.perf_counter()
     model = pack_model(config, cutoff, ball_forces)
