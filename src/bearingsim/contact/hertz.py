@@ -23,6 +23,7 @@ from scipy.special import ellipe, ellipk
 from ..errors import ConfigError, check_positive
 from ..geometry import BallBearing, Race, RollerBearing, parse_enum
 from ..materials import effective_modulus
+from ..signal.peaks import refine_peak
 
 __all__ = [
     "ball_contact",
@@ -364,15 +365,8 @@ def subsurface_stresses(contact: PointContact, nu: float, index: int = 0) -> Sub
     s = np.vstack([Sx, Sy, Sz])
     tau = 0.5 * (s.max(axis=0) - s.min(axis=0))
     i = int(np.argmax(tau))
-    # parabolic refinement of the maximum
-    if 0 < i < len(zs) - 1:
-        y0, y1, y2 = tau[i - 1], tau[i], tau[i + 1]
-        den = y0 - 2 * y1 + y2
-        dz = 0.5 * (y0 - y2) / den if den != 0 else 0.0
-        tmax = y1 - 0.25 * (y0 - y2) * dz
-        zmax = zs[i] + dz * (zs[1] - zs[0])
-    else:
-        tmax, zmax = tau[i], zs[i]
+    dz, tmax = refine_peak(tau, i)  # parabolic refinement of the maximum (uniform depths)
+    zmax = zs[i] + dz * (zs[1] - zs[0])
     t0, z0 = _lundberg_palmgren(1.0 / k)
     return SubsurfaceStresses(
         depth=zs * b,

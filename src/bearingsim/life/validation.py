@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..signal.peaks import parabola_vertex
 from .analytic import mcewen_stresses
 from .fe import ContactSection, SectionStresses, ShearMeasure
 
@@ -59,21 +60,6 @@ class HertzValidation:
         return self.depth_fe / self.depth_exact - 1.0
 
 
-def _quad_peak(x0, x1, x2, y0, y1, y2):
-    """Vertex of the parabola through three points (x_i, y_i); falls back to the middle one."""
-    A = np.array([[x0 * x0, x0, 1.0], [x1 * x1, x1, 1.0], [x2 * x2, x2, 1.0]])
-    try:
-        a, bb, c = np.linalg.solve(A, [y0, y1, y2])
-    except np.linalg.LinAlgError:
-        return x1, y1
-    if a >= 0:
-        return x1, y1
-    xv = -bb / (2 * a)
-    if not (min(x0, x2) <= xv <= max(x0, x2)):
-        return x1, y1
-    return xv, c - bb * bb / (4 * a)
-
-
 def validate_against_hertz(
     section: ContactSection, stresses: SectionStresses | None = None
 ) -> HertzValidation:
@@ -93,13 +79,13 @@ def validate_against_hertz(
     depth, tpeak = cz[i], abs(tau[i])
     if 0 < j < col.size - 1:
         ids = col[j - 1 : j + 2]
-        depth, tpeak = _quad_peak(*cz[ids], *(sgn * tau[ids]))
+        depth, tpeak = parabola_vertex(cz[ids], sgn * tau[ids])
     row = np.flatnonzero(np.isclose(cz, cz[i], rtol=0, atol=1e-3 * section.spec.element_size))
     row = row[np.argsort(cx[row])]
     j = int(np.flatnonzero(row == i)[0])
     if 0 < j < row.size - 1:
         ids = row[j - 1 : j + 2]
-        _, tx = _quad_peak(*cx[ids], *(sgn * tau[ids]))
+        _, tx = parabola_vertex(cx[ids], sgn * tau[ids])
         tpeak = tpeak + (tx - abs(tau[i]))
     sel = (np.abs(cx) <= 3 * b) & (cz <= 3 * b)
     exact = mcewen_stresses(cx[sel], cz[sel], p0, b).tau_xz

@@ -22,6 +22,7 @@ from ..errors import ConfigError, check_positive
 from .spectrum import Domain, Spectrum
 
 __all__ = [
+    "parabola_vertex",
     "Peak",
     "SpectralPeak",
     "match_peaks",
@@ -62,6 +63,41 @@ def refine_peak(y: NDArray[np.float64], i: int, *, log: bool = False) -> tuple[f
     d = min(max(d, -0.5), 0.5)
     h = float(y1 - 0.25 * (y0 - y2) * d)
     return d, math.exp(h) if log else h
+
+
+def parabola_vertex(
+    x: tuple[float, float, float], y: tuple[float, float, float]
+) -> tuple[float, float]:
+    """Vertex ``(x_v, y_v)`` of the parabola through three points with any spacing, for a
+    maximum between them (the general form of :func:`refine_peak`, for samples that are not on a
+    uniform grid, e.g. element centroids of a mesh).
+
+    Parameters
+    ----------
+    x : (float, float, float)
+        Abscissae, ascending or descending (any unit).
+    y : (float, float, float)
+        Values at ``x`` (any unit).
+
+    Returns
+    -------
+    (float, float)
+        The vertex; the middle point when the parabola opens upwards, is singular, or its vertex
+        falls outside ``[min(x), max(x)]``.
+    """
+    x0, x1, x2 = (float(v) for v in x)
+    y0, y1, y2 = (float(v) for v in y)
+    A = np.array([[x0 * x0, x0, 1.0], [x1 * x1, x1, 1.0], [x2 * x2, x2, 1.0]])
+    try:
+        a, bb, c = np.linalg.solve(A, [y0, y1, y2])
+    except np.linalg.LinAlgError:
+        return x1, y1
+    if a >= 0:
+        return x1, y1
+    xv = -bb / (2 * a)
+    if not (min(x0, x2) <= xv <= max(x0, x2)):
+        return x1, y1
+    return xv, c - bb * bb / (4 * a)
 
 
 @dataclass(frozen=True)
