@@ -1,5 +1,7 @@
 """Bearing catalogue: one TOML file per bearing (with its source), plus user files.
 
+May import: :mod:`bearingsim.errors`, :mod:`~bearingsim.geometry`, :mod:`~bearingsim.materials`.
+
 User files use exactly the keys below (SI units, suffix names the unit); any other key is an error.
 
 =============================  ===========  =================================================

@@ -7,6 +7,9 @@ line-contact field), :mod:`.fe` (scikit-fem plane-strain section under a moving 
 :class:`LifeResult`), :mod:`.iso281` (ISO 281 rating, static capacity, cycle/revolution/hour
 conversions), :mod:`.reference_life` (ISO/TS 16281 reference rating life from the load
 distribution).
+
+May import: errors, io, geometry, materials, catalog, signal, results, contact,
+load_distribution; never another model family.
 """
 
 from .damage import GCR15_TORSION, DamageLaw, SNCurve, fit_sn_curve, torsion_check

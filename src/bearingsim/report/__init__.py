@@ -1,7 +1,12 @@
 """The reproduction report: published numbers beside ours, with figures.
 
-Each section (``report/sections/<name>.py``) exposes ``TITLE`` and ``run(ctx) -> Section``. The
-report writes ``results.json`` (list of rows), the PNG figures and ``report.html``.
+Each section (``report/sections/<name>.py``, one per seed paper: foundation, vsm, qs5, ias, life,
+rotor) exposes ``TITLE`` and ``run(ctx) -> Section``. The report writes ``results.json`` (list of
+rows), the PNG figures and ``report.html``; the published numbers it compares with are data
+(:mod:`.published`, ``published.toml``).
+
+May import every layer below it (the model families, simulation, signal, io); only the CLI
+imports it.
 """
 
 from __future__ import annotations
