@@ -62,16 +62,19 @@ class Solver(enum.Enum):
 MAX_SAMPLES = 50_000_000
 
 # ------------------------------------------------------------------ literature defaults
-#: seed VSM table 1: vibrating mass of an outer-race (also healthy) / inner-race case [kg]
+#: seed VSM table 1: vibrating mass of an outer-race (also healthy) case [kg]
 SEED_VSM_MASS_OUTER_KG = 0.063
+#: seed VSM table 1: vibrating mass of an inner-race case [kg]
 SEED_VSM_MASS_INNER_KG = 0.045
 #: seed VSM table 1 / Petersen et al. (2015): equivalent damping c_eq [N s/m]
 SEED_VSM_DAMPING_N_S_M = 300.0
-#: seed VSM table 1: radial force on the inner ring [N], shaft speed [r/min], defect left edge
-#: beta_0 [deg]
+#: seed VSM table 1: radial force on the inner ring along x [N]
 SEED_VSM_FX_N = 10.0
+#: seed VSM table 1: radial force on the inner ring along y [N]
 SEED_VSM_FY_N = 50.0
+#: seed VSM table 1: shaft speed [r/min]
 SEED_VSM_RPM = 1750.0
+#: seed VSM table 1: the defect's left edge at t = 0, beta_0 [deg]
 SEED_VSM_DEFECT_EDGE_DEG = 10.0
 #: shaft speed of the ring and rotor scenarios unless given [r/min]: seed VSM table 1
 DEFAULT_RPM = SEED_VSM_RPM
@@ -86,9 +89,11 @@ DEFAULT_RPM = SEED_VSM_RPM
 #: doi:10.3384/ecp21181373), whose simulated signals are compared with the CWRU records. The
 #: numbers were read from the authors' published model (test-bearing parameters mp, kp, cp);
 #: see docs/models.md (ROTOR, "Housings"). Mount frequency sqrt(k/m)/2pi = 240 Hz, damping
-#: ratio 0.110.
+#: ratio 0.110. Mass [kg]:
 HOUSING_MASS_KG = 6.638
+#: the housing mount's stiffness, X and Y (same source as :data:`HOUSING_MASS_KG`) [N/m]
 HOUSING_STIFFNESS_N_M = 1.51e7
+#: the housing mount's damping, X and Y (same source as :data:`HOUSING_MASS_KG`) [N s/m]
 HOUSING_DAMPING_N_S_M = 2210.7
 #: damping of each ball–race contact [N s/m] (seed ROTOR eq. (11) ``C_v``; the seed gives no
 #: value: an assumption, see docs/models.md)
@@ -96,18 +101,23 @@ CONTACT_DAMPING_N_S_M = 50.0
 #: seed ROTOR: the rotor mass carried by 9 equal disks
 SEED_ROTOR_DISKS = 9
 
-#: seed IAS §3.1 case (NU204-ECP): motor torque [N m], radial load F_y (downward) [N], inner ring
-#: and shaft mass [kg], radial damping C_s [N s/m], torsional damping C_T [N m s/rad],
-#: rolling-resistance coefficient mu [-] (eq. (14)), spall width L_d [m], RK4 step [s] and
-#: simulated time [s]
+#: seed IAS §3.1 (NU204-ECP): motor torque M_z [N m]
 SEED_IAS_TORQUE_N_M = 9.54
+#: seed IAS §3.1: radial load F_y, pushing the shaft down [N]
 SEED_IAS_FY_N = 400.0
+#: seed IAS §3.1: inner ring and shaft mass m [kg]
 SEED_IAS_MASS_KG = 1.3
+#: seed IAS §3.1: radial damping C_s [N s/m]
 SEED_IAS_RADIAL_DAMPING_N_S_M = 400.0
+#: seed IAS §3.1: torsional damping C_T [N m s/rad]
 SEED_IAS_TORSIONAL_DAMPING_N_M_S = 1.52
+#: seed IAS §3.1, eq. (14): rolling-resistance coefficient mu [-]
 SEED_IAS_ROLLING_RESISTANCE = 0.0015
+#: seed IAS §3.1: spall width L_d [m]
 SEED_IAS_SPALL_WIDTH_M = 1e-3
+#: seed IAS §3.1: RK4 step [s]
 SEED_IAS_DT_S = 1e-6
+#: seed IAS §3.1: simulated time [s]
 SEED_IAS_DURATION_S = 10.0
 #: output sample rate of the IAS model unless given [Hz]: 20 seed steps per sample
 IAS_FS_HZ = 50_000.0
