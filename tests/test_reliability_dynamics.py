@@ -328,3 +328,51 @@ def test_ctrl_c_leaves_nothing(tmp_path):
     lines = [ln for ln in text.splitlines() if ln.strip() and "simulate dem" not in ln]
     assert lines == ["error: aborted"], text
     assert sorted(q.name for q in tmp_path.iterdir()) == ["stderr.txt"]
+
+
+# ------------------------------------------------------------------ properties
+def test_ring_checks_property():
+    """Any ring scenario with finite or absurd numbers is either planned within the budget or
+    refused with a one-line BearingsimError before any work (no other exception, no hang)."""
+    hyp = pytest.importorskip("hypothesis")
+    st = pytest.importorskip("hypothesis.strategies")
+    from bearingsim.config import Scenario
+    from bearingsim.errors import BearingsimError
+    from bearingsim.simulation import validate_scenario
+
+    big = st.one_of(
+        st.floats(allow_nan=True, allow_infinity=True),
+        st.sampled_from([0.0, -1.0, 1e-30, 1e30, 1e300]),
+        st.floats(1e-3, 1e5),
+    )
+    keys = st.fixed_dictionaries(
+        {},
+        optional={
+            "model": st.sampled_from(["vsm", "dem", "tvsm"]),
+            "fault": st.sampled_from(["none", "outer", "inner"]),
+            "rpm": big,
+            "fx_n": big,
+            "fy_n": big,
+            "defect_depth_m": big,
+            "defect_width_m": big,
+            "stiffness_n_per_m1_5": big,
+            "mass_kg": big,
+            "clearance_m": big,
+            "fs_hz": big,
+            "duration_s": st.floats(1e-4, 1e3),
+        },
+    )
+
+    @hyp.settings(max_examples=60, deadline=None, derandomize=True)
+    @hyp.given(keys)
+    def check(kw):
+        try:
+            est = validate_scenario(Scenario.from_dict(kw), Budget(max_memory=4 * GB))
+        except BearingsimError as exc:
+            assert "\n" not in str(exc).strip()
+            return
+        assert est.steps <= 1e9 and est.memory <= 4 * GB
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # speed and overload warnings are allowed here
+        check()
