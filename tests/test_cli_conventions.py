@@ -43,6 +43,7 @@ SUFFIX = {
     "kg": "-kg",
     "kg m": "-kg-m",
     "Pa": "-pa",
+    "GB": "-gb",
 }
 #: option names that are not lower-case kebab: E is the usual symbol of Young's modulus
 MIXED_CASE = {"--E-pa", "--shaft-E-pa"}

@@ -77,8 +77,9 @@ def test_defect_drop_small_width_limit(race):
 def test_defect_depth_limits_drop():
     g = defect_geometry(B6205, Defect("outer", 1e-3, 1e-7))
     assert g.h_min == pytest.approx(1e-7, rel=1e-15), "eq. (1): h_min = min(h_d, h_s)"
-    gi = defect_geometry(B6205, Defect("inner", 1e-3, 1.0))
-    go = defect_geometry(B6205, Defect("outer", 1e-3, 1.0))
+    # 2 mm: deeper than either drop, within both ring walls (2.53 and 3.03 mm; issue 14)
+    gi = defect_geometry(B6205, Defect("inner", 1e-3, 2e-3))
+    go = defect_geometry(B6205, Defect("outer", 1e-3, 2e-3))
     assert go.h_s < gi.h_s, "outer (concave) raceway lets the ball drop less than inner (eq. 2)"
 
 

@@ -213,11 +213,14 @@ class Scenario:
         s(self, "solver", parse_enum(Solver, self.solver, "solver"))
         s(self, "duration_s", check_positive("duration_s", self.duration_s, "s"))
         s(self, "fs_hz", check_positive("fs_hz", self.fs_hz, "Hz"))
-        n = round(self.duration_s * self.fs_hz)
-        if n < 2 or n > MAX_SAMPLES:
+        n = self.duration_s * self.fs_hz
+        if not 2 <= round(n) <= MAX_SAMPLES:
             raise ConfigError(
-                f"duration_s * fs_hz = {self.duration_s * self.fs_hz:.6g} samples is out of "
-                f"range; valid range [2, {MAX_SAMPLES}] samples"
+                f"duration_s = {self.duration_s:.6g} s at fs_hz = {self.fs_hz:.6g} Hz gives "
+                f"{n:.6g} output samples; valid range [2, {MAX_SAMPLES:.6g}] samples: duration_s "
+                f"in [{2 / self.fs_hz:.6g}, {MAX_SAMPLES / self.fs_hz:.6g}] s at this fs_hz, or "
+                f"fs_hz in [{2 / self.duration_s:.6g}, {MAX_SAMPLES / self.duration_s:.6g}] Hz at "
+                "this duration_s"
             )
         if self.dt_s is not None:
             dt = check_positive("dt_s", self.dt_s, "s")

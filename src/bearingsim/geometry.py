@@ -20,6 +20,7 @@ __all__ = [
     "BallBearing",
     "Bearing",
     "characteristic_frequencies",
+    "check_defect_depth",
     "CWRU_DEFECT_DEPTH_M",
     "CWRU_DEFECT_WIDTH_M",
     "Defect",
@@ -33,6 +34,7 @@ __all__ = [
     "parse_enum",
     "Race",
     "raceway_radius",
+    "ring_wall",
     "RollerBearing",
 ]
 
@@ -461,10 +463,38 @@ def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
     else:
         rr = bearing.outer_raceway_radius
         h_s = ball_chord - (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), outer
-    h_min = min(defect.depth, h_s)  # seed VSM eq. (1)
+    check_defect_depth(bearing, defect)
+    h_min = min(defect.depth, h_s)  # seed VSM eq. (1): a deeper defect is not touched
     dbeta = 2.0 * math.asin(b / (2.0 * rr))  # seed VSM eq. (3)
     edge = defect.angle - 0.5 * dbeta
     return DefectGeometry(defect.race, rr, h_s, h_min, dbeta, edge)
+
+
+def ring_wall(bearing: Bearing, race: Race | str) -> float:
+    """Thickness of the ring under the raceway of ``race`` [m]: ``r_i - bore/2`` (inner) or
+    ``D_out/2 - r_o`` (outer) from the bearing's envelope; the element diameter when the bearing
+    gives no bore or outer diameter."""
+    race = parse_enum(Race, race, "fault_race")
+    if race is Race.INNER and bearing.bore is not None:
+        return bearing.inner_raceway_radius - 0.5 * bearing.bore
+    if race is Race.OUTER and bearing.outer_diameter is not None:
+        return 0.5 * bearing.outer_diameter - bearing.outer_raceway_radius
+    return bearing.element_diameter
+
+
+def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
+    """Refuse a defect at least as deep as the ring's wall under its raceway
+    (:func:`ring_wall`): it would cut the ring through. A depth beyond the element's drop is
+    valid (the element does not reach the bottom, seed VSM eq. (1)). Returns the depth [m]."""
+    wall = ring_wall(bearing, defect.race)
+    known = bearing.bore is not None and bearing.outer_diameter is not None
+    if defect.depth >= wall:
+        what = "ring wall" if known else "element diameter (no bore/outer diameter given)"
+        raise ConfigError(
+            f"defect_depth_m = {defect.depth:.6g} m is not less than the {defect.race.value} "
+            f"{what} {wall:.6g} m of {bearing.id}; valid range (0, {wall:.6g}) m"
+        )
+    return defect.depth
 
 
 def raceway_radius(bearing: Bearing, race: Race) -> float:

@@ -20,16 +20,18 @@ from pathlib import Path
 from typing import Any
 
 from .config import Model, Scenario
+from .dynamics.budget import Budget, Estimate
 from .errors import ConfigError
 
-#: model -> (module, runner, validator): ``runner(scenario, progress) -> SimulationResult``;
-#: ``validator(scenario)`` builds the model's inputs without running (bad values raise)
+#: model -> (module, runner, checker): ``runner(scenario, progress, budget, allow_overload) ->
+#: SimulationResult``; ``checker(scenario, budget, allow_overload) -> Estimate`` checks every
+#: input and the resources without running (bad values raise)
 _RUNNERS: dict[Model, tuple[str, str, str]] = {
-    Model.VSM: ("bearingsim.dynamics.ring.scenario", "run_ring", "model_inputs"),
-    Model.DEM: ("bearingsim.dynamics.ring.scenario", "run_ring", "model_inputs"),
-    Model.TVSM: ("bearingsim.dynamics.ring.scenario", "run_ring", "model_inputs"),
-    Model.ROTOR: ("bearingsim.dynamics.rotor.scenario", "run_rotor", "rotor_config_from_scenario"),
-    Model.IAS: ("bearingsim.dynamics.ias.scenario", "run_ias", "ias_params"),
+    Model.VSM: ("bearingsim.dynamics.ring.scenario", "run_ring", "check_ring"),
+    Model.DEM: ("bearingsim.dynamics.ring.scenario", "run_ring", "check_ring"),
+    Model.TVSM: ("bearingsim.dynamics.ring.scenario", "run_ring", "check_ring"),
+    Model.ROTOR: ("bearingsim.dynamics.rotor.scenario", "run_rotor", "check_rotor"),
+    Model.IAS: ("bearingsim.dynamics.ias.scenario", "run_ias", "check_ias"),
 }
 
 #: the models :func:`simulate` runs
@@ -56,15 +58,22 @@ def as_scenario(scenario: Scenario | dict[str, Any] | str | Path) -> Scenario:
     return scenario
 
 
-def validate_scenario(scenario: Scenario) -> None:
-    """Build the model's inputs from ``scenario`` without running it, so that bad values raise
-    their one-line :class:`ConfigError` before any output is written."""
-    _entry(scenario.model, 1)(scenario)
+def validate_scenario(
+    scenario: Scenario, budget: Budget | None = None, allow_overload: bool = False
+) -> Estimate:
+    """Check ``scenario`` without running it — every input, the load against the bearing's
+    static capacity, the speed, and the memory and step estimate against ``budget`` — so that
+    bad values raise their one-line :class:`ConfigError` before any work or output; returns the
+    resource :class:`~bearingsim.dynamics.budget.Estimate`."""
+    return _entry(scenario.model, 1)(scenario, budget, allow_overload)
 
 
 def simulate(
     scenario: Scenario | dict[str, Any] | str | Path,
     progress: Callable[[int], None] | None = None,
+    *,
+    budget: Budget | None = None,
+    allow_overload: bool = False,
 ):
     """Run one simulation of any model family.
 
@@ -75,6 +84,13 @@ def simulate(
         keys or a TOML path; ``model`` chooses the family).
     progress : callable, optional
         Called with the number of output samples done (for progress bars).
+    budget : Budget, optional
+        Memory [B] and step limits of the run (:class:`bearingsim.dynamics.budget.Budget`;
+        default: half the available memory, 10^9 steps); a run whose estimate exceeds it is
+        refused before it starts.
+    allow_overload : bool
+        Run a radial load above twice the bearing's static capacity C0 (ISO 76) instead of
+        refusing it (a warning is given above C0 either way).
 
     Returns
     -------
@@ -86,7 +102,7 @@ def simulate(
         for ``model = "ias"`` an :class:`~bearingsim.dynamics.ias.result.IasResult`.
     """
     scenario = as_scenario(scenario)
-    return _entry(scenario.model, 0)(scenario, progress)
+    return _entry(scenario.model, 0)(scenario, progress, budget, allow_overload)
 
 
 __all__ = ["MODELS", "as_scenario", "simulate", "validate_scenario"]

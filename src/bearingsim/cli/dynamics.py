@@ -14,6 +14,7 @@ from ..config import Model, Solver
 from ..errors import ConfigError, check_range
 from .common import cli, deprecated, emit_json, json_option, output_option
 from .common import scenario_default as _d
+from .limits import budget_options, overload_option, printed_warnings
 from .rotor import rotor_simulate_options
 
 __all__ = [
@@ -240,9 +241,18 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     help="Set any scenario key of the model's family (repeatable), e.g. --set "
     "spall_width_m=2e-3 for --model ias; VALUE is a TOML value.",
 )
+@overload_option
+@budget_options()
 @output_option("Output file (netCDF-4).", required=True)
 @json_option
-def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: Any) -> None:
+def simulate_cmd(
+    scenario_file: str | None,
+    output: str,
+    as_json: bool,
+    budget: Any,
+    allow_overload: bool,
+    **kw: Any,
+) -> None:
     """Simulate a (faulty) bearing and write a self-describing netCDF file.
 
     Options override the keys of SCENARIO.toml (see bearingsim.config for the keys).
@@ -252,7 +262,9 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     from ..simulation import simulate, validate_scenario
 
     sc = _scenario(scenario_file, kw)
-    validate_scenario(sc)  # everything checked before any output (no progress bar before an error)
+    seen: set[str] = set()
+    with printed_warnings(seen):  # everything checked before any work or output
+        validate_scenario(sc, budget, allow_overload)
     t0 = time.perf_counter()
     bar = tqdm(
         total=sc.n_samples,
@@ -270,7 +282,8 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
         last[0] = n
 
     try:
-        res = simulate(sc, progress=progress)
+        with printed_warnings(seen):
+            res = simulate(sc, progress=progress, budget=budget, allow_overload=allow_overload)
     finally:
         bar.close()
     res.save(output)
@@ -322,6 +335,8 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
     help="Also plot this ball's stiffness/force/deformation (seed VSM figs. 9, 11) "
     "to PLOT with suffix _ballN.",
 )
+@overload_option
+@budget_options(steps=False)
 @json_option
 def vsm_trace_cmd(
     output: str | None,
@@ -331,13 +346,17 @@ def vsm_trace_cmd(
     step_deg: float,
     first_ball_deg: float,
     ball: int | None,
+    budget: Any,
+    allow_overload: bool,
     **kw: Any,
 ) -> None:
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
     import numpy as np
 
+    from ..dynamics.budget import check_budget
+    from ..dynamics.checks import check_load
     from ..dynamics.ring.scenario import model_inputs
-    from ..dynamics.ring.trace import stiffness_trace
+    from ..dynamics.ring.trace import stiffness_trace, trace_estimate
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o/--output OUT.csv, --plot PNG and/or --json")
@@ -352,6 +371,9 @@ def vsm_trace_cmd(
     n = int(round(360.0 * revs / step)) + 1
     if n > 2_000_000:
         raise ConfigError(f"cage_revs/step_deg = {n} points is too many; valid range [2, 2e6]")
+    with printed_warnings():
+        check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload)
+    check_budget(trace_estimate(inputs, n), budget)
     tr = stiffness_trace(inputs, np.radians(np.linspace(0.0, 360.0 * revs, n)))
     if output:
         tr.to_csv(output)
@@ -449,6 +471,7 @@ def analyze_cmd(
     """
     from ..catalog import resolve_bearing
     from ..signal import analyze_record, load_signal
+    from ..signal.diagnosis import check_resolvable
 
     path, band_v = _parse_band(inputs, band)
     if rpm is not None:
@@ -456,6 +479,8 @@ def analyze_cmd(
     if fs_hz is not None:
         check_range("fs_hz", fs_hz, 0.0, lo_open=True, unit="Hz")
     rec = load_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
+    if fs_hz is not None or rpm is not None:  # the record must resolve the lines at fs and rpm
+        check_resolvable(rec)
     if bearing_id or bearing_file:
         bearing = resolve_bearing(bearing_id, bearing_file)
     elif rec.bearing is not None:

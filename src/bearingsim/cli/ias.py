@@ -23,6 +23,7 @@ from .common import (
     output_option,
     scenario_default,
 )
+from .limits import budget_options, overload_option, printed_warnings
 
 __all__ = [
     "analyze_ias_cmd",
@@ -222,6 +223,8 @@ def _default(key: str) -> dict[str, Any]:
     default=None,
     help="Write a PNG: IAS vs angle, order spectrum, spall estimate.",
 )
+@overload_option
+@budget_options()
 @json_option
 def ias_cmd(
     scenario: str | None,
@@ -230,6 +233,8 @@ def ias_cmd(
     out: str,
     plot: str | None,
     as_json: bool,
+    budget: Any,
+    allow_overload: bool,
     **opts: Any,
 ) -> None:
     """Simulate the 3-DOF IAS model of seed IAS (NU204-ECP, outer-race spall) and analyse the
@@ -237,8 +242,12 @@ def ias_cmd(
 
     The analysis is in the angle domain (order spectrum, spall-width estimate); SCENARIO is an
     IAS scenario file whose keys the options override."""
+    import sys
+
+    from tqdm import tqdm
+
     from ..config import IasScenario
-    from ..dynamics.ias.scenario import read_scenario, run_ias
+    from ..dynamics.ias.scenario import check_ias, read_scenario, run_ias
 
     settings: dict[str, Any] = read_scenario(scenario) if scenario else {}
     if bearing_id is not None or bearing_file is not None:
@@ -254,7 +263,16 @@ def ias_cmd(
     settings = {k: v for k, v in settings.items() if v is not None}
     settings["model"] = "ias"
     sc = IasScenario.from_dict(settings, origin=Path(scenario).name if scenario else "options")
-    res = run_ias(sc)
+    seen: set[str] = set()
+    with printed_warnings(seen):  # everything checked before any work or output
+        check_ias(sc, budget, allow_overload)
+    bar = tqdm(total=sc.n_samples, desc="ias", unit="sample", disable=as_json, leave=False,
+               delay=1.0, file=sys.stderr)  # fmt: skip
+    try:
+        with printed_warnings(seen):
+            res = run_ias(sc, lambda n: bar.update(n - bar.n), budget, allow_overload)
+    finally:
+        bar.close()
     params = res.params
     summary = res.analyze(sc.skip_s)
     if plot:

@@ -17,6 +17,7 @@ import click
 from ..errors import ConfigError
 from .common import DeferredDefaultOption, cli, deprecated, emit_json, json_option
 from .common import scenario_default as _d
+from .limits import budget_options
 
 __all__ = [
     "rotor_modes_cmd",
@@ -308,9 +309,15 @@ def rotor_options(f: Callable) -> Callable:
 )
 @click.option("--rpm", type=float, default=0.0, help="Spin speed [r/min].")
 @click.option("--n-modes", type=int, default=8, help="Number of modes [-].")
+@budget_options(steps=False)
 @json_option
 def rotor_modes_cmd(
-    rotor_kw: dict[str, Any], supports: str, rpm: float, n_modes: int, as_json: bool
+    rotor_kw: dict[str, Any],
+    supports: str,
+    rpm: float,
+    n_modes: int,
+    as_json: bool,
+    budget: Any,
 ) -> None:
     """Natural frequencies of the CWRU rotor alone (seed ROTOR table 2 by default)."""
     from ..dynamics.rotor.config import cwru_rotor_config
@@ -319,7 +326,7 @@ def rotor_modes_cmd(
     if n_modes < 1:
         raise ConfigError(f"n_modes = {n_modes} is out of range; valid range [1, inf)")
     cfg = cwru_rotor_config(**rotor_kw)
-    m = rotor_modes(cfg, supports=supports, speed_rpm=rpm, n_modes=n_modes)
+    m = rotor_modes(cfg, supports=supports, speed_rpm=rpm, n_modes=n_modes, budget=budget)
     out = {
         "supports": supports,
         "speed_rpm": rpm,

@@ -42,6 +42,7 @@ RHS_SIG = types.void(types.float64, types.float64[::1], types.float64[::1], type
 
 __all__ = [
     "RHS_SIG",
+    "call_compiled",
     "STATUS_BOUND",
     "STATUS_NONFINITE",
     "STATUS_OK",
@@ -69,15 +70,15 @@ def _bad(y, bound):
 
 
 @njit(inline="always")
-def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
+def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound, k0=0):
     """Fixed-step RK4 (the body of :func:`_rk4_fixed`), to inline into a model's own driver.
 
     For a model whose ``rhs``/``aux`` are Numba ``njit`` functions (signature of
     :data:`RHS_SIG`, ``inline="always"``) and whose state size ``ny`` is a literal::
 
         @njit(cache=True, nogil=True)
-        def driver(y0, t0, dt, n_out, decim, p, bound):
-            return _rk4_inline(rhs, aux, y0, NY, t0, dt, n_out, decim, p, N_AUX, bound)
+        def driver(y0, t0, dt, n_out, decim, p, bound, k0):
+            return _rk4_inline(rhs, aux, y0, NY, t0, dt, n_out, decim, p, N_AUX, bound, k0)
 
     Numba then inlines the right-hand side into the stepping loop and unrolls the stage updates
     (no call through a function pointer, no array passed per call): the IAS seed case steps
@@ -85,6 +86,10 @@ def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
     code is compiled with the driver's options: give the driver the right-hand side's
     ``error_model``. Run it with ``run_fixed(..., driver=driver)``; the driver is compiled once
     per model and cached like any kernel.
+
+    Times are ``t0 + dt k`` with the step number ``k`` counted from ``k0``: a run split into
+    pieces that each start at ``k0`` = the steps done before, with ``t0`` the same for all,
+    has the same times, hence the same bits, as one run (``k0 = 0`` is the plain run).
     """
     t_out = np.empty(n_out)
     y_out = np.empty((n_out, ny))
@@ -96,7 +101,7 @@ def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
     k4 = np.empty(ny)
     yt = np.empty(ny)
     av = np.empty(max(n_aux, 1))
-    t = t0
+    t = t0 if k0 == 0 else t0 + dt * k0
     status = _bad(y, bound)
     h2 = 0.5 * dt
     h6 = dt / 6.0
@@ -115,7 +120,7 @@ def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
                 rhs(t + dt, yt, p, k4)
                 for j in range(ny):
                     y[j] += h6 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
-                t = t0 + dt * ((i - 1) * decim + _s + 1)
+                t = t0 + dt * (k0 + (i - 1) * decim + _s + 1)
             status = _bad(y, bound)
         t_out[i] = t
         y_out[i] = y
@@ -128,7 +133,7 @@ def _rk4_inline(rhs, aux, y0, ny, t0, dt, n_out, decim, p, n_aux, bound):
 
 
 @njit(cache=True, nogil=True)
-def _rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound):
+def _rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound, k0):
     """Fixed-step RK4; returns ``(t_out, y_out, aux_out, status, n_done)``.
 
     ``n_out`` output samples, the first at ``t0`` (the initial state), then every ``decim``
@@ -136,7 +141,7 @@ def _rk4_fixed(rhs, aux, y0, t0, dt, n_out, decim, p, n_aux, bound):
     ``rhs`` and ``aux`` are cfuncs (:data:`RHS_SIG`), called through their addresses: this one
     compiled loop serves every model (see :func:`_rk4_inline` for a model-specific driver).
     """
-    return _rk4_inline(rhs, aux, y0, y0.size, t0, dt, n_out, decim, p, n_aux, bound)
+    return _rk4_inline(rhs, aux, y0, y0.size, t0, dt, n_out, decim, p, n_aux, bound, k0)
 
 
 # Dormand-Prince 5(4) tableau (Hairer, Norsett & Wanner 1993, table II.5.2)
@@ -226,6 +231,22 @@ class Trajectory:
     n_steps: int
 
 
+def call_compiled(kernel, *args):
+    """``kernel(*args)`` for a compiled (Numba) function, with Ctrl-C seen as itself: a SIGINT
+    that arrives while a ``nogil`` kernel runs leaves Python's ``KeyboardInterrupt`` pending when
+    the kernel returns, which CPython reports as ``SystemError`` ("returned a result with an
+    exception set") with the interrupt as its cause; this raises the ``KeyboardInterrupt``."""
+    try:
+        return kernel(*args)
+    except SystemError as exc:
+        cause: BaseException | None = exc
+        while isinstance(cause, SystemError):  # Numba may nest them (a callback it was in)
+            cause = cause.__cause__
+        if isinstance(cause, KeyboardInterrupt):
+            raise KeyboardInterrupt from None
+        raise
+
+
 def _fail(status: int, t: float, dt: float | None) -> SolverError:
     cause = {
         STATUS_NONFINITE: "the state became non-finite",
@@ -249,6 +270,7 @@ def run_fixed(
     bound: float = 1e3,
     t0: float = 0.0,
     driver=None,
+    k0: int = 0,
 ) -> Trajectory:
     """Run :func:`_rk4_fixed` (or a model's own ``driver``) and raise :class:`SolverError` on
     divergence.
@@ -275,18 +297,22 @@ def run_fixed(
     t0 : float
         Initial time [s].
     driver : numba dispatcher, optional
-        ``driver(y0, t0, dt, n_out, decim, p, bound)`` built on :func:`_rk4_inline` with the
-        model's right-hand side and ``n_aux`` auxiliary outputs inlined.
+        ``driver(y0, t0, dt, n_out, decim, p, bound, k0)`` built on :func:`_rk4_inline` with
+        the model's right-hand side and ``n_aux`` auxiliary outputs inlined.
+    k0 : int
+        Steps done before this piece of a longer run: times are ``t0 + dt (k0 + k)``
+        (:func:`_rk4_inline`).
     """
     y0 = np.ascontiguousarray(y0, dtype=float)
     p = np.ascontiguousarray(p, dtype=float)
     if driver is None:
-        t, y, a, status, n_done = _rk4_fixed(
-            rhs, aux, y0, float(t0), float(dt), int(n_out), int(decim), p, int(n_aux), float(bound)
-        )
+        t, y, a, status, n_done = call_compiled(
+            _rk4_fixed, rhs, aux, y0, float(t0), float(dt), int(n_out), int(decim), p,
+            int(n_aux), float(bound), int(k0),
+        )  # fmt: skip
     else:
-        t, y, a, status, n_done = driver(
-            y0, float(t0), float(dt), int(n_out), int(decim), p, float(bound)
+        t, y, a, status, n_done = call_compiled(
+            driver, y0, float(t0), float(dt), int(n_out), int(decim), p, float(bound), int(k0)
         )
     if status != STATUS_OK:
         raise _fail(status, float(t[n_done - 1]), dt)
@@ -311,7 +337,8 @@ def run_adaptive(
     y0 = np.ascontiguousarray(y0, dtype=float)
     p = np.ascontiguousarray(p, dtype=float)
     te = np.ascontiguousarray(t_eval, dtype=float)
-    y, a, status, n_done, n_steps = _dopri(
+    y, a, status, n_done, n_steps = call_compiled(
+        _dopri,
         rhs,
         aux,
         y0,

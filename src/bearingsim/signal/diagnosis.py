@@ -55,12 +55,19 @@ from .order import Interpolation, angle_from_speed, resample_to_angle
 from .peaks import Peak, match_peaks
 from .spectrum import MIN_SAMPLES, Domain, Spectrum
 
+#: shaft revolutions a record must cover for its envelope spectrum to resolve the fault lines
+#: (line spacing ``f_r / 4``, a quarter of the shaft-frequency sidebands of the inner-race and
+#: ball lines) [-]
+MIN_REVOLUTIONS = 4
+
 __all__ = [
     "BandSelection",
     "FAMILIES",
     "Diagnosis",
     "DiagnosisRule",
+    "MIN_REVOLUTIONS",
     "analyze_record",
+    "check_resolvable",
     "diagnose",
     "find_lines",
     "load_signal",
@@ -378,7 +385,7 @@ def diagnose(
     else:
         band_t = check_band(tuple(band), fs)
     es = envelope_spectrum(x, fs, band_t, domain=domain)
-    if es.resolution > 0.25 * shaft_hz:
+    if es.resolution > shaft_hz / MIN_REVOLUTIONS:
         notes.append(
             f"record too short: resolution {es.resolution:.3g} > f_r/4; cannot resolve "
             "the fault lines"
@@ -444,6 +451,35 @@ def diagnose(
 
 
 # --------------------------------------------------------------------------- signal files
+
+
+def check_resolvable(rec: SignalRecord) -> SignalRecord:
+    """Refuse a record that, at its sample rate and shaft speed, covers fewer than
+    :data:`MIN_REVOLUTIONS` shaft revolutions: its envelope spectrum (resolution ``fs / n``)
+    cannot separate the fault lines and :func:`diagnose` could only answer "uncertain". The
+    one-line :class:`~bearingsim.errors.ConfigError` gives the valid range of each of the two.
+    Records with a per-sample speed are order tracked and not checked here.
+
+    Parameters
+    ----------
+    rec : SignalRecord
+        The record (:func:`load_signal`).
+    """
+    if rec.rpm is None:
+        return rec
+    n = rec.x.size
+    shaft_hz = rec.rpm / 60.0
+    span = n / rec.fs
+    need = MIN_REVOLUTIONS / shaft_hz
+    if span >= need:
+        return rec
+    raise ConfigError(
+        f"fs_hz = {rec.fs:.6g} Hz and rpm = {rec.rpm:.6g} r/min: the {n} samples of "
+        f"{Path(rec.source).name!r} last {span:.3g} s, shorter than the {MIN_REVOLUTIONS} shaft "
+        f"revolutions ({need:.3g} s) the envelope spectrum needs to resolve the fault lines; "
+        f"valid range fs_hz in (0, {n * shaft_hz / MIN_REVOLUTIONS:.6g}] Hz at this rpm, or rpm "
+        f"in [{60.0 * MIN_REVOLUTIONS / span:.6g}, inf) r/min at this fs_hz"
+    )
 
 
 def load_signal(

@@ -36,6 +36,13 @@ def check_band(band: tuple[float, float], fs: float) -> tuple[float, float]:
     lo, hi = float(band[0]), float(band[1])
     nyq = 0.5 * fs
     check_range("band_hz low", lo, 0.0, unit="Hz")
+    if lo >= nyq:
+        raise ConfigError(
+            f"band_hz low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
+            f"fs_hz = {fs:.6g} Hz (fs too low for the requested band); valid range "
+            f"[0, {nyq:.6g}) Hz"
+        )
+    check_range("band_hz high", hi, unit="Hz")
     if hi > nyq:
         raise ConfigError(
             f"band_hz high = {hi:.6g} Hz is above the Nyquist frequency of fs_hz = {fs:.6g} Hz "

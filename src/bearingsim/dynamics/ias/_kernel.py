@@ -370,7 +370,7 @@ def _aux_sample(t, y, p, out):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def ias_rk4(y0, t0, dt, n_out, decim, p, bound):
+def ias_rk4(y0, t0, dt, n_out, decim, p, bound, k0):
     """RK4 of :func:`bearingsim.dynamics.integrate._rk4_inline` with the right-hand side of
     :func:`ias_rhs` inlined (the driver of ``run_fixed``); same arithmetic as ``_rk4_fixed``."""
-    return _rk4_inline(_rhs, _aux_sample, y0, 6, t0, dt, n_out, decim, p, N_AUX, bound)
+    return _rk4_inline(_rhs, _aux_sample, y0, 6, t0, dt, n_out, decim, p, N_AUX, bound, k0)

@@ -46,6 +46,7 @@ from __future__ import annotations
 import enum
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -70,7 +71,8 @@ from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_referenc
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing, parse_enum
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
-from ..integrate import run_adaptive, run_fixed
+from ..budget import F8, Budget, Estimate, check_budget
+from ..integrate import Trajectory, run_adaptive, run_fixed
 from ._kernel import (
     AUX_NAMES,
     N_AUX,
@@ -136,6 +138,7 @@ __all__ = [
     "check_spall_width",
     "check_step",
     "derive_constants",
+    "ias_estimate",
     "impact_force",
     "initial_state",
     "max_spall_width",
@@ -598,6 +601,64 @@ def check_step(params: IasParams, dt: float, const: IasConstants | None = None) 
     return dt
 
 
+def _rk4_chunked(p, y0, dt: float, n_out: int, decim: int, progress) -> Trajectory:
+    """RK4 of the IAS model in pieces of about :data:`MAX_CHUNK_STEPS` steps, bit-identical to
+    one call (same ``t0 = 0``, the step count carried in ``k0``)."""
+    per = max(1, MAX_CHUNK_STEPS // decim)  # output intervals per piece
+    t_all = np.empty(n_out)
+    y_all = np.empty((n_out, len(STATE_NAMES)))
+    a_all = np.empty((n_out, N_AUX))
+    y = y0
+    i = 0
+    while True:
+        m = min(per, n_out - 1 - i) + 1  # samples of this piece, its first = the last done
+        tr = run_fixed(ias_rhs, ias_aux, y, p, dt=dt, n_out=m, decim=decim, n_aux=N_AUX,
+                       bound=1e9, driver=ias_rk4, k0=i * decim)  # fmt: skip
+        t_all[i : i + m] = tr.t
+        y_all[i : i + m] = tr.y
+        a_all[i : i + m] = tr.aux
+        y = tr.y[-1].copy()
+        i += m - 1
+        if progress is not None:
+            progress(i + 1)
+        if i >= n_out - 1:
+            break
+    return Trajectory(t_all, y_all, a_all, "rk4", (n_out - 1) * decim)
+
+
+#: largest number of RK4 steps in one compiled call of :func:`simulate_ias` [-]: the run is split
+#: into pieces of about this many steps (bit-identical to one call, see
+#: :func:`bearingsim.dynamics.integrate._rk4_inline`), between which progress is reported and
+#: Ctrl-C is seen; 2^22 steps take about a second
+MAX_CHUNK_STEPS = 1 << 22
+
+
+def ias_estimate(n_out: int, decim: int) -> Estimate:
+    """Memory [B] and RK4 steps of an IAS run with ``n_out`` output samples of ``decim`` steps:
+    times, states and auxiliary outputs, their copy in the result's dataset and the arrays of
+    the angle-domain analysis (about as many again)."""
+    per_sample = (1 + len(STATE_NAMES) + N_AUX) * F8
+    what = f"ias: {n_out} samples x {decim} RK4 steps"
+    return Estimate(what, 3.0 * n_out * per_sample, float(n_out - 1) * decim)
+
+
+def _grid(duration: float, dt: float, rate: float) -> tuple[int, int, int]:
+    """``(decim, n_steps, n_out)`` of :func:`simulate_ias`; counts far beyond any budget are
+    capped (:data:`MAX_COUNT`) so that they stay exact integers."""
+    decim = max(1, int(round(min(1.0 / (rate * dt), MAX_COUNT))))
+    n_steps = int(round(min(duration / dt, MAX_COUNT)))
+    if n_steps < decim:
+        raise ConfigError(
+            f"duration_s = {duration:.6g} s is shorter than one output interval "
+            f"{decim * dt:.3g} s; valid range [{decim * dt:.3g}, inf) s"
+        )
+    return decim, n_steps, -(-n_steps // decim) + 1  # covers at least ``duration``
+
+
+#: count beyond which steps or samples are counted as this many (far beyond any budget) [-]
+MAX_COUNT = float(2**62)
+
+
 def simulate_ias(
     params: IasParams,
     duration: float = 10.0,
@@ -606,6 +667,8 @@ def simulate_ias(
     method: Solver | str = Solver.RK4,
     rtol: float = 1e-9,
     atol: float = 1e-13,
+    progress: Callable[[int], None] | None = None,
+    budget: Budget | None = None,
 ) -> IasResult:
     """Integrate the IAS model of seed IAS eq. (32) (seed: RK4, dt = 1e-6 s, 10 s).
 
@@ -625,37 +688,26 @@ def simulate_ias(
         Fixed-step RK4 (the seed's solver) or adaptive Dormand–Prince 5(4) as a check.
     rtol, atol : float
         ``dopri5`` tolerances [-], [state units].
+    progress : callable, optional
+        Called with the number of output samples done after each piece of
+        :data:`MAX_CHUNK_STEPS` steps (RK4; ``dopri5`` runs in one call).
+    budget : Budget, optional
+        Memory [B] and step limits (:class:`bearingsim.dynamics.budget.Budget`): the run is
+        refused before it starts when :func:`ias_estimate` exceeds them.
     """
     duration = check_positive("duration_s", duration, "s")
     rate = check_positive("output_rate_hz", output_rate, "Hz")
     const = derive_constants(params)
     dt = check_step(params, dt, const)
-    decim = max(1, int(round(1.0 / (rate * dt))))
-    n_steps = int(round(duration / dt))
-    if n_steps < decim:
-        raise ConfigError(
-            f"duration_s = {duration:.6g} s is shorter than one output interval "
-            f"{decim * dt:.3g} s; valid range [{decim * dt:.3g}, inf) s"
-        )
-    n_out = -(-n_steps // decim) + 1  # covers at least ``duration``
+    decim, n_steps, n_out = _grid(duration, dt, rate)
     method = parse_enum(Solver, method, "solver").value
+    check_budget(ias_estimate(n_out, decim), budget)
     p = pack_parameters(params, const)
     y0 = initial_state(params)
     t0 = time.perf_counter()
     c0 = time.process_time()
     if method == "rk4":
-        tr = run_fixed(
-            ias_rhs,
-            ias_aux,
-            y0,
-            p,
-            dt=dt,
-            n_out=n_out,
-            decim=decim,
-            n_aux=N_AUX,
-            bound=1e9,
-            driver=ias_rk4,
-        )
+        tr = _rk4_chunked(p, y0, dt, n_out, decim, progress)
     elif method == "dopri5":
         t_eval = np.arange(n_out) * (decim * dt)
         tr = run_adaptive(
@@ -670,6 +722,8 @@ def simulate_ias(
             hmax=decim * dt,
             bound=1e9,
         )
+        if progress is not None:
+            progress(n_out)
     else:
         raise ConfigError(f"method = {method!r} is not valid; valid: 'rk4', 'dopri5'")
     wall = time.perf_counter() - t0

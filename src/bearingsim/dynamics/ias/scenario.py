@@ -23,12 +23,24 @@ from typing import TYPE_CHECKING, Any
 from ...catalog import resolve_bearing
 from ...config import IasScenario
 from ...errors import ConfigError, read_toml
-from .model import SEED_SPALL, ContactLaw, IasParams, SpallLoad, check_step, simulate_ias
+from ..budget import Budget, Estimate, check_budget
+from ..checks import check_load, check_speed
+from .model import (
+    MAX_COUNT,
+    SEED_SPALL,
+    ContactLaw,
+    IasParams,
+    SpallLoad,
+    _grid,
+    check_step,
+    ias_estimate,
+    simulate_ias,
+)
 
 if TYPE_CHECKING:
     from .result import IasResult
 
-__all__ = ["ias_params", "output_grid", "read_scenario", "run_ias"]
+__all__ = ["check_ias", "ias_params", "output_grid", "read_scenario", "run_ias"]
 
 
 def ias_params(sc: IasScenario) -> IasParams:
@@ -62,19 +74,46 @@ def ias_params(sc: IasScenario) -> IasParams:
 
 def output_grid(sc: IasScenario) -> tuple[int, float]:
     """RK4 steps per output sample and the step [s] (module docstring)."""
-    decim = max(1, round(1.0 / (sc.fs_hz * sc.dt_s)))
+    decim = max(1, round(min(1.0 / (sc.fs_hz * sc.dt_s), MAX_COUNT)))
     return decim, 1.0 / (sc.fs_hz * decim)
 
 
-def run_ias(sc: IasScenario, progress: Callable[[int], None] | None = None) -> IasResult:
-    """Run an IAS scenario (the runner behind :func:`bearingsim.simulate`): ``n_samples``
-    output samples at ``fs_hz`` from ``t = 0`` (``progress`` is not called: the run is one
-    compiled call)."""
+def check_ias(
+    sc: IasScenario, budget: Budget | None = None, allow_overload: bool = False
+) -> Estimate:
+    """Check an IAS scenario without running it: every input (:func:`ias_params`), the radial
+    load against the bearing's static capacity (:func:`..checks.check_load`), the free speed
+    ``M_z / C_T`` and the initial speed against what the output resolves
+    (:func:`..checks.check_speed`), the step's stability and the memory and step estimate
+    against ``budget``; returns the estimate."""
     params = ias_params(sc)
+    check_load(params.bearing, params.radial_load, allow_overload)
+    free_rpm = 60.0 * params.torque / (2.0 * math.pi * params.torsional_damping)
+    if free_rpm > 0.0:
+        check_speed(params.bearing, free_rpm, sc.fs_hz, "free speed M_z/C_T")
+    if sc.initial_rpm > 0.0:
+        check_speed(params.bearing, sc.initial_rpm, sc.fs_hz, "initial_rpm")
     check_step(params, sc.dt_s)  # the given step must be stable before it is rounded
     _decim, dt = output_grid(sc)
+    decim, _n, n_out = _grid((sc.n_samples - 1) / sc.fs_hz, dt, sc.fs_hz)
+    return check_budget(ias_estimate(n_out, decim), budget)
+
+
+def run_ias(
+    sc: IasScenario,
+    progress: Callable[[int], None] | None = None,
+    budget: Budget | None = None,
+    allow_overload: bool = False,
+) -> IasResult:
+    """Run an IAS scenario (the runner behind :func:`bearingsim.simulate`): ``n_samples``
+    output samples at ``fs_hz`` from ``t = 0``, checked first by :func:`check_ias`;
+    ``progress`` is called with the samples done after each piece of the run."""
+    check_ias(sc, budget, allow_overload)
+    params = ias_params(sc)
+    _decim, dt = output_grid(sc)
     span = (sc.n_samples - 1) / sc.fs_hz  # n_samples samples, the last at span
-    res = simulate_ias(params, span, dt, sc.fs_hz, sc.solver.value)
+    res = simulate_ias(params, span, dt, sc.fs_hz, sc.solver.value, progress=progress,
+                       budget=budget)  # fmt: skip
     return dataclasses.replace(res, scenario=sc.to_dict())
 
 

@@ -27,7 +27,7 @@ from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import BallBearing, Bearing, Defect, characteristic_frequencies, defect_geometry
-from ..integrate import run_adaptive, run_fixed
+from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
 
@@ -355,7 +355,7 @@ def integrate_model(
             times = t_start + h * np.arange(n_tab)
             table = np.empty((n_tab, bl.NCOL))
             res = np.empty(n_tab)
-            ux, uy = bl.quasi_static_path(times, header, table, res, ux, uy)
+            ux, uy = call_compiled(bl.quasi_static_path, times, header, table, res, ux, uy)
             res_max = max(res_max, float(res.max()))
             p = np.concatenate([header, table.ravel()])
             p[bl.P_T0] = t_start

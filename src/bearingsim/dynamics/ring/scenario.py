@@ -9,6 +9,7 @@ import dataclasses
 import math
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -19,6 +20,9 @@ from ...config import Model, RingScenario, Solver
 from ...errors import SolverError
 from ...geometry import characteristic_frequencies, defect_at_edge, defect_geometry
 from ...results import SimulationResult
+from ..budget import F8, Budget, Estimate, check_budget
+from ..checks import check_load, check_speed
+from . import _balance as bl
 from . import dem, tvsm, vsm
 from .base import (
     AUX_NAMES,
@@ -27,15 +31,27 @@ from .base import (
     integrate_model,
     integrate_model_adaptive,
     max_frequency,
+    n_aux,
     static_path,
 )
 
-__all__ = ["choose_steps", "model_inputs", "run_ring"]
+__all__ = ["RingPlan", "check_ring", "choose_steps", "model_inputs", "plan_ring", "run_ring"]
 
 #: accuracy target of the automatic RK4 step: omega_max * dt <= this [-] (see choose_steps)
 OMEGA_DT = 0.35
 #: RK4 stability limit on the imaginary axis, ``|omega dt| < 2 sqrt(2)`` [-]
 RK4_STABILITY = 2.0 * math.sqrt(2.0)
+
+#: output samples per chunk of the fixed-step integration (:func:`.base.integrate_model`) [-]
+CHUNK = 4800
+#: largest number of RK4 steps in one chunk [-]: bounds the tabulated quasi-static solution
+#: (two rows of :data:`._balance.NCOL` values per step) and the time between two progress
+#: reports (and Ctrl-C checks); the chunk keeps :data:`CHUNK` samples up to 873 steps per sample
+MAX_CHUNK_STEPS = 1 << 22
+
+#: steps per sample beyond which a run is counted as this many (far beyond any step budget;
+#: keeps the count an exact integer) [-]
+MAX_DECIM = float(2**62)
 
 #: compiled kernels of the ring models
 KERNELS: dict[Model, ModelKernel] = {
@@ -88,31 +104,99 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
     """
     use = "secant" if KERNELS[scenario.model].stiffness == "secant" else "tangent"
     w = max_frequency(inputs, use)
+    if not math.isfinite(w) or w <= 0.0:
+        raise SolverError(
+            f"the stiffness of {inputs.bearing.id} under fx_n = {inputs.fx:.6g} N, fy_n = "
+            f"{inputs.fy:.6g} N has no finite natural frequency (omega_max = {w:.6g} rad/s); "
+            "check the load, clearance and stiffness"
+        )
     fs = scenario.fs_hz
     if scenario.dt_s is None:
-        decim = max(1, math.ceil(w / (OMEGA_DT * fs)))
+        decim = max(1, math.ceil(min(w / (OMEGA_DT * fs), MAX_DECIM)))
     else:
-        decim = max(1, round(1.0 / (fs * scenario.dt_s)))
+        decim = max(1, round(min(1.0 / (fs * scenario.dt_s), MAX_DECIM)))
     return decim, 1.0 / (fs * decim), w
 
 
-def run_ring(
-    scenario: RingScenario, progress: Callable[[int], None] | None = None
-) -> SimulationResult:
-    """Run a VSM/DEM/TVSM scenario (the runner behind :func:`bearingsim.simulate`)."""
-    t_wall = time.perf_counter()
+@dataclass(frozen=True)
+class RingPlan:
+    """A checked ring-model run: its inputs, steps and resource estimate
+    (:func:`plan_ring`)."""
+
+    inputs: ModelInputs
+    decim: int
+    dt: float
+    omega_max: float
+    chunk: int
+    estimate: Estimate
+
+
+def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: int) -> Estimate:
+    """Memory [B] and RK4 steps of a run: the raw trajectory, the channels and their copy in
+    the result's dataset, and the largest chunk's table of the quasi-static solution."""
+    n = scenario.n_samples
+    na = n_aux(inputs, scenario.per_ball)
+    n_ch = 6 + len(AUX_NAMES) + (2 * inputs.bearing.n_elements if scenario.per_ball else 0)
+    raw = (n + 1) * (1 + 4 + na) * F8
+    channels = 2 * n * n_ch * F8
+    table = 0.0
+    if KERNELS[scenario.model].needs_table:
+        n_tab = 2.0 * min(chunk, n) * decim + 1
+        table = n_tab * (2 * bl.NCOL + 3) * F8  # the table, its copy in p, times, residuals
+    what = f"{scenario.model.value}: {n + 1} samples x {decim} RK4 steps"
+    return Estimate(what, raw + channels + table, float(n) * decim)
+
+
+def plan_ring(
+    scenario: RingScenario, budget: Budget | None = None, allow_overload: bool = False
+) -> RingPlan:
+    """Check a VSM/DEM/TVSM scenario before any work and plan its run.
+
+    Builds the model inputs (every value checked), checks the radial load against the bearing's
+    static capacity (:func:`..checks.check_load`; ``allow_overload`` lifts the refusal above
+    2 C0), the speed against what the output resolves (:func:`..checks.check_speed`), chooses
+    the step (:func:`choose_steps`) and checks the memory and step estimate against ``budget``
+    (:mod:`..budget`). Bad values raise a one-line :class:`~bearingsim.errors.ConfigError`.
+    """
     inputs = model_inputs(scenario)
+    check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload)
+    check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
+    decim, dt, w = choose_steps(scenario, inputs)
+    chunk = max(1, min(CHUNK, MAX_CHUNK_STEPS // decim))
+    est = check_budget(_estimate(scenario, inputs, decim, chunk), budget)
+    return RingPlan(inputs, decim, dt, w, chunk, est)
+
+
+def check_ring(
+    scenario: RingScenario, budget: Budget | None = None, allow_overload: bool = False
+) -> Estimate:
+    """:func:`plan_ring` without running: the resource estimate of a valid scenario."""
+    return plan_ring(scenario, budget, allow_overload).estimate
+
+
+def run_ring(
+    scenario: RingScenario,
+    progress: Callable[[int], None] | None = None,
+    budget: Budget | None = None,
+    allow_overload: bool = False,
+) -> SimulationResult:
+    """Run a VSM/DEM/TVSM scenario (the runner behind :func:`bearingsim.simulate`); checked
+    first by :func:`plan_ring` (``budget``, ``allow_overload``)."""
+    t_wall = time.perf_counter()
+    plan = plan_ring(scenario, budget, allow_overload)
+    inputs = plan.inputs
     kernel = KERNELS[scenario.model]
     n = scenario.n_samples
     fs = scenario.fs_hz
     table0, res0 = static_path(inputs, np.zeros(1))
     y0 = np.array([table0[0, 0], table0[0, 1], 0.0, 0.0])
-    decim, dt, w = choose_steps(scenario, inputs)
+    decim, dt, w = plan.decim, plan.dt, plan.omega_max
     if scenario.solver is Solver.RK4:
         try:
             raw = integrate_model(
-                kernel, inputs, y0, fs, n + 1, decim, per_ball=scenario.per_ball, progress=progress
-            )
+                kernel, inputs, y0, fs, n + 1, decim, per_ball=scenario.per_ball,
+                chunk=plan.chunk, progress=progress,
+            )  # fmt: skip
         except SolverError as exc:
             auto = 1.0 / (fs * max(1, math.ceil(w / (OMEGA_DT * fs))))
             raise SolverError(

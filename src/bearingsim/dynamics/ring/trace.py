@@ -28,10 +28,15 @@ from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
 from ...results import Result, json_attr, read_json_attr, var_attrs
+from ..budget import F8, Estimate
 from . import _balance as bl
 from .base import ModelInputs, static_path
 
-__all__ = ["StiffnessTrace", "stiffness_trace"]
+__all__ = ["StiffnessTrace", "stiffness_trace", "trace_estimate"]
+
+#: per-ball arrays of one cage angle held at once by :func:`stiffness_trace` (angles, their sine
+#: and cosine, deflections, loads, deformations, stiffnesses and the intermediate products) [-]
+TRACE_BALL_ARRAYS = 16
 
 #: array fields of :class:`StiffnessTrace`: name -> (dims, units, description)
 _VARIABLES: dict[str, tuple[tuple[str, ...], str, str]] = {
@@ -320,6 +325,15 @@ class StiffnessTrace(Result):
         axs[0].legend(fontsize=8)
         axs[0].set_title(self.label)
         return fig
+
+
+def trace_estimate(inputs: ModelInputs, n_points: int) -> Estimate:
+    """Memory [B] of :func:`stiffness_trace` over ``n_points`` cage angles: the table of the
+    quasi-static solution and :data:`TRACE_BALL_ARRAYS` arrays per ball and angle (no
+    integration steps)."""
+    z = inputs.bearing.n_elements
+    per_point = (bl.NCOL + 4 + TRACE_BALL_ARRAYS * z) * F8
+    return Estimate(f"vsm-trace: {n_points} cage angles x {z} balls", float(n_points) * per_point)
 
 
 def stiffness_trace(

@@ -32,6 +32,7 @@ from ...geometry import (
     Defect,
     KinematicFrequencies,
     characteristic_frequencies,
+    check_defect_depth,
     parse_enum,
 )
 
@@ -122,6 +123,8 @@ class BearingSupport:
                 f"defect_width_m = {self.fault.width:.6g} m is out of range; valid range "
                 f"(0, {self.bearing.element_diameter:.6g}) m (the ball must span the defect)"
             )
+        if self.fault is not None:
+            check_defect_depth(self.bearing, self.fault)
 
     @property
     def ball_mass(self) -> float:
@@ -341,11 +344,12 @@ class RotorConfig:
             check_range("bearing_load_n", fx, unit="N")
             check_range("bearing_load_n", fy, unit="N")
         L = self.shaft.length
-        for z in self.disk_positions:
+        given = () if self.armature.distributed else (self.armature.positions or ())
+        for z in given:  # equally spaced positions (the default) are inside and distinct
             check_range("disk_position_m", z, 0.0, L, lo_open=True, hi_open=True, unit="m")
-        if len(set(np.round(self.disk_positions, 12))) != len(self.disk_positions):
+        if len(set(np.round(given, 12))) != len(given):
             raise ConfigError("disk_positions_m has repeated positions; give distinct values")
-        n_min = len(self.disk_positions) + 1
+        n_min = (0 if self.armature.distributed else self.armature.n_disks) + 1
         if self.n_elements is not None:
             ne = self.n_elements
             if isinstance(ne, bool) or not isinstance(ne, int | np.integer) or ne < n_min:

@@ -38,6 +38,7 @@ from ...geometry import (
     defect_geometry,
     parse_enum,
 )
+from ..budget import F8, Budget, Estimate, check_budget
 from ..integrate import run_adaptive, run_fixed
 from . import _kernel as rk
 from .config import (
@@ -63,6 +64,7 @@ from .fe import (
 from .response import RotorResponse
 
 __all__ = [
+    "MIN_MODE_HZ",
     "PackedModel",
     "Supports",
     "RotorAssembly",
@@ -70,6 +72,8 @@ __all__ = [
     "build_fe",
     "build_rotor",
     "evaluate_rhs",
+    "fe_estimate",
+    "first_bending_hz",
     "pack_model",
     "rotor_modes",
     "simulate_rotor",
@@ -78,6 +82,43 @@ __all__ = [
 ]
 
 # ------------------------------------------------------------------------------ linear rotor
+
+#: dense float64 arrays of the full FE size ``n_dof^2`` held at once while the linear rotor is
+#: assembled and reduced: M, K, G, the interior blocks, the Craig-Bampton eigenvectors and the
+#: basis, and the products that reduce them [-]
+FE_ARRAYS_SIMULATE = 10
+#: the same for :func:`rotor_modes`: M, K, G and the first-order state matrix ``(2n)^2`` with its
+#: complex eigenvectors [-]
+FE_ARRAYS_MODES = 24
+#: lowest natural frequency :func:`rotor_modes` reports [Hz] (lower roots are rigid-body modes)
+MIN_MODE_HZ = 1e-3
+
+
+def n_fe_elements(config: RotorConfig) -> int:
+    """Number of beam elements of ``config``'s mesh (:func:`.fe.mesh_nodes`: at least
+    ``n_elements``, one more per interval at most), computed without building it."""
+    arm = config.armature
+    n_disks = 0 if arm.distributed else arm.n_disks
+    ne = config.n_elements or max(16, n_disks + 1)
+    return int(ne) + n_disks + 1
+
+
+def fe_estimate(config: RotorConfig, arrays: int = FE_ARRAYS_SIMULATE) -> Estimate:
+    """Memory [B] of the dense finite-element model of ``config`` (``arrays`` arrays of
+    ``n_dof^2`` float64, ``n_dof = 4 (n_elements + 1)``), before it is built."""
+    ne = n_fe_elements(config)
+    n_dof = float(NDOF_NODE) * (ne + 1)
+    return Estimate(f"rotor mesh: {ne} beam elements, {n_dof:.6g} DOFs", arrays * n_dof**2 * F8)
+
+
+def first_bending_hz(config: RotorConfig) -> float:
+    """Lower bound of the first bending frequency of the rotor on pinned bearings [Hz]: the
+    shaft as a massless simply supported beam with the whole rotor and shaft mass at mid-span,
+    ``sqrt(48 E I / (m L^3)) / (2 pi)`` (Roark's Formulas for Stress and Strain, 7th ed., table
+    8.1 case 1a; Rayleigh's quotient: moving mass towards mid-span only lowers the frequency)."""
+    sh = config.shaft
+    m = sh.mass + config.armature.mass
+    return math.sqrt(48.0 * sh.ei / (m * sh.length**3)) / (2.0 * math.pi)
 
 
 @dataclass
@@ -231,9 +272,13 @@ class RotorModes:
 
 
 def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
-                speed_rpm: float = 0.0,
-                n_modes: int = 8) -> RotorModes:  # fmt: skip
+                speed_rpm: float = 0.0, n_modes: int = 8,
+                budget: Budget | None = None) -> RotorModes:  # fmt: skip
     """Natural frequencies of the rotor alone (no bearings, no housings).
+
+    Refused before any work (one-line :class:`~bearingsim.errors.ConfigError`): a rotor whose
+    first bending mode (:func:`first_bending_hz`) is below :data:`MIN_MODE_HZ`, and a mesh whose
+    dense matrices (:func:`fe_estimate`) exceed ``budget``.
 
     Parameters
     ----------
@@ -245,9 +290,23 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
         Spin speed for the gyroscopic coupling [r/min] (>= 0).
     n_modes : int
         Number of frequencies returned.
+    budget : Budget, optional
+        Memory limit [B] (:class:`bearingsim.dynamics.budget.Budget`; default half the
+        available memory).
     """
     supports = parse_enum(Supports, supports, "supports")
     spin = check_range("speed_rpm", speed_rpm, 0.0, unit="r/min") * math.pi / 30.0
+    f1 = first_bending_hz(config)
+    if f1 < MIN_MODE_HZ:
+        sh = config.shaft
+        m = sh.mass + config.armature.mass
+        l_max = (48.0 * sh.ei / (m * (2.0 * math.pi * MIN_MODE_HZ) ** 2)) ** (1.0 / 3.0)
+        raise ConfigError(
+            f"shaft_length_m = {sh.length:.6g} m puts the first bending mode of the rotor near "
+            f"{f1:.3g} Hz, below the {MIN_MODE_HZ:g} Hz the modal analysis resolves; valid range "
+            f"(0, {l_max:.6g}] m for this shaft and rotor mass"
+        )
+    check_budget(fe_estimate(config, FE_ARRAYS_MODES), budget)
     fe = build_fe(config)
     last = fe.n_nodes - 1
     fixed = []
@@ -266,8 +325,13 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
         int(np.flatnonzero((names == "y") & (nodes == nodes[i]))[0]) if np.any(
             (names == "y") & (nodes == nodes[i])) else i for i in xd
     ]  # fmt: skip
-    modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=1e-3)
+    modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
     k = int(n_modes)
+    if modes.frequency_hz.size == 0:
+        raise SolverError(
+            f"no natural frequency above {MIN_MODE_HZ:g} Hz found for the rotor (shaft "
+            f"{config.shaft.length:.6g} m x {config.shaft.diameter:.6g} m); check the shaft data"
+        )
     return RotorModes(modes.frequency_hz[:k], modes.whirl[:k], supports, float(speed_rpm),
                       fe.n_dof)  # fmt: skip
 
@@ -537,6 +601,95 @@ def _run(model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress=None,
     return t_all, aux, pos, n_steps
 
 
+#: largest number of RK4 steps in one chunk of :func:`_run` [-]: bounds the time between two
+#: progress reports (and Ctrl-C checks); the chunk keeps 32768 samples up to 128 steps per sample
+MAX_CHUNK_STEPS = 1 << 22
+#: steps per sample beyond which a run is counted as this many (far beyond any step budget) [-]
+MAX_DECIM = float(2**62)
+
+
+@dataclass
+class RotorPlan:
+    """A checked rotor run (:func:`plan_rotor`): the packed model, its static state and the
+    output grid (``q`` internal samples per output sample, ``decim`` RK4 steps per internal
+    sample, ``chunk`` internal samples per compiled call) and the resource estimate."""
+
+    model: PackedModel
+    y0: NDArray[np.float64]
+    fs: float
+    q: int
+    n_out: int
+    n_int: int
+    decim: int
+    chunk: int
+    cutoff: float
+    method: str
+    estimate: Estimate
+
+
+def _run_estimate(config: RotorConfig, n_int: int, n_out: int, decim: float, n_state: int,
+                  na: int, chunk: int, ball_forces: bool) -> Estimate:  # fmt: skip
+    """Memory [B] and RK4 steps of a rotor run: the internal-rate outputs (times, auxiliary
+    outputs, 8 positions), one chunk's trajectory, and the output channels with their copy in
+    the result's dataset."""
+    nb = config.de.bearing.n_elements + config.fe.bearing.n_elements
+    n_ch = 12 + (2 * nb if ball_forces else 0)
+    mem = n_int * (1 + na + 8) * F8 + min(chunk, n_int) * (1 + n_state + na) * F8
+    mem += 2 * n_out * n_ch * F8
+    what = f"rotor: {n_int} internal samples x {decim:.6g} RK4 steps"
+    return Estimate(what, mem, float(n_int - 1) * decim)
+
+
+def plan_rotor(
+    config: RotorConfig,
+    duration: float = 1.0,
+    sample_rate: float = 12000.0,
+    dt: float | None = None,
+    ball_forces: bool = False,
+    antialias: bool = True,
+    method: Solver | str = Solver.RK4,
+    budget: Budget | None = None,
+) -> RotorPlan:
+    """Check a rotor run before it starts (arguments of :func:`simulate_rotor`): the mesh's
+    memory, then a lower bound of the step count from the housing mounts alone, both before
+    the model is built; then the model, its static state, the step and the full estimate
+    against ``budget`` (:mod:`..budget`)."""
+    duration = check_positive("duration_s", duration, "s")
+    fs = check_positive("sample_rate_hz", sample_rate, "Hz")
+    method = parse_enum(Solver, method, "solver").value
+    n_out = int(round(duration * fs))
+    if n_out < 2:
+        raise ConfigError(
+            f"duration_s * sample_rate_hz = {duration * fs:.6g} samples is too few; valid range "
+            "[2, inf) samples"
+        )
+    q = (4 if fs <= 24000.0 else 2) if antialias else 1
+    fs_int = q * fs
+    n_int = q * (n_out - 1) + 1
+    check_budget(fe_estimate(config), budget)
+    if method == "rk4" and dt is None:  # the mounts alone bound the stable step (stable_step)
+        w = max(math.sqrt(max(h.stiffness_x, h.stiffness_y) / h.mass)
+                for h in (config.housing_de, config.housing_fe))  # fmt: skip
+        low = max(1.0, math.ceil(min(w / (2.0 * fs_int), MAX_DECIM)))
+        check_budget(_run_estimate(config, n_int, n_out, low, 0, 0, 1, False), budget)
+    cutoff = config.mode_cutoff_hz or fs
+    model = pack_model(config, cutoff, ball_forces)
+    y0 = static_state(model, config)
+    na = n_aux(model, ball_forces)
+    decim = 0
+    if method == "rk4":
+        if dt is None:
+            decim = math.ceil(min(1.0 / (fs_int * stable_step(model, config, y0)), MAX_DECIM))
+        else:
+            decim = round(min(1.0 / (fs_int * check_positive("dt_s", dt, "s")), MAX_DECIM))
+        decim = max(1, int(decim))
+    chunk = max(1, min(1 << 15, MAX_CHUNK_STEPS // max(decim, 1)))
+    est = _run_estimate(config, n_int, n_out, max(decim, 1), 2 * model.n_pos, na, chunk,
+                        ball_forces)  # fmt: skip
+    check_budget(est, budget)
+    return RotorPlan(model, y0, fs, q, n_out, n_int, decim, chunk, cutoff, method, est)
+
+
 def simulate_rotor(
     config: RotorConfig,
     duration: float = 1.0,
@@ -548,6 +701,7 @@ def simulate_rotor(
     rtol: float = 1e-8,
     atol: float = 1e-13,
     progress: Callable[[int], None] | None = None,
+    budget: Budget | None = None,
 ) -> RotorResponse:
     """Simulate the bearing–rotor–housing system from static equilibrium.
 
@@ -575,6 +729,9 @@ def simulate_rotor(
         ``atol`` (for checking).
     progress : callable, optional
         Called with the number of output samples done (for progress bars).
+    budget : Budget, optional
+        Memory [B] and step limits (:class:`bearingsim.dynamics.budget.Budget`), checked before
+        the run by :func:`plan_rotor`.
 
     Returns
     -------
@@ -582,34 +739,19 @@ def simulate_rotor(
     """
     from scipy.signal import decimate
 
-    duration = check_positive("duration_s", duration, "s")
-    fs = check_positive("sample_rate_hz", sample_rate, "Hz")
-    method = parse_enum(Solver, method, "solver").value
-    cutoff = config.mode_cutoff_hz or fs
     t_wall = time.perf_counter()
-    model = pack_model(config, cutoff, ball_forces)
-    y0 = static_state(model, config)
-    q = (4 if fs <= 24000.0 else 2) if antialias else 1
+    plan = plan_rotor(config, duration, sample_rate, dt, ball_forces, antialias, method, budget)
+    model, y0, fs, q, decim = plan.model, plan.y0, plan.fs, plan.q, plan.decim
+    method, cutoff = plan.method, plan.cutoff
+    duration = check_positive("duration_s", duration, "s")
     fs_int = q * fs
-    n_out = int(round(duration * fs))
-    if n_out < 2:
-        raise ConfigError(
-            f"duration_s * sample_rate_hz = {duration * fs:.6g} samples is too few; valid range "
-            "[2, inf) samples"
-        )
-    n_int = q * (n_out - 1) + 1
     na = n_aux(model, ball_forces)
-    decim = 0
     if method == "rk4":
-        if dt is None:
-            decim = max(1, math.ceil(1.0 / (fs_int * stable_step(model, config, y0))))
-        else:
-            decim = max(1, int(round(1.0 / (fs_int * check_positive("dt_s", dt, "s")))))
         solver = {"solver": "rk4", "dt_s": 1.0 / (fs_int * decim), "decim": decim}
     else:
         solver = {"solver": "dopri5", "rtol": rtol, "atol": atol}
     t, aux, pos, n_steps = _run(
-        model, y0, fs_int, n_int, decim, na, method, rtol, atol, progress, q
+        model, y0, fs_int, plan.n_int, decim, na, method, rtol, atol, progress, q, plan.chunk
     )
     acc = aux[:, :4]
     if q > 1:

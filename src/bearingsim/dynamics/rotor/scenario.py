@@ -26,10 +26,13 @@ from ...catalog import get_bearing
 from ...config import RotorScenario
 from ...geometry import Defect
 from ...results import SimulationResult
+from ..budget import Budget, Estimate
+from ..checks import check_speed
 from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
-from .model import simulate_rotor
+from .model import plan_rotor, simulate_rotor
 
 __all__ = [
+    "check_rotor",
     "rotor_config_from_scenario",
     "run_rotor",
 ]
@@ -68,12 +71,46 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     )
 
 
+def _checked_config(sc: RotorScenario) -> RotorConfig:
+    """The scenario's :class:`RotorConfig` with the speed checked for both bearings
+    (:func:`..checks.check_speed`)."""
+    cfg = rotor_config_from_scenario(sc)
+    for sup in (cfg.de, cfg.fe):
+        check_speed(sup.bearing, sc.rpm, sc.fs_hz)
+    return cfg
+
+
+def _plan_args(sc: RotorScenario) -> dict:
+    return {
+        "duration": sc.duration_s,
+        "sample_rate": sc.fs_hz,
+        "dt": sc.dt_s,
+        "ball_forces": sc.per_ball,
+        "antialias": sc.antialias,
+        "method": sc.solver.value,
+    }
+
+
+def check_rotor(
+    scenario: RotorScenario, budget: Budget | None = None, allow_overload: bool = False
+) -> Estimate:
+    """Check a rotor scenario without running it: every input, the speed, the mesh and run
+    estimates against ``budget`` (:func:`.model.plan_rotor`; this builds the model and its static
+    state). The rotor's loads are its weight: ``allow_overload`` is not used."""
+    cfg = _checked_config(scenario)
+    return plan_rotor(cfg, **_plan_args(scenario), budget=budget).estimate
+
+
 def run_rotor(
-    scenario: RotorScenario, progress: Callable[[int], None] | None = None
+    scenario: RotorScenario,
+    progress: Callable[[int], None] | None = None,
+    budget: Budget | None = None,
+    allow_overload: bool = False,
 ) -> SimulationResult:
-    """Runner registered for ``Model.ROTOR`` in :mod:`bearingsim.simulate`."""
+    """Runner registered for ``Model.ROTOR`` in :mod:`bearingsim.simulate` (checked first, see
+    :func:`check_rotor`)."""
     t_wall = time.perf_counter()
-    cfg = rotor_config_from_scenario(scenario)
+    cfg = _checked_config(scenario)
     r = simulate_rotor(
         cfg,
         duration=scenario.duration_s,
@@ -83,6 +120,7 @@ def run_rotor(
         antialias=scenario.antialias,
         method=scenario.solver.value,
         progress=progress,
+        budget=budget,
     )
     ch: dict[str, np.ndarray] = {}
     units: dict[str, str] = {}
