@@ -16,6 +16,7 @@ from ..geometry import RollerBearing
 from ..signal.order import ShaftSignalKind
 from .common import (
     DeferredDefaultOption,
+    Number,
     cli,
     deprecated,
     emit_json,
@@ -107,7 +108,7 @@ def _default(key: str) -> dict[str, Any]:
 )
 @click.option(
     "--rpm",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="r/min"),
     default=None,
     show_default="set by --torque-n-m",
     help="Target speed [r/min]: sets M_z = C_T * speed (the speed itself comes out of "
@@ -116,7 +117,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--torque-n-m",
     "torque_n_m",
-    type=float,
+    type=Number(0.0, unit="N m"),
     default=None,
     **_default("torque_n_m"),
     help="Motor torque M_z [N m].",
@@ -124,21 +125,21 @@ def _default(key: str) -> dict[str, Any]:
 @deprecated("--torque-nm", "--torque-n-m")
 @click.option(
     "--initial-rpm",
-    type=float,
+    type=Number(0.0, unit="r/min"),
     default=None,
     **_default("initial_rpm"),
     help="Initial shaft speed [r/min].",
 )
 @click.option(
     "--spall-width-m",
-    type=float,
+    type=Number(valid="[0, d) m, d the roller diameter"),
     default=None,
     **_default("spall_width_m"),
     help="Outer-race spall width L_d [m]; 0 = healthy.",
 )
 @click.option(
     "--spall-angle-deg",
-    type=float,
+    type=Number(-360.0, 360.0, unit="deg"),
     default=None,
     **_default("spall_angle_deg"),
     help="Spall centre azimuth from +y towards +x [deg] (180 = bottom).",
@@ -146,7 +147,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fx-n",
     "fx_n",
-    type=float,
+    type=Number(unit="N"),
     default=None,
     **_default("fx_n"),
     help="Radial load along +x [N].",
@@ -155,7 +156,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fy-n",
     "fy_n",
-    type=float,
+    type=Number(unit="N"),
     default=None,
     **_default("fy_n"),
     help="Radial load pushing the shaft down (-y) [N].",
@@ -163,14 +164,14 @@ def _default(key: str) -> dict[str, Any]:
 @deprecated("--fy", "--fy-n")
 @click.option(
     "--duration-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=None,
     **_default("duration_s"),
     help="Simulated time [s].",
 )
 @click.option(
     "--dt-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=None,
     **_default("dt_s"),
     help="RK4 step [s].",
@@ -178,7 +179,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fs-hz",
     "fs_hz",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
     **_default("fs_hz"),
     help="Output sample rate [Hz].",
@@ -209,7 +210,7 @@ def _default(key: str) -> dict[str, Any]:
 )
 @click.option(
     "--skip-s",
-    type=float,
+    type=Number(valid="[0, duration) s"),
     default=None,
     show_default="10 % of the run",
     help="Start-up left out of the analysis [s].",
@@ -309,14 +310,14 @@ _KINDS = tuple(k.value for k in ShaftSignalKind)
 )
 @click.option(
     "--skip-s",
-    type=float,
+    type=Number(valid="[0, duration) s"),
     default=None,
     show_default="0; for an IAS result 10 % of the run",
     help="Leading time left out [s].",
 )
 @click.option(
     "--samples-per-rev",
-    type=int,
+    type=Number(8, 2**24, integer=True),
     default=None,
     show_default="from the data",
     help="Angular resampling density [1/rev].",
