@@ -187,6 +187,22 @@ ROUNDOFF_FACTOR = 16.0
 
 
 @njit(cache=True)
+def _load_sum(u, psi, moff, p):
+    """Sum of the ball loads ``sum_j Q_j`` [N] at ring displacement ``u`` (no inertia)."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    a0 = p[P_A0]
+    K = p[P_K]
+    acc = 0.0
+    for j in range(psi.size):
+        _s, _c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
+        dl = math.sqrt(X * X + Y * Y) - a0
+        if dl > 0.0:
+            acc += K * dl * math.sqrt(dl)
+    return acc
+
+
+@njit(cache=True)
 def _roundoff(u, psi, moff, p):
     """Force [N] below which the ring force residual cannot be resolved in double precision:
     ``16 eps sum_j (k_j A_j + Q_j) + 16 eps Z F_c``. The deformation ``delta_j = A_j - A0``
@@ -459,7 +475,8 @@ def _solve_ring(u, p, psi, moff, V, out_info):
     ``out_info`` receives the rows ``I_*``: iterations, relative residual, minimum radial
     separation, status (0 converged, 1 not converged, 2 geometry violated, Y_j <= 0).
     Converged: the relative residual is at most ``tol``, or the residual has stayed at the
-    round-off floor of the contact forces (:func:`_roundoff`) for two iterations.
+    round-off floor of the contact forces (:func:`_roundoff`) for two iterations. The residual
+    is relative to the applied load, or to the sum of the ball loads when no load is applied.
     """
     r_pi = p[P_RPI]
     Fc = p[P_FC]
@@ -504,6 +521,10 @@ def _solve_ring(u, p, psi, moff, V, out_info):
             for i in range(2):
                 qs += f[i] * f[i]
             qs = math.sqrt(qs + f[2] * f[2])
+            if fscale == 0.0:
+                # no applied load (a preload or a misalignment alone): the net ring force is
+                # the residual itself; measure it against the ball loads it balances
+                qs = _load_sum(u, psi, moff, p)
         if ymin <= 0.0:
             status = 2
             break
