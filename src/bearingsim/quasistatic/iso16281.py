@@ -292,7 +292,8 @@ def _solve_free(
     return out, nfev
 
 
-def _staged_start(
+def _attempt(
+    start: NDArray[np.float64] | None,
     idx: NDArray[np.int64],
     psi: NDArray[np.float64],
     moff: NDArray[np.float64],
@@ -300,28 +301,17 @@ def _staged_start(
     Ri: float,
     F: NDArray[np.float64],
     fscale: float,
-) -> NDArray[np.float64]:
-    """The ISO-style start (:func:`_start`) with the translations solved, tilts at 0."""
-    u = _start(geom, psi, F)
-    u, _ = _solve_free(u, np.array([k for k in idx if k < 3]), psi, moff, geom, Ri, F, fscale)
-    return u
-
-
-def _relative_residual(
-    u: NDArray[np.float64],
-    idx: NDArray[np.int64],
-    psi: NDArray[np.float64],
-    moff: NDArray[np.float64],
-    geom: QSGeometry,
-    Ri: float,
-    F: NDArray[np.float64],
-    fscale: float,
-) -> float:
-    """Residual of the free equations over ``max(fscale, sum Q)`` [-] (moments over ``R_i``)."""
+) -> tuple[NDArray[np.float64], int, float]:
+    """Solve the free DOFs ``idx`` from ``start`` (``None``: the ISO-style start, translations
+    solved first with the tilts at 0); returns the solution, the function evaluations of the
+    last solve and the residual relative to ``max(fscale, sum Q)`` (moments over ``R_i``)."""
+    if start is None:
+        start, _ = _solve_free(_start(geom, psi, F), idx[idx < 3], psi, moff, geom, Ri, F, fscale)
+    u, nfev = _solve_free(start, idx, psi, moff, geom, Ri, F, fscale)
     Fq, Q, _al, _dl = _forces(u, psi, moff, geom, Ri)
     r = Fq - F
     r[3:] /= Ri
-    return float(np.linalg.norm(r[idx])) / max(fscale, float(np.sum(Q)), 1e-300)
+    return u, nfev, float(np.linalg.norm(r[idx])) / max(fscale, float(np.sum(Q)), 1e-300)
 
 
 # (duplicates) the signature of jones.run_quasi_static on purpose: the two methods take the
@@ -401,18 +391,14 @@ def run_iso16281(
         moff = Ri * (
             (math.sin(ti[0]) - math.sin(to[0])) * c - (math.sin(ti[1]) - math.sin(to[1])) * s
         )
-        if u is None:
-            u = _staged_start(idx, psi, moff, geom, Ri, F, fscale)
-        u, nfev = _solve_free(u, idx, psi, moff, geom, Ri, F, fscale)
-        rel = _relative_residual(u, idx, psi, moff, geom, Ri, F, fscale)
+
+        u, nfev, rel = _attempt(u, idx, psi, moff, geom, Ri, F, fscale)
         if not rel <= 1e-8 and i > 0:
             # started from the previous cage angle and failed (a load carried by one or two
             # balls, the ring sliding between them): start again as at the first angle, once
-            u = _staged_start(idx, psi, moff, geom, Ri, F, fscale)
-            u, nfev2 = _solve_free(u, idx, psi, moff, geom, Ri, F, fscale)
-            rel2 = _relative_residual(u, idx, psi, moff, geom, Ri, F, fscale)
+            u2, nfev2, rel2 = _attempt(None, idx, psi, moff, geom, Ri, F, fscale)
             if rel2 <= 1e-8:
-                rel, nfev = rel2, nfev + nfev2
+                u, nfev, rel = u2, nfev + nfev2, rel2
         if not np.isfinite(rel) or rel > 1e-8:
             raise SolverError(
                 f"ISO/TS 16281: no equilibrium found at cage angle {cg:.6g} rad "
