@@ -96,6 +96,7 @@ def test_bearing_file_boolean(tmp_path):
         ({"density_kg_m3": 1e30}, "density_kg_m3 = 1e+30 kg/m^3 is out of range"),
         ({"bore_m": 0.032}, "bore_m = 0.032 m is not inside the inner raceway"),
         ({"outer_diameter_m": 0.045}, "outer_diameter_m = 0.045 m is not outside"),
+        ({"n_elements": 2**80}, "n_elements = 1208925819614629174706176 is out of range"),
     ],
     ids=[
         "groove-1e30",
@@ -113,6 +114,7 @@ def test_bearing_file_boolean(tmp_path):
         "density-1e30",
         "bore",
         "outside-diameter",
+        "huge-count",
     ],
 )
 def test_not_a_bearing_is_refused(change, needle):
@@ -121,6 +123,22 @@ def test_not_a_bearing_is_refused(change, needle):
     msg = str(ei.value)
     assert needle in msg, msg
     assert msg.startswith("user.toml: ") and "\n" not in msg and "valid" in msg
+
+
+def test_roller_length_and_huge_integers():
+    nu = dict(
+        id="nu",
+        type="cylindrical_roller",
+        n_elements=11,
+        element_diameter_m=7.94e-3,
+        pitch_diameter_m=34e-3,
+        roller_length_m=9e-3,
+    )
+    bearing_from_dict(nu)
+    with pytest.raises(ConfigError, match=r"roller_length_m = 2.5e\+296 m is out of range"):
+        bearing_from_dict({**nu, "roller_length_m": 2.5e296})  # found by the property below
+    with pytest.raises(ConfigError, match=r"fy_n = 10{400} is out of range"):
+        check_range("fy_n", 10**400)  # an integer beyond the float range
 
 
 def test_catalogue_bearings_are_plausible():
@@ -203,3 +221,77 @@ def test_groove_radius_1e30_refused_by_every_command(run_cli, tmp_path, args):
     line = one_line_error(run_cli(args[0], "--bearing-file", f, *args[1:]))
     assert "outer_groove_radius_m = 1e+30 m gives conformity" in line
     assert not out.exists()
+
+
+# ------------------------------------------------------------------- any bearing file at all
+def test_bearing_schema_property():
+    """Any bearing file (Hypothesis: plausible and absurd values of every key, booleans, strings,
+    NaN, huge integers) is either a bearing whose derived quantities are finite — static
+    capacity, clearance range, kinematic frequencies — or refused in one line naming the file."""
+    hyp = pytest.importorskip("hypothesis", reason="Hypothesis runs the property tests")
+    st = pytest.importorskip("hypothesis.strategies")
+    from bearingsim.contact.capacity import static_capacity
+    from bearingsim.geometry import characteristic_frequencies
+
+    def mostly(good, other):
+        """``good`` nine times in ten, else ``other``."""
+        return st.integers(0, 9).flatmap(lambda k: good if k < 9 else other)
+
+    def near(v: float):
+        """Around a real value, or anything."""
+        wild = st.one_of(
+            st.floats(allow_nan=True, allow_infinity=True),
+            st.integers(-(2**70), 2**70),
+            st.booleans(),
+            st.text(max_size=4),
+            st.none(),
+        )
+        # mostly plausible values (so that bearings are built and checked), now and then anything
+        return mostly(st.one_of(st.just(v), st.floats(0.8 * v, 1.25 * v)), wild)
+
+    ball = {
+        "id": mostly(st.just("h"), st.one_of(st.text(max_size=3), st.integers())),
+        "type": mostly(st.sampled_from(["ball", "cylindrical_roller"]), st.text(max_size=8)),
+        "n_elements": mostly(
+            st.integers(3, 14), st.one_of(st.integers(-5, 2000), st.floats(), st.booleans())
+        ),
+        "element_diameter_m": near(7.94e-3),
+        "pitch_diameter_m": near(39e-3),
+        "inner_groove_radius_m": near(4.089e-3),
+        "outer_groove_radius_m": near(4.169e-3),
+        "roller_length_m": near(9e-3),
+    }
+    optional = {
+        "contact_angle_rad": near(0.2),
+        "diametral_clearance_m": near(6e-6),
+        "youngs_modulus_pa": near(207e9),
+        "poisson_ratio": near(0.3),
+        "density_kg_m3": near(7850.0),
+        "bore_m": near(25e-3),
+        "outer_diameter_m": near(52e-3),
+    }
+
+    @hyp.settings(max_examples=300, deadline=None, derandomize=True, database=None)
+    @hyp.given(st.fixed_dictionaries(ball, optional=optional))
+    def check(d):
+        if d["type"] == "ball":
+            d.pop("roller_length_m")
+        else:
+            d.pop("inner_groove_radius_m")
+            d.pop("outer_groove_radius_m")
+        try:
+            b = bearing_from_dict(d, "h.toml")
+        except ConfigError as exc:
+            msg = str(exc)
+            assert msg.startswith("h.toml: ") and "\n" not in msg, msg
+            return
+        assert 0 < static_capacity(b).c0 < math.inf
+        lo, hi = clearance_range(b)
+        assert -math.inf < lo < 0 < hi < math.inf
+        f = characteristic_frequencies(b, 10.0)
+        assert all(math.isfinite(v) and v > 0 for v in f.as_dict().values())
+        built.append(b.kind)
+
+    built: list[str] = []
+    check()
+    assert {"ball", "cylindrical_roller"} <= set(built), "the property saw no bearing built"

@@ -140,3 +140,13 @@ def test_library_angle_ranges():
 def test_vsm_trace_first_ball_angle(run_cli):
     line = one_line_error(run_cli("vsm-trace", "--first-ball-deg", "1e30", "--json"))
     assert "first_ball_angle_deg = 1e+30 deg is out of range; valid range [-360, 360]" in line
+
+
+def test_centrifugal_force_against_the_static_limit(run_cli):
+    """``stiffness --rpm 1e30 --centrifugal`` blamed the load ("contact angle 180 deg; reduce
+    the load"): the balls' centrifugal force is checked against the ISO 76 element limit."""
+    line = one_line_error(
+        run_cli("stiffness", "6205", "--fy-n", "500", "--rpm", "1e30", "--centrifugal")
+    )
+    assert "ball centrifugal force F_c = " in line and "static stress limit Q0" in line
+    assert "--allow-overload" in line

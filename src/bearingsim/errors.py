@@ -105,6 +105,8 @@ def check_range(
         raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}")
     try:
         x = float(value)
+    except OverflowError:  # an integer beyond the float range: out of any range
+        raise ConfigError(f"{name} = {value} is out of range; valid range {rng}") from None
     except (TypeError, ValueError):
         raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}") from None
     if not math.isfinite(x):

@@ -44,7 +44,9 @@ __all__ = [
     "PITCH_DIAMETER_RANGE",
     "Race",
     "raceway_radius",
+    "ROLLER_LENGTH_RANGE",
     "RollerBearing",
+    "Z_MAX",
 ]
 
 
@@ -53,6 +55,9 @@ def _set(obj: object, name: str, value: object) -> None:
 
 
 # ------------------------------------------------------------------ what a bearing can be
+#: Most rolling elements in one row [-]: with ``gamma >= 0.01`` (below) at most
+#: ``pi / asin(0.01) ~ 314`` fit on the pitch circle; the bound keeps the count a number.
+Z_MAX = 1000
 #: Pitch diameters D_pw of rolling bearings [m]: miniature bearings of about 1 mm bore to the
 #: largest radial bearings of the ISO 15 general plan (bores up to 2.5 m), with margin.
 PITCH_DIAMETER_RANGE = (1e-3, 5.0)
@@ -61,6 +66,10 @@ PITCH_DIAMETER_RANGE = (1e-3, 5.0)
 GAMMA_RANGE_BALL = (0.01, 0.40)
 #: ``gamma = D_we cos(alpha) / D_pw`` of roller bearings [-]: the span of ISO 281:2007 table 3.
 GAMMA_RANGE_ROLLER = (0.01, 0.50)
+#: Effective roller length in roller diameters, ``l / D_we`` [-]: from half a diameter (shorter
+#: is a disc, not a line contact) to ten (needle rollers, the slenderest, are up to about ten
+#: diameters long; ISO 3096).
+ROLLER_LENGTH_RANGE = (0.5, 10.0)
 #: Largest nominal contact angle of a radial bearing [rad]: 45 deg (ISO 5593 and ISO 281:2007
 #: §3: radial bearings have nominal contact angles from 0 to 45 deg; above are thrust bearings).
 CONTACT_ANGLE_MAX = math.radians(45.0)
@@ -147,13 +156,12 @@ def check_clearance(
 def _check_common(b: BallBearing | RollerBearing) -> None:
     if not isinstance(b.id, str) or not b.id.strip():
         raise ConfigError(f"id = {b.id!r} is invalid; valid: a non-empty string")
-    if isinstance(b.n_elements, bool) or not isinstance(b.n_elements, int | float):
-        raise ConfigError(f"n_elements = {b.n_elements!r} is not an integer; valid range [3, inf)")
-    if float(b.n_elements) != int(b.n_elements) or b.n_elements < 3:
-        raise ConfigError(
-            f"n_elements = {b.n_elements!r} is out of range; valid range [3, inf) integer"
-        )
-    _set(b, "n_elements", int(b.n_elements))
+    n = b.n_elements
+    if isinstance(n, bool) or not isinstance(n, int | float):
+        raise ConfigError(f"n_elements = {n!r} is not an integer; valid range [3, {Z_MAX}]")
+    if (isinstance(n, float) and not n.is_integer()) or not 3 <= n <= Z_MAX:
+        raise ConfigError(f"n_elements = {n!r} is out of range; valid range [3, {Z_MAX}] integer")
+    _set(b, "n_elements", int(n))
     _set(b, "element_diameter", check_positive("element_diameter_m", b.element_diameter, "m"))
     _set(
         b,
@@ -317,7 +325,8 @@ class RollerBearing:
     pitch_diameter : float
         Pitch diameter D_p [m], in [1 mm, 5 m] (:data:`PITCH_DIAMETER_RANGE`).
     roller_length : float
-        Effective contact length l [m].
+        Effective contact length l [m], 0.5 to 10 roller diameters
+        (:data:`ROLLER_LENGTH_RANGE`).
     contact_angle : float
         Contact angle [rad], in [0, pi/4]; 0 for a cylindrical roller bearing.
     diametral_clearance : float
@@ -352,7 +361,13 @@ class RollerBearing:
 
     def __post_init__(self) -> None:
         _check_common(self)
-        _set(self, "roller_length", check_positive("roller_length_m", self.roller_length, "m"))
+        d = self.element_diameter
+        lo, hi = ROLLER_LENGTH_RANGE
+        _set(
+            self,
+            "roller_length",
+            check_range("roller_length_m", self.roller_length, lo * d, hi * d, unit="m"),
+        )
         for name in ("inner_raceway_diameter", "outer_raceway_diameter"):
             v = getattr(self, name)
             if v is not None:

@@ -22,7 +22,7 @@ key                            required     meaning
 ``inner_groove_radius_m``      ball         inner groove curvature radius R_i [m]; R/d in
                                             (0.5, 0.6]
 ``outer_groove_radius_m``      ball         outer groove curvature radius R_o [m]; as R_i
-``roller_length_m``            roller       effective roller length l [m]
+``roller_length_m``            roller       effective roller length l [m], 0.5 to 10 d
 ``inner_raceway_diameter_m``   no           roller: inner raceway diameter [m]
 ``outer_raceway_diameter_m``   no           roller: outer raceway diameter [m]
 ``youngs_modulus_pa``          no (207e9)   Young's modulus [Pa], 1e9 to 1.2e12

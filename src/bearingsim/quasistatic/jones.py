@@ -56,7 +56,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..contact.capacity import check_load
+from ..contact.capacity import check_element_load, check_load
 from ..errors import ConfigError, SolverError
 from ..geometry import Bearing
 from ._kernels import (
@@ -214,8 +214,9 @@ def run_quasi_static(
     allow_overload : bool or None
         The static equivalent load of ``(fx, fy)`` and ``fz`` is checked against the static
         capacity before the solution (:func:`bearingsim.contact.capacity.check_load`: a warning
-        above ``C_0``, refused above ``2 C_0``); ``True`` runs an overload anyway, ``None`` skips
-        the check.
+        above ``C_0``, refused above ``2 C_0``), and the ball centrifugal force against the
+        element load at the ISO 76 stress (``check_element_load``); ``True`` runs an overload
+        anyway, ``None`` skips the checks.
 
     Returns
     -------
@@ -245,6 +246,8 @@ def run_quasi_static(
         bearing, math.hypot(F[0], F[1]), allow_overload, F[2], name=_RADIAL, axial_name="fz_n"
     )
     fc, mg0, gam = _inertia(geom, spd)
+    # the centrifugal force presses each ball on the outer raceway: the same static limit
+    check_element_load(bearing, fc, allow_overload, name="ball centrifugal force F_c")
     p = _params(
         geom,
         F,
