@@ -75,22 +75,24 @@ ROLLER_LENGTH_RANGE = (0.5, 10.0)
 CONTACT_ANGLE_MAX = math.radians(45.0)
 #: Groove conformity ``f = R / D_w`` of deep-groove and angular-contact ball bearings [-]:
 #: above 0.5 (a groove no wider than the ball is not a groove) and at most 0.60. Catalogue
-#: bearings have 0.515-0.53 (Harris & Kotzalas 2007, vol. 1 §2.2; the ISO/TS 16281 reference
+#: bearings have 0.515-0.53 (Harris & Kotzalas 2007, vol. 1 ch. 2; the ISO/TS 16281 reference
 #: values are 0.52 inner, 0.53 outer); low-torque miniature bearings go to 0.56 +/- 0.03
 #: (Dynaroll, "Raceway curvature"). A larger groove radius is a self-aligning (spherical) outer
 #: race, which this model does not describe.
 CONFORMITY_RANGE = (0.5, 0.60)
 
-#: ISO 5753-1:2009 table 1, deep-groove ball bearings with cylindrical bore: upper limit of the
-#: largest radial internal clearance group (group 5, "C5") by bore. Rows ``(bore d up to and
-#: including [mm], clearance [um])``; the first row is every bore up to 10 mm. Above the last
-#: row the limit grows in proportion to the bore (1.2 um per mm, as the last rows do).
+#: ISO 5753-1:2009, radial internal clearance of deep-groove ball bearings with cylindrical bore:
+#: upper limit of the largest group (group 5, "C5") by bore. Rows ``(bore d up to and including
+#: [mm], clearance [um])``, transcribed from the manufacturers' reproductions of the standard's
+#: table (SKF, NSK catalogues), not from the standard itself; the row up to 10 mm serves every
+#: smaller bore. Above the last row the limit grows in proportion to the bore (1.2 um per mm,
+#: as the last rows do).
 ISO5753_GROUP5_BALL = (
     (10.0, 37.0), (18.0, 45.0), (24.0, 48.0), (30.0, 53.0), (40.0, 64.0), (50.0, 73.0),
     (65.0, 90.0), (80.0, 105.0), (100.0, 120.0),
 )  # fmt: skip
-#: ISO 5753-1:2009 table 4, cylindrical roller bearings with cylindrical bore: group 5 upper
-#: limit by bore, rows as :data:`ISO5753_GROUP5_BALL`; proportional above 1000 mm.
+#: ISO 5753-1:2009, cylindrical roller bearings with cylindrical bore: group 5 upper limit by
+#: bore, rows and transcription as :data:`ISO5753_GROUP5_BALL`; proportional above 1000 mm.
 ISO5753_GROUP5_ROLLER = (
     (24.0, 90.0), (30.0, 95.0), (40.0, 105.0), (50.0, 125.0), (65.0, 140.0), (80.0, 165.0),
     (100.0, 190.0), (120.0, 220.0), (140.0, 245.0), (160.0, 275.0), (180.0, 300.0),
@@ -112,8 +114,8 @@ def _bore_for_clearance(b: BallBearing | RollerBearing) -> float:
 
 def max_clearance(bearing: BallBearing | RollerBearing) -> float:
     """Largest diametral clearance a new bearing of this type and bore is made with [m]: the
-    upper limit of group 5 of ISO 5753-1:2009 (table 1 ball, table 4 cylindrical roller
-    bearings) for the bore (:data:`ISO5753_GROUP5_BALL`)."""
+    upper limit of group 5 of ISO 5753-1:2009 (deep-groove ball or cylindrical roller bearings)
+    for the bore (:data:`ISO5753_GROUP5_BALL`, :data:`ISO5753_GROUP5_ROLLER`)."""
     rows = ISO5753_GROUP5_ROLLER if isinstance(bearing, RollerBearing) else ISO5753_GROUP5_BALL
     d_mm = 1e3 * _bore_for_clearance(bearing)
     for upto, c_um in rows:
@@ -283,7 +285,7 @@ class BallBearing:
                 raise ConfigError(
                     f"{name}_m = {v:.6g} m gives conformity R/d = {v / d:.4g}; valid range "
                     f"({f_lo * d:.6g}, {f_hi * d:.6g}] m (conformity in ({f_lo:g}, {f_hi:g}], "
-                    "Harris & Kotzalas 2007 vol. 1 §2.2)"
+                    "Harris & Kotzalas 2007 vol. 1 ch. 2)"
                 )
             _set(self, name, v)
         _check_envelope(self)
