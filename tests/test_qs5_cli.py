@@ -82,7 +82,9 @@ def test_text_output(run_cli):
         (["--inner-tilt-deg", "nan"], "inner_tilt_rad = nan is not finite"),
         (["--outer-tilt-azimuth-deg", "inf"], "outer_tilt_azimuth_rad = inf is not finite"),
         (["--clearance-m", "1e-3"], "clearance_m = 0.001 m is out of range"),
-        (["--fz-n", "1e6"], "beyond the groove limit"),
+        # 1 MN axial is also beyond 2 C0 (refused, test_overload_refused): past the overload
+        # check, the groove limit refuses it
+        (["--fz-n", "1e6", "--allow-overload"], "beyond the groove limit"),
         (["--cage-revs", "0"], "cage_revs = 0"),
         (["--points-per-rev", "10"], "points_per_rev = 10"),
         (["--centrifugal"], "need --rpm"),

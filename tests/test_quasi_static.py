@@ -10,6 +10,7 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 from bearingsim.catalog import get_bearing
+from bearingsim.contact.capacity import StaticCapacityWarning
 from bearingsim.errors import ConfigError, SolverError
 from bearingsim.load_distribution import radial_load_distribution
 from bearingsim.quasistatic import (
@@ -364,5 +365,11 @@ def test_bad_inputs_raise_one_line_errors():
         solve_equilibrium(B6205, fy=FY, mx=1.0, misalignment=Misalignment(inner_tilt=TILT))
     with pytest.raises(ConfigError, match="needs a ball bearing"):
         solve_equilibrium(get_bearing("NU204-ECP"), fy=FY)
-    with pytest.raises(SolverError, match="beyond the groove limit"):
+    with pytest.raises(ConfigError, match=r"P0 = .* exceeds 2 x the static capacity"):
         solve_equilibrium(B6205, fz=1e6)
+    # past the overload check (a warning then), the groove limit refuses it
+    with (
+        pytest.warns(StaticCapacityWarning),
+        pytest.raises(SolverError, match="beyond the groove limit"),
+    ):
+        solve_equilibrium(B6205, fz=1e6, allow_overload=True)

@@ -111,18 +111,18 @@ def test_load_above_twice_c0_refused_unless_allowed(run_cli, tmp_path):
     (ISO 76), run with --allow-overload and a warning, warned between C0 and 2 C0."""
     out = tmp_path / "o.nc"
     r = run_cli("simulate", "--fy-n", "1e6", *SHORT, "-o", out)
-    _refused(r, "radial_load_n = 1e+06 N", "static capacity C0", "--allow-overload")
+    _refused(r, "|(fx_n, fy_n)| = 1e+06 N", "static capacity C0", "--allow-overload")
     assert not out.exists()
     r = run_cli("vsm-trace", "--fy-n", "5e4", "--json")
-    _refused(r, "radial_load_n = 50000 N", "static capacity C0")
+    _refused(r, "|(fx_n, fy_n)| = 50000 N", "static capacity C0")
     r = run_cli("vsm-trace", "--fy-n", "5e4", "--json", "--allow-overload")
     assert r.code == 0, r.err
-    assert "warning: radial load 50000 N exceeds the static capacity" in r.err
+    assert "warning: |(fx_n, fy_n)| = 50000 N exceeds the static capacity" in r.err
     r = run_cli("simulate", "--fy-n", "12000", *SHORT, "-o", out)
-    assert r.code == 0 and "warning: radial load 12000 N exceeds" in r.err, r.err
-    with pytest.raises(ConfigError, match="radial_load_n = 1e\\+06 N"):
+    assert r.code == 0 and "warning: |(fx_n, fy_n)| = 12000 N exceeds" in r.err, r.err
+    with pytest.raises(ConfigError, match=r"\|\(fx_n, fy_n\)\| = 1e\+06 N"):
         simulate({"fy_n": 1e6, "duration_s": 0.005})
-    with pytest.raises(ConfigError, match="radial_load_n = 1e\\+06 N"):
+    with pytest.raises(ConfigError, match=r"\|\(fx_n, fy_n\)\| = 1e\+06 N"):
         simulate({"model": "ias", "fy_n": 1e6, "duration_s": 0.01})
 
 
@@ -133,7 +133,7 @@ def test_vsm_huge_load_step_budget(run_cli, tmp_path):
     estimate, before any work."""
     out = tmp_path / "v.nc"
     r = run_cli("simulate", "--model", "vsm", "--fx-n", "1e30", "-o", out)
-    _refused(r, "radial_load_n = 1e+30 N")
+    _refused(r, "|(fx_n, fy_n)| = 1e+30 N")
     t0 = time.perf_counter()
     r = run_cli("simulate", "--model", "vsm", "--fx-n", "1e30", "--allow-overload", "-o", out)
     line = _refused(r, "vsm: 48001 samples x", "integration steps exceed the step budget 1e+09")

@@ -16,6 +16,7 @@ __all__ = [
     "check_positive",
     "check_range",
     "ConfigError",
+    "format_range",
     "DeprecatedKeyWarning",
     "read_toml",
     "SolverError",
@@ -49,6 +50,28 @@ def check_positive(name: str, value: Any, unit: str = "") -> float:
     return check_range(name, value, lo=0.0, lo_open=True, unit=unit)
 
 
+def format_range(
+    lo: float | None = None,
+    hi: float | None = None,
+    *,
+    lo_open: bool = False,
+    hi_open: bool = False,
+    unit: str = "",
+) -> str:
+    """The interval as the messages write it: ``(0, inf) N``, ``[-90, 90] deg``, ``[1, 10000]``
+    (``None`` = unbounded, always open)."""
+    lb = "(" if (lo_open or lo is None) else "["
+    rb = ")" if (hi_open or hi is None) else "]"
+    lo_s = "-inf" if lo is None else _fmt(float(lo))
+    hi_s = "inf" if hi is None else _fmt(float(hi))
+    return f"{lb}{lo_s}, {hi_s}{rb}" + (f" {unit}" if unit else "")
+
+
+def _is_bool(value: Any) -> bool:
+    """True for ``bool`` and NumPy booleans (without importing NumPy)."""
+    return isinstance(value, bool) or getattr(getattr(value, "dtype", None), "kind", "") == "b"
+
+
 def check_range(
     name: str,
     value: Any,
@@ -60,6 +83,8 @@ def check_range(
     unit: str = "",
 ) -> float:
     """Validate a finite real number against an interval and return it as ``float``.
+
+    A boolean is not a number: ``rpm = true`` in a TOML file is refused, not read as 1 r/min.
 
     Parameters
     ----------
@@ -75,13 +100,13 @@ def check_range(
         Unit appended to the range in the message.
     """
     u = f" {unit}" if unit else ""
-    lb = "(" if (lo_open or lo is None) else "["
-    rb = ")" if (hi_open or hi is None) else "]"
-    lo_s = "-inf" if lo is None else _fmt(float(lo))
-    hi_s = "inf" if hi is None else _fmt(float(hi))
-    rng = f"{lb}{lo_s}, {hi_s}{rb}{u}"
+    rng = format_range(lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+    if _is_bool(value):
+        raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}")
     try:
         x = float(value)
+    except OverflowError:  # an integer beyond the float range: out of any range
+        raise ConfigError(f"{name} = {value} is out of range; valid range {rng}") from None
     except (TypeError, ValueError):
         raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}") from None
     if not math.isfinite(x):

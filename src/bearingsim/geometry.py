@@ -20,22 +20,35 @@ __all__ = [
     "BallBearing",
     "Bearing",
     "characteristic_frequencies",
+    "check_clearance",
     "check_defect_depth",
+    "clearance_range",
+    "CONFORMITY_RANGE",
+    "CONTACT_ANGLE_MAX",
     "CWRU_DEFECT_DEPTH_M",
     "CWRU_DEFECT_WIDTH_M",
     "Defect",
     "defect_at_edge",
     "defect_geometry",
+    "DEFECT_ANGLE_MAX",
     "DefectGeometry",
     "DefectProfile",
+    "GAMMA_RANGE_BALL",
+    "GAMMA_RANGE_ROLLER",
+    "ISO5753_GROUP5_BALL",
+    "ISO5753_GROUP5_ROLLER",
     "ISO_INNER_CONFORMITY",
     "ISO_OUTER_CONFORMITY",
     "KinematicFrequencies",
+    "max_clearance",
     "parse_enum",
+    "PITCH_DIAMETER_RANGE",
     "Race",
     "raceway_radius",
     "ring_wall",
+    "ROLLER_LENGTH_RANGE",
     "RollerBearing",
+    "Z_MAX",
 ]
 
 
@@ -43,18 +56,122 @@ def _set(obj: object, name: str, value: object) -> None:
     object.__setattr__(obj, name, value)
 
 
+# ------------------------------------------------------------------ what a bearing can be
+#: Most rolling elements in one row [-]: with ``gamma >= 0.01`` (below) at most
+#: ``pi / asin(0.01) ~ 314`` fit on the pitch circle; the bound keeps the count a number.
+Z_MAX = 1000
+#: Pitch diameters D_pw of rolling bearings [m]: miniature bearings of about 1 mm bore to the
+#: largest radial bearings of the ISO 15 general plan (bores up to 2.5 m), with margin.
+PITCH_DIAMETER_RANGE = (1e-3, 5.0)
+#: ``gamma = D_w cos(alpha) / D_pw`` of ball bearings [-]: the span of ISO 281:2007 table 2 (the
+#: ratings of radial ball bearings are given for 0.01 <= gamma <= 0.40).
+GAMMA_RANGE_BALL = (0.01, 0.40)
+#: ``gamma = D_we cos(alpha) / D_pw`` of roller bearings [-]: the span of ISO 281:2007 table 3.
+GAMMA_RANGE_ROLLER = (0.01, 0.50)
+#: Effective roller length in roller diameters, ``l / D_we`` [-]: from half a diameter (shorter
+#: is a disc, not a line contact) to ten (needle rollers, the slenderest, are up to about ten
+#: diameters long; ISO 3096).
+ROLLER_LENGTH_RANGE = (0.5, 10.0)
+#: Largest nominal contact angle of a radial bearing [rad]: 45 deg (ISO 5593 and ISO 281:2007
+#: §3: radial bearings have nominal contact angles from 0 to 45 deg; above are thrust bearings).
+CONTACT_ANGLE_MAX = math.radians(45.0)
+#: Groove conformity ``f = R / D_w`` of deep-groove and angular-contact ball bearings [-]:
+#: above 0.5 (a groove no wider than the ball is not a groove) and at most 0.60. Catalogue
+#: bearings have 0.515-0.53 (Harris & Kotzalas 2007, vol. 1 ch. 2; the ISO/TS 16281 reference
+#: values are 0.52 inner, 0.53 outer); low-torque miniature bearings go to 0.56 +/- 0.03
+#: (Dynaroll, "Raceway curvature"). A larger groove radius is a self-aligning (spherical) outer
+#: race, which this model does not describe.
+CONFORMITY_RANGE = (0.5, 0.60)
+
+#: ISO 5753-1:2009, radial internal clearance of deep-groove ball bearings with cylindrical bore:
+#: upper limit of the largest group (group 5, "C5") by bore. Rows ``(bore d up to and including
+#: [mm], clearance [um])``, transcribed from the manufacturers' reproductions of the standard's
+#: table (SKF, NSK catalogues), not from the standard itself; the row up to 10 mm serves every
+#: smaller bore. Above the last row the limit grows in proportion to the bore (1.2 um per mm,
+#: as the last rows do).
+ISO5753_GROUP5_BALL = (
+    (10.0, 37.0), (18.0, 45.0), (24.0, 48.0), (30.0, 53.0), (40.0, 64.0), (50.0, 73.0),
+    (65.0, 90.0), (80.0, 105.0), (100.0, 120.0),
+)  # fmt: skip
+#: ISO 5753-1:2009, cylindrical roller bearings with cylindrical bore: group 5 upper limit by
+#: bore, rows and transcription as :data:`ISO5753_GROUP5_BALL`; proportional above 1000 mm.
+ISO5753_GROUP5_ROLLER = (
+    (24.0, 90.0), (30.0, 95.0), (40.0, 105.0), (50.0, 125.0), (65.0, 140.0), (80.0, 165.0),
+    (100.0, 190.0), (120.0, 220.0), (140.0, 245.0), (160.0, 275.0), (180.0, 300.0),
+    (200.0, 330.0), (225.0, 365.0), (250.0, 395.0), (280.0, 440.0), (315.0, 485.0),
+    (355.0, 535.0), (400.0, 600.0), (450.0, 665.0), (500.0, 735.0), (560.0, 810.0),
+    (630.0, 900.0), (710.0, 1005.0), (800.0, 1135.0), (900.0, 1265.0), (1000.0, 1405.0),
+)  # fmt: skip
+
+
+def _bore_for_clearance(b: BallBearing | RollerBearing) -> float:
+    """The bore [m] that selects the ISO 5753-1 row: the bearing's, or when it gives none the
+    inner raceway diameter, which exceeds any bore (so the limit is never tighter)."""
+    if b.bore is not None:
+        return b.bore
+    if isinstance(b, RollerBearing) and b.inner_raceway_diameter is not None:
+        return b.inner_raceway_diameter
+    return b.pitch_diameter - b.element_diameter * math.cos(b.contact_angle)
+
+
+def max_clearance(bearing: BallBearing | RollerBearing) -> float:
+    """Largest diametral clearance a new bearing of this type and bore is made with [m]: the
+    upper limit of group 5 of ISO 5753-1:2009 (deep-groove ball or cylindrical roller bearings)
+    for the bore (:data:`ISO5753_GROUP5_BALL`, :data:`ISO5753_GROUP5_ROLLER`)."""
+    rows = ISO5753_GROUP5_ROLLER if isinstance(bearing, RollerBearing) else ISO5753_GROUP5_BALL
+    d_mm = 1e3 * _bore_for_clearance(bearing)
+    for upto, c_um in rows:
+        if d_mm <= upto:
+            return 1e-6 * c_um
+    upto, c_um = rows[-1]
+    return 1e-6 * c_um * d_mm / upto
+
+
+def clearance_range(bearing: BallBearing | RollerBearing) -> tuple[float, float]:
+    """Valid diametral clearance ``P_d`` [m] of ``bearing``: ``[-c5, c5]`` with ``c5`` =
+    :func:`max_clearance`. The positive side is the largest clearance of ISO 5753-1; a negative
+    operating clearance (preload) arises when fits and temperature take up more than the
+    clearance, and we accept at most as much preload as the largest clearance of the same bore
+    (our bound: -3.9 mm on a 6205 gave 808 kN per ball under 5 kN)."""
+    c5 = max_clearance(bearing)
+    return -c5, c5
+
+
+def check_clearance(
+    bearing: BallBearing | RollerBearing,
+    value: object,
+    name: str = "diametral_clearance_m",
+    hi: float | None = None,
+) -> float:
+    """``value`` [m] within :func:`clearance_range` (and below ``hi`` when given), else a
+    one-line :class:`ConfigError` that names the source of the limit."""
+    lo, c5 = clearance_range(bearing)
+    top = c5 if hi is None else min(c5, hi)
+    try:
+        return check_range(name, value, lo, top, hi_open=hi is not None and hi < c5, unit="m")
+    except ConfigError as exc:
+        bore = 1e3 * _bore_for_clearance(bearing)
+        raise ConfigError(
+            f"{exc} (+/- the largest radial internal clearance of ISO 5753-1, group 5, for a "
+            f"{bore:.4g} mm bore)"
+        ) from None
+
+
 def _check_common(b: BallBearing | RollerBearing) -> None:
     if not isinstance(b.id, str) or not b.id.strip():
         raise ConfigError(f"id = {b.id!r} is invalid; valid: a non-empty string")
-    if isinstance(b.n_elements, bool) or not isinstance(b.n_elements, int | float):
-        raise ConfigError(f"n_elements = {b.n_elements!r} is not an integer; valid range [3, inf)")
-    if float(b.n_elements) != int(b.n_elements) or b.n_elements < 3:
-        raise ConfigError(
-            f"n_elements = {b.n_elements!r} is out of range; valid range [3, inf) integer"
-        )
-    _set(b, "n_elements", int(b.n_elements))
+    n = b.n_elements
+    if isinstance(n, bool) or not isinstance(n, int | float):
+        raise ConfigError(f"n_elements = {n!r} is not an integer; valid range [3, {Z_MAX}]")
+    if (isinstance(n, float) and not n.is_integer()) or not 3 <= n <= Z_MAX:
+        raise ConfigError(f"n_elements = {n!r} is out of range; valid range [3, {Z_MAX}] integer")
+    _set(b, "n_elements", int(n))
     _set(b, "element_diameter", check_positive("element_diameter_m", b.element_diameter, "m"))
-    _set(b, "pitch_diameter", check_positive("pitch_diameter_m", b.pitch_diameter, "m"))
+    _set(
+        b,
+        "pitch_diameter",
+        check_range("pitch_diameter_m", b.pitch_diameter, *PITCH_DIAMETER_RANGE, unit="m"),
+    )
     d, D = b.element_diameter, b.pitch_diameter
     if d >= D:
         raise ConfigError(
@@ -71,21 +188,44 @@ def _check_common(b: BallBearing | RollerBearing) -> None:
     _set(
         b,
         "contact_angle",
-        check_range(
-            "contact_angle_rad", b.contact_angle, 0.0, math.pi / 2, hi_open=True, unit="rad"
-        ),
+        check_range("contact_angle_rad", b.contact_angle, 0.0, CONTACT_ANGLE_MAX, unit="rad"),
     )
-    _set(
-        b,
-        "diametral_clearance",
-        check_range("diametral_clearance_m", b.diametral_clearance, -0.5 * d, 0.5 * d, unit="m"),
-    )
+    g_lo, g_hi = GAMMA_RANGE_BALL if isinstance(b, BallBearing) else GAMMA_RANGE_ROLLER
+    ca = math.cos(b.contact_angle)
+    if not g_lo <= d * ca / D <= g_hi:
+        raise ConfigError(
+            f"element_diameter_m = {d:.6g} m gives gamma = d cos(alpha)/D = {d * ca / D:.4g} on "
+            f"pitch_diameter_m = {D:.6g} m; valid range [{g_lo * D / ca:.6g}, "
+            f"{min(g_hi * D / ca, d_max):.6g}] m (gamma in [{g_lo:g}, {g_hi:g}], ISO 281 tables "
+            "2 and 3)"
+        )
     if not isinstance(b.material, Material):
         raise ConfigError(f"material = {b.material!r} is not a Material")
+
+
+def _check_envelope(b: BallBearing | RollerBearing) -> None:
+    """Bore and outside diameter around the raceways, and the clearance (after the raceways
+    are known)."""
+    d, D, ca = b.element_diameter, b.pitch_diameter, math.cos(b.contact_angle)
     for name in ("bore", "outer_diameter", "width"):
         v = getattr(b, name)
         if v is not None:
             _set(b, name, check_positive(f"{name}_m", v, "m"))
+    if isinstance(b, BallBearing):
+        inner, outer = D - d * ca, D + d * ca
+    else:
+        inner, outer = b.inner_raceway_diameter, b.outer_raceway_diameter
+    if b.bore is not None and b.bore >= inner:
+        raise ConfigError(
+            f"bore_m = {b.bore:.6g} m is not inside the inner raceway (diameter {inner:.6g} m); "
+            f"valid range (0, {inner:.6g}) m"
+        )
+    if b.outer_diameter is not None and b.outer_diameter <= outer:
+        raise ConfigError(
+            f"outer_diameter_m = {b.outer_diameter:.6g} m is not outside the outer raceway "
+            f"(diameter {outer:.6g} m); valid range ({outer:.6g}, inf) m"
+        )
+    _set(b, "diametral_clearance", check_clearance(b, b.diametral_clearance))
 
 
 @dataclass(frozen=True)
@@ -99,21 +239,26 @@ class BallBearing:
     n_elements : int
         Number of balls Z [-], >= 3.
     element_diameter : float
-        Ball diameter d [m].
+        Ball diameter d [m]; ``d cos(alpha)/D`` in [0.01, 0.40] (:data:`GAMMA_RANGE_BALL`) and
+        the balls must not overlap on the pitch circle.
     pitch_diameter : float
-        Pitch diameter D (d_m) [m].
+        Pitch diameter D (d_m) [m], in [1 mm, 5 m] (:data:`PITCH_DIAMETER_RANGE`).
     contact_angle : float
-        Nominal contact angle alpha [rad]; 0 for a deep-groove bearing.
+        Nominal contact angle alpha [rad], in [0, pi/4] (a radial bearing); 0 for a
+        deep-groove bearing.
     diametral_clearance : float
-        Diametral clearance P_d [m]; negative for preload.
+        Diametral clearance P_d [m]; negative for preload; within :func:`clearance_range`
+        (the largest ISO 5753-1 clearance of the bore, either sign).
     inner_groove_radius, outer_groove_radius : float
-        Groove curvature radii R_i, R_o [m]; conformities ``f = R/d`` must exceed 0.5.
+        Groove curvature radii R_i, R_o [m]; conformities ``f = R/d`` in (0.5, 0.6]
+        (:data:`CONFORMITY_RANGE`).
     material : Material
         Material of rings and balls.
     source : str
         Where the data come from.
     bore, outer_diameter, width : float or None
-        Envelope dimensions [m] (informative).
+        Envelope dimensions [m]: the bore inside the inner raceway, the outside diameter outside
+        the outer one; the bore selects the ISO 5753-1 clearance limit.
     """
 
     id: str
@@ -135,14 +280,17 @@ class BallBearing:
     def __post_init__(self) -> None:
         _check_common(self)
         d = self.element_diameter
+        f_lo, f_hi = CONFORMITY_RANGE
         for name in ("inner_groove_radius", "outer_groove_radius"):
             v = check_positive(f"{name}_m", getattr(self, name), "m")
-            if v <= 0.5 * d:
+            if not f_lo * d < v <= f_hi * d:
                 raise ConfigError(
-                    f"{name}_m = {v:.6g} m gives conformity {v / d:.4f} <= 0.5; valid range "
-                    f"({0.5 * d:.6g}, inf) m (conformity R/d > 0.5)"
+                    f"{name}_m = {v:.6g} m gives conformity R/d = {v / d:.4g}; valid range "
+                    f"({f_lo * d:.6g}, {f_hi * d:.6g}] m (conformity in ({f_lo:g}, {f_hi:g}], "
+                    "Harris & Kotzalas 2007 vol. 1 ch. 2)"
                 )
             _set(self, name, v)
+        _check_envelope(self)
 
     @property
     def inner_conformity(self) -> float:
@@ -176,21 +324,26 @@ class RollerBearing:
     n_elements : int
         Number of rollers Z [-], >= 3.
     element_diameter : float
-        Roller diameter D_c = 2 r_c [m].
+        Roller diameter D_c = 2 r_c [m]; ``D_c cos(alpha)/D_p`` in [0.01, 0.50]
+        (:data:`GAMMA_RANGE_ROLLER`).
     pitch_diameter : float
-        Pitch diameter D_p [m].
+        Pitch diameter D_p [m], in [1 mm, 5 m] (:data:`PITCH_DIAMETER_RANGE`).
     roller_length : float
-        Effective contact length l [m].
+        Effective contact length l [m], 0.5 to 10 roller diameters
+        (:data:`ROLLER_LENGTH_RANGE`).
     contact_angle : float
-        Contact angle [rad]; 0 for a cylindrical roller bearing.
+        Contact angle [rad], in [0, pi/4]; 0 for a cylindrical roller bearing.
     diametral_clearance : float
-        Diametral clearance [m] (twice the radial gap ``c``); negative for preload.
+        Diametral clearance [m] (twice the radial gap ``c``); negative for preload; within
+        :func:`clearance_range`.
     inner_raceway_diameter, outer_raceway_diameter : float or None
         Raceway diameters [m] when the source gives them (default ``D_p -/+ D_c``).
     material : Material
         Material of rings and rollers.
     source : str
         Where the data come from.
+    bore, outer_diameter, width : float or None
+        Envelope dimensions [m], as :class:`BallBearing`.
     """
 
     id: str
@@ -212,7 +365,13 @@ class RollerBearing:
 
     def __post_init__(self) -> None:
         _check_common(self)
-        _set(self, "roller_length", check_positive("roller_length_m", self.roller_length, "m"))
+        d = self.element_diameter
+        lo, hi = ROLLER_LENGTH_RANGE
+        _set(
+            self,
+            "roller_length",
+            check_range("roller_length_m", self.roller_length, lo * d, hi * d, unit="m"),
+        )
         for name in ("inner_raceway_diameter", "outer_raceway_diameter"):
             v = getattr(self, name)
             if v is not None:
@@ -226,6 +385,7 @@ class RollerBearing:
                 f"inner_raceway_diameter_m = {self.inner_raceway_diameter:.6g} m must be smaller "
                 f"than outer_raceway_diameter_m = {self.outer_raceway_diameter:.6g} m"
             )
+        _check_envelope(self)
 
     @property
     def inner_raceway_radius(self) -> float:
@@ -333,6 +493,11 @@ class DefectProfile(enum.Enum):
 ISO_INNER_CONFORMITY = 0.52
 ISO_OUTER_CONFORMITY = 0.53
 
+#: Largest defect-centre azimuth, either sign [rad]: two turns (the scenario keys give the left
+#: edge within one turn, +/- 360 deg, and the centre lies half the defect's extent past it); a
+#: larger angle only loses digits of its position.
+DEFECT_ANGLE_MAX = 4.0 * math.pi
+
 #: CWRU seeded faults, 0.007 in wide (CWRU Bearing Data Center, "Fault Specifications") [m]
 CWRU_DEFECT_WIDTH_M = 0.007 * 25.4e-3
 #: CWRU electro-discharge-machined fault depth, 0.011 in (``../shared/data/cwru/SOURCES.md``) [m]
@@ -365,9 +530,10 @@ class Defect:
         Depth ``h_d`` [m], > 0 (default: the CWRU EDM depth 0.011 in). The IAS model does not use
         it (seed IAS assumes the spall deeper than the roller's drop).
     angle : float
-        Azimuth of the defect **centre** at ``t = 0`` [rad], from +y towards +x (the project
-        convention); ``pi`` = 6 o'clock, the bottom of a horizontal machine (CWRU ``@6``). An
-        inner-race defect turns with the shaft from there.
+        Azimuth of the defect **centre** at ``t = 0`` [rad], in [-4 pi, 4 pi]
+        (:data:`DEFECT_ANGLE_MAX`), from +y towards +x (the project convention); ``pi`` =
+        6 o'clock, the bottom of a horizontal machine (CWRU ``@6``). An inner-race defect turns
+        with the shaft from there.
     profile : DefectProfile or str
         Drop profile across the defect (rotor model; see :class:`DefectProfile`).
     """
@@ -383,7 +549,13 @@ class Defect:
         _set(self, "profile", parse_enum(DefectProfile, self.profile, "defect_profile"))
         _set(self, "width", check_positive("defect_width_m", self.width, "m"))
         _set(self, "depth", check_positive("defect_depth_m", self.depth, "m"))
-        _set(self, "angle", check_range("defect_angle_rad", self.angle, unit="rad"))
+        _set(
+            self,
+            "angle",
+            check_range(
+                "defect_angle_rad", self.angle, -DEFECT_ANGLE_MAX, DEFECT_ANGLE_MAX, unit="rad"
+            ),
+        )
 
 
 @dataclass(frozen=True)

@@ -33,17 +33,38 @@ import numpy as np
 from numba import njit
 from numpy.typing import ArrayLike, NDArray
 
+from .contact.capacity import check_load
 from .contact.hertz import element_stiffness
 from .errors import ConfigError, SolverError, check_range
-from .geometry import Bearing
+from .geometry import Bearing, check_clearance
 
 __all__ = [
+    "check_angles",
     "LoadDistribution",
+    "MAX_ANGLE_RAD",
     "radial_load_distribution",
     "RingMotion",
     "STRIBECK_CONSTANT",
     "stribeck_qmax",
 ]
+
+
+#: Largest magnitude of a cage or ball angle [rad]: 10^6 rad (about 160 000 turns). Beyond it the
+#: spacing of double-precision numbers exceeds 1e-10 rad and the angle no longer places an
+#: element (a cage angle of 1e30 deg gave delta_max = 9.8e54 m).
+MAX_ANGLE_RAD = 1e6
+
+
+def check_angles(name: str, values: ArrayLike) -> NDArray[np.float64]:
+    """``values`` as a flat float array, each finite and within +/- :data:`MAX_ANGLE_RAD` [rad];
+    else a one-line :class:`~bearingsim.errors.ConfigError` naming ``name``."""
+    a = np.atleast_1d(np.asarray(values, dtype=float)).ravel()
+    bad = np.flatnonzero(~(np.abs(a) <= MAX_ANGLE_RAD))
+    if bad.size:
+        i = int(bad[0])
+        where = f"{name}[{i}]" if a.size > 1 else name
+        check_range(where, float(a[i]), -MAX_ANGLE_RAD, MAX_ANGLE_RAD, unit="rad")
+    return a
 
 
 class RingMotion(enum.Enum):
@@ -319,6 +340,7 @@ def radial_load_distribution(
     motion: RingMotion | str = RingMotion.FREE,
     stiffness: float | None = None,
     element_factors: ArrayLike | None = None,
+    allow_overload: bool | None = False,
 ) -> LoadDistribution:
     """Static radial load distribution over the discrete elements (SPEC §0.4; Harris & Kotzalas
     2007, §7.2; seed VSM eqs. (4)–(9), (16)).
@@ -330,29 +352,33 @@ def radial_load_distribution(
     fx, fy : float
         Radial force components on the inner ring [N] (x horizontal, y vertical reference).
     cage_angle : float or array_like
-        Cage angle(s) [rad]; vectorised.
+        Cage angle(s) [rad], each within +/- :data:`MAX_ANGLE_RAD`; vectorised.
     clearance : float, optional
-        Diametral clearance P_d [m] overriding the bearing's; negative = preload.
+        Diametral clearance P_d [m] overriding the bearing's; negative = preload; within
+        :func:`bearingsim.geometry.clearance_range` (ISO 5753-1).
     first_element_angle : float
-        Azimuth of element 1 at cage angle 0, ``alpha_0`` [rad].
+        Azimuth of element 1 at cage angle 0, ``alpha_0`` [rad], in [-2 pi, 2 pi].
     motion : RingMotion
         ``FREE`` (both force components balanced, default) or ``LOAD_LINE`` (seed form).
     stiffness : float, optional
         Element constant K [N/m^n] overriding the Hertz value of the bearing.
     element_factors : array_like, optional
         Per-element multipliers of K, shape (Z,) or (m, Z) [-] (e.g. seed VSM's ``mu_i``).
+    allow_overload : bool or None
+        The radial load is checked against the static capacity before the solution
+        (:func:`bearingsim.contact.capacity.check_load`: a warning above ``C_0``, refused above
+        ``2 C_0``); ``True`` runs an overload anyway, ``None`` skips the check (a caller that
+        has made it).
     """
     motion = RingMotion(motion)
     fx = check_range("fx_n", fx, unit="N")
     fy = check_range("fy_n", fy, unit="N")
     Pd = bearing.diametral_clearance if clearance is None else clearance
-    Pd = check_range(
-        "clearance_m", Pd, -0.5 * bearing.element_diameter, 0.5 * bearing.element_diameter, unit="m"
+    Pd = check_clearance(bearing, Pd, "clearance_m")
+    psi0 = check_range(
+        "first_element_angle_rad", first_element_angle, -2 * math.pi, 2 * math.pi, unit="rad"
     )
-    psi0 = check_range("first_element_angle_rad", first_element_angle, unit="rad")
-    cage = np.atleast_1d(np.asarray(cage_angle, dtype=float)).ravel()
-    if not np.all(np.isfinite(cage)):
-        raise ConfigError("cage_angle contains a non-finite value; valid range (-inf, inf) rad")
+    cage = check_angles("cage_angle_rad", cage_angle)
     K, n = element_stiffness(bearing)
     if stiffness is not None:
         K = check_range("stiffness", stiffness, 0.0, lo_open=True, unit="N/m^n")
@@ -364,6 +390,7 @@ def radial_load_distribution(
         if not np.all(np.isfinite(fac)) or np.any(fac < 0):
             raise ConfigError("element_factors must be finite and >= 0; valid range [0, inf)")
     fr = math.hypot(fx, fy)
+    check_load(bearing, fr, allow_overload, name="|(fx_n, fy_n)|")
     if fr == 0.0 and Pd > 0:
         raise ConfigError(
             "radial load = 0 N with positive clearance: the ring position is undetermined; "

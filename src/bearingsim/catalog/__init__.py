@@ -3,6 +3,8 @@
 May import: :mod:`bearingsim.errors`, :mod:`~bearingsim.geometry`, :mod:`~bearingsim.materials`.
 
 User files use exactly the keys below (SI units, suffix names the unit); any other key is an error.
+The values must describe a bearing (ranges and their sources: :mod:`bearingsim.geometry`,
+:mod:`bearingsim.materials`); a boolean is not a number.
 
 =============================  ===========  =================================================
 key                            required     meaning
@@ -10,20 +12,24 @@ key                            required     meaning
 ``id``                         yes          identifier (string)
 ``type``                       yes          ``"ball"`` or ``"cylindrical_roller"``
 ``n_elements``                 yes          number of balls/rollers Z (integer >= 3)
-``element_diameter_m``         yes          ball/roller diameter d [m]
-``pitch_diameter_m``           yes          pitch diameter D [m]
-``contact_angle_rad``          no (0)       nominal contact angle [rad]
-``diametral_clearance_m``      no (0)       diametral clearance P_d [m]; negative = preload
-``inner_groove_radius_m``      ball         inner groove curvature radius R_i [m]
-``outer_groove_radius_m``      ball         outer groove curvature radius R_o [m]
-``roller_length_m``            roller       effective roller length l [m]
+``element_diameter_m``         yes          ball/roller diameter d [m]; ``d cos(alpha)/D`` in
+                                            [0.01, 0.40] (rollers 0.50), no overlap
+``pitch_diameter_m``           yes          pitch diameter D [m], 1 mm to 5 m
+``contact_angle_rad``          no (0)       nominal contact angle [rad], 0 to pi/4
+``diametral_clearance_m``      no (0)       diametral clearance P_d [m]; negative = preload;
+                                            within +/- the ISO 5753-1 group 5 limit of the
+                                            bore (``geometry.clearance_range``)
+``inner_groove_radius_m``      ball         inner groove curvature radius R_i [m]; R/d in
+                                            (0.5, 0.6]
+``outer_groove_radius_m``      ball         outer groove curvature radius R_o [m]; as R_i
+``roller_length_m``            roller       effective roller length l [m], 0.5 to 10 d
 ``inner_raceway_diameter_m``   no           roller: inner raceway diameter [m]
 ``outer_raceway_diameter_m``   no           roller: outer raceway diameter [m]
-``youngs_modulus_pa``          no (207e9)   Young's modulus [Pa]
-``poisson_ratio``              no (0.3)     Poisson's ratio [-]
-``density_kg_m3``              no (7850)    density [kg/m^3]
-``bore_m``                     no           bore diameter [m]
-``outer_diameter_m``           no           outside diameter [m]
+``youngs_modulus_pa``          no (207e9)   Young's modulus [Pa], 1e9 to 1.2e12
+``poisson_ratio``              no (0.3)     Poisson's ratio [-], in [0, 0.5)
+``density_kg_m3``              no (7850)    density [kg/m^3], 800 to 22600
+``bore_m``                     no           bore diameter [m], inside the inner raceway
+``outer_diameter_m``           no           outside diameter [m], outside the outer raceway
 ``width_m``                    no           width [m]
 ``source``                     no           where the data come from
 =============================  ===========  =================================================

@@ -11,7 +11,7 @@ import click
 from ..catalog import list_bearings
 from ..errors import check_range
 from ..geometry import Bearing, characteristic_frequencies
-from .common import bearing_options, bearing_summary, cli, emit_json, json_option
+from .common import Number, bearing_options, bearing_summary, cli, emit_json, json_option
 
 __all__ = [
     "bearings_cmd",
@@ -37,7 +37,12 @@ def bearings_cmd(as_json: bool) -> None:
 
 @cli.command("info")
 @bearing_options()
-@click.option("--rpm", type=float, required=True, help="Shaft (inner-ring) speed [r/min].")
+@click.option(
+    "--rpm",
+    type=Number(0.0, lo_open=True, unit="r/min"),
+    required=True,
+    help="Shaft (inner-ring) speed [r/min].",
+)
 @json_option
 def info_cmd(bearing: Bearing, rpm: float, as_json: bool) -> None:
     """Kinematic frequencies of BEARING at --rpm (outer ring fixed)."""

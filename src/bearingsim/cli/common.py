@@ -7,16 +7,20 @@ for every command, ``--help`` and ``--version`` included.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import importlib
 import json
 import math
-from collections.abc import Callable, Mapping
+import warnings
+from collections.abc import Callable, Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 import click
 
 from .._version import __version__
+from ..errors import format_range
+from ..materials import POISSON_RANGE, YOUNGS_MODULUS_RANGE
 
 if TYPE_CHECKING:
     from ..geometry import Bearing
@@ -71,6 +75,91 @@ def rad_to_deg(raw: Any) -> Any:
     if isinstance(raw, str) and "," in raw:
         return ",".join(one(v) for v in raw.split(","))
     return one(raw) if isinstance(raw, str) else raw
+
+
+class Number(click.ParamType):
+    """A numeric option that says its valid range when the text is not a number.
+
+    Click's own ``float``/``int`` types answer ``'abc' is not a valid float``; this type answers
+    ``Invalid value for '--fy-n': 'abc' is not a number; valid range (-inf, inf) N``. It only
+    parses: the range itself (and finiteness) is checked where the value is used, by the library
+    (:func:`bearingsim.errors.check_range`), with the field's name as the library knows it.
+
+    Parameters
+    ----------
+    lo, hi : float or None
+        Bounds of the valid range (``None`` = unbounded).
+    lo_open, hi_open : bool
+        Whether a bound is excluded.
+    unit : str
+        Unit of the range, as in the option's help (``"N"``, ``"deg"``).
+    integer : bool
+        Parse an integer (``int(text)``).
+    valid : str, optional
+        The valid range as text, when it depends on the bearing or another option
+        (``"[-c5, c5] m, c5 the ISO 5753-1 group 5 clearance of the bearing"``).
+    """
+
+    def __init__(
+        self,
+        lo: float | None = None,
+        hi: float | None = None,
+        *,
+        lo_open: bool = False,
+        hi_open: bool = False,
+        unit: str = "",
+        integer: bool = False,
+        valid: str | None = None,
+    ) -> None:
+        self.integer = integer
+        self.name = "integer" if integer else "float"
+        self.valid = valid or format_range(lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            return int(value) if self.integer and float(value).is_integer() else value
+        try:
+            return int(value) if self.integer else float(value)
+        except (TypeError, ValueError):
+            kind = "an integer" if self.integer else "a number"
+            self.fail(f"{value!r} is not {kind}; valid range {self.valid}", param, ctx)
+
+    def __repr__(self) -> str:
+        return f"Number({self.valid!r})"
+
+
+#: a diametral clearance option: its range depends on the bearing (ISO 5753-1, group 5, for
+#: its bore: :func:`bearingsim.geometry.clearance_range`)
+CLEARANCE = Number(valid="[-c5, c5] m, c5 the ISO 5753-1 group 5 clearance of the bearing's bore")
+
+
+def allow_overload_option(f: Callable) -> Callable:
+    """``--allow-overload``: run although the load exceeds twice the static capacity (ISO 76);
+    the command receives ``allow_overload``."""
+    return click.option(
+        "--allow-overload",
+        is_flag=True,
+        help="Run although the load exceeds 2 x the static capacity C0 (ISO 76); "
+        "a warning is printed instead of the error.",
+    )(f)
+
+
+@contextlib.contextmanager
+def echo_warnings(seen: set[str] | None = None) -> Iterator[None]:
+    """Collect the warnings of a command's work (model warnings such as
+    :class:`~bearingsim.contact.capacity.StaticCapacityWarning`) and print each as one line
+    ``warning: ...`` on stderr when the work succeeds (a refused or failed run prints only its
+    error line). Messages already in ``seen`` (shared between blocks: a check warns again when
+    the run repeats it) are not repeated."""
+    seen = set() if seen is None else seen
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield
+    for w in caught:
+        msg = " ".join(str(w.message).split())
+        if msg not in seen:
+            seen.add(msg)
+            click.echo(f"warning: {msg}", err=True)
 
 
 class Command(click.Command):
@@ -252,14 +341,14 @@ def bearing_options(required: bool = True) -> Callable:
         @click.option(
             "--E-pa",
             "e_pa",
-            type=float,
+            type=Number(*YOUNGS_MODULUS_RANGE, unit="Pa"),
             default=None,
             show_default="the bearing's",
             help="Young's modulus [Pa].",
         )
         @click.option(
             "--nu",
-            type=float,
+            type=Number(*POISSON_RANGE, hi_open=True),
             default=None,
             show_default="the bearing's",
             help="Poisson's ratio [-].",
@@ -310,14 +399,18 @@ def bearing_summary(b: Bearing) -> dict[str, Any]:
 
 
 __all__ = [
+    "allow_overload_option",
+    "CLEARANCE",
     "Command",
     "DeferredDefaultOption",
     "Group",
     "LazyGroup",
+    "Number",
     "bearing_options",
     "bearing_summary",
     "cli",
     "deprecated",
+    "echo_warnings",
     "emit_json",
     "json_option",
     "output_option",

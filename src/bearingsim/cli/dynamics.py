@@ -12,9 +12,18 @@ import click
 
 from ..config import Model, Solver
 from ..errors import ConfigError, check_range
-from .common import cli, deprecated, emit_json, json_option, output_option
+from .common import (
+    Number,
+    allow_overload_option,
+    cli,
+    deprecated,
+    echo_warnings,
+    emit_json,
+    json_option,
+    output_option,
+)
 from .common import scenario_default as _d
-from .limits import budget_options, overload_option, printed_warnings
+from .limits import budget_options
 from .rotor import rotor_simulate_options
 
 __all__ = [
@@ -49,33 +58,37 @@ def _opt(f):
         ),
         click.option(
             "--defect-width-m",
-            type=float,
+            type=Number(0.0, lo_open=True, unit="m"),
             default=None,
             show_default=_d("defect_width_m"),
             help="Defect width b along the raceway [m] (CWRU 0.007 in).",
         ),
         click.option(
             "--defect-depth-m",
-            type=float,
+            type=Number(0.0, lo_open=True, unit="m"),
             default=None,
             show_default=_d("defect_depth_m"),
             help="Defect depth h_d [m] (CWRU 0.011 in).",
         ),
         click.option(
             "--defect-edge-angle-deg",
-            type=float,
+            type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("defect_edge_angle_deg"),
             help="Azimuth of the defect's left edge at t = 0, beta_0 [deg] (seed VSM table 1).",
         ),
         deprecated("--defect-angle-deg", "--defect-edge-angle-deg"),
         click.option(
-            "--rpm", type=float, default=None, show_default=_d("rpm"), help="Shaft speed [r/min]."
+            "--rpm",
+            type=Number(0.0, lo_open=True, unit="r/min"),
+            default=None,
+            show_default=_d("rpm"),
+            help="Shaft speed [r/min].",
         ),
         click.option(
             "--fx-n",
             "fx_n",
-            type=float,
+            type=Number(unit="N"),
             default=None,
             show_default=_d("fx_n"),
             help="Radial force x [N].",
@@ -84,7 +97,7 @@ def _opt(f):
         click.option(
             "--fy-n",
             "fy_n",
-            type=float,
+            type=Number(unit="N"),
             default=None,
             show_default=_d("fy_n"),
             help="Radial force y [N].",
@@ -93,7 +106,7 @@ def _opt(f):
         click.option(
             "--stiffness-n-per-m1.5",
             "stiffness_n_per_m1_5",
-            type=float,
+            type=Number(0.0, lo_open=True, unit="N/m^1.5"),
             default=None,
             show_default="Hertz value",
             help="Ball load-deflection constant K [N/m^1.5] (seed VSM eq. (10)).",
@@ -101,14 +114,14 @@ def _opt(f):
         deprecated("--stiffness", "--stiffness-n-per-m1.5"),
         click.option(
             "--clearance-m",
-            type=float,
+            type=Number(0.0, unit="m"),
             default=None,
             show_default="the bearing's",
             help="Diametral clearance P_d [m].",
         ),
         click.option(
             "--retention-factor",
-            type=float,
+            type=Number(0.0, 1.0),
             default=None,
             show_default="seed VSM eq. (11)",
             help="Prescribed gamma in [0, 1] for a ball over the defect (seed VSM figs. 6-7) [-].",
@@ -116,7 +129,7 @@ def _opt(f):
         click.option(
             "--load-zone-deg",
             "load_zone_half_angle_deg",
-            type=float,
+            type=Number(0.0, 180.0, lo_open=True, hi_open=True, unit="deg"),
             default=None,
             show_default="from the contact",
             help="Fixed load-zone half angle psi_L [deg] (seed VSM eq. (14) literal).",
@@ -178,7 +191,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @rotor_simulate_options
 @click.option(
     "--duration-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=None,
     show_default=_d("duration_s"),
     help="Simulated time [s].",
@@ -186,7 +199,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @click.option(
     "--fs-hz",
     "fs_hz",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
     show_default=_d("fs_hz"),
     help="Output sample rate [Hz].",
@@ -194,7 +207,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @deprecated("--fs", "--fs-hz")
 @click.option(
     "--seed",
-    type=int,
+    type=Number(0, integer=True),
     default=None,
     show_default=_d("seed"),
     help="Seed of the measurement noise.",
@@ -202,7 +215,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @click.option(
     "--noise-rms-m-per-s2",
     "noise_rms_m_per_s2",
-    type=float,
+    type=Number(0.0, unit="m/s^2"),
     default=None,
     show_default=_d("noise_rms_m_per_s2"),
     help="RMS of white measurement noise added to the accelerations [m/s^2].",
@@ -210,7 +223,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @deprecated("--noise-rms", "--noise-rms-m-per-s2")
 @click.option(
     "--mass-kg",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="kg"),
     default=None,
     show_default="seed VSM table 1",
     help="Vibrating mass [kg].",
@@ -218,13 +231,19 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
 @click.option(
     "--damping-n-s-per-m",
     "damping_n_s_per_m",
-    type=float,
+    type=Number(0.0, unit="N s/m"),
     default=None,
     show_default=_d("damping_n_s_per_m"),
     help="Equivalent damping c_eq [N s/m].",
 )
 @deprecated("--damping", "--damping-n-s-per-m")
-@click.option("--dt-s", type=float, default=None, show_default="automatic", help="RK4 step [s].")
+@click.option(
+    "--dt-s",
+    type=Number(0.0, lo_open=True, unit="s"),
+    default=None,
+    show_default="automatic",
+    help="RK4 step [s].",
+)
 @click.option(
     "--solver",
     type=click.Choice([s.value for s in Solver]),
@@ -241,7 +260,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     help="Set any scenario key of the model's family (repeatable), e.g. --set "
     "spall_width_m=2e-3 for --model ias; VALUE is a TOML value.",
 )
-@overload_option
+@allow_overload_option
 @budget_options()
 @output_option("Output file (netCDF-4).", required=True)
 @json_option
@@ -263,7 +282,7 @@ def simulate_cmd(
 
     sc = _scenario(scenario_file, kw)
     seen: set[str] = set()
-    with printed_warnings(seen):  # everything checked before any work or output
+    with echo_warnings(seen):  # everything checked before any work or output
         validate_scenario(sc, budget, allow_overload)
     t0 = time.perf_counter()
     bar = tqdm(
@@ -282,7 +301,7 @@ def simulate_cmd(
         last[0] = n
 
     try:
-        with printed_warnings(seen):
+        with echo_warnings(seen):
             res = simulate(sc, progress=progress, budget=budget, allow_overload=allow_overload)
     finally:
         bar.close()
@@ -318,9 +337,24 @@ def simulate_cmd(
 
 @cli.command("vsm-trace")
 @_opt
-@click.option("--first-ball-deg", type=float, default=0.0, help="Ball 1 azimuth alpha_0 [deg].")
-@click.option("--cage-revs", type=float, default=1.0, help="Cage revolutions to trace [-].")
-@click.option("--step-deg", type=float, default=0.05, help="Cage-angle step [deg].")
+@click.option(
+    "--first-ball-deg",
+    type=Number(-360.0, 360.0, unit="deg"),
+    default=0.0,
+    help="Ball 1 azimuth alpha_0 [deg].",
+)
+@click.option(
+    "--cage-revs",
+    type=Number(0.0, 100.0, lo_open=True),
+    default=1.0,
+    help="Cage revolutions to trace [-].",
+)
+@click.option(
+    "--step-deg",
+    type=Number(0.0, 10.0, lo_open=True, unit="deg"),
+    default=0.05,
+    help="Cage-angle step [deg].",
+)
 @output_option("CSV output (one row per cage angle).")
 @click.option(
     "--plot",
@@ -330,24 +364,24 @@ def simulate_cmd(
 )
 @click.option(
     "--ball",
-    type=int,
+    type=Number(valid="[1, Z], Z the number of balls", integer=True),
     default=None,
     help="Also plot this ball's stiffness/force/deformation (seed VSM figs. 9, 11) "
     "to PLOT with suffix _ballN.",
 )
-@overload_option
+@allow_overload_option
 @budget_options(steps=False)
 @json_option
 def vsm_trace_cmd(
     output: str | None,
     plot: str | None,
+    allow_overload: bool,
     as_json: bool,
     cage_revs: float,
     step_deg: float,
     first_ball_deg: float,
     ball: int | None,
     budget: Any,
-    allow_overload: bool,
     **kw: Any,
 ) -> None:
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
@@ -371,10 +405,13 @@ def vsm_trace_cmd(
     n = int(round(360.0 * revs / step)) + 1
     if n > 2_000_000:
         raise ConfigError(f"cage_revs/step_deg = {n} points is too many; valid range [2, 2e6]")
-    with printed_warnings():
-        check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload)
-    check_budget(trace_estimate(inputs, n), budget)
-    tr = stiffness_trace(inputs, np.radians(np.linspace(0.0, 360.0 * revs, n)))
+    with echo_warnings():  # the load against C0 first, then the budget, then the work
+        check_load(
+            inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name="|(fx_n, fy_n)|"
+        )
+        check_budget(trace_estimate(inputs, n), budget)
+        angles = np.radians(np.linspace(0.0, 360.0 * revs, n))
+        tr = stiffness_trace(inputs, angles, allow_overload=allow_overload)
     if output:
         tr.to_csv(output)
     if plot:
@@ -421,12 +458,16 @@ def vsm_trace_cmd(
     "--bearing-file", default=None, type=click.Path(dir_okay=False), help="User bearing TOML file."
 )
 @click.option(
-    "--rpm", type=float, default=None, show_default="from the file", help="Shaft speed [r/min]."
+    "--rpm",
+    type=Number(0.0, lo_open=True, unit="r/min"),
+    default=None,
+    show_default="from the file",
+    help="Shaft speed [r/min].",
 )
 @click.option(
     "--fs-hz",
     "fs_hz",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
     show_default="from the file; CWRU: 12k/48k in the name, else 48000",
     help="Sample rate of the signal [Hz].",

@@ -8,6 +8,7 @@ from typing import Any
 import click
 import numpy as np
 
+from ..contact.capacity import check_element_load, check_load
 from ..contact.hertz import (
     EllipticMethod,
     ball_contact,
@@ -19,12 +20,27 @@ from ..contact.hertz import (
 from ..errors import ConfigError, check_range
 from ..geometry import BallBearing, Bearing, Race
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
-from .common import bearing_options, cli, deprecated, emit_json, json_option
+from .common import (
+    CLEARANCE,
+    Number,
+    allow_overload_option,
+    bearing_options,
+    cli,
+    deprecated,
+    echo_warnings,
+    emit_json,
+    json_option,
+)
 
 __all__ = [
+    "CAGE_ANGLE_MAX_DEG",
     "contact_cmd",
     "load_cmd",
 ]
+
+#: the cage angle of ``load`` is one turn either way [deg] (the pattern repeats every
+#: 360/Z deg; larger angles only lose digits: 1e30 deg gave delta_max = 9.8e54 m)
+CAGE_ANGLE_MAX_DEG = 360.0
 
 
 def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[str, Any]:
@@ -60,12 +76,18 @@ def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[st
 
 @cli.command("contact")
 @bearing_options()
-@click.option("--ball-load-n", "ball_load", type=float, default=None, help="Element load Q [N].")
+@click.option(
+    "--ball-load-n",
+    "ball_load",
+    type=Number(0.0, unit="N"),
+    default=None,
+    help="Element load Q [N].",
+)
 @deprecated("--ball-load", "--ball-load-n")
 @click.option(
     "--radial-load-n",
     "radial_load",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="N"),
     default=None,
     help="Bearing radial load F_r [N]; the most-loaded element is used.",
 )
@@ -76,22 +98,32 @@ def _contact_dict(bearing: Bearing, q: float, method: EllipticMethod) -> dict[st
     default="exact",
     help="Point-contact solution.",
 )
+@allow_overload_option
 @json_option
 def contact_cmd(
-    bearing: Bearing, ball_load: float | None, radial_load: float | None, method: str, as_json: bool
+    bearing: Bearing,
+    ball_load: float | None,
+    radial_load: float | None,
+    method: str,
+    allow_overload: bool,
+    as_json: bool,
 ) -> None:
     """Hertz contact of the most-loaded element with both raceways."""
     if (ball_load is None) == (radial_load is None):
         raise ConfigError("contact: give exactly one of --ball-load-n Q or --radial-load-n F_R")
     extra: dict[str, Any] = {}
-    if radial_load is not None:
-        fr = check_range("radial_load_n", radial_load, 0.0, lo_open=True, unit="N")
-        ld = radial_load_distribution(bearing, 0.0, fr)
-        q = float(ld.ball_loads.max())
-        extra = {"radial_load_n": fr, "q_max_n": q, "q_max_stribeck_n": stribeck_qmax(bearing, fr)}
-    else:
-        q = check_range("ball_load_n", ball_load, 0.0, unit="N")
-    out = {"ball_load_n": q, **extra, **_contact_dict(bearing, q, EllipticMethod(method))}
+    with echo_warnings():
+        if radial_load is not None:
+            fr = check_range("radial_load_n", radial_load, 0.0, lo_open=True, unit="N")
+            check_load(bearing, fr, allow_overload)
+            ld = radial_load_distribution(bearing, 0.0, fr, allow_overload=None)
+            q = float(ld.ball_loads.max())
+            q_stribeck = stribeck_qmax(bearing, fr)
+            extra = {"radial_load_n": fr, "q_max_n": q, "q_max_stribeck_n": q_stribeck}
+        else:
+            q = check_range("ball_load_n", ball_load, 0.0, unit="N")
+            check_element_load(bearing, q, allow_overload)
+        out = {"ball_load_n": q, **extra, **_contact_dict(bearing, q, EllipticMethod(method))}
     if as_json:
         emit_json(out)
         return
@@ -108,14 +140,19 @@ def contact_cmd(
 
 @cli.command("load")
 @bearing_options()
-@click.option("--fx-n", "fx", type=float, default=0.0, help="Radial force x [N].")
+@click.option("--fx-n", "fx", type=Number(unit="N"), default=0.0, help="Radial force x [N].")
 @deprecated("--fx", "--fx-n")
-@click.option("--fy-n", "fy", type=float, default=0.0, help="Radial force y [N].")
+@click.option("--fy-n", "fy", type=Number(unit="N"), default=0.0, help="Radial force y [N].")
 @deprecated("--fy", "--fy-n")
-@click.option("--cage-angle-deg", type=float, default=0.0, help="Cage angle [deg].")
+@click.option(
+    "--cage-angle-deg",
+    type=Number(-CAGE_ANGLE_MAX_DEG, CAGE_ANGLE_MAX_DEG, unit="deg"),
+    default=0.0,
+    help="Cage angle, position of element 1 from +y towards +x [deg].",
+)
 @click.option(
     "--clearance-m",
-    type=float,
+    type=CLEARANCE,
     default=None,
     show_default="the bearing's",
     help="Diametral clearance [m] (negative = preload).",
@@ -129,6 +166,7 @@ def contact_cmd(
 @click.option(
     "--plot", type=click.Path(dir_okay=False), default=None, help="Write a polar plot PNG."
 )
+@allow_overload_option
 @json_option
 def load_cmd(
     bearing: Bearing,
@@ -138,11 +176,22 @@ def load_cmd(
     clearance_m: float | None,
     motion: str,
     plot: str | None,
+    allow_overload: bool,
     as_json: bool,
 ) -> None:
     """Radial load distribution over the discrete elements."""
-    cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, unit="deg"))
-    ld = radial_load_distribution(bearing, fx, fy, cage, clearance=clearance_m, motion=motion)
+    a = CAGE_ANGLE_MAX_DEG
+    cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, -a, a, unit="deg"))
+    with echo_warnings():
+        ld = radial_load_distribution(
+            bearing,
+            fx,
+            fy,
+            cage,
+            clearance=clearance_m,
+            motion=motion,
+            allow_overload=allow_overload,
+        )
     out = {
         "theta0_deg": math.degrees(ld.theta0),
         "fr_n": ld.fr,

@@ -16,14 +16,17 @@ from ..geometry import RollerBearing
 from ..signal.order import ShaftSignalKind
 from .common import (
     DeferredDefaultOption,
+    Number,
+    allow_overload_option,
     cli,
     deprecated,
+    echo_warnings,
     emit_json,
     json_option,
     output_option,
     scenario_default,
 )
-from .limits import budget_options, overload_option, printed_warnings
+from .limits import budget_options
 
 __all__ = [
     "analyze_ias_cmd",
@@ -108,7 +111,7 @@ def _default(key: str) -> dict[str, Any]:
 )
 @click.option(
     "--rpm",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="r/min"),
     default=None,
     show_default="set by --torque-n-m",
     help="Target speed [r/min]: sets M_z = C_T * speed (the speed itself comes out of "
@@ -117,7 +120,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--torque-n-m",
     "torque_n_m",
-    type=float,
+    type=Number(0.0, unit="N m"),
     default=None,
     **_default("torque_n_m"),
     help="Motor torque M_z [N m].",
@@ -125,21 +128,21 @@ def _default(key: str) -> dict[str, Any]:
 @deprecated("--torque-nm", "--torque-n-m")
 @click.option(
     "--initial-rpm",
-    type=float,
+    type=Number(0.0, unit="r/min"),
     default=None,
     **_default("initial_rpm"),
     help="Initial shaft speed [r/min].",
 )
 @click.option(
     "--spall-width-m",
-    type=float,
+    type=Number(valid="[0, d) m, d the roller diameter"),
     default=None,
     **_default("spall_width_m"),
     help="Outer-race spall width L_d [m]; 0 = healthy.",
 )
 @click.option(
     "--spall-angle-deg",
-    type=float,
+    type=Number(-360.0, 360.0, unit="deg"),
     default=None,
     **_default("spall_angle_deg"),
     help="Spall centre azimuth from +y towards +x [deg] (180 = bottom).",
@@ -147,7 +150,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fx-n",
     "fx_n",
-    type=float,
+    type=Number(unit="N"),
     default=None,
     **_default("fx_n"),
     help="Radial load along +x [N].",
@@ -156,7 +159,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fy-n",
     "fy_n",
-    type=float,
+    type=Number(unit="N"),
     default=None,
     **_default("fy_n"),
     help="Radial load pushing the shaft down (-y) [N].",
@@ -164,14 +167,14 @@ def _default(key: str) -> dict[str, Any]:
 @deprecated("--fy", "--fy-n")
 @click.option(
     "--duration-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=None,
     **_default("duration_s"),
     help="Simulated time [s].",
 )
 @click.option(
     "--dt-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=None,
     **_default("dt_s"),
     help="RK4 step [s].",
@@ -179,7 +182,7 @@ def _default(key: str) -> dict[str, Any]:
 @click.option(
     "--fs-hz",
     "fs_hz",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
     **_default("fs_hz"),
     help="Output sample rate [Hz].",
@@ -210,7 +213,7 @@ def _default(key: str) -> dict[str, Any]:
 )
 @click.option(
     "--skip-s",
-    type=float,
+    type=Number(valid="[0, duration) s"),
     default=None,
     show_default="10 % of the run",
     help="Start-up left out of the analysis [s].",
@@ -223,7 +226,7 @@ def _default(key: str) -> dict[str, Any]:
     default=None,
     help="Write a PNG: IAS vs angle, order spectrum, spall estimate.",
 )
-@overload_option
+@allow_overload_option
 @budget_options()
 @json_option
 def ias_cmd(
@@ -264,12 +267,12 @@ def ias_cmd(
     settings["model"] = "ias"
     sc = IasScenario.from_dict(settings, origin=Path(scenario).name if scenario else "options")
     seen: set[str] = set()
-    with printed_warnings(seen):  # everything checked before any work or output
+    with echo_warnings(seen):  # everything checked before any work or output
         check_ias(sc, budget, allow_overload)
     bar = tqdm(total=sc.n_samples, desc="ias", unit="sample", disable=as_json, leave=False,
                delay=1.0, file=sys.stderr)  # fmt: skip
     try:
-        with printed_warnings(seen):
+        with echo_warnings(seen):
             res = run_ias(sc, lambda n: bar.update(n - bar.n), budget, allow_overload)
     finally:
         bar.close()
@@ -327,14 +330,14 @@ _KINDS = tuple(k.value for k in ShaftSignalKind)
 )
 @click.option(
     "--skip-s",
-    type=float,
+    type=Number(valid="[0, duration) s"),
     default=None,
     show_default="0; for an IAS result 10 % of the run",
     help="Leading time left out [s].",
 )
 @click.option(
     "--samples-per-rev",
-    type=int,
+    type=Number(8, 2**24, integer=True),
     default=None,
     show_default="from the data",
     help="Angular resampling density [1/rev].",

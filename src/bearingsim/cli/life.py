@@ -11,7 +11,7 @@ import click
 
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import Bearing
-from .common import bearing_options, cli, deprecated, emit_json, json_option, output_option
+from .common import Number, bearing_options, cli, deprecated, emit_json, json_option, output_option
 
 __all__ = [
     "life_cmd",
@@ -21,12 +21,16 @@ __all__ = [
 @cli.command("life")
 @bearing_options()
 @click.option(
-    "--radial-load-n", "radial_load", type=float, required=True, help="Radial load F_r [N]."
+    "--radial-load-n",
+    "radial_load",
+    type=Number(valid="(0, 2 C0] N, C0 the static capacity (ISO 76)"),
+    required=True,
+    help="Radial load F_r [N].",
 )
 @deprecated("--radial-load", "--radial-load-n")
 @click.option(
     "--rpm",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="r/min"),
     default=None,
     show_default="lives in revolutions only",
     help="Shaft speed [r/min]; adds the lives in hours.",
@@ -39,20 +43,20 @@ __all__ = [
 )
 @click.option(
     "--element-size-um",
-    type=float,
+    type=Number(valid="(0, b/4] um, b the contact half-width"),
     default=None,
     show_default="from --mesh",
     help="Explicit fine element size [um] instead of --mesh (must be <= b/4).",
 )
 @click.option(
     "--delta-d",
-    type=float,
+    type=Number(0.0, 0.1, lo_open=True),
     default=0.001,
     help="Damage block: increment of the fastest element [-] (seed LIFE eq. (7)).",
 )
 @click.option(
     "--delta-d-spall",
-    type=float,
+    type=Number(0.0, 0.1, lo_open=True),
     default=0.01,
     help="Damage block after initiation, growth of the failed zone to the surface [-].",
 )
@@ -70,14 +74,14 @@ __all__ = [
 )
 @click.option(
     "--kappa",
-    type=float,
+    type=Number(0.0, lo_open=True),
     default=None,
     show_default="GCr15 fit, seed LIFE eqs. (5)-(6)",
     help="Damage exponent kappa [-].",
 )
 @click.option(
     "--sigma-t-pa",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="Pa"),
     default=None,
     show_default="GCr15 fit, seed LIFE eqs. (5)-(6)",
     help="Damage resistance sigma_t [Pa].",
@@ -88,7 +92,12 @@ __all__ = [
     default="spall",
     help="Stop at the spall or at the first failed element.",
 )
-@click.option("--max-steps", type=int, default=20000, help="Limit on damage blocks.")
+@click.option(
+    "--max-steps",
+    type=Number(1, 10_000_000, integer=True),
+    default=20000,
+    help="Limit on damage blocks.",
+)
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),

@@ -15,7 +15,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError
-from .common import DeferredDefaultOption, cli, deprecated, emit_json, json_option
+from .common import DeferredDefaultOption, Number, cli, deprecated, emit_json, json_option
 from .common import scenario_default as _d
 from .limits import budget_options
 
@@ -77,21 +77,21 @@ def rotor_simulate_options(f: Callable) -> Callable:
         ),
         click.option(
             "--de-defect-angle-deg",
-            type=float,
+            type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("de_defect_angle_deg"),
             help="DE defect centre azimuth at t = 0 from +y towards +x [deg] (180 = 6 o'clock).",
         ),
         click.option(
             "--fe-defect-angle-deg",
-            type=float,
+            type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("fe_defect_angle_deg"),
             help="FE defect centre azimuth at t = 0 [deg].",
         ),
         click.option(
             "--disks",
-            type=int,
+            type=Number(1, integer=True),
             default=None,
             show_default=_d("disks"),
             help="Number of rotor disks [-].",
@@ -112,7 +112,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--elements",
             "n_elements",
-            type=int,
+            type=Number(10, integer=True),
             default=None,
             show_default="automatic",
             help="Minimum number of beam elements [-].",
@@ -126,7 +126,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         ),
         click.option(
             "--housing-mass-kg",
-            type=float,
+            type=Number(0.0, lo_open=True, unit="kg"),
             default=None,
             show_default=_d("housing_mass_kg"),
             help="Housing mass [kg].",
@@ -134,7 +134,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--housing-stiffness-n-per-m",
             "housing_stiffness_n_per_m",
-            type=float,
+            type=Number(0.0, lo_open=True, unit="N/m"),
             default=None,
             show_default=_d("housing_stiffness_n_per_m"),
             help="Housing mount stiffness, X and Y [N/m].",
@@ -143,7 +143,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--housing-damping-n-s-per-m",
             "housing_damping_n_s_per_m",
-            type=float,
+            type=Number(0.0, unit="N s/m"),
             default=None,
             show_default=_d("housing_damping_n_s_per_m"),
             help="Housing mount damping, X and Y [N s/m].",
@@ -152,7 +152,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--contact-damping-n-s-per-m",
             "contact_damping_n_s_per_m",
-            type=float,
+            type=Number(0.0, unit="N s/m"),
             default=None,
             show_default=_d("contact_damping_n_s_per_m"),
             help="Damping of each ball-race contact [N s/m].",
@@ -166,7 +166,7 @@ def rotor_simulate_options(f: Callable) -> Callable:
         ),
         click.option(
             "--unbalance-kg-m",
-            type=float,
+            type=Number(0.0, unit="kg m"),
             default=None,
             show_default=_d("unbalance_kg_m"),
             help="Static rotor unbalance m e [kg m].",
@@ -199,7 +199,7 @@ def rotor_options(f: Callable) -> Callable:
     """Options describing the rotor (shaft, armature, mesh); the command receives
     ``rotor_kw`` (keyword arguments for :func:`cwru_rotor_config`) instead."""
 
-    @click.option("--disks", type=int, default=9, help="Number of disks [-].")
+    @click.option("--disks", type=Number(1, integer=True), default=9, help="Number of disks [-].")
     @click.option(
         "--disk-positions-mm",
         default=None,
@@ -213,7 +213,7 @@ def rotor_options(f: Callable) -> Callable:
     )
     @click.option(
         "--elements",
-        type=int,
+        type=Number(10, integer=True),
         default=None,
         show_default="automatic",
         help="Minimum number of beam elements [-].",
@@ -226,35 +226,38 @@ def rotor_options(f: Callable) -> Callable:
     )
     @click.option(
         "--shaft-length-mm",
-        type=float,
+        type=Number(0.0, lo_open=True, unit="mm"),
         help="Shaft length between the bearings [mm].",
         **_seed("SEED_SHAFT_LENGTH_M", 1e3),
     )
     @click.option(
         "--shaft-diameter-mm",
-        type=float,
+        type=Number(0.0, lo_open=True, unit="mm"),
         help="Shaft diameter [mm].",
         **_seed("SEED_SHAFT_DIAMETER_M", 1e3),
     )
     @click.option(
         "--shaft-E-pa",
         "shaft_e",
-        type=float,
+        type=Number(0.0, lo_open=True, unit="Pa"),
         help="Young's modulus of the shaft [Pa].",
         **_seed("SEED_SHAFT_E_PA"),
     )
     @click.option(
-        "--shaft-mass-kg", type=float, help="Shaft mass [kg].", **_seed("SEED_SHAFT_MASS_KG")
+        "--shaft-mass-kg",
+        type=Number(0.0, lo_open=True, unit="kg"),
+        help="Shaft mass [kg].",
+        **_seed("SEED_SHAFT_MASS_KG"),
     )
     @click.option(
         "--rotor-mass-kg",
-        type=float,
+        type=Number(0.0, lo_open=True, unit="kg"),
         help="Armature (rotor) mass [kg].",
         **_seed("SEED_ROTOR_MASS_KG"),
     )
     @click.option(
         "--disk-diameter-mm",
-        type=float,
+        type=Number(0.0, lo_open=True, unit="mm"),
         help="Diameter of the disks [mm].",
         **_seed("SEED_DISK_DIAMETER_M", 1e3),
     )
@@ -307,8 +310,8 @@ def rotor_options(f: Callable) -> Callable:
     default="pinned",
     help="Bearing nodes held in x, y (simply supported) or free-free.",
 )
-@click.option("--rpm", type=float, default=0.0, help="Spin speed [r/min].")
-@click.option("--n-modes", type=int, default=8, help="Number of modes [-].")
+@click.option("--rpm", type=Number(0.0, unit="r/min"), default=0.0, help="Spin speed [r/min].")
+@click.option("--n-modes", type=Number(1, integer=True), default=8, help="Number of modes [-].")
 @budget_options(steps=False)
 @json_option
 def rotor_modes_cmd(

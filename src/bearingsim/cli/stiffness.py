@@ -12,74 +12,90 @@ from ..quasistatic.inputs import Method, Misalignment, SpeedEffects
 from ..quasistatic.iso16281 import Conformities
 from ..quasistatic.stiffness import SERIES, stiffness_vs_cage
 from .common import (
+    CLEARANCE,
+    Number,
+    allow_overload_option,
     bearing_options,
     cli,
     deprecated,
+    echo_warnings,
     emit_json,
     json_option,
     output_option,
     rad_to_deg,
 )
 
+#: azimuths of the tilt axes: one turn either way [deg]
+AZIMUTH_MAX_DEG = 360.0
+AZIMUTH = Number(-AZIMUTH_MAX_DEG, AZIMUTH_MAX_DEG, unit="deg")
+
 __all__ = [
     "stiffness_cmd",
 ]
 
 
-def _parse_errors(text: str | None) -> list[float] | None:
-    """``--ball-errors-deg "E1,E2,..."`` -> the errors in radians."""
+def _parse_errors(text: str | None, n_balls: int) -> list[float] | None:
+    """``--ball-errors-deg "E1,E2,..."`` -> the errors in radians (each within one ball pitch,
+    checked by the model: ``ball_errors_rad``)."""
     if text is None:
         return None
     out = []
+    pitch = 360.0 / n_balls
     for i, item in enumerate(text.split(",")):
         try:
             out.append(math.radians(float(item)))
         except ValueError:
             raise ConfigError(
                 f"ball_errors_deg[{i}] = {item.strip()!r} is not a number; valid: comma-separated "
-                "angles in deg, one per ball"
+                f"angles in deg, one per ball, each in [-{pitch:.6g}, {pitch:.6g}] deg (one ball "
+                "pitch)"
             ) from None
     return out
 
 
 @cli.command("stiffness")
 @bearing_options()
-@click.option("--fx-n", "fx", type=float, default=0.0, help="Force x [N].")
+@click.option("--fx-n", "fx", type=Number(unit="N"), default=0.0, help="Force x [N].")
 @deprecated("--fx", "--fx-n")
-@click.option("--fy-n", "fy", type=float, default=0.0, help="Force y [N].")
+@click.option("--fy-n", "fy", type=Number(unit="N"), default=0.0, help="Force y [N].")
 @deprecated("--fy", "--fy-n")
-@click.option("--fz-n", "fz", type=float, default=0.0, help="Axial force [N].")
+@click.option("--fz-n", "fz", type=Number(unit="N"), default=0.0, help="Axial force [N].")
 @deprecated("--fz", "--fz-n")
-@click.option("--mx-n-m", "mx", type=float, default=0.0, help="Moment about x [N m].")
+@click.option("--mx-n-m", "mx", type=Number(unit="N m"), default=0.0, help="Moment about x [N m].")
 @deprecated("--mx", "--mx-n-m")
-@click.option("--my-n-m", "my", type=float, default=0.0, help="Moment about y [N m].")
+@click.option("--my-n-m", "my", type=Number(unit="N m"), default=0.0, help="Moment about y [N m].")
 @deprecated("--my", "--my-n-m")
 @click.option(
     "--clearance-m",
-    type=float,
+    type=CLEARANCE,
     default=None,
     show_default="the bearing's",
     help="Diametral clearance P_d [m] (negative = preload).",
 )
-@click.option("--outer-tilt-deg", type=float, default=0.0, help="Outer-ring misalignment [deg].")
+@click.option(
+    "--outer-tilt-deg",
+    type=Number(0.0, valid="[0, what clearance and grooves allow] deg"),
+    default=0.0,
+    help="Outer-ring misalignment [deg].",
+)
 @deprecated("--outer-tilt-rad", "--outer-tilt-deg", rad_to_deg)
 @click.option(
     "--outer-tilt-azimuth-deg",
-    type=float,
+    type=AZIMUTH,
     default=0.0,
     help="Azimuth of the outer tilt axis, from +y towards +x [deg].",
 )
 @deprecated("--outer-tilt-azimuth-rad", "--outer-tilt-azimuth-deg", rad_to_deg)
 @click.option(
     "--inner-tilt-deg",
-    type=float,
+    type=Number(0.0, valid="[0, what clearance, grooves and the outer tilt allow] deg"),
     default=0.0,
     help="Inner-ring misalignment, rotating with the shaft [deg].",
 )
 @deprecated("--inner-tilt-rad", "--inner-tilt-deg", rad_to_deg)
 @click.option(
     "--inner-tilt-azimuth-deg",
-    type=float,
+    type=AZIMUTH,
     default=0.0,
     help="Azimuth of the inner tilt axis at shaft angle 0 [deg].",
 )
@@ -91,10 +107,15 @@ def _parse_errors(text: str | None) -> list[float] | None:
     help="Ball-distribution errors, one angle per ball [deg].",
 )
 @deprecated("--ball-errors-rad", "--ball-errors-deg", rad_to_deg)
-@click.option("--cage-revs", type=int, default=10, help="Cage revolutions [-].")
+@click.option(
+    "--cage-revs",
+    type=Number(1, 10000, integer=True),
+    default=10,
+    help="Cage revolutions [-].",
+)
 @click.option(
     "--points-per-rev",
-    type=int,
+    type=Number(valid="[4 Z, 100000], Z the number of balls", integer=True),
     default=360,
     help="Cage positions per revolution [-].",
 )
@@ -112,7 +133,7 @@ def _parse_errors(text: str | None) -> list[float] | None:
 )
 @click.option(
     "--rpm",
-    type=float,
+    type=Number(0.0, unit="r/min"),
     default=None,
     show_default="no inertia loads",
     help="Shaft speed for inertia loads [r/min].",
@@ -129,6 +150,7 @@ def _parse_errors(text: str | None) -> list[float] | None:
     "Write the full result (netCDF-4, lossless; StiffnessResult.load reads it).", dest="out"
 )
 @deprecated("--out", "--output")
+@allow_overload_option
 @json_option
 def stiffness_cmd(
     bearing: Bearing,
@@ -152,6 +174,7 @@ def stiffness_cmd(
     gyroscopic: bool,
     plot: str | None,
     out: str | None,
+    allow_overload: bool,
     as_json: bool,
 ) -> None:
     """5x5 stiffness of BEARING at equilibrium and its fluctuation over the cage revolutions.
@@ -173,25 +196,27 @@ def stiffness_cmd(
     kw: dict[str, object] = dict(
         clearance=clearance_m,
         misalignment=mis,
-        ball_errors=_parse_errors(ball_errors_deg),
+        ball_errors=_parse_errors(ball_errors_deg, bearing.n_elements),
         speed=speed,
+        allow_overload=allow_overload,
     )
     if Method(method) is Method.ISO16281:
         kw["conformities"] = Conformities(conformities)
     elif Conformities(conformities) is not Conformities.BEARING:
         raise ConfigError("--conformities applies to --method iso16281 only")
-    res = stiffness_vs_cage(
-        bearing,
-        fx,
-        fy,
-        fz,
-        mx,
-        my,
-        cage_revs=cage_revs,
-        points_per_rev=points_per_rev,
-        method=Method(method),
-        **kw,
-    )
+    with echo_warnings():
+        res = stiffness_vs_cage(
+            bearing,
+            fx,
+            fy,
+            fz,
+            mx,
+            my,
+            cage_revs=cage_revs,
+            points_per_rev=points_per_rev,
+            method=Method(method),
+            **kw,
+        )
     if plot:
         from ..report.figures import save_figure
 

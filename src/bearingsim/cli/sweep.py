@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_range
-from .common import cli, deprecated, emit_json, json_option, output_option
+from .common import Number, cli, deprecated, emit_json, json_option, output_option
 
 __all__ = [
     "plan_cmd",
@@ -52,19 +52,19 @@ def sweep_group() -> None:
 @click.argument("spec_file", metavar="SWEEP.toml", type=click.Path(dir_okay=False))
 @click.option(
     "--timing-runs",
-    type=int,
+    type=Number(0, integer=True),
     default=3,
     help="Short timing runs for the estimate (0: count only).",
 )
 @click.option(
     "--timing-duration-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=0.1,
     help="Longest simulated time of a timing run [s].",
 )
 @click.option(
     "--workers",
-    type=int,
+    type=Number(1, integer=True),
     default=None,
     show_default="CPU count",
     help="Workers for the wall-time estimate.",
@@ -115,7 +115,7 @@ def plan_cmd(
 @deprecated("--out", "--output")
 @click.option(
     "--workers",
-    type=int,
+    type=Number(1, integer=True),
     default=None,
     show_default="CPU count",
     help="Process workers of the local Dask cluster.",
@@ -127,7 +127,7 @@ def plan_cmd(
 )
 @click.option(
     "--connect-timeout-s",
-    type=float,
+    type=Number(0.0, lo_open=True, unit="s"),
     default=20.0,
     help="How long to try reaching --scheduler [s].",
 )
@@ -135,7 +135,7 @@ def plan_cmd(
 @click.option("--retry-failed", is_flag=True, help="Compute the failed runs again.")
 @click.option(
     "--runs-per-task",
-    type=int,
+    type=Number(1, integer=True),
     default=None,
     show_default="automatic",
     help="Runs per Dask task.",
@@ -210,7 +210,9 @@ def run_cmd(
     show_default="the dataset's",
     help="Label key(s), comma-separated.",
 )
-@click.option("--max-failures", type=int, default=10, help="Failures listed (text).")
+@click.option(
+    "--max-failures", type=Number(0, integer=True), default=10, help="Failures listed (text)."
+)
 @json_option
 def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: bool) -> None:
     """Counts by label and axis value, failures with their errors."""

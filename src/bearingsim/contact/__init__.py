@@ -5,10 +5,22 @@
   10/9 load–deflection), element stiffness constants.
 - :mod:`.pereira` — the empirical line-contact stiffness laws of Pereira et al. (2011) that the
   seed IAS model uses (seed IAS eqs. (5)–(13)).
+- :mod:`.capacity` — the static capacity ``C_0`` (ISO 76) from the bearing's own Hertz contact
+  and the load check every model applies before it runs (:func:`check_load`: warn above
+  ``C_0``, refuse above ``2 C_0`` unless ``allow_overload``).
 
 May import: :mod:`bearingsim.errors`, :mod:`~bearingsim.geometry`, :mod:`~bearingsim.materials`.
 """
 
+from .capacity import (
+    STATIC_LIMIT_FACTOR,
+    StaticCapacity,
+    StaticCapacityWarning,
+    check_element_load,
+    check_load,
+    equivalent_static_load,
+    static_capacity,
+)
 from .hertz import (
     EllipticMethod,
     LineContact,
@@ -28,6 +40,13 @@ from .hertz import (
 from .pereira import SeedLineStiffness, seed_line_stiffness, seed_reference_load
 
 __all__ = [
+    "STATIC_LIMIT_FACTOR",
+    "StaticCapacity",
+    "StaticCapacityWarning",
+    "check_element_load",
+    "check_load",
+    "equivalent_static_load",
+    "static_capacity",
     "EllipticMethod",
     "LineContact",
     "PointContact",

@@ -3,16 +3,16 @@
 - :func:`check_speed`: the shaft speed against the bearing's speed factor (a warning) and against
   what the model's output can resolve (a refusal);
 - :func:`check_load`: the radial load against the bearing's static capacity ``C_0`` (ISO 76):
-  see :mod:`._load_check_stub`.
+  :func:`bearingsim.contact.capacity.check_load`, shared with the static models.
 """
 
 from __future__ import annotations
 
 import warnings
 
+from ..contact.capacity import check_load
 from ..errors import ConfigError, check_positive
 from ..geometry import Bearing, characteristic_frequencies
-from ._load_check_stub import check_load
 
 __all__ = [
     "SPEED_FACTOR_WARN",

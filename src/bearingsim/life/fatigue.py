@@ -109,7 +109,9 @@ def inner_contact(
         q = stribeck_qmax(bearing, fr)
     else:
         cage = 2 * math.pi / bearing.n_elements * np.linspace(0, 1, 17)[:-1]
-        q = float(radial_load_distribution(bearing, 0.0, fr, cage).ball_loads.max())
+        # the load was checked against C0 by check_static_load (no override in this family)
+        ld = radial_load_distribution(bearing, 0.0, fr, cage, allow_overload=None)
+        q = float(ld.ball_loads.max())
     if isinstance(bearing, BallBearing):
         c = ball_contact(bearing, q, Race.INNER)
         return ContactLoad(q, float(c.p_max), float(c.b), float(c.a), method)

@@ -30,6 +30,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..contact.capacity import (
+    STATIC_LIMIT_FACTOR,
+    STATIC_STRESS_BALL,
+    STATIC_STRESS_ROLLER,
+    STRIBECK_STATIC,
+    StaticCapacity,
+    StaticCapacityWarning,
+    static_capacity,
+)
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import BallBearing, Bearing, RollerBearing
 
@@ -87,20 +96,6 @@ FC_ROLLER_TABLE = np.array(
         (0.28, 85.2), (0.30, 83.8),
     ]
 )  # fmt: skip
-
-#: ISO 76 static-capacity contact stress at the most loaded contact [Pa]: 4200 MPa for ball
-#: bearings (other than self-aligning), 4000 MPa for roller bearings
-STATIC_STRESS_BALL = 4200e6
-STATIC_STRESS_ROLLER = 4000e6
-#: Stribeck constant of static ratings, ``Q_max = 5 F_r / (Z cos alpha)`` (accounts for a normal
-#: clearance; Harris & Kotzalas 2007, vol. 1, §7.2)
-STRIBECK_STATIC = 5.0
-#: loads above this multiple of the static capacity are refused
-STATIC_LIMIT_FACTOR = 2.0
-
-
-class StaticCapacityWarning(UserWarning):
-    """The radial load exceeds the static capacity (plastic deformation expected)."""
 
 
 def gamma(bearing: Bearing) -> float:
@@ -251,53 +246,12 @@ def revolutions_to_hours(revolutions: float, rpm: float) -> float:
     return float(revolutions) / (60.0 * n)
 
 
-@dataclass(frozen=True)
-class StaticCapacity:
-    """Static capacity of a bearing from its own Hertz contact (ISO 76 stress criterion).
-
-    Attributes
-    ----------
-    c0 : float
-        Radial load [N] at which the most loaded inner contact reaches ``stress_limit`` with
-        ``Q_max = 5 F_r/(Z cos alpha)``.
-    stress_limit : float
-        ISO 76 contact-stress limit [Pa] (4200 MPa balls, 4000 MPa rollers).
-    """
-
-    c0: float
-    stress_limit: float
-
-
-def static_capacity(bearing: Bearing) -> StaticCapacity:
-    """Static capacity ``C_0`` [N]: the radial load whose most loaded inner contact (Stribeck
-    ``Q_max = 5 F_r / (Z cos alpha)``) has the ISO 76 limit pressure (4200 MPa balls,
-    4000 MPa rollers) by our Hertz solution (not the ISO 76 ``f_0`` table: the actual groove
-    conformities enter)."""
-    from scipy.optimize import brentq
-
-    from ..contact.hertz import ball_contact, roller_contact
-    from ..geometry import Race
-
-    ca = math.cos(bearing.contact_angle)
-    Z = bearing.n_elements
-    if isinstance(bearing, BallBearing):
-        lim = STATIC_STRESS_BALL
-        # p_max ∝ Q^(1/3) for a point contact: exact inversion
-        p1 = float(ball_contact(bearing, 1.0, Race.INNER).p_max)
-        q = (lim / p1) ** 3
-    else:
-        lim = STATIC_STRESS_ROLLER
-        p1 = float(roller_contact(bearing, 1.0, Race.INNER).p_max)
-        q = (lim / p1) ** 2  # p_max ∝ Q^(1/2) for a line contact
-        q = brentq(
-            lambda x: float(roller_contact(bearing, x, Race.INNER).p_max) - lim, 0.5 * q, 2.0 * q
-        )
-    return StaticCapacity(q * Z * ca / STRIBECK_STATIC, lim)
-
-
 def check_static_load(bearing: Bearing, radial_load: float) -> StaticCapacity:
     """Warn (:class:`StaticCapacityWarning`) when ``F_r > C_0``; refuse (one-line
-    :class:`~bearingsim.errors.ConfigError`) when ``F_r > 2 C_0``.
+    :class:`~bearingsim.errors.ConfigError`) when ``F_r > 2 C_0``, without an override: the
+    damage model of the life family is elastic. (The other models use
+    :func:`bearingsim.contact.capacity.check_load`, which ``allow_overload`` can override; the
+    capacity itself lives there, and is re-exported here.)
 
     Parameters
     ----------

@@ -203,7 +203,8 @@ def reference_rating_life(
     n_cage = int(max(1, n_cage))
     Z = bearing.n_elements
     cage = 2.0 * math.pi / Z * np.arange(n_cage) / n_cage
-    ld = radial_load_distribution(bearing, 0.0, fr, cage, clearance=clearance)
+    # a rating life exists for any load (no static check here; the life command makes it)
+    ld = radial_load_distribution(bearing, 0.0, fr, cage, clearance=clearance, allow_overload=None)
     Q = ld.ball_loads
     line = not isinstance(bearing, BallBearing)
     w1, w2, p, e = (4.0, 4.5, 4.0, 9.0 / 8.0) if line else (3.0, 10.0 / 3.0, 3.0, 10.0 / 9.0)

@@ -181,6 +181,50 @@ def _assemble(u, psi, moff, p, f, H):
     return en, ymin
 
 
+#: round-off floor of the ring force residual, in units of ``eps sum_j (k_j A_j + Q_j)``
+#: (:func:`_roundoff`)
+ROUNDOFF_FACTOR = 16.0
+
+
+@njit(cache=True)
+def _load_sum(u, psi, moff, p):
+    """Sum of the ball loads ``sum_j Q_j`` [N] at ring displacement ``u`` (no inertia)."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    a0 = p[P_A0]
+    K = p[P_K]
+    acc = 0.0
+    for j in range(psi.size):
+        _s, _c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
+        dl = math.sqrt(X * X + Y * Y) - a0
+        if dl > 0.0:
+            acc += K * dl * math.sqrt(dl)
+    return acc
+
+
+@njit(cache=True)
+def _roundoff(u, psi, moff, p):
+    """Force [N] below which the ring force residual cannot be resolved in double precision:
+    ``16 eps sum_j (k_j A_j + Q_j) + 16 eps Z F_c``. The deformation ``delta_j = A_j - A0``
+    is the difference of two lengths of about ``A0``, so it carries an absolute error
+    ``eps A_j``, a force error ``k_j eps A_j`` with ``k_j = 1.5 K delta_j^0.5``, and the sum of
+    the ball loads adds ``eps Q_j`` each. A small load on large ball loads (preload) or on
+    nearly unloaded balls (a load of 0.01 N) cannot be balanced better than this."""
+    r_pi = p[P_RPI]
+    y0 = p[P_Y0]
+    a0 = p[P_A0]
+    K = p[P_K]
+    acc = p[P_FC] * psi.size
+    for j in range(psi.size):
+        _s, _c, X, Y = _separation(u, psi[j], moff[j], r_pi, y0)
+        A = math.sqrt(X * X + Y * Y)
+        dl = A - a0
+        if dl > 0.0:
+            sq = math.sqrt(dl)
+            acc += 1.5 * K * sq * A + K * dl * sq
+    return ROUNDOFF_FACTOR * 2.220446049250313e-16 * acc
+
+
 @njit(cache=True)
 def _hess2(n1, n2, kn, kt, out):
     """2x2 Hessian ``kn n n^T + kt (I - n n^T)`` of ``phi(|w|)``."""
@@ -430,6 +474,9 @@ def _solve_ring(u, p, psi, moff, V, out_info):
     Merit: the convex potential (Armijo) without inertia loads, the residual norm with them.
     ``out_info`` receives the rows ``I_*``: iterations, relative residual, minimum radial
     separation, status (0 converged, 1 not converged, 2 geometry violated, Y_j <= 0).
+    Converged: the relative residual is at most ``tol``, or the residual has stayed at the
+    round-off floor of the contact forces (:func:`_roundoff`) for two iterations. The residual
+    is relative to the applied load, or to the sum of the ball loads when no load is applied.
     """
     r_pi = p[P_RPI]
     Fc = p[P_FC]
@@ -460,6 +507,7 @@ def _solve_ring(u, p, psi, moff, V, out_info):
     rel = 0.0
     ymin = 1e300
     status = 1
+    floored = False
     for it in range(maxit + 1):
         if speed:
             _w, ymin = _assemble_speed(u, psi, moff, p, V, f, H, balls)
@@ -473,6 +521,10 @@ def _solve_ring(u, p, psi, moff, V, out_info):
             for i in range(2):
                 qs += f[i] * f[i]
             qs = math.sqrt(qs + f[2] * f[2])
+            if fscale == 0.0:
+                # no applied load (a preload or a misalignment alone): the net ring force is
+                # the residual itself; measure it against the ball loads it balances
+                qs = _load_sum(u, psi, moff, p)
         if ymin <= 0.0:
             status = 2
             break
@@ -488,6 +540,13 @@ def _solve_ring(u, p, psi, moff, V, out_info):
         if n == 0 or rel <= tol:
             status = 0
             break
+        # the residual stays at the round-off floor of the contact forces (two iterations in a
+        # row): converged as far as double precision allows (tiny loads, heavy preload)
+        at_floor = nr <= _roundoff(u, psi, moff, p)
+        if at_floor and floored:
+            status = 0
+            break
+        floored = at_floor
         if it == maxit:
             break
         tr = 0.0

@@ -17,7 +17,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..contact.hertz import ball_contact, ball_stiffness
 from ..errors import ConfigError, check_range
-from ..geometry import BallBearing, Bearing, Race, characteristic_frequencies, parse_enum
+from ..geometry import (
+    BallBearing,
+    Bearing,
+    Race,
+    characteristic_frequencies,
+    check_clearance,
+    parse_enum,
+)
+from ..load_distribution import check_angles
 
 __all__ = [
     "DEFAULT_GROOVE_DEPTH_RATIO",
@@ -57,12 +65,13 @@ class Misalignment:
     outer_tilt : float
         Outer-ring tilt magnitude theta_to [rad], >= 0.
     outer_azimuth : float
-        Azimuth of the outer-ring tilt axis phi_to, from +y towards +x [rad] (fixed).
+        Azimuth of the outer-ring tilt axis phi_to, from +y towards +x [rad], in
+        [-2 pi, 2 pi] (fixed).
     inner_tilt : float
         Inner-ring tilt magnitude theta_ti [rad], >= 0.
     inner_azimuth : float
-        Azimuth of the inner-ring tilt axis at shaft angle 0, phi_ti [rad]; it rotates with the
-        shaft.
+        Azimuth of the inner-ring tilt axis at shaft angle 0, phi_ti [rad], in [-2 pi, 2 pi]; it
+        rotates with the shaft.
     """
 
     outer_tilt: float = 0.0
@@ -82,6 +91,8 @@ class Misalignment:
                 check_range(
                     f"{name.replace('azimuth', 'tilt_azimuth')}_rad",
                     getattr(self, name),
+                    -2.0 * math.pi,
+                    2.0 * math.pi,
                     unit="rad",
                 ),
             )
@@ -202,7 +213,8 @@ def qs_geometry(
     bearing : BallBearing
         Geometry and material.
     clearance : float, optional
-        Diametral clearance P_d [m] overriding the bearing's (negative = preload).
+        Diametral clearance P_d [m] overriding the bearing's (negative = preload); within
+        :func:`bearingsim.geometry.clearance_range` (ISO 5753-1) and below ``2 A0``.
     max_contact_angle : float, optional
         Largest admissible contact angle [rad] (default :func:`max_contact_angle_default`).
     stiffness : float, optional
@@ -217,7 +229,8 @@ def qs_geometry(
     fi, fo = bearing.inner_conformity, bearing.outer_conformity
     a0 = (fi + fo - 1.0) * d
     pd = bearing.diametral_clearance if clearance is None else clearance
-    pd = check_range("clearance_m", pd, -0.5 * d, 2.0 * a0, hi_open=True, unit="m")
+    # ISO 5753-1 bounds (geometry.clearance_range), and below 2 A0 (free contact angle 90 deg)
+    pd = check_clearance(bearing, pd, "clearance_m", hi=2.0 * a0)
     af = math.acos(1.0 - pd / (2.0 * a0)) if pd > 0 else 0.0
     r_pi = 0.5 * dm + (fi - 0.5) * d * math.cos(af)  # seed QS5 eq. (5)
     r_po = 0.5 * dm - (fo - 0.5) * d * math.cos(af)  # seed QS5 eq. (5)
@@ -296,8 +309,9 @@ def check_misalignment(geom: QSGeometry, mis: Misalignment) -> None:
 
 def check_ball_errors(geom: QSGeometry, errors: ArrayLike | None) -> NDArray[np.float64]:
     """Validate the per-ball angular offsets e_j [rad] (seed QS5 eq. (1)): exactly Z finite
-    values, and neighbouring balls may neither overlap nor pass each other (centre spacing on the
-    pitch circle at least ``2 arcsin(d/d_m)``)."""
+    values within one ball pitch ``2 pi / Z`` either way, and neighbouring balls may neither
+    overlap nor pass each other (centre spacing on the pitch circle at least
+    ``2 arcsin(d/d_m)``)."""
     Z = geom.n_balls
     if errors is None:
         return np.zeros(Z)
@@ -306,14 +320,13 @@ def check_ball_errors(geom: QSGeometry, errors: ArrayLike | None) -> NDArray[np.
         raise ConfigError(
             f"ball_errors_rad has {e.size} values; valid: exactly n_elements = {Z} values"
         )
-    bad = np.flatnonzero(~np.isfinite(e))
-    if bad.size:
-        raise ConfigError(
-            f"ball_errors_rad[{bad[0]}] = {float(e[bad[0]])} is not finite; "
-            "valid range (-inf, inf) rad"
-        )
-    gap_min = 2.0 * math.asin(geom.d / geom.dm)
     pitch = 2.0 * math.pi / Z
+    bad = np.flatnonzero(~(np.abs(e) <= pitch))
+    if bad.size:
+        # a ball moved by a whole pitch is in its neighbour's pocket
+        j = int(bad[0])
+        check_range(f"ball_errors_rad[{j}]", float(e[j]), -pitch, pitch, unit="rad")
+    gap_min = 2.0 * math.asin(geom.d / geom.dm)
     for j in range(Z):
         k = (j + 1) % Z
         gap = pitch + e[k] - e[j]
@@ -392,10 +405,12 @@ def _validate_case(
     check_misalignment(geom, mis)
     err = check_ball_errors(geom, ball_errors)
     F = load_vector(*loads)
-    psi0 = check_range("first_ball_angle_rad", first_ball_angle, unit="rad")
-    cage = np.atleast_1d(np.asarray(cage_angles, dtype=float)).ravel()
-    if cage.size == 0 or not np.all(np.isfinite(cage)):
-        raise ConfigError("cage_angle must be finite values; valid range (-inf, inf) rad")
+    psi0 = check_range(
+        "first_ball_angle_rad", first_ball_angle, -2 * math.pi, 2 * math.pi, unit="rad"
+    )
+    cage = check_angles("cage_angle_rad", cage_angles)
+    if cage.size == 0:
+        raise ConfigError("cage_angle_rad is empty; valid: one or more angles [rad]")
     held = mis.any if tilt_free is None else not tilt_free
     if held and (F[3] != 0.0 or F[4] != 0.0):
         raise ConfigError(
@@ -407,6 +422,15 @@ def _validate_case(
         raise ConfigError(
             "load = 0 with positive clearance and no misalignment: the ring position is "
             "undetermined; apply a force or moment (valid: |F| > 0)"
+        )
+    if not np.any(F) and geom.clearance == 0 and not mis.any and not inertia:
+        # every ball just touches both grooves: the ring is held (any displacement compresses
+        # some ball), but Q = K delta^1.5 has no tangent stiffness at delta = 0, so the
+        # stiffness matrix would be all zero (Hertz: dQ/d delta = 1.5 K delta^0.5)
+        raise ConfigError(
+            "load = 0 with zero clearance and no misalignment: every ball just touches, and "
+            "Hertz contacts have no stiffness at zero deflection (the 5x5 matrix would be all "
+            "zero); apply a force or moment (valid: |F| > 0) or a preload (clearance_m < 0)"
         )
     free = np.array([True, True, True, not held, not held])
     return _Case(mis, err, F, psi0, cage, free, np.ndim(cage_angles) == 0)

@@ -48,6 +48,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, root
 from scipy.special import ellipe, ellipk
 
+from ..contact.capacity import check_load
 from ..errors import ConfigError, SolverError, check_range
 from ..geometry import (
     ISO_INNER_CONFORMITY,
@@ -66,6 +67,9 @@ from .inputs import (
     qs_geometry,
 )
 from .result import QuasiStaticSolution
+
+#: how the load check names the radial load
+_RADIAL = "|(fx_n, fy_n)|"
 
 __all__ = [
     "ISO_CP_FACTOR",
@@ -228,16 +232,20 @@ def _forces(
 
 
 def _start(geom: QSGeometry, psi: NDArray[np.float64], F: NDArray[np.float64]) -> NDArray:
-    """ISO-style start: radial deflection from Stribeck's ``Q_max = 5 F_r / Z`` and axial from
+    """ISO-style start: radial deflection from Stribeck's ``Q_max = 5 F_r / Z`` (at least the
+    displacement that brings the ball nearest the load line into contact) and axial from
     equal ball loads at the free contact angle; tilts 0."""
     u = np.zeros(5)
     fr = math.hypot(F[0], F[1])
     if fr > 0:
         dmax = (_STRIBECK_CLEARANCE * fr / (geom.n_balls * geom.k)) ** (2.0 / 3.0)
-        u[0], u[1] = (
-            (dmax + 0.5 * geom.clearance) * F[0] / fr,
-            (dmax + 0.5 * geom.clearance) * F[1] / fr,
-        )
+        dr = dmax + 0.5 * geom.clearance
+        # a small load with clearance: no ball may reach contact when none sits on the load
+        # line (the solver then sees no force at all); move far enough for the nearest ball
+        cmax = float(np.max(np.cos(psi - math.atan2(F[0], F[1]))))
+        if geom.clearance > 0 and dr * cmax <= 0.5 * geom.clearance:
+            dr = dmax + 0.5 * geom.clearance / cmax
+        u[0], u[1] = dr * F[0] / fr, dr * F[1] / fr
     if F[2] != 0:
         da = abs(F[2]) / (geom.n_balls * geom.k * max(math.sin(geom.free_contact_angle), 0.1))
         u[2] = math.copysign(0.5 * geom.axial_clearance + da ** (2.0 / 3.0) * 2.0, F[2])
@@ -284,6 +292,28 @@ def _solve_free(
     return out, nfev
 
 
+def _attempt(
+    start: NDArray[np.float64] | None,
+    idx: NDArray[np.int64],
+    psi: NDArray[np.float64],
+    moff: NDArray[np.float64],
+    geom: QSGeometry,
+    Ri: float,
+    F: NDArray[np.float64],
+    fscale: float,
+) -> tuple[NDArray[np.float64], int, float]:
+    """Solve the free DOFs ``idx`` from ``start`` (``None``: the ISO-style start, translations
+    solved first with the tilts at 0); returns the solution, the function evaluations of the
+    last solve and the residual relative to ``max(fscale, sum Q)`` (moments over ``R_i``)."""
+    if start is None:
+        start, _ = _solve_free(_start(geom, psi, F), idx[idx < 3], psi, moff, geom, Ri, F, fscale)
+    u, nfev = _solve_free(start, idx, psi, moff, geom, Ri, F, fscale)
+    Fq, Q, _al, _dl = _forces(u, psi, moff, geom, Ri)
+    r = Fq - F
+    r[3:] /= Ri
+    return u, nfev, float(np.linalg.norm(r[idx])) / max(fscale, float(np.sum(Q)), 1e-300)
+
+
 # (duplicates) the signature of jones.run_quasi_static on purpose: the two methods take the
 # same loads and options, so either can be passed where the other is (method=...)
 def run_iso16281(
@@ -305,13 +335,15 @@ def run_iso16281(
     stiffness: float | None = None,
     speed: SpeedEffects | None = None,
     tol: float = 1e-12,
+    allow_overload: bool | None = False,
 ) -> QuasiStaticSolution:
     """ISO/TS 16281 ball-bearing load distribution at each cage angle (module docstring).
 
     Parameters as :func:`bearingsim.quasistatic.jones.run_quasi_static`, plus ``conformities``
     (:class:`Conformities`: ``BEARING``, the groove radii of the bearing, or ``ISO``, the
     ISO/TS 16281 §6.3 defaults 0.52/0.53). ``stiffness`` overrides ``c_p`` [N/m^1.5] (to
-    isolate kinematic differences). Inertia loads are not part of ISO/TS 16281.
+    isolate kinematic differences). Inertia loads are not part of ISO/TS 16281. The load is
+    checked against the static capacity first (``allow_overload``, as ``run_quasi_static``).
     """
     if speed is not None and speed.active:
         raise ConfigError(
@@ -330,10 +362,15 @@ def run_iso16281(
         False,
     )
     mis, cage, F, free = case.misalignment, case.cage, case.applied, case.free
+    check_load(
+        bearing, math.hypot(F[0], F[1]), allow_overload, F[2], name=_RADIAL, axial_name="fz_n"
+    )
     Z = geom.n_balls
     m = cage.size
     idx = np.flatnonzero(free)
-    fscale = max(float(np.linalg.norm(np.r_[F[:3], F[3:] / Ri])), 1.0)
+    # force scale of the equations: the applied load (1 N when only a preload acts)
+    fnorm = float(np.linalg.norm(np.r_[F[:3], F[3:] / Ri]))
+    fscale = fnorm if fnorm > 0.0 else 1.0
     out = {k: np.zeros((m, Z)) for k in ("Q", "al", "dl")}
     U = np.zeros((m, 5))
     H = np.zeros((m, 5, 5))
@@ -354,22 +391,20 @@ def run_iso16281(
         moff = Ri * (
             (math.sin(ti[0]) - math.sin(to[0])) * c - (math.sin(ti[1]) - math.sin(to[1])) * s
         )
-        if u is None:
-            u = _start(geom, psi, F)
-            # stage 1 (first cage angle only): translations with the tilts at 0
-            u, _ = _solve_free(
-                u, np.array([k for k in idx if k < 3]), psi, moff, geom, Ri, F, fscale
-            )
-        u, nfev = _solve_free(u, idx, psi, moff, geom, Ri, F, fscale)
-        Fq, Q, al, dl = _forces(u, psi, moff, geom, Ri)
-        r = Fq - F
-        r[3:] /= Ri
-        rel = float(np.linalg.norm(r[idx])) / max(fscale, float(np.sum(Q)), 1e-300)
+
+        u, nfev, rel = _attempt(u, idx, psi, moff, geom, Ri, F, fscale)
+        if not rel <= 1e-8 and i > 0:
+            # started from the previous cage angle and failed (a load carried by one or two
+            # balls, the ring sliding between them): start again as at the first angle, once
+            u2, nfev2, rel2 = _attempt(None, idx, psi, moff, geom, Ri, F, fscale)
+            if rel2 <= 1e-8:
+                u, nfev, rel = u2, nfev + nfev2, rel2
         if not np.isfinite(rel) or rel > 1e-8:
             raise SolverError(
                 f"ISO/TS 16281: no equilibrium found at cage angle {cg:.6g} rad "
                 f"(relative residual {rel:.3g}); check the load and clearance"
             )
+        Fq, Q, al, dl = _forces(u, psi, moff, geom, Ri)
         # 5x5 stiffness by central differences of the equilibrium forces
         hs = np.array([1e-9, 1e-9, 1e-9, 1e-9 / Ri, 1e-9 / Ri])
         for k in range(5):

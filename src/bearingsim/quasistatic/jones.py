@@ -56,6 +56,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..contact.capacity import check_element_load, check_load
 from ..errors import ConfigError, SolverError
 from ..geometry import Bearing
 from ._kernels import (
@@ -81,6 +82,9 @@ from .inputs import (
     qs_geometry,
 )
 from .result import QuasiStaticSolution
+
+#: how the load check names the radial load
+_RADIAL = "|(fx_n, fy_n)|"
 
 __all__ = ["run_quasi_static", "solve_equilibrium"]
 
@@ -167,6 +171,7 @@ def run_quasi_static(
     max_contact_angle: float | None = None,
     tol: float = 1e-12,
     max_iterations: int = 100,
+    allow_overload: bool | None = False,
 ) -> QuasiStaticSolution:
     """Jones–Harris 5-DOF quasi-static equilibrium and tangent stiffness at each cage angle
     (seed QS5 eqs. (1)–(7) completed per SPEC §5; Harris & Kotzalas 2007 vol. 2 ch. 3).
@@ -201,9 +206,17 @@ def run_quasi_static(
         Largest admissible contact angle [rad] (groove shoulder); beyond it there is no
         equilibrium the geometry allows.
     tol : float
-        Relative force-residual tolerance [-].
+        Relative force-residual tolerance [-]; a residual that stays at the round-off floor of
+        the contact forces for two iterations also counts as converged (tiny loads, heavy
+        preload).
     max_iterations : int
         Newton iterations per cage angle [-].
+    allow_overload : bool or None
+        The static equivalent load of ``(fx, fy)`` and ``fz`` is checked against the static
+        capacity before the solution (:func:`bearingsim.contact.capacity.check_load`: a warning
+        above ``C_0``, refused above ``2 C_0``), and the ball centrifugal force against the
+        element load at the ISO 76 stress (``check_element_load``); ``True`` runs an overload
+        anyway, ``None`` skips the checks.
 
     Returns
     -------
@@ -229,7 +242,12 @@ def run_quasi_static(
         spd.active,
     )
     mis, cage, F = case.misalignment, case.cage, case.applied
+    check_load(
+        bearing, math.hypot(F[0], F[1]), allow_overload, F[2], name=_RADIAL, axial_name="fz_n"
+    )
     fc, mg0, gam = _inertia(geom, spd)
+    # the centrifugal force presses each ball on the outer raceway: the same static limit
+    check_element_load(bearing, fc, allow_overload, name="ball centrifugal force F_c")
     p = _params(
         geom,
         F,
@@ -259,10 +277,40 @@ def run_quasi_static(
     out_balls = np.zeros((m, 3, Z))
     out_info = np.zeros((m, 4))
     done = _sweep(cage, case.ball_errors, p, u0, V0, out_ring, out_H, out_balls, out_info)
+    retried = -1
+    while retried < done < m:
+        # each cage angle starts from the previous solution; where that start fails (a load
+        # carried by one or two balls, the ring sliding between them), start it again from the
+        # radial solution at that angle, once
+        retried = done
+        psi_k = _ball_azimuths(cage[done], case.first_ball_angle, case.ball_errors)
+        uk = np.array([*_radial_start(geom, psi_k, F), _axial_start(geom, F[2]), 0.0, 0.0])
+        done += _sweep(
+            cage[done:],
+            case.ball_errors,
+            p,
+            uk,
+            V0,
+            out_ring[done:],
+            out_H[done:],
+            out_balls[done:],
+            out_info[done:],
+        )
     if done < m:
         status = int(out_info[done, I_STATUS])
         where = f"at cage angle {cage[done]:.6g} rad"
         if status == 2:
+            psi_k = _ball_azimuths(cage[done], case.first_ball_angle, case.ball_errors)
+            if math.hypot(*_radial_start(geom, psi_k, F)) < geom.y0:
+                # the radial load alone stays well inside the grooves: the iteration ran off
+                # because too few balls hold the ring, not because the load is too large
+                lift = " and the balls' centrifugal lift" if spd.centrifugal else ""
+                raise SolverError(
+                    f"no equilibrium found {where}: too few balls hold the ring (a load of "
+                    f"{math.hypot(F[0], F[1]):.6g} N radial, {F[2]:.6g} N axial against the "
+                    f"clearance {geom.clearance:.6g} m{lift}); increase the load or reduce the "
+                    "clearance"
+                )
             raise SolverError(
                 f"no equilibrium {where}: the radial displacement exceeds the groove-centre "
                 "distance (load beyond what the geometry allows); reduce the load"

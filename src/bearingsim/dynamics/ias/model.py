@@ -497,7 +497,13 @@ def derive_constants(params: IasParams) -> IasConstants:
     phic = math.atan2(qy, qx) % (2.0 * math.pi)
     # static discrete-roller solution (project convention psi = pi/2 - phi) for eq. (1)'s eps, phi_o
     ld0 = radial_load_distribution(
-        b, qx, qy, 0.0, first_element_angle=0.5 * math.pi - params.first_roller_angle, stiffness=kt
+        b,
+        qx,
+        qy,
+        0.0,
+        first_element_angle=0.5 * math.pi - params.first_roller_angle,
+        stiffness=kt,
+        allow_overload=None,  # the scenario's load is checked where the run starts
     )
     eps = float(ld0.epsilon[0])
     phio = float(ld0.psi_l[0])

@@ -87,7 +87,7 @@ def check_ias(
     (:func:`..checks.check_speed`), the step's stability and the memory and step estimate
     against ``budget``; returns the estimate."""
     params = ias_params(sc)
-    check_load(params.bearing, params.radial_load, allow_overload)
+    check_load(params.bearing, params.radial_load, allow_overload, name="|(fx_n, fy_n)|")
     free_rpm = 60.0 * params.torque / (2.0 * math.pi * params.torsional_damping)
     if free_rpm > 0.0:
         check_speed(params.bearing, free_rpm, sc.fs_hz, "free speed M_z/C_T")

@@ -159,7 +159,9 @@ def plan_ring(
     (:mod:`..budget`). Bad values raise a one-line :class:`~bearingsim.errors.ConfigError`.
     """
     inputs = model_inputs(scenario)
-    check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload)
+    check_load(
+        inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name="|(fx_n, fy_n)|"
+    )
     check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
     decim, dt, w = choose_steps(scenario, inputs)
     chunk = max(1, min(CHUNK, MAX_CHUNK_STEPS // decim))

@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import NDArray
 
+from ...contact.capacity import check_load
 from ...errors import ConfigError
 from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
@@ -31,6 +32,9 @@ from ...results import Result, json_attr, read_json_attr, var_attrs
 from ..budget import F8, Estimate
 from . import _balance as bl
 from .base import ModelInputs, static_path
+
+#: how the load check names the radial load
+_RADIAL = "|(fx_n, fy_n)|"
 
 __all__ = ["StiffnessTrace", "stiffness_trace", "trace_estimate"]
 
@@ -342,6 +346,7 @@ def stiffness_trace(
     *,
     cage_revs: float = 1.0,
     n_points: int = 3601,
+    allow_overload: bool | None = False,
 ) -> StiffnessTrace:
     """Quasi-static VSM trace vs cage angle (seed VSM §2.2–2.4, figs. 5–12, tables 2–3).
 
@@ -356,7 +361,12 @@ def stiffness_trace(
         Number of cage revolutions [-] (used without ``cage_angle``).
     n_points : int
         Number of samples (used without ``cage_angle``).
+    allow_overload : bool or None
+        The radial load is checked against the static capacity first
+        (:func:`bearingsim.contact.capacity.check_load`: a warning above ``C_0``, refused above
+        ``2 C_0``); ``True`` runs an overload anyway, ``None`` skips the check.
     """
+    check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name=_RADIAL)
     if cage_angle is None:
         if not (isinstance(n_points, int) and n_points >= 2):
             raise ConfigError(f"n_points = {n_points!r} is invalid; valid range [2, inf) integer")
@@ -405,6 +415,7 @@ def stiffness_trace(
         clearance=inputs.diametral_clearance,
         stiffness=K,
         first_element_angle=inputs.first_ball_angle,
+        allow_overload=None,  # checked above
     )
     fault = "none" if defect is None else defect.race.value
     label = f"fault {fault}"
