@@ -12,7 +12,7 @@ import click
 
 from ..config import Model, Solver
 from ..errors import ConfigError, check_range
-from .common import cli, deprecated, emit_json, json_option, output_option
+from .common import check_outputs, cli, deprecated, emit_json, json_option, output_option
 from .common import scenario_default as _d
 from .rotor import rotor_simulate_options
 
@@ -247,6 +247,7 @@ def simulate_cmd(scenario_file: str | None, output: str, as_json: bool, **kw: An
 
     Options override the keys of SCENARIO.toml (see bearingsim.config for the keys).
     """
+    check_outputs(("-o/--output", output))
     from tqdm import tqdm
 
     from ..simulation import simulate, validate_scenario
@@ -334,6 +335,7 @@ def vsm_trace_cmd(
     **kw: Any,
 ) -> None:
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
+    check_outputs(("-o/--output", output), ("--plot", plot))
     import numpy as np
 
     from ..dynamics.ring.scenario import model_inputs
@@ -447,6 +449,7 @@ def analyze_cmd(
     (shaft frequency), "fs_hz" (sample rate), "peaks": [...]}; "uncertain" when the evidence is
     weak or ambiguous.
     """
+    check_outputs(("--plot", plot))
     from ..catalog import resolve_bearing
     from ..signal import analyze_record, load_signal
 

@@ -19,7 +19,7 @@ from ..contact.hertz import (
 from ..errors import ConfigError, check_range
 from ..geometry import BallBearing, Bearing, Race
 from ..load_distribution import RingMotion, radial_load_distribution, stribeck_qmax
-from .common import bearing_options, cli, deprecated, emit_json, json_option
+from .common import bearing_options, check_outputs, cli, deprecated, emit_json, json_option
 
 __all__ = [
     "contact_cmd",
@@ -141,6 +141,7 @@ def load_cmd(
     as_json: bool,
 ) -> None:
     """Radial load distribution over the discrete elements."""
+    check_outputs(("--plot", plot))
     cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, unit="deg"))
     ld = radial_load_distribution(bearing, fx, fy, cage, clearance=clearance_m, motion=motion)
     out = {

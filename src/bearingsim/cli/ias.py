@@ -16,6 +16,7 @@ from ..geometry import RollerBearing
 from ..signal.order import ShaftSignalKind
 from .common import (
     DeferredDefaultOption,
+    check_outputs,
     cli,
     deprecated,
     emit_json,
@@ -237,6 +238,7 @@ def ias_cmd(
 
     The analysis is in the angle domain (order spectrum, spall-width estimate); SCENARIO is an
     IAS scenario file whose keys the options override."""
+    check_outputs(("-o/--output", out), ("--plot", plot))
     from ..config import IasScenario
     from ..dynamics.ias.scenario import read_scenario, run_ias
 
@@ -339,6 +341,7 @@ def analyze_ias_cmd(
     (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
+    check_outputs(("--plot", plot))
     from ..dynamics.ias.spall import analyze_speed_signal
     from ..signal.order import (
         angle_from_speed,

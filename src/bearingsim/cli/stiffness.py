@@ -13,6 +13,7 @@ from ..quasistatic.iso16281 import Conformities
 from ..quasistatic.stiffness import SERIES, stiffness_vs_cage
 from .common import (
     bearing_options,
+    check_outputs,
     cli,
     deprecated,
     emit_json,
@@ -158,6 +159,7 @@ def stiffness_cmd(
 
     Angles are given in degrees; errors from the model name the field in SI (``outer_tilt_rad``).
     """
+    check_outputs(("-o/--output", out), ("--plot", plot))
     mis = Misalignment(
         outer_tilt=math.radians(outer_tilt_deg),
         outer_azimuth=math.radians(outer_tilt_azimuth_deg),
