@@ -262,6 +262,20 @@ def test_a_folder_that_refuses_files_is_reported_with_its_reason(
     assert list(d.iterdir()) == [], "no temporary, no folder left"
 
 
+def test_an_existing_output_directory_is_looked_at_never_written(monkeypatch, tmp_path):
+    """A sweep store may be in use by another client: its folder is checked with os.access,
+    no probe file goes into it."""
+    store = tmp_path / "store"
+    store.mkdir()
+    real = os.access
+    monkeypatch.setattr(atomic.os, "access", lambda p, mode: Path(p) != store and real(p, mode))
+    with pytest.raises(ConfigError, match=f"cannot be written: permission denied in '{store}'"):
+        check_output(store, "-o/--output", directory=True)
+    monkeypatch.setattr(atomic.os, "open", None)  # any probe would fail loudly
+    monkeypatch.setattr(atomic.os, "access", real)
+    assert check_output(store, "-o/--output", directory=True) == store
+
+
 @pytest.mark.parametrize(
     ("path", "directory", "reason"),
     [

@@ -88,6 +88,8 @@ def _start_time(pid: int) -> int:
 def _alive(pid: int, start: int) -> bool:
     """Whether the writer ``pid`` that started at ``start`` (0: unknown) may still be writing.
     A zombie or a process id reused by a later process counts as gone; in doubt, alive."""
+    if os.name == "nt":  # os.kill(pid, 0) would terminate the process there
+        return True
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -189,7 +191,7 @@ def _reason(exc: OSError, where: Path) -> str:
 
 
 def _unwritable(dest: Path, directory: bool) -> str | None:
-    """Why ``dest`` cannot be written, or ``None`` when it can (probed by creating a file)."""
+    """Why ``dest`` cannot be written, or ``None`` when it can (:func:`check_output`)."""
     full = Path(os.path.abspath(dest))
     for v in _VIRTUAL:
         if full == v or v in full.parents:
@@ -213,6 +215,11 @@ def _unwritable(dest: Path, directory: bool) -> str | None:
         base = base.parent
     if not stat.S_ISDIR(bst.st_mode):
         return f"{str(base)!r} is a file, not a directory"
+    if base == full:  # an existing output directory (a sweep store in use): look, never write
+        if os.access(full, os.W_OK | os.X_OK):
+            return None
+        ro = hasattr(os, "statvfs") and os.statvfs(full).f_flag & os.ST_RDONLY
+        return _reason(OSError(errno.EROFS if ro else errno.EACCES, ""), full)
     probe = base / _temp_name(Path(full.name or "out"), ".probe")
     try:
         fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_CLOEXEC, 0o600)
@@ -239,9 +246,11 @@ def check_output(path: str | Path, field: str, *, directory: bool = False) -> Pa
     Called before any work (the CLI, for every output option), so that a run never fails at its
     end for want of a place to write. Refused: a path under ``/proc`` or ``/sys``; a path through
     a file (a parent that is a file); a folder without write permission or on a read-only file
-    system (probed by creating and removing an empty file in the nearest existing folder);
-    a directory, device or pipe where a file is expected (``directory=False``), a file where a
-    directory is (``directory=True``). Missing folders are fine: the writers create them.
+    system (probed by creating and removing an empty file, named after the output, in the
+    nearest existing folder; an existing output directory, which may be a sweep store in use, is
+    only looked at with ``os.access``); a directory, device or pipe where a file is expected
+    (``directory=False``), a file where a directory is (``directory=True``). Missing folders are
+    fine: the writers create them.
 
     Parameters
     ----------
