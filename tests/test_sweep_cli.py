@@ -147,7 +147,8 @@ def _dataset_spec(tmp_path):
         ),
         (
             ["sweep", "run", "{spec}", "-o", "{afile}"],
-            r"out = '.*afile.txt' is a file; valid: a dataset directory",
+            r"-o/--output = '.*afile.txt' cannot be written: it is a file, not a directory; "
+            r"valid: a directory",
         ),
         (
             ["sweep", "run", "{spec}", "-o", "{notds}"],

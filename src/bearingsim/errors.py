@@ -18,6 +18,8 @@ __all__ = [
     "ConfigError",
     "format_range",
     "DeprecatedKeyWarning",
+    "exception_text",
+    "MAX_TOML_BYTES",
     "read_toml",
     "SolverError",
 ]
@@ -43,6 +45,15 @@ def _fmt(value: Any) -> str:
     if isinstance(value, float):
         return f"{value:.6g}"
     return repr(value)
+
+
+def exception_text(exc: BaseException, limit: int = 120) -> str:
+    """``Type: message`` of an exception on one line, the message cut to ``limit`` characters:
+    how a one-line error quotes what a third-party reader raised on a damaged file."""
+    msg = " ".join(str(exc).split())
+    if len(msg) > limit:
+        msg = msg[: limit - 3] + "..."
+    return f"{type(exc).__name__}: {msg}" if msg else type(exc).__name__
 
 
 def check_positive(name: str, value: Any, unit: str = "") -> float:
@@ -119,14 +130,43 @@ def check_range(
     return x
 
 
+#: largest TOML file read [bytes]: bearing, scenario and sweep files are a few kB; a larger file
+#: is not one of them (and ``/dev/zero`` given as a file must not fill the memory)
+MAX_TOML_BYTES = 16 * 2**20
+
+
 def read_toml(path: str | Path, what: str) -> dict[str, Any]:
     """The parsed TOML file ``path``; a file that cannot be read or parsed raises a one-line
-    :class:`ConfigError` that names it as ``what`` (e.g. ``"sweep file"``, ``"scenario ="``)."""
+    :class:`ConfigError` that names it as ``what`` (e.g. ``"sweep file"``, ``"scenario ="``).
+
+    Refused in one line: a file that cannot be opened, one larger than :data:`MAX_TOML_BYTES`,
+    one that is not UTF-8 text (a binary file), invalid TOML, and arrays or tables nested too
+    deeply for the parser. A leading UTF-8 byte-order mark (some Windows editors write one) is
+    skipped.
+    """
     p = Path(path)
+    name = f"{what} {str(p)!r}"
     try:
         with open(p, "rb") as fh:
-            return tomllib.load(fh)
+            raw = fh.read(MAX_TOML_BYTES + 1)
     except OSError as exc:
-        raise ConfigError(f"{what} {str(p)!r} cannot be read ({exc.strerror})") from None
+        raise ConfigError(f"{name} cannot be read ({exc.strerror})") from None
+    if len(raw) > MAX_TOML_BYTES:
+        raise ConfigError(
+            f"{name} is larger than {MAX_TOML_BYTES // 2**20} MiB; valid: a TOML text file"
+        )
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ConfigError(
+            f"{name} is not a UTF-8 text file (byte 0x{raw[exc.start]:02x} at offset "
+            f"{exc.start}); valid: a TOML text file"
+        ) from None
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{what} {str(p)!r} is not valid TOML ({exc})") from None
+        raise ConfigError(f"{name} is not valid TOML ({exc})") from None
+    except RecursionError:
+        raise ConfigError(
+            f"{name} nests arrays or tables too deeply; valid: a TOML file of bearingsim keys"
+        ) from None

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar
@@ -42,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._version import __version__
-from .errors import ConfigError
+from .errors import BearingsimError, ConfigError, exception_text
 from .io.atomic import atomic_path
 from .io.jsonable import to_jsonable
 
@@ -166,37 +167,89 @@ class Result:
         if cls is Result:
             return load_result(path, ds)
         cls.check_format(ds, path)
-        return cls.from_dataset(ds)
+        return _from_dataset(cls, ds, path)
 
 
 #: first bytes of a zip archive, e.g. a NumPy ``.npz`` (the former ``LifeResult`` format)
 _ZIP_MAGIC = b"PK\x03\x04"
 
+#: first bytes of a netCDF-3 file (classic, 64-bit offset, 64-bit data): not HDF5, so not ours
+_NETCDF3_MAGIC = (b"CDF\x01", b"CDF\x02", b"CDF\x05")
+
+#: the HDF5 signature, at offset 0 or 512, 1024, 2048, ... (HDF5 file format specification,
+#: "Format Signature"): a netCDF-4 file is an HDF5 file
+_HDF5_MAGIC = b"\x89HDF\r\n\x1a\n"
+
 
 def _open(path: str | Path):
+    """The dataset of result file ``path``, loaded; any file that is not a readable netCDF-4
+    file (missing, empty, another format, truncated or damaged) is a one-line
+    :class:`ConfigError` naming the file and what is wrong."""
     import xarray as xr
 
     p = Path(path)
-    try:
-        with xr.open_dataset(p, engine="h5netcdf") as ds:
-            return ds.load()
-    except (OSError, ValueError) as exc:
-        if _is_zip(p):
-            raise ConfigError(
-                f"file = {str(p)!r} is a NumPy .npz archive (the former LifeResult format); "
-                "valid: a netCDF result file (.nc) written by save(); re-run to write one"
-            ) from None
-        raise ConfigError(
-            f"file = {str(p)!r} is not a readable bearingsim result ({type(exc).__name__})"
-        ) from None
-
-
-def _is_zip(p: Path) -> bool:
+    bad = f"file = {str(p)!r} is not a readable bearingsim result"
     try:
         with open(p, "rb") as fh:
-            return fh.read(4) == _ZIP_MAGIC
-    except OSError:
-        return False
+            head = fh.read(8)
+            size = os.fstat(fh.fileno()).st_size
+            hdf5 = _hdf5_signature(fh, size)
+    except OSError as exc:
+        raise ConfigError(f"{bad} ({exc.strerror})") from None
+    if head[:4] == _ZIP_MAGIC:
+        raise ConfigError(
+            f"file = {str(p)!r} is a NumPy .npz archive (the former LifeResult format); "
+            "valid: a netCDF result file (.nc) written by save(); re-run to write one"
+        )
+    if not size:
+        raise ConfigError(f"{bad} (empty file); valid: a netCDF-4 file written by save()")
+    if head[:4] in _NETCDF3_MAGIC:
+        raise ConfigError(
+            f"{bad} (a netCDF-3 file, written by another program); valid: a netCDF-4 file "
+            "written by save()"
+        )
+    if not hdf5:
+        raise ConfigError(
+            f"{bad} (not a netCDF-4/HDF5 file); valid: a netCDF-4 file written by save()"
+        )
+    try:
+        import h5py
+
+        # read the root attributes with h5py first: h5netcdf fails on a damaged root and then
+        # prints an error from its half-built File's __del__ on stderr
+        with h5py.File(p, "r") as f:
+            f.attrs.get("_nc3_strict")
+        with xr.open_dataset(p, engine="h5netcdf") as ds:
+            return ds.load()
+    except Exception as exc:  # noqa: BLE001 - a damaged HDF5 file raises OSError, KeyError,
+        # RuntimeError, ValueError, ... from h5py, h5netcdf and xarray
+        raise ConfigError(f"{bad} (damaged or truncated: {exception_text(exc)})") from None
+
+
+def _hdf5_signature(fh: Any, size: int) -> bool:
+    offset = 0
+    while offset + len(_HDF5_MAGIC) <= size:
+        fh.seek(offset)
+        if fh.read(len(_HDF5_MAGIC)) == _HDF5_MAGIC:
+            return True
+        offset = 512 if offset == 0 else 2 * offset
+    return False
+
+
+def _from_dataset(cls: type[Result], ds: Any, path: str | Path) -> Result:
+    """``cls.from_dataset(ds)``; a file whose format attribute is right but whose content is
+    incomplete or damaged is a one-line :class:`ConfigError` naming it."""
+    where = f"file = {str(path)!r}"
+    try:
+        return cls.from_dataset(ds)
+    except BearingsimError as exc:
+        msg = str(exc)
+        raise type(exc)(msg if str(path) in msg else f"{where}: {msg}") from None
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
+        raise ConfigError(
+            f"{where}: a {cls.__name__} file with incomplete or invalid content "
+            f"({exception_text(exc)}); valid: a file written by save()"
+        ) from None
 
 
 def load_result(path: str | Path, _ds: Any = None) -> Result:
@@ -214,7 +267,7 @@ def load_result(path: str | Path, _ds: Any = None) -> Result:
             f"file = {str(path)!r}: format = {fmt!r} is not a bearingsim result; valid: "
             + ", ".join(sorted(_FORMATS))
         )
-    return cls.from_dataset(ds)
+    return _from_dataset(cls, ds, path)
 
 
 @dataclass

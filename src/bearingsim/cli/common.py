@@ -324,6 +324,25 @@ def output_option(
     return click.option("-o", "--output", dest, type=kind, required=required, help=help)
 
 
+def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> None:
+    """Refuse, before any work, an output location that cannot be written: one line naming the
+    option, the path and the reason (:func:`bearingsim.io.atomic.check_output`).
+
+    Parameters
+    ----------
+    *outputs : (option, path) pairs
+        Each output option as named in the message (``"-o/--output"``, ``"--plot"``) and its
+        value; ``None`` (not given) is skipped.
+    directory : bool
+        Whether the outputs are directories (``reproduce``, ``sweep run``).
+    """
+    from ..io.atomic import check_output
+
+    for option, path in outputs:
+        if path is not None:
+            check_output(path, option, directory=directory)
+
+
 def bearing_options(required: bool = True) -> Callable:
     """Decorator adding ``BEARING`` (catalogue id), ``--bearing-file``, ``--E-pa``, ``--nu``.
 
@@ -408,6 +427,7 @@ __all__ = [
     "Number",
     "bearing_options",
     "bearing_summary",
+    "check_outputs",
     "cli",
     "deprecated",
     "echo_warnings",

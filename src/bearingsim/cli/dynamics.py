@@ -15,6 +15,7 @@ from ..errors import ConfigError, check_range
 from .common import (
     Number,
     allow_overload_option,
+    check_outputs,
     cli,
     deprecated,
     echo_warnings,
@@ -276,6 +277,7 @@ def simulate_cmd(
 
     Options override the keys of SCENARIO.toml (see bearingsim.config for the keys).
     """
+    check_outputs(("-o/--output", output))
     from tqdm import tqdm
 
     from ..simulation import simulate, validate_scenario
@@ -385,6 +387,7 @@ def vsm_trace_cmd(
     **kw: Any,
 ) -> None:
     """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
+    check_outputs(("-o/--output", output), ("--plot", plot))
     import numpy as np
 
     from ..dynamics.budget import check_budget
@@ -510,6 +513,7 @@ def analyze_cmd(
     (shaft frequency), "fs_hz" (sample rate), "peaks": [...]}; "uncertain" when the evidence is
     weak or ambiguous.
     """
+    check_outputs(("--plot", plot))
     from ..catalog import resolve_bearing
     from ..signal import analyze_record, load_signal
     from ..signal.diagnosis import check_resolvable

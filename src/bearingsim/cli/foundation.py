@@ -25,6 +25,7 @@ from .common import (
     Number,
     allow_overload_option,
     bearing_options,
+    check_outputs,
     cli,
     deprecated,
     echo_warnings,
@@ -180,6 +181,7 @@ def load_cmd(
     as_json: bool,
 ) -> None:
     """Radial load distribution over the discrete elements."""
+    check_outputs(("--plot", plot))
     a = CAGE_ANGLE_MAX_DEG
     cage = math.radians(check_range("cage_angle_deg", cage_angle_deg, -a, a, unit="deg"))
     with echo_warnings():

@@ -18,6 +18,7 @@ from .common import (
     DeferredDefaultOption,
     Number,
     allow_overload_option,
+    check_outputs,
     cli,
     deprecated,
     echo_warnings,
@@ -245,6 +246,7 @@ def ias_cmd(
 
     The analysis is in the angle domain (order spectrum, spall-width estimate); SCENARIO is an
     IAS scenario file whose keys the options override."""
+    check_outputs(("-o/--output", out), ("--plot", plot))
     import sys
 
     from tqdm import tqdm
@@ -360,6 +362,7 @@ def analyze_ias_cmd(
     (seed IAS eq. (37)).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
+    check_outputs(("--plot", plot))
     from ..dynamics.ias.spall import analyze_speed_signal
     from ..signal.order import (
         angle_from_speed,

@@ -11,7 +11,16 @@ import click
 
 from ..errors import ConfigError, check_positive, check_range
 from ..geometry import Bearing
-from .common import Number, bearing_options, cli, deprecated, emit_json, json_option, output_option
+from .common import (
+    Number,
+    bearing_options,
+    check_outputs,
+    cli,
+    deprecated,
+    emit_json,
+    json_option,
+    output_option,
+)
 
 __all__ = [
     "life_cmd",
@@ -138,6 +147,7 @@ def life_cmd(
 
     Damage mechanics on a plane-strain FE section of the most loaded inner contact (seed LIFE),
     with ISO 281 L10 and the ISO/TS 16281-style L10r."""
+    check_outputs(("-o/--output", out), ("--plot", plot), ("--plot-curve", plot_curve))
     from ..life.damage import DamageLaw
     from ..life.fatigue import contact_fatigue_life, default_damage_law
     from ..life.iso281 import (

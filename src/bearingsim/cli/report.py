@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..report import SECTIONS, run_report
-from .common import cli, deprecated, emit_json, json_option, output_option
+from .common import check_outputs, cli, deprecated, emit_json, json_option, output_option
 
 __all__ = [
     "reproduce_cmd",
@@ -31,6 +31,7 @@ __all__ = [
 @json_option
 def reproduce_cmd(quick: bool, out_dir: str, sections: tuple[str, ...], as_json: bool) -> None:
     """Reproduce the published numbers: write results.json, PNG figures and report.html."""
+    check_outputs(("-o/--output", out_dir), directory=True)
     done = run_report(out_dir, quick=quick, sections=list(sections) or None, progress=not as_json)
     counts: dict[str, int] = {}
     for s in done:

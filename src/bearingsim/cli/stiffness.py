@@ -16,6 +16,7 @@ from .common import (
     Number,
     allow_overload_option,
     bearing_options,
+    check_outputs,
     cli,
     deprecated,
     echo_warnings,
@@ -181,6 +182,7 @@ def stiffness_cmd(
 
     Angles are given in degrees; errors from the model name the field in SI (``outer_tilt_rad``).
     """
+    check_outputs(("-o/--output", out), ("--plot", plot))
     mis = Misalignment(
         outer_tilt=math.radians(outer_tilt_deg),
         outer_azimuth=math.radians(outer_tilt_azimuth_deg),

@@ -8,7 +8,15 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_range
-from .common import Number, cli, deprecated, emit_json, json_option, output_option
+from .common import (
+    Number,
+    check_outputs,
+    cli,
+    deprecated,
+    emit_json,
+    json_option,
+    output_option,
+)
 
 __all__ = [
     "plan_cmd",
@@ -160,6 +168,7 @@ def run_cmd(
     as_json: bool,
 ) -> None:
     """Run the sweep (or resume it: only runs not yet committed are computed)."""
+    check_outputs(("-o/--output", out), directory=True)
     from ..sweep.execute import SweepInterrupted, check_cluster_args, run_sweep
     from ..sweep.spec import SweepSpec
 

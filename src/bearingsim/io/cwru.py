@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import os
 import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ..errors import ConfigError
+from ..errors import ConfigError, exception_text
+from ._mat5 import mat5_problem
 
 __all__ = [
     "cwru_data_dir",
@@ -58,31 +60,69 @@ _KEY = re.compile(r"^X(\d+)_(DE|FE|BA)_time$")
 
 def read_cwru_mat(path: str | Path) -> CwruRecord:
     """Read a CWRU ``.mat`` file (keys ``X###_DE_time``, ``X###_FE_time``, ``X###_BA_time``,
-    ``X###RPM``)."""
+    ``X###RPM``).
+
+    A file that is not a readable MATLAB file (empty, truncated, damaged, MATLAB v7.3/HDF5,
+    another format), has no CWRU channel, or holds a channel or speed that is not a finite
+    number raises a one-line :class:`ConfigError` naming the file and what is wrong.
+    """
     from scipy.io import loadmat
 
     p = Path(path)
     try:
-        data = loadmat(p)
-    except (OSError, ValueError, TypeError) as exc:
-        raise ConfigError(f"file = {str(p)!r} is not a readable MATLAB .mat file ({exc})") from None
+        with open(p, "rb") as fh:
+            size = os.fstat(fh.fileno()).st_size
+            problem = mat5_problem(fh, size)
+    except OSError as exc:
+        raise ConfigError(f"file = {str(p)!r} cannot be read ({exc.strerror})") from None
+    if size == 0:
+        raise ConfigError(f"file = {str(p)!r} is empty (0 bytes); valid: a MATLAB .mat file")
+    if problem:  # SciPy's reader would crash on it (io._mat5)
+        raise ConfigError(f"file = {str(p)!r} is not a readable MATLAB .mat file ({problem})")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # a damaged file's "unreadable variable" warning
+            data = loadmat(p)
+    except Exception as exc:  # noqa: BLE001 - SciPy's reader raises many types on a damaged
+        # file (MatReadError, ValueError, zlib.error, IndexError, NotImplementedError for v7.3)
+        raise ConfigError(
+            f"file = {str(p)!r} is not a readable MATLAB .mat file ({exception_text(exc)})"
+        ) from None
     channels: dict[str, np.ndarray] = {}
     numbers = set()
+    rpm = None
     for key, val in data.items():
         m = _KEY.match(key)
         if m:
             numbers.add(m.group(1))
-            channels[m.group(2)] = np.asarray(val, dtype=float).ravel()
+            channels[m.group(2)] = _finite(p, key, val)
+        elif re.match(r"^X\d+RPM$", key):
+            v = _finite(p, key, val)
+            if not v.size:
+                raise ConfigError(f"file = {str(p)!r}: {key} is empty; valid: a speed [r/min]")
+            rpm = float(v[0])
     if not channels:
         raise ConfigError(
             f"file = {str(p)!r} has no CWRU channel (expected keys X###_DE_time / X###_FE_time)"
         )
     number = sorted(numbers)[0]
-    rpm = None
-    for key, val in data.items():
-        if re.match(r"^X\d+RPM$", key):
-            rpm = float(np.asarray(val).ravel()[0])
     return CwruRecord(p, number, channels, rpm)
+
+
+def _finite(p: Path, key: str, val: object) -> np.ndarray:
+    """``val`` as a flat float array; a non-numeric or non-finite one is a one-line error."""
+    try:
+        a = np.asarray(val, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ConfigError(
+            f"file = {str(p)!r}: {key} is not numeric; valid: a CWRU record"
+        ) from None
+    if not np.all(np.isfinite(a)):
+        raise ConfigError(
+            f"file = {str(p)!r}: {key} holds {int(np.count_nonzero(~np.isfinite(a)))} values that "
+            "are not finite; valid: finite samples"
+        )
+    return a
 
 
 #: environment variable naming the ``shared/`` folder that holds ``data/cwru``

@@ -176,10 +176,23 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
             + ", ".join(valid)
         )
     meta = {"bearing": res.meta.get("bearing_fe")} if ch.endswith("_fe") else res.meta
-    r = rpm if rpm is not None else float(res.scenario["rpm"])
+    try:
+        r = rpm if rpm is not None else float(res.scenario["rpm"])
+        fs_file = res.fs_hz
+    except (KeyError, TypeError, ValueError):
+        raise ConfigError(
+            f"file = {str(p)!r}: the result names no shaft speed (rpm) or sample rate (fs_hz); "
+            "valid: a simulation result written by bearingsim"
+        ) from None
+    x = res[f"acc_{ch}"]
+    if not np.all(np.isfinite(x)):
+        raise ConfigError(
+            f"file = {str(p)!r}: channel acc_{ch} holds samples that are not finite; valid: "
+            "finite samples"
+        )
     return SignalRecord(
-        res[f"acc_{ch}"],
-        fs or res.fs_hz,
+        x,
+        fs or fs_file,
         r,
         str(p),
         ch,

@@ -3,6 +3,7 @@ file (:func:`bearingsim.io.read_signal`)."""
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,7 +59,9 @@ def read_table(path: str | Path) -> TextTable:
     Lines that are blank or start with ``#`` are skipped. Values are separated by commas or
     semicolons (then blanks may surround them), else by blanks or tabs. A first line without any
     number is the header naming the columns. Every data line must hold as many numbers as the
-    first.
+    first, every number finite. A leading UTF-8 byte-order mark (spreadsheet exports) is
+    skipped. Anything else — a binary file, another encoding — is a one-line
+    :class:`ConfigError`.
 
     Parameters
     ----------
@@ -67,7 +70,7 @@ def read_table(path: str | Path) -> TextTable:
     """
     p = Path(path)
     try:
-        lines = p.read_text(encoding="utf-8").splitlines()
+        lines = p.read_text(encoding="utf-8-sig").splitlines()
     except OSError as exc:
         raise ConfigError(f"file = {str(p)!r} cannot be read ({exc.strerror})") from None
     except UnicodeDecodeError:
@@ -81,6 +84,11 @@ def read_table(path: str | Path) -> TextTable:
         parts = _fields(s)
         vals = [_number(x) for x in parts]
         if all(v is not None for v in vals):
+            if not all(math.isfinite(v) for v in vals):
+                raise ConfigError(
+                    f"file = {str(p)!r}: line {s[:40]!r} holds a value that is not finite; "
+                    "valid: finite numbers (no nan, inf)"
+                )
             if rows and len(vals) != len(rows[0]):
                 raise ConfigError(
                     f"file = {str(p)!r}: line {s[:40]!r} has {len(vals)} values, the first data "

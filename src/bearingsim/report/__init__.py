@@ -19,7 +19,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Literal
 
-from ..io.atomic import write_json
+from ..io.atomic import check_output, write_json
 
 __all__ = [
     "compare",
@@ -122,7 +122,7 @@ def run_report(
 
     from .html import write_html
 
-    out = Path(out_dir)
+    out = check_output(out_dir, "out_dir", directory=True)  # before any section runs
     out.mkdir(parents=True, exist_ok=True)
     names = sections or SECTIONS
     ctx = Context(out, quick)
