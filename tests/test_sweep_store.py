@@ -129,7 +129,7 @@ DAMAGE = {
     "zmetadata_garbage": (_write(".zmetadata", GARBAGE), "is not UTF-8 text"),
     "zmetadata_not_json": (_write(".zmetadata", b"{metadata"), "is not valid JSON"),
     "zmetadata_no_metadata": (_write(".zmetadata", b'{"zarr": 2}'), "has no 'metadata' object"),
-    "status_chunk_garbage": (_write("status/1", GARBAGE), r"holds b'\\xff\\xfc\.\.\.'; valid: one"),
+    "status_chunk_garbage": (_write("status/1", GARBAGE), r"holds b'\\xff\\xfc'\.\.\.; valid: one"),
     "status_chunk_bad_byte": (_write("status/1", b"\x07"), r"holds b'\\x07'; valid: one byte 0"),
     "status_chunk_missing": (_remove("status/1"), r"is missing \(the status chunk of run 1\)"),
     "status_zarray_garbage": (_write("status/.zarray", GARBAGE), "is not UTF-8 text"),
@@ -412,6 +412,12 @@ def test_heartbeat_refreshes_and_notices_a_takeover(store, monkeypatch):
         with pytest.raises(ConfigError, match=r"the lock was taken over by the sweep client "):
             lk.check()
     assert _holder(store) == thief  # not removed: it is not ours
+    _lock_file(store).unlink()
+    with client_lock(store) as lk:
+        _lock_file(store).unlink()  # deleted by hand
+        assert not lk.refresh()
+        with pytest.raises(ConfigError, match=r"the lock '.*\.lock' of this client was removed"):
+            lk.check()
 
 
 # ---------------------------------------------------------------------------- creation
@@ -478,6 +484,42 @@ def test_stale_creation_directories_are_removed(tmp_path):
     assert left == [".d.zarr.creating-live", ".d.zarr.creating-nolock", "d.zarr"]
     _age(young, locks.LOCK_STALE_S + 1.0)
     assert locks.remove_stale_creations(out) == 1 and not young.exists()
+
+
+def test_resuming_a_dataset_in_use_is_refused_before_any_work(store):
+    with client_lock(store):
+        with pytest.raises(ConfigError, match=rf"^dataset = '{store}' is in use by the sweep"):
+            run_sweep(SPEC, store, client=_NoCluster())
+        assert _holder(store)["pid"] == os.getpid()
+
+
+SPEC_TOML = """
+[sweep]
+label = "fault"
+[base]
+model = "dem"
+duration_s = 0.005
+fs_hz = 4000.0
+[axes]
+fault = ["none", "outer", "inner"]
+rpm = [1730.0, 1797.0]
+"""
+
+
+def test_cli_run_in_use_or_damaged_is_one_line(store, tmp_path, run_cli):
+    """``sweep run`` on a dataset in use, or damaged, is refused in one line before a cluster
+    starts (a cluster would take seconds; this test takes milliseconds)."""
+    spec = tmp_path / "sweep.toml"
+    spec.write_text(SPEC_TOML)
+    assert SweepSpec.from_toml(spec).spec_hash == SPEC.spec_hash
+    with client_lock(store):
+        r = run_cli("sweep", "run", spec, "-o", store, "--workers", "1")
+    assert r.code == 2 and r.out == "" and len(r.err.splitlines()) == 1, r.err
+    assert r.err.startswith(f"error: dataset = '{store.absolute()}' is in use by the sweep client ")
+    (store / "status" / "3").write_bytes(b"")
+    r = run_cli("sweep", "run", spec, "-o", store, "--workers", "1")
+    assert r.code == 2 and r.out == "" and len(r.err.splitlines()) == 1, r.err
+    assert f"is damaged: '{store}/status/3' is empty; valid: one byte 0 (pending)" in r.err
 
 
 def test_replacing_a_dataset_in_use_is_refused(store):

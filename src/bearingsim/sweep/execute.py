@@ -638,6 +638,9 @@ def run_sweep(
     # the lock is held until the counts are read, after the cluster is closed
     with contextlib.ExitStack() as held:
         held.callback(lock.release)
+        if path.exists() and not replace_old:  # a resume: "in use" before any work
+            lock.acquire()
+            _other_spec(path, h, canonical, out, False)  # may have changed meanwhile
         with ctx or connect(workers, scheduler, connect_timeout_s) as (cl, desc):
             rep.cluster = desc
             if not cl.nthreads():

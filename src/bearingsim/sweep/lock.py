@@ -423,12 +423,18 @@ class ClientLock:
 
     def check(self) -> None:
         """Raise :class:`ConfigError` if another client took this lock over."""
-        if self.lost is not None:
+        if self.lost is None:
+            return
+        if not self.lost:
             raise ConfigError(
-                f"dataset = {str(self.dataset)!r}: the lock was taken over by the sweep client "
-                f"{self.lost.get('host')}:{self.lost.get('pid')} (this client was not seen for "
-                f"{LOCK_STALE_S:.0f} s); stopped, committed runs are kept"
+                f"dataset = {str(self.dataset)!r}: the lock {str(self.path)!r} of this client was "
+                "removed; stopped, committed runs are kept"
             )
+        raise ConfigError(
+            f"dataset = {str(self.dataset)!r}: the lock was taken over by the sweep client "
+            f"{self.lost.get('host')}:{self.lost.get('pid')} (this client was not seen for "
+            f"{LOCK_STALE_S:.0f} s); stopped, committed runs are kept"
+        )
 
     def __enter__(self) -> ClientLock:
         self.acquire()

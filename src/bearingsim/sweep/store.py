@@ -761,11 +761,10 @@ def read_status(path: str | Path) -> NDArray[np.int8]:
         finally:
             os.close(fd)
         if len(b) != 1 or b[0] not in STATUS_NAMES:
-            shown = b if len(b) == 1 else b + b"..."
             raise damaged_error(
                 path,
                 name,
-                f"holds {shown!r}",
+                "is empty" if not b else f"holds {b!r}" + ("..." if len(b) > 1 else ""),
                 valid="one byte 0 (pending), 1 (ok) or 2 (failed)",
             )
         out[i] = b[0]
