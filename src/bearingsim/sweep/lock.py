@@ -269,6 +269,11 @@ class ClientLock:
         try:
             with self._mutex():
                 self._decide(tmp)
+        except OSError as exc:  # e.g. a dataset this user cannot write
+            raise ConfigError(
+                f"dataset = {str(self.dataset)!r}: the lock {str(self.path)!r} cannot be written "
+                f"({exc.strerror}); valid: a dataset directory this user can write"
+            ) from None
         finally:
             with contextlib.suppress(OSError):
                 os.unlink(tmp)
