@@ -20,14 +20,17 @@ from .store import (
     FORMAT,
     OK,
     PENDING,
-    RECORDS_DIR,
     STATUS_NAMES,
     ChannelLayout,
     Layout,
     RunWriter,
     client_lock,
     create_dataset,
+    damaged_error,
     read_attrs,
+    read_error,
+    read_metadata,
+    read_records,
     read_status,
     remove_stale_temporaries,
 )
@@ -54,19 +57,58 @@ class SweepDataset:
     """
 
     def __init__(self, path: str | Path, runs: NDArray[np.int64] | None = None, _xr=None) -> None:
-        import xarray as xr
-
         self.path = Path(path)
         self.attrs = read_attrs(self.path)
-        self._ds = (
-            _xr
-            if _xr is not None
-            else xr.open_dataset(
-                self.path, engine="zarr", chunks=None, cache=False, consolidated=True
-            )
-        )
+        self._ds = _xr if _xr is not None else self._open()
         n = int(self.attrs["n_runs"])
         self.runs = np.arange(n) if runs is None else np.asarray(runs, dtype=np.int64)
+
+    def _open(self):
+        """The dataset through xarray (lazy); a damaged one raises a one-line
+        :class:`ConfigError` naming the file."""
+        import xarray as xr
+
+        read_metadata(self.path)  # names .zmetadata when it is not what xarray expects
+        try:
+            return xr.open_dataset(
+                self.path, engine="zarr", chunks=None, cache=False, consolidated=True
+            )
+        except Exception as exc:  # any decoding error of metadata or an eagerly read coordinate
+            raise self._damage(None, exc) from None
+
+    def _damage(self, name: str | None, exc: BaseException, index: Any = None) -> ConfigError:
+        """The error of an array that cannot be read, naming its first unreadable chunk file
+        (among those of the runs ``index``, when given; for ``name=None`` of any array)."""
+        names = [name] if name is not None else sorted(self._arrays())
+        runs = None if index is None else np.atleast_1d(np.asarray(index, dtype=np.int64))
+        for nm in names:
+            bad = _bad_chunk(self.path, nm, runs)
+            if bad is not None:
+                if isinstance(bad[1], ConfigError):
+                    return bad[1]
+                return damaged_error(self.path, bad[0], "cannot be decoded", bad[1])
+        where = self.path / name if name is not None else self.path
+        return damaged_error(self.path, where, "cannot be read", exc)
+
+    def _arrays(self) -> list[str]:
+        """The small arrays (every one but the time series, whose chunks may be many GB)."""
+        big = {"signal"} | {c["name"] for c in self.attrs["channels"] if c["extra_dim"]}
+        md = read_metadata(self.path)
+        return [
+            k[: -len("/.zarray")]
+            for k in md
+            if k.endswith("/.zarray") and k[: -len("/.zarray")] not in big
+        ]
+
+    def _values(self, name: str, index: Any = None) -> NDArray:
+        """Values of array ``name`` (all, or ``[index]`` along its first axis), read now."""
+        try:
+            v = self._ds[name].variable
+            return np.asarray((v if index is None else v[index]).values)
+        except ConfigError:
+            raise
+        except Exception as exc:  # a chunk that does not decode: a damaged dataset
+            raise self._damage(name, exc, index) from None
 
     def _view(self, runs: NDArray[np.int64]) -> SweepDataset:
         return SweepDataset(self.path, runs, _xr=self._ds)
@@ -98,21 +140,10 @@ class SweepDataset:
 
         Read from the JSON-lines files in ``DATASET/records/``; when a run was computed more
         than once (a resume after a kill, ``--retry-failed``) the newest line whose status
-        equals the committed status wins.
+        equals the committed status wins. Lines that are not valid records (cut by a kill, or
+        garbage) are skipped (:func:`~bearingsim.sweep.store.read_records`).
         """
-        status = read_status(self.path)
-        best: dict[int, dict[str, Any]] = {}
-        for f in sorted((self.path / RECORDS_DIR).glob("*.jsonl")):
-            with open(f, encoding="utf-8") as fh:
-                for line in fh:
-                    try:
-                        r = json.loads(line)
-                        i = int(r["run"])
-                    except (ValueError, KeyError, TypeError):
-                        continue  # a line cut by a killed writer
-                    if 0 <= i < status.size and r.get("status") == status[i]:
-                        if i not in best or r.get("t", 0.0) >= best[i].get("t", 0.0):
-                            best[i] = r
+        best = read_records(self.path, read_status(self.path))
         return [best.get(int(i), {}) for i in self.runs]
 
     @property
@@ -136,7 +167,7 @@ class SweepDataset:
                 f"key = {key!r} is not stored per run; valid: "
                 + ", ".join(self.attrs["coordinate_keys"])
             )
-        v = np.asarray(self._ds[key].values)[self.runs]
+        v = self._values(key)[self.runs]
         return v.astype(object) if v.dtype.kind == "T" else v  # numpy StringDType
 
     def labels(self, keys: str | list[str] | None = None) -> NDArray:
@@ -212,9 +243,8 @@ class SweepDataset:
                     f"channel = {c!r} is not a stored time series; valid: " + ", ".join(one_d)
                 )
         idx = [one_d.index(c) for c in chans]
-        sig = self._ds["signal"].variable
         X = (
-            np.asarray(sig[self.runs].values)[:, idx, :]
+            self._values("signal", self.runs)[:, idx, :]
             if len(self)
             else np.empty((0, len(idx), 0))
         )
@@ -222,7 +252,21 @@ class SweepDataset:
 
     def scenario(self, run: int) -> dict[str, Any]:
         """Full scenario of run number ``run``."""
-        return json.loads(str(self._ds["scenario_json"].values[run]))
+        text = str(self._values("scenario_json", run))
+        try:
+            sc = json.loads(text)
+        except ValueError as exc:
+            sc = exc
+        if not isinstance(sc, dict) or not all(
+            isinstance(sc.get(k), int | float) and sc.get(k) > 0 for k in ("duration_s", "fs_hz")
+        ):
+            raise damaged_error(
+                self.path,
+                self.path / "scenario_json",
+                f"holds no scenario for run {run} (a JSON object with duration_s and fs_hz)",
+                sc if isinstance(sc, Exception) else None,
+            )
+        return sc
 
     def result(self, run: int):
         """Run number ``run`` as a :class:`~bearingsim.results.SimulationResult` (stored
@@ -237,10 +281,10 @@ class SweepDataset:
         chans, units, dims = {}, {}, {}
         series = self.series
         if series:
-            sig = np.asarray(self._ds["signal"].variable[run].values)
+            sig = self._values("signal", run)
         for c in self.attrs["channels"]:
             if c["extra_dim"]:
-                x = np.asarray(self._ds[c["name"]].variable[run].values)[:n]
+                x = self._values(c["name"], run)[:n]
                 z = int(np.sum(~np.all(np.isnan(x), axis=0)))
                 if z == 0:
                     continue  # not produced by this run (e.g. per_ball = false)
@@ -286,18 +330,47 @@ class SweepDataset:
         done = np.isfinite(cs)
         out["compute_s_total"] = float(cs[done].sum())
         out["compute_s_mean"] = float(cs[done].mean()) if done.any() else None
-        err = np.asarray(self._ds["error"].values).astype(object)[self.runs]
         coords = {k: self.param(k) for k in self.attrs["coordinate_keys"]}
         out["failures"] = [
             {
                 "run": int(self.runs[j]),
                 "params": {k: _scalar(v[j]) for k, v in coords.items()},
-                "error": str(err[j]),
+                "error": read_error(self.path, int(self.runs[j])),
             }
             for j in np.flatnonzero(st == FAILED)
         ]
         out["spec_hash"] = self.attrs.get("spec_hash")
         return out
+
+
+def _bad_chunk(
+    path: Path, name: str, runs: NDArray[np.int64] | None = None
+) -> tuple[Path, BaseException] | None:
+    """The first chunk file of array ``name`` that zarr cannot decode, with the error (``None``
+    when every chunk decodes): the diagnosis of a damaged dataset, chunk by chunk (of the runs
+    ``runs`` only, when given and the array has one chunk per run)."""
+    import zarr
+
+    try:
+        a = zarr.open_array(str(path / name), mode="r", zarr_format=2)
+    except Exception as exc:  # its .zarray
+        return path / name / ".zarray", exc
+    sep = getattr(a.metadata, "dimension_separator", None) or "."
+    grid = list(np.ndindex(*a.cdata_shape))
+    if runs is not None and a.ndim and a.chunks[0] == 1:
+        grid = [(int(i),) + (0,) * (a.ndim - 1) for i in runs]
+    for idx in grid:
+        if name == "error":  # checked before decoding (see read_error)
+            try:
+                read_error(path, idx[0])
+            except ConfigError as exc:
+                return path / name / str(idx[0]), exc
+            continue
+        try:
+            a.get_block_selection(idx)
+        except Exception as exc:
+            return path / name / sep.join(map(str, idx)), exc
+    return None
 
 
 def _scalar(v: Any) -> Any:

@@ -47,7 +47,14 @@ already committed by it are skipped; a task lost more than
 Killing the client loses nothing committed (claim files left behind are removed when the dataset
 is opened again); running the same command again resumes. On Ctrl-C the client writes a stop
 claim for every running task (a task reads its claim before each run), so the workers stop after
-their current run.
+their current run: the local cluster's workers ignore ``SIGINT`` (a terminal sends it to the
+whole process group) and end when the cluster is closed; workers of another cluster outlive the
+client, which waits for their running runs to be committed (a second Ctrl-C leaves them). One
+client at a time writes a dataset (:mod:`bearingsim.sweep.lock`; a new dataset is created with its
+creator's lock inside, so a second client started at once gets the one-line "in use" error).
+The counts of :class:`SweepReport` are read from the dataset at the end, after the local cluster
+is closed, so they include runs committed by tasks that never reported (their worker was killed,
+or Ctrl-C came first).
 
 The local cluster leaves ``MALLOC_TRIM_THRESHOLD_`` unset in its workers (Dask's nanny sets it to
 65536 by default, which turns off glibc's dynamic mmap threshold: every run's arrays then come
@@ -85,19 +92,23 @@ from ..config import Scenario
 from ..errors import BearingsimError, ConfigError, check_range
 from ..geometry import parse_enum
 from ..io.jsonable import to_jsonable
+from .lock import ClientLock
 from .plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
 from .spec import SweepSpec, canonical_hash, spec_differences
 from .store import (
     FAILED,
     OK,
     PENDING,
+    DatasetExistsError,
     RunWriter,
     claim_path,
-    client_lock,
     create_dataset,
     read_attrs,
     read_claim,
+    read_metadata,
+    read_records,
     read_status,
+    records_offsets,
     remove_stale_temporaries,
     write_claim,
 )
@@ -152,6 +163,8 @@ class SweepInterrupted(BearingsimError):
     def __init__(self, message: str, report: SweepReport) -> None:
         super().__init__(message)
         self.report = report
+        #: tasks still running on workers that outlive the client (they may commit one run)
+        self.left_running = 0
 
 
 # ------------------------------------------------------------------------------ worker side
@@ -376,11 +389,12 @@ class SweepReport:
     n_skipped : int
         Runs already committed when this call started (not recomputed).
     n_computed : int
-        Runs computed and committed by this call.
+        Runs computed and committed by this call, read from the dataset at the end (also those
+        of tasks that never reported: a killed worker, Ctrl-C).
     n_ok, n_failed, n_pending : int
         Status counts of the whole dataset at the end.
     n_failed_now : int
-        Runs of this call that failed.
+        Runs of this call that failed (of ``n_computed``).
     n_recomputed : int
         Runs computed a second time in this call (a helper task and the task it helps both
         started the run where they met; counted once in ``n_computed`` and ``compute_s``).
@@ -487,6 +501,9 @@ def connect(
     try:
         client = Client(cluster, set_as_default=False, direct_to_workers=True)
         try:
+            from ._local import IgnoreSigint
+
+            client.register_plugin(IgnoreSigint())  # Ctrl-C is the client's to handle
             yield client, f"local cluster, {n} process worker(s)"
         finally:
             client.close()
@@ -604,79 +621,84 @@ def run_sweep(
     replace_old = False
     rep = SweepReport(out=str(out), n_runs=len(scenarios))
     if path.exists():
-        attrs = read_attrs(path)
-        if attrs.get("spec_hash") != h:
-            if not force_new:
-                old = json.loads(attrs.get("spec_json", "{}"))
-                new = json.loads(json.dumps(to_jsonable(canonical)))
-                diff = ", ".join(spec_differences(old, new)[:6]) or "content"
-                raise ConfigError(
-                    f"out = {str(out)!r} holds a dataset of a different sweep spec (differs in: "
-                    f"{diff}); use another -o/--output, or --force-new to replace it"
-                )
-            replace_old = True
-        else:
+        replace_old = _other_spec(path, h, canonical, out, force_new)
+        if not replace_old:
+            read_metadata(path)  # a damaged dataset is refused before any work
             st = read_status(path)
             if not np.any((st == PENDING) | ((st == FAILED) & retry_failed)):
                 rep.n_skipped = len(scenarios)  # nothing to compute: no cluster needed
                 _final_counts(rep, st)
                 rep.setup_s = time.perf_counter() - t_start
                 return rep
+    lock = ClientLock(path)
+    # workers of a local cluster end with it; those of another cluster outlive this client
+    own_cluster = client is None and scheduler is None
+    interrupted: SweepInterrupted | None = None
     ctx = contextlib.nullcontext((client, "given client")) if client is not None else None
-    with ctx or connect(workers, scheduler, connect_timeout_s) as (cl, desc):
-        rep.cluster = desc
-        if not cl.nthreads():
-            if progress is True:
-                print(f"sweep: waiting for a worker to join {desc}", file=sys.stderr)
-            cl.wait_for_workers(1)
-        hello = cl.run(worker_hello)
-        bad = {a: v for a, v in hello.items() if v["version"] != __version__}
-        if bad:
-            a, v = next(iter(bad.items()))
-            raise ConfigError(
-                f"worker {a} runs bearingsim {v['version']}, this client {__version__}; install "
-                "the same version on every worker"
-            )
-        uid = None
-        futs: dict[Any, Any] = {}  # setup tasks, released at the end (see _estimate_run_s)
-        if not path.exists() or replace_old:
-            groups = probe_groups(scenarios)
-            futs = {
-                k: cl.submit(probe_first, [sdicts[i] for i in idx], pure=False)
-                for k, idx in groups.items()
-            }
-            probes = {k: f.result() for k, f in futs.items()}
-            for k, p in probes.items():
-                if isinstance(p, str):
-                    raise ConfigError(f"run {groups[k][0]} cannot start: {p}")
-            layout = make_layout(spec, scenarios, probes)
-            if replace_old:  # read_attrs() above proved it is a sweep dataset
-                shutil.rmtree(path)
-            attrs_new = {
-                "spec_hash": h,
-                "spec_json": json.dumps(to_jsonable(canonical)),
-                "label": list(spec.label),
-                "axes": list(spec.axis_names),
-                "name": spec.name,
-            }
-            uid = create_dataset(
-                path,
-                layout,
-                attrs_new,
-                coordinates(spec, scenarios),
-                sdicts,
-            )
-            rep.created = True
-        with client_lock(path):
+    # the lock is held until the counts are read, after the cluster is closed
+    with contextlib.ExitStack() as held:
+        held.callback(lock.release)
+        if path.exists() and not replace_old:  # a resume: "in use" before any work
+            lock.acquire()
+            _other_spec(path, h, canonical, out, False)  # may have changed meanwhile
+        with ctx or connect(workers, scheduler, connect_timeout_s) as (cl, desc):
+            rep.cluster = desc
+            if not cl.nthreads():
+                if progress is True:
+                    print(f"sweep: waiting for a worker to join {desc}", file=sys.stderr)
+                cl.wait_for_workers(1)
+            hello = cl.run(worker_hello)
+            bad = {a: v for a, v in hello.items() if v["version"] != __version__}
+            if bad:
+                a, v = next(iter(bad.items()))
+                raise ConfigError(
+                    f"worker {a} runs bearingsim {v['version']}, this client {__version__}; "
+                    "install the same version on every worker"
+                )
+            futs: dict[Any, Any] = {}  # setup tasks, released at the end (see _estimate_run_s)
+            if not path.exists() or replace_old:
+                groups = probe_groups(scenarios)
+                futs = {
+                    k: cl.submit(probe_first, [sdicts[i] for i in idx], pure=False)
+                    for k, idx in groups.items()
+                }
+                probes = {k: f.result() for k, f in futs.items()}
+                for k, p in probes.items():
+                    if isinstance(p, str):
+                        raise ConfigError(f"run {groups[k][0]} cannot start: {p}")
+                layout = make_layout(spec, scenarios, probes)
+                if replace_old:  # read_attrs() above proved it is a sweep dataset
+                    _remove_dataset(path)
+                attrs_new = {
+                    "spec_hash": h,
+                    "spec_json": json.dumps(to_jsonable(canonical)),
+                    "label": list(spec.label),
+                    "axes": list(spec.axis_names),
+                    "name": spec.name,
+                }
+                try:
+                    create_dataset(
+                        path, layout, attrs_new, coordinates(spec, scenarios), sdicts, lock=lock
+                    )
+                    lock.adopt()  # renamed into place with this client's lock in it
+                    rep.created = True
+                except DatasetExistsError:
+                    pass  # another client created it first: joined below (in use while it runs)
+            if not lock.held:
+                lock.acquire()  # a live client's lock: "in use"
+                _other_spec(path, h, canonical, out, False)  # may have changed meanwhile
             attrs = read_attrs(path)
             uid = attrs["uuid"]
             remove_stale_temporaries(path)
-            status = read_status(path)
-            todo_mask = status == PENDING
+            st0 = read_status(path)
+            todo_mask = st0 == PENDING
             if retry_failed:
-                todo_mask |= status == FAILED
-            todo = deque(int(i) for i in np.flatnonzero(todo_mask))
+                todo_mask |= st0 == FAILED
+            todo_runs = np.flatnonzero(todo_mask)
+            todo = deque(int(i) for i in todo_runs)
             rep.n_skipped = len(scenarios) - len(todo)
+            offsets = records_offsets(path)
+            counted: set[int] = set()
             cw = RunWriter(path, uid)
             if runs_per_task is None and todo:
                 rep.estimate_s = _estimate_run_s(cl, [scenarios[i] for i in todo], futs)
@@ -697,11 +719,87 @@ def run_sweep(
                     retry_failed,
                     measure_cpu,
                     spare_core_workers(hello, cl.nthreads()),
+                    counted=counted,
+                    lock=lock,
+                    drain=not own_cluster,
                 )
+            except SweepInterrupted as exc:
+                interrupted = exc
             finally:
                 cw.close()
-    _final_counts(rep, read_status(path))
+        # the local cluster is closed: its workers commit nothing more, so the counts are final
+        _exact_counts(rep, path, todo_runs, st0, counted, offsets)
+    if interrupted is not None:
+        more = interrupted.left_running
+        raise SweepInterrupted(
+            f"interrupted: {rep.n_ok + rep.n_failed} of {rep.n_runs} runs committed "
+            f"({rep.n_computed} by this call"
+            + (f"; {more} task(s) left running may commit one run each" if more else "")
+            + "); run the same command again to resume",
+            rep,
+        ) from None
     return rep
+
+
+def _other_spec(path: Path, h: str, canonical: dict[str, Any], out: Any, force_new: bool) -> bool:
+    """Whether the dataset ``path`` holds another spec than ``h`` (refused unless
+    ``force_new``: then ``True``, to be replaced)."""
+    attrs = read_attrs(path)
+    if attrs.get("spec_hash") == h:
+        return False
+    if not force_new:
+        try:
+            old = json.loads(attrs.get("spec_json", "{}"))
+        except (TypeError, ValueError):
+            old = {}
+        new = json.loads(json.dumps(to_jsonable(canonical)))
+        diff = ", ".join(spec_differences(old, new)[:6]) if isinstance(old, dict) else ""
+        raise ConfigError(
+            f"out = {str(out)!r} holds a dataset of a different sweep spec (differs in: "
+            f"{diff or 'content'}); use another -o/--output, or --force-new to replace it"
+        )
+    return True
+
+
+def _remove_dataset(path: Path) -> None:
+    """Delete the dataset ``path`` under its lock (refused while another client uses it): it
+    is renamed aside first, so that no client sees a half-deleted dataset."""
+    aside = path.parent / f".{path.name}.removing-{uuidlib.uuid4().hex}"
+    with ClientLock(path):
+        os.rename(path, aside)
+    shutil.rmtree(aside, ignore_errors=True)
+
+
+def _exact_counts(
+    rep: SweepReport,
+    path: Path,
+    todo: np.ndarray,
+    st0: np.ndarray,
+    counted: set[int],
+    offsets: dict[str, int],
+) -> None:
+    """Counts of ``rep`` from the dataset itself: the status counts, and the runs committed by
+    this call (``n_computed``, ``n_failed_now``), including those whose task never reported
+    (its worker was killed after committing them; Ctrl-C before it finished). Their compute
+    times come from the records appended during this call."""
+    st1 = read_status(path)
+    _final_counts(rep, st1)
+    was_pending = todo[st0[todo] == PENDING]
+    retried = todo[st0[todo] == FAILED]
+    computed = {int(i) for i in was_pending[st1[was_pending] != PENDING]}
+    computed |= {int(i) for i in retried[st1[retried] == OK]}
+    computed |= counted & {int(i) for i in retried}
+    unsure = [int(i) for i in retried if st1[i] == FAILED and int(i) not in counted]
+    unreported = sorted(computed - counted)
+    if unreported or unsure:
+        recs = read_records(path, st1, since=offsets)
+        computed |= {i for i in unsure if i in recs}  # failed again, in a task that was lost
+        for i in sorted(computed - counted):
+            r = recs.get(i, {})
+            rep.compute_s += r.get("compute_s") or 0.0
+            rep.compute_cpu_s += r.get("cpu_s") or 0.0
+    rep.n_computed = len(computed)
+    rep.n_failed_now = sum(1 for i in computed if st1[i] == FAILED)
 
 
 def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any]) -> float | None:
@@ -760,8 +858,16 @@ def _execute(
     retry_failed: bool,
     measure_cpu: bool,
     overlap: set[str] = frozenset(),  # type: ignore[assignment]
+    counted: set[int] | None = None,
+    lock: ClientLock | None = None,
+    drain: bool = False,
 ) -> None:
-    """The submission loop: feed tasks, commit what the workers send back, count."""
+    """The submission loop: feed tasks, commit what the workers send back, count.
+
+    ``counted`` collects the runs reported by finished tasks; ``lock`` is checked after every
+    task (:meth:`ClientLock.check`); with ``drain`` (workers that outlive this client), Ctrl-C
+    waits for the tasks in flight to commit their current run (a second Ctrl-C leaves them).
+    """
     from distributed import as_completed
 
     n_todo = len(todo)
@@ -780,7 +886,8 @@ def _execute(
     # results are fetched in the background as tasks finish (not when this loop asks for them)
     ac = as_completed(loop=cl.loop, with_results=True, raise_errors=False)
     inflight: dict[Any, _Task] = {}
-    counted: set[int] = set()  # runs counted in rep (a run computed twice counts once)
+    # runs counted in rep (a run computed twice counts once)
+    counted = set() if counted is None else counted
     claims: list[str] = []
     batch = [0, 0]  # size and tasks left of the current batch (several threads)
 
@@ -883,55 +990,63 @@ def _execute(
     async def fill_at_once() -> None:
         fill()
 
+    def handle(fut, result) -> int:
+        """Count (and, for the client writer, commit) the runs of a finished task; returns
+        how many runs it newly committed."""
+        task = inflight.pop(fut)
+        if task.worker is not None:
+            placed[task.worker] -= 1
+        if isinstance(result, asyncio.CancelledError | concurrent.futures.CancelledError):
+            raise ConfigError(
+                f"lost the Dask scheduler ({_error_text(result)}); committed runs are kept: "
+                "run the same command again to resume"
+            )
+        if fut.status == "error":  # KilledWorker, a bug in a task: recorded, sweep goes on
+            mine = task.runs if task.keep is None else task.runs[: task.keep]
+            records = _failed_records(cw, mine, result[1])
+        else:
+            records = result
+        n_new = 0
+        for r in records:
+            if r["status"] not in (OK, FAILED):  # skipped or handed over
+                continue
+            if "commit_s" in r:
+                rep.committed_by["worker"] += 1
+                rep.commit_s += r["commit_s"]
+                run_time.append(r["compute_s"] + r["commit_s"])
+            else:
+                tc = time.perf_counter()
+                cw.commit(r["run"], r["status"], r["record"], r["error"], r.get("channels"))
+                rep.commit_s += time.perf_counter() - tc
+                rep.committed_by["client"] += 1
+                run_time.append(r["compute_s"])
+            if r["run"] in counted:  # computed twice (a helper met its task): wasted
+                rep.n_recomputed += 1
+                continue
+            counted.add(r["run"])
+            n_new += 1
+            rep.n_computed += 1
+            rep.compute_s += r["compute_s"]
+            rep.compute_cpu_s += r.get("cpu_s", 0.0)
+            if r["status"] == FAILED:
+                rep.n_failed_now += 1
+        if bar is not None:
+            bar.update(n_new)
+            bar.set_postfix_str(
+                f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
+                refresh=False,
+            )
+        return n_new
+
     try:
         # the first tasks are submitted from one callback of the client's event loop, so that
         # they leave in one message (submitted one by one from here, the second would wait for
         # the client's next message batch, up to 10 ms later)
         cl.sync(fill_at_once)
         for fut, result in ac:
-            task = inflight.pop(fut)
-            if task.worker is not None:
-                placed[task.worker] -= 1
-            if isinstance(result, asyncio.CancelledError | concurrent.futures.CancelledError):
-                raise ConfigError(
-                    f"lost the Dask scheduler ({_error_text(result)}); committed runs are kept: "
-                    "run the same command again to resume"
-                )
-            if fut.status == "error":  # KilledWorker, a bug in a task: recorded, sweep goes on
-                mine = task.runs if task.keep is None else task.runs[: task.keep]
-                records = _failed_records(cw, mine, result[1])
-            else:
-                records = result
-            n_new = 0
-            for r in records:
-                if r["status"] not in (OK, FAILED):  # skipped or handed over
-                    continue
-                if "commit_s" in r:
-                    rep.committed_by["worker"] += 1
-                    rep.commit_s += r["commit_s"]
-                    run_time.append(r["compute_s"] + r["commit_s"])
-                else:
-                    tc = time.perf_counter()
-                    cw.commit(r["run"], r["status"], r["record"], r["error"], r.get("channels"))
-                    rep.commit_s += time.perf_counter() - tc
-                    rep.committed_by["client"] += 1
-                    run_time.append(r["compute_s"])
-                if r["run"] in counted:  # computed twice (a helper met its task): wasted
-                    rep.n_recomputed += 1
-                    continue
-                counted.add(r["run"])
-                n_new += 1
-                rep.n_computed += 1
-                rep.compute_s += r["compute_s"]
-                rep.compute_cpu_s += r.get("cpu_s", 0.0)
-                if r["status"] == FAILED:
-                    rep.n_failed_now += 1
-            if bar is not None:
-                bar.update(n_new)
-                bar.set_postfix_str(
-                    f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
-                    refresh=False,
-                )
+            handle(fut, result)
+            if lock is not None:
+                lock.check()  # another client took the lock over: stop
             if callable(progress):
                 progress(rep)
             refresh()
@@ -945,17 +1060,30 @@ def _execute(
             del fut, result
     except KeyboardInterrupt:
         rep.interrupted = True
-        cl.cancel(list(inflight))
         for t in inflight.values():  # running tasks stop after their current run
             with contextlib.suppress(OSError):
                 write_claim(path, t.id, 0)
         claims.clear()  # left for the tasks still running (removed when the dataset is reopened)
+        if drain and inflight:  # workers that outlive this client: wait for their current runs
+            if progress is True:
+                print(
+                    f"sweep: interrupted; waiting for {len(inflight)} task(s) to commit their "
+                    "current run (Ctrl-C again to leave them running)",
+                    file=sys.stderr,
+                )
+            try:
+                for fut, result in ac:
+                    with contextlib.suppress(Exception):  # a lost task: its runs stay pending
+                        handle(fut, result)
+                    del fut, result
+            except KeyboardInterrupt:
+                pass
+        left = len(inflight)
+        cl.cancel(list(inflight))
         rep.wall_s = time.perf_counter() - t0
-        raise SweepInterrupted(
-            f"interrupted: {rep.n_skipped + rep.n_computed} of {rep.n_runs} runs committed; run "
-            "the same command again to resume",
-            rep,
-        ) from None
+        exc = SweepInterrupted("interrupted", rep)
+        exc.left_running = left if drain else 0
+        raise exc from None
     finally:
         if bar is not None:
             bar.close()

@@ -21,7 +21,8 @@ Layout (Zarr format 2 with consolidated metadata: ``xarray.open_zarr(path)`` rea
                             {"run", "status", "t", "compute_s": wall time of simulate [s],
                             "cpu_s", "host", "pid", "bearingsim_version",
                             "meta": SimulationResult.meta}; while a sweep runs also the
-                            client's lock and claim files (``.claim-<task>``: the position in
+                            client's lock (:mod:`bearingsim.sweep.lock`; ``.lock.mutex``
+                            stays) and claim files (``.claim-<task>``: the position in
                             that task from which a helper task has taken over its runs)
 
 Commit protocol
@@ -48,6 +49,15 @@ and writing a new file on the test machine's ext4 (create, 87 kB into the page c
 appends one line and writes one byte. A line cut by a kill belongs to a run that is
 still pending; the reader skips it. Durability against a power cut would need ``fsync``; against
 killed processes it does not.
+
+Readers
+-------
+:func:`read_metadata`, :func:`read_attrs`, :func:`read_status`, :func:`read_error` and
+:func:`read_records` check what they read: a damaged dataset (a file that is not UTF-8 JSON, a
+missing or wrong status byte, an error chunk whose length field disagrees with its size, ...)
+raises one :class:`~bearingsim.errors.ConfigError` line naming the file and what is wrong
+(:func:`damaged_error`), never a decoding exception; record lines that are not records are
+skipped (they are auxiliary: the status byte is the commit).
 """
 
 from __future__ import annotations
@@ -72,6 +82,7 @@ from numpy.typing import NDArray
 from .._version import __version__
 from ..errors import ConfigError
 from ..io.jsonable import dumps_jsonable, to_jsonable
+from .lock import LOCK_NAME, LOCK_TEMP_PREFIX, ClientLock, client_lock, remove_stale_creations
 
 __all__ = [
     "ChannelLayout",
@@ -79,6 +90,8 @@ __all__ = [
     "CLAIM_PREFIX",
     "client_lock",
     "create_dataset",
+    "damaged_error",
+    "DatasetExistsError",
     "FAILED",
     "FORMAT",
     "Layout",
@@ -87,6 +100,9 @@ __all__ = [
     "PENDING",
     "read_attrs",
     "read_claim",
+    "read_error",
+    "read_metadata",
+    "read_records",
     "read_status",
     "RECORDS_DIR",
     "remove_stale_temporaries",
@@ -105,8 +121,6 @@ STATUS_NAMES = {PENDING: "pending", OK: "ok", FAILED: "failed"}
 RUN_ARRAYS = ("status", "error")
 #: directory (inside the dataset) of the per-run records, one JSON-lines file per writer process
 RECORDS_DIR = "records"
-#: lock file of the client running a sweep on the dataset
-LOCK_NAME = "records/.lock"
 #: claim files (``records/.claim-<task id>``): the client hands the tail of a task to a helper
 CLAIM_PREFIX = ".claim-"
 
@@ -235,16 +249,8 @@ class RunWriter:
         self.path = Path(path)
         # the consolidated metadata written at creation (never changed afterwards): one small
         # JSON read instead of opening the group through zarr-python (~3 ms)
-        try:
-            with open(self.path / ".zmetadata", encoding="utf-8") as fh:
-                md = json.load(fh)["metadata"]
-        except (OSError, ValueError, KeyError):
-            raise ConfigError(
-                f"dataset = {str(path)!r} is not a bearingsim sweep dataset"
-            ) from None
-        attrs = md.get(".zattrs", {})
-        if attrs.get("format") != FORMAT:
-            raise ConfigError(f"dataset = {str(path)!r} is not a bearingsim sweep dataset")
+        md = read_metadata(path)
+        attrs = md[".zattrs"]
         if uuid is not None and attrs.get("uuid") != uuid:
             raise ConfigError(
                 f"dataset = {str(path)!r} has uuid {attrs.get('uuid')!r}, expected {uuid!r}"
@@ -255,7 +261,14 @@ class RunWriter:
         self.series = [c["name"] for c in chans if not c["extra_dim"]]
         self.wide = {c["name"]: int(c["n_extra"]) for c in chans if c["extra_dim"]}
         names = list(RUN_ARRAYS) + list(self.wide) + (["signal"] if self.series else [])
-        self.codecs = {name: _ChunkCodec(self.path, name, md[f"{name}/.zarray"]) for name in names}
+        self.codecs = {}
+        for name in names:
+            try:
+                self.codecs[name] = _ChunkCodec(self.path, name, md[f"{name}/.zarray"])
+            except Exception as exc:  # a damaged .zarray entry: any decoding error
+                raise damaged_error(
+                    path, _zmetadata(path), f"its entry {name + '/.zarray'!r} is invalid", exc
+                ) from None
         self._status_dir = self.codecs["status"].dir + os.sep
         self._log: int | None = None  # this process's records file (opened on first commit)
 
@@ -371,6 +384,10 @@ class RunWriter:
 
 
 # ---------------------------------------------------------------------------- creation
+class DatasetExistsError(ConfigError):
+    """The dataset directory exists (e.g. another client created it first)."""
+
+
 def _dims(a, dims: list[str]) -> None:
     a.attrs["_ARRAY_DIMENSIONS"] = dims
 
@@ -392,8 +409,14 @@ def create_dataset(
     attrs: dict[str, Any],
     coords: dict[str, list[Any]],
     scenarios: list[dict[str, Any]],
+    lock: ClientLock | None = None,
 ) -> str:
     """Create an empty dataset atomically (temporary directory renamed into place).
+
+    Two clients creating the same dataset at once: exactly one rename succeeds, the other
+    client gets :class:`DatasetExistsError` and its temporary directory is removed; the winner's
+    dataset is untouched. Temporary directories of creations whose client is gone are removed
+    first (:func:`~bearingsim.sweep.lock.remove_stale_creations`).
 
     Parameters
     ----------
@@ -407,19 +430,29 @@ def create_dataset(
         Per-run coordinate values by scenario key.
     scenarios : list of dict
         Full scenario of every run.
+    lock : ClientLock, optional
+        Written into the dataset before it is renamed into place, so that the dataset is
+        locked by this client from its first instant (the caller then calls
+        :meth:`ClientLock.adopt`).
 
     Returns
     -------
     str
         The new dataset's uuid.
+
+    Raises
+    ------
+    DatasetExistsError
+        ``path`` exists (before, or created by another client meanwhile).
     """
     import numcodecs
     import zarr
 
     dest = Path(path)
     if dest.exists():
-        raise ConfigError(f"out = {str(dest)!r} exists already")
+        raise DatasetExistsError(f"out = {str(dest)!r} exists already")
     dest.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_creations(dest)
     uid = uuidlib.uuid4().hex
     tmp = dest.parent / f".{dest.name}.creating-{uid}"
     n, t = layout.n_runs, layout.n_time
@@ -427,6 +460,8 @@ def create_dataset(
     blosc = numcodecs.Blosc(cname="lz4", clevel=5, shuffle=numcodecs.Blosc.SHUFFLE)
     try:
         g = zarr.open_group(str(tmp), mode="w-", zarr_format=2)
+        if lock is not None:  # first, so that a concurrent client can tell whether we live
+            lock.write_into(tmp)
         coord_names = list(coords)
         run = g.create_array(
             "run", shape=(n,), chunks=(min(n, 65536),), dtype="int64", fill_value=None
@@ -531,38 +566,311 @@ def create_dataset(
             )
         )
         zarr.consolidate_metadata(str(tmp))
-        os.rename(tmp, dest)
+        try:
+            os.rename(tmp, dest)
+        except OSError:
+            if not dest.exists():
+                raise
+            # another client renamed its dataset into place first (ENOTEMPTY/EEXIST)
+            raise DatasetExistsError(
+                f"out = {str(dest)!r} was created by another client meanwhile"
+            ) from None
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     return uid
 
 
-def read_attrs(path: str | Path) -> dict[str, Any]:
-    """Root attributes of a sweep dataset (``ConfigError`` if it is not one)."""
-    p = Path(path)
-    zattrs = p / ".zattrs"
+# ---------------------------------------------------------------------------- readers
+def _error_text(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+
+
+def damaged_error(
+    dataset: str | Path,
+    file: str | Path,
+    what: str,
+    exc: BaseException | None = None,
+    valid: str | None = None,
+) -> ConfigError:
+    """The one-line error of a damaged dataset: the file, what is wrong with it (and the
+    decoding error ``exc``), what would be valid."""
+    why = "" if exc is None else f" ({_error_text(exc)})"
+    ok = "" if valid is None else f"; valid: {valid}"
+    return ConfigError(
+        f"dataset = {str(dataset)!r} is damaged: {str(file)!r} {what}{why}{ok}; delete the "
+        "dataset and run the sweep again"
+    )
+
+
+def _zmetadata(path: str | Path) -> Path:
+    return Path(path) / ".zmetadata"
+
+
+def _load_json(dataset: str | Path, file: Path, missing: str) -> Any:
+    """The JSON document ``file`` of a dataset; a file that cannot be read is ``missing`` (a
+    one-line :class:`ConfigError`), one that is not UTF-8 JSON is damage."""
     try:
-        with open(zattrs, encoding="utf-8") as fh:
-            attrs = json.load(fh)
-    except (OSError, ValueError):
+        with open(file, "rb") as fh:
+            raw = fh.read()
+    except OSError:
         raise ConfigError(
-            f"dataset = {str(p)!r} is not a bearingsim sweep dataset (no readable .zattrs)"
+            f"dataset = {str(dataset)!r} is not a bearingsim sweep dataset ({missing})"
         ) from None
+    try:
+        return json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise damaged_error(dataset, file, "is not UTF-8 text", exc) from None
+    except ValueError as exc:
+        raise damaged_error(dataset, file, "is not valid JSON", exc) from None
+
+
+def _check_attrs(dataset: str | Path, file: Path, attrs: Any) -> dict[str, Any]:
+    """The root attributes ``attrs`` read from ``file``, checked for what the readers use."""
+    if not isinstance(attrs, dict):
+        raise damaged_error(dataset, file, f"holds a JSON {type(attrs).__name__}, not an object")
     if attrs.get("format") != FORMAT:
         raise ConfigError(
-            f"dataset = {str(p)!r} is not a bearingsim sweep dataset (format = "
+            f"dataset = {str(dataset)!r} is not a bearingsim sweep dataset (format = "
             f"{attrs.get('format')!r}; valid: {FORMAT!r})"
         )
+
+    def bad(key: str, valid: str) -> ConfigError:
+        return damaged_error(dataset, file, f"has {key} = {attrs.get(key)!r}", valid=valid)
+
+    def count(v: Any) -> bool:
+        return isinstance(v, int) and not isinstance(v, bool) and v >= 0
+
+    if not isinstance(attrs.get("uuid"), str):
+        raise bad("uuid", "a string")
+    for key in ("n_runs", "n_time"):
+        if not count(attrs.get(key)):
+            raise bad(key, "an integer >= 0")
+    chans = attrs.get("channels")
+    if not isinstance(chans, list) or not all(
+        isinstance(c, dict)
+        and isinstance(c.get("name"), str)
+        and isinstance(c.get("units"), str)
+        and (c.get("extra_dim") is None or isinstance(c.get("extra_dim"), str))
+        and count(c.get("n_extra", 0))
+        for c in chans
+    ):
+        raise bad("channels", "a list of {name, units, extra_dim, n_extra}")
+    for key in ("coordinate_keys", "label", "axes"):
+        v = attrs.get(key, [])
+        if not isinstance(v, list) or not all(isinstance(k, str) for k in v):
+            raise bad(key, "a list of strings")
     return attrs
 
 
-def read_status(path: str | Path) -> NDArray[np.int8]:
-    """The ``status`` array (0 pending, 1 ok, 2 failed) of every run."""
-    import zarr
+def read_metadata(path: str | Path) -> dict[str, Any]:
+    """The consolidated metadata of a sweep dataset (``.zmetadata``: every ``.zarray`` and
+    ``.zattrs`` by key), checked; any problem is a one-line :class:`ConfigError` naming the
+    file and what is wrong with it."""
+    file = _zmetadata(path)
+    doc = _load_json(path, file, "no readable .zmetadata")
+    md = doc.get("metadata") if isinstance(doc, dict) else None
+    if not isinstance(md, dict) or not all(isinstance(v, dict) for v in md.values()):
+        raise damaged_error(path, file, "has no 'metadata' object of JSON objects")
+    _check_attrs(path, file, md.get(".zattrs", {}))
+    for name in ("status", "error", "scenario_json", RECORDS_DIR):
+        if f"{name}/.zarray" not in md:
+            raise damaged_error(path, file, f"has no entry {name + '/.zarray'!r}")
+    for key, za in md.items():
+        if key.endswith(".zarray") and not _zarray_ok(za):
+            raise damaged_error(
+                path,
+                file,
+                f"has an invalid entry {key!r}",
+                valid="a zarr v2 array: shape and chunks (integer lists of one length), dtype, "
+                "compressor and filters (null or codec objects with an id), zarr_format 2",
+            )
+    return md
 
-    a = zarr.open_array(str(Path(path) / "status"), mode="r", zarr_format=2)
-    return np.asarray(a[:], dtype=np.int8)
+
+def _zarray_ok(za: dict[str, Any]) -> bool:
+    """Whether ``za`` has the fields of a zarr v2 ``.zarray`` document that readers use."""
+
+    def ints(v: Any) -> bool:
+        return isinstance(v, list) and all(
+            isinstance(x, int) and not isinstance(x, bool) and x >= 0 for x in v
+        )
+
+    def codec(c: Any) -> bool:
+        return isinstance(c, dict) and isinstance(c.get("id"), str)
+
+    filters = za.get("filters")
+    return (
+        ints(za.get("shape"))
+        and ints(za.get("chunks"))
+        and len(za["shape"]) == len(za["chunks"])
+        and isinstance(za.get("dtype"), str | list)
+        and (za.get("compressor") is None or codec(za["compressor"]))
+        and (filters is None or (isinstance(filters, list) and all(map(codec, filters))))
+        and za.get("zarr_format") == 2
+    )
+
+
+def read_attrs(path: str | Path) -> dict[str, Any]:
+    """Root attributes of a sweep dataset (``.zattrs``), checked; a directory that is not a
+    sweep dataset, or a damaged one, raises a one-line :class:`ConfigError`."""
+    file = Path(path) / ".zattrs"
+    return _check_attrs(path, file, _load_json(path, file, "no readable .zattrs"))
+
+
+def read_status(path: str | Path) -> NDArray[np.int8]:
+    """The ``status`` of every run (0 pending, 1 ok, 2 failed), read from its one-byte chunks.
+
+    A chunk that is missing or does not hold one of those bytes means a damaged dataset (every
+    chunk is written when the dataset is created, and only its byte changes afterwards): a
+    one-line :class:`ConfigError` naming the file.
+    """
+    sdir = Path(path) / "status"
+    zarray = sdir / ".zarray"
+    meta = _load_json(path, zarray, "no readable status/.zarray")
+    ok = (
+        isinstance(meta, dict)
+        and isinstance(meta.get("shape"), list)
+        and len(meta["shape"]) == 1
+        and isinstance(meta["shape"][0], int)
+        and meta["shape"][0] >= 0
+        and meta.get("chunks") == [1]
+        and meta.get("dtype") == "|i1"
+        and meta.get("compressor") is None
+        and not meta.get("filters")
+    )
+    if not ok:
+        raise damaged_error(
+            path, zarray, "does not describe one uncompressed int8 byte per run (chunks [1])"
+        )
+    n = meta["shape"][0]
+    out = np.empty(n, dtype=np.int8)
+    prefix = str(sdir) + os.sep
+    for i in range(n):
+        name = prefix + str(i)
+        try:
+            fd = os.open(name, os.O_RDONLY)
+        except FileNotFoundError:
+            raise damaged_error(path, name, f"is missing (the status chunk of run {i})") from None
+        except OSError as exc:
+            raise damaged_error(path, name, f"cannot be read ({exc.strerror})") from None
+        try:
+            b = os.read(fd, 2)
+        except OSError as exc:
+            raise damaged_error(path, name, f"cannot be read ({exc.strerror})") from None
+        finally:
+            os.close(fd)
+        if len(b) != 1 or b[0] not in STATUS_NAMES:
+            raise damaged_error(
+                path,
+                name,
+                "is empty" if not b else f"holds {b!r}" + ("..." if len(b) > 1 else ""),
+                valid="one byte 0 (pending), 1 (ok) or 2 (failed)",
+            )
+        out[i] = b[0]
+    return out
+
+
+def read_error(path: str | Path, run: int) -> str:
+    """The ``error`` of run ``run`` (``""`` when it has none), decoded from its chunk file.
+
+    The chunk is checked before it is decoded (one VLenUTF8 item: count 1, then the length of
+    the UTF-8 text and the text, as written by :class:`RunWriter`): a damaged length field would
+    otherwise make the decoder allocate whatever it says. Anything else raises a one-line
+    :class:`ConfigError` naming the file.
+    """
+    f = Path(path) / "error" / str(run)
+    try:
+        with open(f, "rb") as fh:
+            b = fh.read()
+    except FileNotFoundError:
+        return ""
+    except OSError as exc:
+        raise damaged_error(path, f, f"cannot be read ({exc.strerror})") from None
+    n = int.from_bytes(b[:4], "little") if len(b) >= 8 else -1
+    size = int.from_bytes(b[4:8], "little") if n == 1 else -1
+    if size != len(b) - 8:
+        raise damaged_error(
+            path,
+            f,
+            f"holds {len(b)} bytes that are not one text item",
+            valid="a VLenUTF8 chunk of one item (count 1, length, UTF-8 text)",
+        )
+    try:
+        return b[8:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise damaged_error(path, f, "is not UTF-8 text", exc) from None
+
+
+def records_offsets(path: str | Path) -> dict[str, int]:
+    """Size of every ``records/*.jsonl`` file now [bytes] (:func:`read_records` ``since``)."""
+    out = {}
+    for f in (Path(path) / RECORDS_DIR).glob("*.jsonl"):
+        with contextlib.suppress(OSError):
+            out[f.name] = f.stat().st_size
+    return out
+
+
+def _record(line: bytes) -> dict[str, Any] | None:
+    """One record line, ``None`` when it is not a valid record (cut by a killed writer)."""
+    try:
+        r = json.loads(line.decode("utf-8"))
+    except ValueError:  # UnicodeDecodeError included
+        return None
+    if not isinstance(r, dict):
+        return None
+    i, st, t = r.get("run"), r.get("status"), r.get("t", 0.0)
+    if not isinstance(i, int) or isinstance(i, bool) or st not in (OK, FAILED):
+        return None
+    if not isinstance(t, int | float) or isinstance(t, bool):
+        return None
+    for key in ("compute_s", "cpu_s"):
+        v = r.get(key)
+        if v is not None and (not isinstance(v, int | float) or isinstance(v, bool)):
+            return None
+    return r
+
+
+def read_records(
+    path: str | Path, status: NDArray[np.int8], since: dict[str, int] | None = None
+) -> dict[int, dict[str, Any]]:
+    """The record of every committed run, from ``records/*.jsonl``.
+
+    Parameters
+    ----------
+    path : str or Path
+        The dataset.
+    status : ndarray of int8
+        :func:`read_status`: only a line whose status equals the run's committed status
+        counts; of those the newest (``t``) wins.
+    since : dict, optional
+        :func:`records_offsets` taken earlier: only the lines appended since then are read.
+
+    Returns
+    -------
+    dict
+        Record by run number. Lines that are not valid records (cut by a killed writer, or
+        garbage) are skipped; a records file that cannot be read raises a one-line
+        :class:`ConfigError` naming it.
+    """
+    best: dict[int, dict[str, Any]] = {}
+    for f in sorted((Path(path) / RECORDS_DIR).glob("*.jsonl")):
+        start = 0 if since is None else since.get(f.name, 0)
+        try:
+            with open(f, "rb") as fh:
+                fh.seek(start)
+                data = fh.read()
+        except OSError as exc:
+            raise damaged_error(path, f, f"cannot be read ({exc.strerror})") from None
+        for line in data.splitlines():
+            r = _record(line)
+            if r is None:
+                continue
+            i = r["run"]
+            if 0 <= i < status.size and r["status"] == status[i]:
+                if i not in best or r.get("t", 0.0) >= best[i].get("t", 0.0):
+                    best[i] = r
+    return best
 
 
 def claim_path(dataset: str | Path, task_id: str) -> str:
@@ -589,62 +897,15 @@ def read_claim(path: str) -> int | None:
 
 
 def remove_stale_temporaries(path: str | Path) -> int:
-    """Delete temporary chunk files and claim files left by killed writers and clients; returns
-    how many."""
+    """Delete temporary chunk files, claim files and lock temporaries left by killed writers and
+    clients; returns how many. Called by the client holding the lock."""
     n = 0
     for d in Path(path).iterdir():
         if d.is_dir():
-            for f in itertools.chain(d.glob(".*.tmp"), d.glob(CLAIM_PREFIX + "*")):
+            for f in itertools.chain(
+                d.glob(".*.tmp"), d.glob(CLAIM_PREFIX + "*"), d.glob(LOCK_TEMP_PREFIX + "*")
+            ):
                 with contextlib.suppress(OSError):
                     f.unlink()
                     n += 1
     return n
-
-
-# ---------------------------------------------------------------------------- lock
-@contextlib.contextmanager
-def client_lock(path: str | Path):
-    """Hold ``DATASET/records/.lock`` while a sweep client writes (one client at a time).
-
-    A lock left by a dead process on this host is taken over; a live one (or one from another
-    host) is an error naming its owner.
-    """
-    lock = Path(path) / LOCK_NAME
-    me = {"host": socket.gethostname(), "pid": os.getpid()}
-    for _ in range(2):
-        try:
-            fd = os.open(lock, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
-        except FileExistsError:
-            try:
-                owner = json.loads(lock.read_text())
-            except (OSError, ValueError):
-                owner = {}
-            if owner.get("host") == me["host"] and not _pid_alive(int(owner.get("pid", -1))):
-                with contextlib.suppress(OSError):
-                    lock.unlink()
-                continue
-            raise ConfigError(
-                f"dataset = {str(path)!r} is in use by the sweep client {owner.get('host')}:"
-                f"{owner.get('pid')}; if that process is gone, delete {str(lock)!r}"
-            ) from None
-        with os.fdopen(fd, "w") as fh:
-            json.dump(me, fh)
-        break
-    try:
-        yield
-    finally:
-        with contextlib.suppress(OSError):
-            if json.loads(lock.read_text()).get("pid") == me["pid"]:
-                lock.unlink()
-
-
-def _pid_alive(pid: int) -> bool:
-    if pid <= 0:
-        return False
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
