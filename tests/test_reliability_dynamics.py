@@ -376,3 +376,21 @@ def test_ring_checks_property():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # speed and overload warnings are allowed here
         check()
+
+
+def test_set_value_nested_too_deeply_is_one_line(run_cli, tmp_path):
+    """Issue 14: ``--set KEY=[[[…`` raised RecursionError from the TOML parser."""
+    out = tmp_path / "x.nc"
+    r = run_cli("simulate", "--set", "rpm=" + "[" * 3000, "-o", out)
+    _refused(r, "--set rpm=... is nested too deeply")
+    assert not out.exists()
+
+
+def test_ias_run_too_short_to_analyse_is_one_line(run_cli, tmp_path):
+    """A run too short to average one BPFO period was a bare "signal spans ... rad" message that
+    named no option; now it names duration_s and skip_s, and nothing is written."""
+    out = tmp_path / "i.nc"
+    r = run_cli("ias", "--duration-s", "0.01", "--dt-s", "1e-5", "-o", out)
+    _refused(r, "duration_s = 0.01 s with skip_s = ", "less than one period",
+             "valid: a longer duration_s or a smaller skip_s")  # fmt: skip
+    assert not out.exists() and not list(tmp_path.iterdir())

@@ -156,6 +156,10 @@ def _parse_set(items: tuple[str, ...]) -> dict[str, Any]:
             out[key] = tomllib.loads(f"v = {raw.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             out[key] = raw.strip()
+        except RecursionError:  # the TOML parser recurses once per nesting level
+            raise ConfigError(
+                f"--set {key}=... is nested too deeply; valid: a number, string, boolean or list"
+            ) from None
     return out
 
 

@@ -279,7 +279,14 @@ def ias_cmd(
     finally:
         bar.close()
     params = res.params
-    summary = res.analyze(sc.skip_s)
+    try:
+        summary = res.analyze(sc.skip_s)
+    except ConfigError as exc:  # too little rotation to average one defect period
+        skip = res.default_skip() if sc.skip_s is None else sc.skip_s
+        raise ConfigError(
+            f"duration_s = {sc.duration_s:g} s with skip_s = {skip:g} s leaves too little "
+            f"rotation to analyse ({str(exc).split('; valid')[0]}); valid: a longer duration_s or a smaller skip_s"
+        ) from None
     if plot:
         from ..report.figures import save_figure
 
