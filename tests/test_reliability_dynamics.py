@@ -234,7 +234,7 @@ def test_rotor_modes_absurd_shaft_length_refused(run_cli):
     """rotor-modes --shaft-length-mm 1e30 returned no modes with exit 0; now refused: the first
     bending mode (mass at mid-span, Roark) would be below the 1e-3 Hz the analysis resolves."""
     r = run_cli("rotor-modes", "--shaft-length-mm", "1e30", "--json")
-    _refused(r, "shaft_length_m = 1e+27 m", "first bending mode", "valid range (0, 529.5")
+    _refused(r, "shaft_length_m = 1e+27 m", "first bending mode", "valid range (0.01253, 529.5")
     r = run_cli("rotor-modes", "--shaft-length-mm", "1000", "--json")
     assert r.code == 0, r.err
     f = r.json()["frequency_hz"]
@@ -394,3 +394,29 @@ def test_ias_run_too_short_to_analyse_is_one_line(run_cli, tmp_path):
     _refused(r, "duration_s = 0.01 s with skip_s = ", "less than one period",
              "valid: a longer duration_s or a smaller skip_s")  # fmt: skip
     assert not out.exists() and not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize(
+    ("args", "parts"),
+    [
+        # Hypothesis (long profile): a ZeroDivisionError in the first-bending bound
+        (
+            ["--shaft-length-mm", "7e-252"],
+            ["shaft_length_m = 7e-255 m", "slender shaft", "valid range (0.01253, inf) m"],
+        ),
+        (["--shaft-length-mm", "1"], ["shaft_length_m = 0.001 m"]),
+        # a disk no larger than the shaft divided by a zero annulus area
+        (["--shaft-diameter-mm", "46.07"], ["disk_diameter_m = 0.04607 m", "(0.04607, inf) m"]),
+        # 100 kg of armature on the seed's 46 mm disk is 8.3 m long: it cannot sit between
+        # bearings 203 mm apart
+        (
+            ["--rotor-mass-kg", "100"],
+            ["rotor_mass_kg = 100 kg", "8.25239 m long", "valid range (0, 2.46232] kg"],
+        ),
+        (["--shaft-E-pa", "1e300"], ["shaft_youngs_modulus_pa = 1e+300 Pa", "[1e+09, 1.2e+12]"]),
+    ],
+)
+def test_rotor_geometry_refused(run_cli, args, parts):
+    """The shaft must be a slender beam and the armature must fit on it (RotorConfig): tiny
+    shafts gave a ZeroDivisionError or NaN stiffness matrices, E = 1e300 Pa modes at 1e146 Hz."""
+    _refused(run_cli("rotor-modes", *args, "--json"), *parts)

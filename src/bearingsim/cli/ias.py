@@ -283,9 +283,10 @@ def ias_cmd(
         summary = res.analyze(sc.skip_s)
     except ConfigError as exc:  # too little rotation to average one defect period
         skip = res.default_skip() if sc.skip_s is None else sc.skip_s
+        why = str(exc).split("; valid")[0]
         raise ConfigError(
             f"duration_s = {sc.duration_s:g} s with skip_s = {skip:g} s leaves too little "
-            f"rotation to analyse ({str(exc).split('; valid')[0]}); valid: a longer duration_s or a smaller skip_s"
+            f"rotation to analyse ({why}); valid: a longer duration_s or a smaller skip_s"
         ) from None
     if plot:
         from ..report.figures import save_figure

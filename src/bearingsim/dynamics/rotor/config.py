@@ -35,6 +35,7 @@ from ...geometry import (
     check_defect_depth,
     parse_enum,
 )
+from ...materials import DENSITY_RANGE, YOUNGS_MODULUS_RANGE
 
 __all__ = [
     "Armature",
@@ -221,7 +222,9 @@ class Shaft:
     def __post_init__(self) -> None:
         check_positive("shaft_length_m", self.length, "m")
         check_positive("shaft_diameter_m", self.diameter, "m")
-        check_positive("shaft_youngs_modulus_pa", self.youngs_modulus, "Pa")
+        check_range(
+            "shaft_youngs_modulus_pa", self.youngs_modulus, *YOUNGS_MODULUS_RANGE, unit="Pa"
+        )
         check_positive("shaft_mass_kg", self.mass, "kg")
         object.__setattr__(
             self, "mass_model", parse_enum(ShaftMassModel, self.mass_model, "shaft_mass_model")
@@ -266,7 +269,7 @@ class Armature:
     def __post_init__(self) -> None:
         check_positive("rotor_mass_kg", self.mass, "kg")
         check_positive("disk_diameter_m", self.diameter, "m")
-        check_positive("rotor_density_kg_m3", self.density, "kg/m^3")
+        check_range("rotor_density_kg_m3", self.density, *DENSITY_RANGE, unit="kg/m^3")
         n = self.n_disks
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
             raise ConfigError(f"n_disks = {n!r} is out of range; valid range [1, inf) integer")
@@ -344,6 +347,7 @@ class RotorConfig:
             check_range("bearing_load_n", fx, unit="N")
             check_range("bearing_load_n", fy, unit="N")
         L = self.shaft.length
+        self._check_geometry()
         given = () if self.armature.distributed else (self.armature.positions or ())
         for z in given:  # equally spaced positions (the default) are inside and distinct
             check_range("disk_position_m", z, 0.0, L, lo_open=True, hi_open=True, unit="m")
@@ -357,6 +361,38 @@ class RotorConfig:
                     f"n_elements = {ne!r} is too few; valid range [{n_min}, inf) (one element "
                     f"at least between consecutive disks and bearings)"
                 )
+
+    def _check_geometry(self) -> None:
+        """The shaft is a slender beam and the armature fits on it between the bearings.
+
+        The shaft is an Euler–Bernoulli (Rayleigh) beam, which neglects shear: it needs a shaft
+        longer than it is thick (``L > d``; at ``L/d`` near 1 the beam model is already far off).
+        The armature is a steel annulus on the shaft: its outer diameter must exceed the shaft's,
+        and its length ``m / (rho pi (D^2 - d^2) / 4)`` (the same length that sets the disks'
+        inertia) must fit between the bearings (``<= L``).
+        """
+        sh, arm = self.shaft, self.armature
+        if not sh.length > sh.diameter:
+            raise ConfigError(
+                f"shaft_length_m = {sh.length:.6g} m is not longer than the shaft diameter "
+                f"{sh.diameter:.6g} m: the beam model needs a slender shaft; valid range "
+                f"({sh.diameter:.6g}, inf) m"
+            )
+        if not arm.diameter > sh.diameter:
+            raise ConfigError(
+                f"disk_diameter_m = {arm.diameter:.6g} m is not larger than the shaft diameter "
+                f"{sh.diameter:.6g} m; valid range ({sh.diameter:.6g}, inf) m"
+            )
+        area = math.pi * (arm.diameter - sh.diameter) * (arm.diameter + sh.diameter) / 4.0
+        length = arm.mass / (arm.density * area)
+        if not length <= sh.length:
+            m_max = sh.length * arm.density * area
+            raise ConfigError(
+                f"rotor_mass_kg = {arm.mass:.6g} kg makes an armature {length:.6g} m long (density "
+                f"{arm.density:g} kg/m^3, diameters {arm.diameter:.6g} / {sh.diameter:.6g} m), "
+                f"longer than the shaft_length_m = {sh.length:.6g} m between the bearings; valid "
+                f"range (0, {m_max:.6g}] kg for this geometry"
+            )
 
     @property
     def shaft_hz(self) -> float:

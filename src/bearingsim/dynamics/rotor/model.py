@@ -118,7 +118,8 @@ def first_bending_hz(config: RotorConfig) -> float:
     8.1 case 1a; Rayleigh's quotient: moving mass towards mid-span only lowers the frequency)."""
     sh = config.shaft
     m = sh.mass + config.armature.mass
-    return math.sqrt(48.0 * sh.ei / (m * sh.length**3)) / (2.0 * math.pi)
+    L = sh.length
+    return math.sqrt(48.0 * sh.ei / (m * L * L * L)) / (2.0 * math.pi)
 
 
 @dataclass
@@ -304,7 +305,7 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
         raise ConfigError(
             f"shaft_length_m = {sh.length:.6g} m puts the first bending mode of the rotor near "
             f"{f1:.3g} Hz, below the {MIN_MODE_HZ:g} Hz the modal analysis resolves; valid range "
-            f"(0, {l_max:.6g}] m for this shaft and rotor mass"
+            f"({sh.diameter:.6g}, {l_max:.6g}] m for this shaft and rotor mass"
         )
     check_budget(fe_estimate(config, FE_ARRAYS_MODES), budget)
     fe = build_fe(config)
