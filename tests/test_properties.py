@@ -430,6 +430,7 @@ def test_cli_ias(options):
     )
 )
 @example(options=[("--shaft-length-mm", "7.023347140412655e-252")])  # was a ZeroDivisionError
+@example(options=[("--rotor-mass-kg", "1e-300")])  # was a LinAlgError
 def test_cli_rotor_modes(options):
     _check_cli(["rotor-modes", *[x for o in options for x in o], "--json"])
 

@@ -38,6 +38,7 @@ from ...geometry import (
 from ...materials import DENSITY_RANGE, YOUNGS_MODULUS_RANGE
 
 __all__ = [
+    "MASS_RATIO_MIN",
     "Armature",
     "AUX_NAMES",
     "BAND_TUNED_HOUSING",
@@ -68,6 +69,11 @@ SEED_SHAFT_LENGTH_M = 203.2e-3
 SEED_SHAFT_DIAMETER_M = 12.53e-3
 SEED_DISK_DIAMETER_M = 46.07e-3
 SEED_SHAFT_E_PA = 206e9
+#: smallest ratio of the lightest to the heaviest lumped mass of the rotor (a shaft half, a
+#: disk) [-]: below it the mass matrix is singular to double precision (its condition number
+#: exceeds ~1e9 x the stiffness spread) and the eigensolvers fail (Hypothesis found a 1e-300 kg
+#: armature); a numerical limit, far beyond any real rotor
+MASS_RATIO_MIN = 1e-9
 #: standard acceleration of gravity g_n = 9.80665 m/s^2 (exact; scipy.constants.g) [m/s^2]
 G0 = STANDARD_GRAVITY
 
@@ -367,7 +373,9 @@ class RotorConfig:
 
         The shaft is an Euler–Bernoulli (Rayleigh) beam, which neglects shear: it needs a shaft
         longer than it is thick (``L > d``; at ``L/d`` near 1 the beam model is already far off).
-        The armature is a steel annulus on the shaft: its outer diameter must exceed the shaft's,
+        The lumped masses (the shaft's halves, each disk) lie within :data:`MASS_RATIO_MIN` of each
+        other, or the mass matrix is numerically singular. The armature is a steel annulus on the
+        shaft: its outer diameter must exceed the shaft's,
         and its length ``m / (rho pi (D^2 - d^2) / 4)`` (the same length that sets the disks'
         inertia) must fit between the bearings (``<= L``).
         """
@@ -382,6 +390,16 @@ class RotorConfig:
             raise ConfigError(
                 f"disk_diameter_m = {arm.diameter:.6g} m is not larger than the shaft diameter "
                 f"{sh.diameter:.6g} m; valid range ({sh.diameter:.6g}, inf) m"
+            )
+        masses = {"shaft_mass_kg / 2": 0.5 * sh.mass}
+        if not arm.distributed:
+            masses[f"rotor_mass_kg / {arm.n_disks} disks"] = arm.mass / arm.n_disks
+        lo, hi = min(masses.items(), key=lambda kv: kv[1]), max(masses.values())
+        if not lo[1] >= MASS_RATIO_MIN * hi:
+            raise ConfigError(
+                f"{lo[0]} = {lo[1]:.6g} kg is {lo[1] / hi:.3g} times the heaviest lumped mass "
+                f"{hi:.6g} kg: the mass matrix is singular in double precision; valid: a ratio "
+                f"of at least {MASS_RATIO_MIN:g}"
             )
         area = math.pi * (arm.diameter - sh.diameter) * (arm.diameter + sh.diameter) / 4.0
         length = arm.mass / (arm.density * area)

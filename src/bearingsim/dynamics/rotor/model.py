@@ -92,6 +92,11 @@ FE_ARRAYS_SIMULATE = 10
 FE_ARRAYS_MODES = 24
 #: lowest natural frequency :func:`rotor_modes` reports [Hz] (lower roots are rigid-body modes)
 MIN_MODE_HZ = 1e-3
+#: largest first-order state (2 x FE DOFs) :func:`rotor_modes` solves with the dense
+#: non-symmetric eigensolver (a spinning rotor) [-]: LAPACK's QR algorithm costs ~25 N^3 flops,
+#: about half a minute at N = 4000 on one core of a 2-core VM (measured: 8.5 min at N = 7320);
+#: a rotor at rest uses the symmetric solver and has no such limit
+MAX_GYRO_STATE = 4000
 
 
 def n_fe_elements(config: RotorConfig) -> int:
@@ -278,8 +283,10 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
     """Natural frequencies of the rotor alone (no bearings, no housings).
 
     Refused before any work (one-line :class:`~bearingsim.errors.ConfigError`): a rotor whose
-    first bending mode (:func:`first_bending_hz`) is below :data:`MIN_MODE_HZ`, and a mesh whose
-    dense matrices (:func:`fe_estimate`) exceed ``budget``.
+    first bending mode (:func:`first_bending_hz`) is below :data:`MIN_MODE_HZ`, a mesh whose
+    dense matrices (:func:`fe_estimate`) exceed ``budget``, and a spinning rotor whose state
+    exceeds :data:`MAX_GYRO_STATE`. At rest (``speed_rpm = 0``) the modes come from the
+    symmetric problem ``K phi = w^2 M phi``.
 
     Parameters
     ----------
@@ -308,6 +315,16 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
             f"({sh.diameter:.6g}, {l_max:.6g}] m for this shaft and rotor mass"
         )
     check_budget(fe_estimate(config, FE_ARRAYS_MODES), budget)
+    ne = config.n_elements or max(16, len(config.disk_positions) + 1)
+    n_nodes = mesh_nodes(config.shaft.length, config.disk_positions, ne).size
+    n_state = 2 * NDOF_NODE * n_nodes
+    if spin > 0.0 and n_state > MAX_GYRO_STATE:
+        raise ConfigError(
+            f"rotor mesh of {n_nodes - 1} beam elements: a spinning rotor's modes need the dense eigensolver on a state of "
+            f"{n_state} (about {25 * n_state**3 / 1e10:.3g} s at 10 GFLOP/s); valid: at most "
+            f"{MAX_GYRO_STATE} states (fewer disks or elements, or the distributed rotor), or "
+            "speed_rpm = 0"
+        )
     fe = build_fe(config)
     last = fe.n_nodes - 1
     fixed = []
@@ -326,7 +343,13 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
         int(np.flatnonzero((names == "y") & (nodes == nodes[i]))[0]) if np.any(
             (names == "y") & (nodes == nodes[i])) else i for i in xd
     ]  # fmt: skip
-    modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
+    try:
+        modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
+    except np.linalg.LinAlgError as exc:
+        raise SolverError(
+            f"rotor modes: the eigensolver failed ({str(exc).splitlines()[0]}); the mass and "
+            "stiffness matrices are too ill-conditioned for double precision"
+        ) from None
     k = int(n_modes)
     if modes.frequency_hz.size == 0:
         raise SolverError(
