@@ -320,7 +320,8 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
     n_state = 2 * NDOF_NODE * n_nodes
     if spin > 0.0 and n_state > MAX_GYRO_STATE:
         raise ConfigError(
-            f"rotor mesh of {n_nodes - 1} beam elements: a spinning rotor's modes need the dense eigensolver on a state of "
+            f"rotor mesh of {n_nodes - 1} beam elements: a spinning rotor's modes need the dense "
+            f"eigensolver on a state of "
             f"{n_state} (about {25 * n_state**3 / 1e10:.3g} s at 10 GFLOP/s); valid: at most "
             f"{MAX_GYRO_STATE} states (fewer disks or elements, or the distributed rotor), or "
             "speed_rpm = 0"
