@@ -24,7 +24,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, event, example, given, settings
 from hypothesis import strategies as st
 
 from bearingsim.contact.capacity import StaticCapacityWarning
@@ -115,7 +115,9 @@ def _finite(obj) -> bool:
 
 
 def _one_line(exc: BaseException) -> None:
-    """A refusal: a project error whose message is one non-empty line."""
+    """A refusal: a project error whose message is one non-empty line (counted as an outcome in
+    ``--hypothesis-show-statistics``)."""
+    event("refused")
     msg = str(exc)
     assert isinstance(exc, BearingsimError), f"{type(exc).__name__}: {msg}"
     assert msg.strip() and "\n" not in msg.strip(), f"not one line: {msg!r}"
@@ -178,6 +180,7 @@ def test_bearing_schema_and_contact(data, load):
             return
         assert _finite([c.p_max, c.a, c.b, c.delta]), (data, load)
         assert _finite([ld.ball_loads, ld.displacement]), (data, load)
+        event("ran")
 
 
 # ------------------------------------------------------------------ scenario schemas
@@ -231,6 +234,7 @@ def test_scenario_schema_and_simulate(scenario):
             _one_line(exc)
             return
         assert _finite(dict(res.channels)), scenario
+        event("ran")
 
 
 SWEEP_AXES = {
@@ -267,6 +271,7 @@ def test_sweep_schema(axes, data):
             return
         assert spec.n_runs == len(scenarios) >= 1
         assert all(sc.model.value == "dem" for sc in scenarios)
+        event("ran")
 
 
 # ------------------------------------------------------------------ CLI
@@ -292,6 +297,7 @@ def _check_cli(args: list[str]) -> None:
     with no_hang():
         code, out, err = _cli(args)
     lines = [ln for ln in err.splitlines() if ln.strip() and not ln.startswith("warning: ")]
+    event("ran" if code == 0 else "refused")
     if code == 0:
         d = json.loads(out)
         assert _finite(d), (args, out[:300])
