@@ -434,13 +434,16 @@ def test_response_roundtrip_netcdf(tmp_path):
         (lambda: Armature(n_disks=2, positions=(0.05, 0.3)), None),
         (lambda: Housing(-1.0, 1e8, 1e8, 10.0, 10.0), "housing_mass_kg"),
         (lambda: Housing(1.0, 0.0, 1e8, 10.0, 10.0), "housing_stiffness_x_n_m"),
+        (lambda: Housing(1.0, 1e8, 1e-300, 10.0, 10.0), "housing_stiffness_y_n_m = 1e-300 N/m "
+         r"puts the housing's mount frequency at .* below the 0.001 Hz"),
         (lambda: Shaft(mass=0.0), "shaft_mass_kg"),
         (lambda: Shaft(youngs_modulus=-5.0), "shaft_youngs_modulus_pa"),
         (lambda: Armature(mass=-1.0), "rotor_mass_kg"),
         (lambda: Defect("middle"), "fault_race"),
         (lambda: Defect("outer", width=9e-3), None),
     ],
-    ids=["pos-outside", "housing-mass", "housing-k", "shaft-mass", "shaft-E", "rotor-mass",
+    ids=["pos-outside", "housing-mass", "housing-k", "housing-soft", "shaft-mass", "shaft-E",
+         "rotor-mass",
          "race", "wide-defect"],
 )  # fmt: skip
 def test_bad_input_python(make, match):

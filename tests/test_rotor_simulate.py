@@ -86,6 +86,10 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--housing-mass-kg", "0"], "housing_mass_kg = 0 kg is out of range; valid range (0,"),
         (["--housing-stiffness-n-per-m", "-3"],
          "housing_stiffness_n_per_m = -3 N/m is out of range"),
+        # issue 14 sweep: 1e-300 N/m sagged the housing 1e301 m, then ZeroDivisionError
+        (["--housing-stiffness-n-per-m", "1e-300"],
+         "housing_stiffness_n_per_m = 1e-300 N/m puts the housing's mount frequency at 6.18e-152 "
+         "Hz, below the 0.001 Hz the rotor model resolves; valid range [0.000262058, inf) N/m"),
         (["--contact-damping-n-s-per-m", "-1"],
          "contact_damping_n_s_per_m = -1 N s/m is out of range"),
         (["--disks", "9", "--elements", "4"], "n_elements = 4 is too few; valid range [10, inf)"),
@@ -95,7 +99,8 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--de-fault", "outer", "--defect-width-m", "0.01"],
          "defect_width_m = 0.01 m is out of range"),
     ],
-    ids=["pos-outside", "pos-at-bearing", "housing-mass", "housing-stiffness", "contact-damping",
+    ids=["pos-outside", "pos-at-bearing", "housing-mass", "housing-stiffness", "housing-soft",
+         "contact-damping",
          "elements", "disks", "ring-fault-key", "bearing-id", "defect-width"],
 )  # fmt: skip
 def test_cli_simulate_rotor_bad_input(args, needle, capsys, tmp_path):

@@ -25,6 +25,7 @@ from ...config import (
     HOUSING_DAMPING_N_S_M,
     HOUSING_MASS_KG,
     HOUSING_STIFFNESS_N_M,
+    check_mount,
 )
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
@@ -157,6 +158,8 @@ class Housing:
         check_positive("housing_mass_kg", self.mass, "kg")
         check_positive("housing_stiffness_x_n_m", self.stiffness_x, "N/m")
         check_positive("housing_stiffness_y_n_m", self.stiffness_y, "N/m")
+        check_mount(self.stiffness_x, self.mass, "housing_stiffness_x_n_m")
+        check_mount(self.stiffness_y, self.mass, "housing_stiffness_y_n_m")
         check_range("housing_damping_x_n_s_m", self.damping_x, 0.0, unit="N s/m")
         check_range("housing_damping_y_n_s_m", self.damping_y, 0.0, unit="N s/m")
 

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares, root
 
 from ..._version import __version__
-from ...config import Solver
+from ...config import MIN_MODE_HZ, Solver  # lowest frequency resolved [Hz]: rigid-body below
 from ...contact.hertz import ball_contact
 from ...errors import ConfigError, SolverError, check_positive, check_range
 from ...geometry import (
@@ -90,8 +90,6 @@ FE_ARRAYS_SIMULATE = 10
 #: the same for :func:`rotor_modes`: M, K, G and the first-order state matrix ``(2n)^2`` with its
 #: complex eigenvectors [-]
 FE_ARRAYS_MODES = 24
-#: lowest natural frequency :func:`rotor_modes` reports [Hz] (lower roots are rigid-body modes)
-MIN_MODE_HZ = 1e-3
 
 
 def n_fe_elements(config: RotorConfig) -> int:
