@@ -36,6 +36,7 @@ from ...geometry import (
     check_defect_depth,
     parse_enum,
 )
+from ...materials import YOUNGS_MODULUS_RANGE
 
 __all__ = [
     "Armature",
@@ -224,7 +225,9 @@ class Shaft:
     def __post_init__(self) -> None:
         check_positive("shaft_length_m", self.length, "m")
         check_positive("shaft_diameter_m", self.diameter, "m")
-        check_positive("shaft_youngs_modulus_pa", self.youngs_modulus, "Pa")
+        check_range(
+            "shaft_youngs_modulus_pa", self.youngs_modulus, *YOUNGS_MODULUS_RANGE, unit="Pa"
+        )
         check_positive("shaft_mass_kg", self.mass, "kg")
         object.__setattr__(
             self, "mass_model", parse_enum(ShaftMassModel, self.mass_model, "shaft_mass_model")
@@ -347,6 +350,14 @@ class RotorConfig:
             check_range("bearing_load_n", fx, unit="N")
             check_range("bearing_load_n", fy, unit="N")
         L = self.shaft.length
+        widths = [sup.bearing.width for sup in (self.de, self.fe)]
+        if all(w is not None for w in widths) and L < 0.5 * sum(widths):
+            # the bearings sit at z = 0 and z = L (their centres): they cannot overlap
+            raise ConfigError(
+                f"shaft_length_m = {L:.6g} m is shorter than half the widths of the two bearings "
+                f"({widths[0]:.6g} m and {widths[1]:.6g} m), which would overlap; valid range "
+                f"[{0.5 * sum(widths):.6g}, inf) m"
+            )
         given = () if self.armature.distributed else (self.armature.positions or ())
         for z in given:  # equally spaced positions (the default) are inside and distinct
             check_range("disk_position_m", z, 0.0, L, lo_open=True, hi_open=True, unit="m")

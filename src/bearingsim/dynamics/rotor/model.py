@@ -323,7 +323,15 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
         int(np.flatnonzero((names == "y") & (nodes == nodes[i]))[0]) if np.any(
             (names == "y") & (nodes == nodes[i])) else i for i in xd
     ]  # fmt: skip
-    modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
+    try:
+        modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
+    except SolverError:
+        arm, sh = config.armature, config.shaft
+        raise SolverError(
+            f"rotor_mass_kg = {arm.mass:.6g} kg, shaft_mass_kg = {sh.mass:.6g} kg: a mass this "
+            "small beside the shaft's stiffness overflows the modal problem in double precision "
+            "(M^-1 K is not finite); valid: masses that are not negligible"
+        ) from None
     k = int(n_modes)
     if modes.frequency_hz.size == 0:
         raise SolverError(
