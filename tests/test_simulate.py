@@ -261,6 +261,11 @@ def test_cli_scenario_file_and_override(run_cli, tmp_path):
             ["--fs-hz", "2000", "--dt-s", "5e-4", "--duration-s", "0.05"],
             "dt_s = 0.0005 s is too large",
         ),
+        (  # issue 14 sweep: resolved at this fs, but beyond where a steel ring bursts
+            ["--rpm", "300000", "--fs-hz", "400000", "--duration-s", "0.001"],
+            "rpm = 300000 r/min gives the speed factor n d_m = 1.17e+07 mm r/min of 6205 (d_m = "
+            "39 mm), above 1e+07, where a steel ring bursts",
+        ),
     ],
 )
 def test_cli_bad_input(args, match, tmp_path, capsys):

@@ -394,6 +394,7 @@ def vsm_trace_cmd(
     from ..dynamics.checks import check_load
     from ..dynamics.ring.scenario import model_inputs
     from ..dynamics.ring.trace import stiffness_trace, trace_estimate
+    from ..geometry import check_speed_limit
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o/--output OUT.csv, --plot PNG and/or --json")
@@ -401,6 +402,7 @@ def vsm_trace_cmd(
     step = check_range("step_deg", step_deg, 0.0, 10.0, lo_open=True, unit="deg")
     sc = _scenario(None, {**kw, "first_ball_angle_deg": first_ball_deg, "duration_s": 1.0})
     inputs = model_inputs(sc)
+    check_speed_limit(inputs.bearing, sc.rpm)  # the speed the trace's shaft angle assumes
     if ball is not None and not 1 <= ball <= inputs.bearing.n_elements:
         raise ConfigError(
             f"ball = {ball} is out of range; valid range [1, {inputs.bearing.n_elements}]"

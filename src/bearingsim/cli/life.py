@@ -10,7 +10,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_positive, check_range
-from ..geometry import Bearing
+from ..geometry import Bearing, check_speed_limit
 from .common import (
     Number,
     bearing_options,
@@ -163,7 +163,7 @@ def life_cmd(
 
     fr = check_positive("radial_load_n", radial_load, "N")
     if rpm is not None:
-        rpm = check_positive("rpm", rpm, "r/min")
+        rpm = check_speed_limit(bearing, check_positive("rpm", rpm, "r/min"))
     h = None
     if element_size_um is not None:
         h = 1e-6 * check_positive("element_size_um", element_size_um, "um")

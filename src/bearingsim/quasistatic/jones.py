@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..contact.capacity import check_element_load, check_load
 from ..errors import ConfigError, SolverError
-from ..geometry import Bearing
+from ..geometry import Bearing, check_speed_limit
 from ._kernels import (
     B_ALPHA,
     B_DELTA,
@@ -226,6 +226,7 @@ def run_quasi_static(
     """
     geom = qs_geometry(bearing, clearance, max_contact_angle, stiffness)
     spd = speed if speed is not None else SpeedEffects()
+    check_speed_limit(bearing, spd.shaft_speed * 30.0 / math.pi, "shaft speed", "[0")
     if spd.active and stiffness is not None:
         raise ConfigError(
             "stiffness override is not available with inertia loads (it needs the "

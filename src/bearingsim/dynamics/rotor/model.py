@@ -35,6 +35,7 @@ from ...geometry import (
     DefectProfile,
     Race,
     characteristic_frequencies,
+    check_speed_limit,
     defect_geometry,
     parse_enum,
 )
@@ -294,6 +295,8 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
     """
     supports = parse_enum(Supports, supports, "supports")
     spin = check_range("speed_rpm", speed_rpm, 0.0, unit="r/min") * math.pi / 30.0
+    for sup in (config.de, config.fe):  # the shaft turns in both bearings
+        check_speed_limit(sup.bearing, float(speed_rpm), "speed_rpm", "[0")
     f1 = first_bending_hz(config)
     if f1 < MIN_MODE_HZ:
         sh = config.shaft
