@@ -528,7 +528,7 @@ def analyze_cmd(
     rec = load_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
     if fs_hz is not None or rpm is not None:  # the record must resolve the lines at fs and rpm
         check_resolvable(rec)
-    if bearing_id or bearing_file:
+    if bearing_id is not None or bearing_file is not None:  # an empty id is an error too
         bearing = resolve_bearing(bearing_id, bearing_file)
     elif rec.bearing is not None:
         bearing = rec.bearing
