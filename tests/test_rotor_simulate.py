@@ -98,10 +98,16 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--de-bearing", "nope"], "nope"),
         (["--de-fault", "outer", "--defect-width-m", "0.01"],
          "defect_width_m = 0.01 m is out of range"),
+        # issue 14 sweep: without a fault the defect keys were not checked (1e30 m accepted)
+        (["--defect-width-m", "1e30"], "defect_width_m = 1e+30 m is wider than the ball can "
+         "span; valid range (0, 0.00794004) m"),
+        (["--defect-depth-m", "1e30"], "defect_depth_m = 1e+30 m is not less than the outer "
+         "ring wall 0.00250953 m of 6205-cwru"),
     ],
     ids=["pos-outside", "pos-at-bearing", "housing-mass", "housing-stiffness", "housing-soft",
          "contact-damping",
-         "elements", "disks", "ring-fault-key", "bearing-id", "defect-width"],
+         "elements", "disks", "ring-fault-key", "bearing-id", "defect-width", "unused-width",
+         "unused-depth"],
 )  # fmt: skip
 def test_cli_simulate_rotor_bad_input(args, needle, capsys, tmp_path):
     out = tmp_path / "x.nc"

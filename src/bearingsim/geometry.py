@@ -23,6 +23,7 @@ __all__ = [
     "check_clearance",
     "check_defect_depth",
     "check_speed_limit",
+    "check_unused_defect",
     "clearance_range",
     "CONFORMITY_RANGE",
     "CONTACT_ANGLE_MAX",
@@ -705,6 +706,24 @@ def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
             f"{what} {wall:.6g} m of {bearing.id}; valid range (0, {wall:.6g}) m"
         )
     return defect.depth
+
+
+def check_unused_defect(bearing: Bearing, width: float, depth: float) -> None:
+    """The defect keys of a scenario without a fault (``fault = "none"``): unused, but refused
+    (one-line :class:`ConfigError`, as for a fault of the outer ring) when neither raceway of
+    ``bearing`` could have a defect of ``width`` x ``depth`` [m] (``--defect-width-m 1e30``
+    without ``--fault`` was accepted)."""
+    first: ConfigError | None = None
+    for race in (Race.OUTER, Race.INNER):
+        try:
+            d = Defect(race, width, depth)
+            defect_geometry(bearing, d)
+            check_defect_depth(bearing, d)
+            return
+        except ConfigError as exc:
+            first = first or exc
+    assert first is not None
+    raise first
 
 
 def raceway_radius(bearing: Bearing, race: Race) -> float:
