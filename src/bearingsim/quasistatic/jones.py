@@ -226,7 +226,6 @@ def run_quasi_static(
     """
     geom = qs_geometry(bearing, clearance, max_contact_angle, stiffness)
     spd = speed if speed is not None else SpeedEffects()
-    check_speed_limit(bearing, spd.shaft_speed * 30.0 / math.pi, "shaft speed", "[0")
     if spd.active and stiffness is not None:
         raise ConfigError(
             "stiffness override is not available with inertia loads (it needs the "
@@ -249,6 +248,7 @@ def run_quasi_static(
     fc, mg0, gam = _inertia(geom, spd)
     # the centrifugal force presses each ball on the outer raceway: the same static limit
     check_element_load(bearing, fc, allow_overload, name="ball centrifugal force F_c")
+    check_speed_limit(bearing, spd.shaft_speed * 30.0 / math.pi, "shaft speed", "[0")
     p = _params(
         geom,
         F,
