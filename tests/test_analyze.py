@@ -206,6 +206,24 @@ def test_bad_mat_files(tmp_path, capsys):
     assert "does not exist" in _run_bad(capsys, [tmp_path / "missing.mat"])
 
 
+def test_empty_bearing_and_channel_refused(tmp_path, capsys):
+    """Issue 14 sweep: ``--bearing ''`` and ``--channel ''`` were taken as not given (the
+    result's bearing, the default channel) and the run went on with exit 0."""
+    from scipy.io import savemat
+
+    from bearingsim.simulation import simulate
+
+    nc = tmp_path / "r.nc"
+    simulate({"model": "dem", "duration_s": 0.2, "fs_hz": 12000.0}).save(nc)
+    mat = tmp_path / "x_12k.mat"
+    savemat(mat, {"X999_DE_time": np.zeros((100, 1)), "X999RPM": np.array([[1750.0]])})
+    msg = _run_bad(capsys, [nc, "--bearing", ""])
+    assert msg.startswith("error: bearing = '' is not in the catalogue; valid: 6203-cwru")
+    msg = _run_bad(capsys, [nc, "--channel", ""])
+    assert msg == "error: channel = '' is invalid for this simulation result; valid: x, y"
+    assert "channel = '' not in x_12k.mat" in _run_bad(capsys, [mat, "--channel", ""])
+
+
 def test_bad_band_and_options(capsys):
     f = _cwru("109")
     msg = _run_bad(capsys, [f, "--band-hz", "1000", "30000"])

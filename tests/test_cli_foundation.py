@@ -102,6 +102,33 @@ def test_load_json(run_cli, tmp_path):
     assert png.stat().st_size > 1000
 
 
+@pytest.mark.parametrize(
+    "args, name, lo",
+    [
+        (["info", "6205"], "rpm", "(0"),
+        (["stiffness", "6205", "--fy-n", "100", "--cage-revs", "1", "--points-per-rev", "36"],
+         "shaft speed", "[0"),
+        (["stiffness", "6205", "--fy-n", "100", "--method", "iso16281"], "shaft speed", "[0"),
+        (["vsm-trace", "--cage-revs", "0.1", "--json"], "rpm", "(0"),
+        (["life", "6205", "--radial-load-n", "3000", "-o", "x.nc"], "rpm", "(0"),
+    ],
+    ids=["info", "stiffness", "stiffness-iso", "vsm-trace", "life"],
+)  # fmt: skip
+def test_shaft_speed_where_the_rings_burst_refused(run_cli, tmp_path, args, name, lo):
+    """Issue 14 sweep: ``--rpm 1e30`` was accepted by info, stiffness, vsm-trace, rotor-modes and
+    life. A speed factor n d_m above 1e7 mm r/min (hoop stress rho v^2 of a steel ring beyond its
+    strength) is refused: 256 410 r/min on a 6205 (d_m = 39 mm)."""
+    r = run_cli(*[str(tmp_path / a) if a == "x.nc" else a for a in args], "--rpm", "1e30")
+    assert r.code == 2 and not list(tmp_path.iterdir())
+    assert r.err == (
+        f"error: {name} = 1e+30 r/min gives the speed factor n d_m = 3.9e+31 mm r/min of 6205 "
+        "(d_m = 39 mm), above 1e+07, where a steel ring bursts (hoop stress rho v^2 beyond its "
+        f"strength); valid range {lo}, 256410] r/min\n"
+    )
+    r = run_cli("info", "6205", "--rpm", "256410", "--json")  # the limit itself is valid
+    assert r.code == 0 and math.isfinite(r.json()["bpfi_hz"])
+
+
 def test_user_bearing_file(run_cli, tmp_path):
     f = tmp_path / "mine.toml"
     f.write_text(

@@ -186,3 +186,12 @@ def test_too_coarse_mesh_is_rejected(contact):
         section_spec(contact.b, element_size=contact.b / 3)
     with pytest.raises(ConfigError, match="mesh = 'huge' is invalid"):
         section_spec(contact.b, "huge")
+
+
+def test_too_fine_mesh_is_rejected(contact):
+    """Issue 14 sweep: ``--element-size-um 1e-300`` asked NumPy for 1e302 node coordinates
+    (ValueError: Maximum allowed size exceeded); the bound is the numeric ``mesh``'s b/200."""
+    with pytest.raises(ConfigError, match=r"is finer than b/200 .* valid range \[") as ei:
+        section_spec(contact.b, element_size=1e-306)
+    assert "\n" not in str(ei.value)
+    section_spec(contact.b, element_size=contact.b / 200)  # the finest valid size

@@ -93,6 +93,18 @@ def _bad(capsys, args, tmp_path, match):
         (["--radial-load-n", "5000", "--element-size-um", "100"], "does not resolve"),
         (["--radial-load-n", "5000", "--delta-d", "0"], "delta_d = 0"),
         (["--radial-load-n", "5000", "--mesh", "huge"], "Invalid value for '--mesh'"),
+        # issue 14 sweep: a traceback and two runs that never finished
+        (["--radial-load-n", "5000", "--element-size-um", "1e-300"], "is finer than b/200"),
+        (
+            ["--radial-load-n", "5000", "--delta-d", "1e-300"],
+            "delta_d = 1e-300 needs at least 1e+300 damage blocks to fail an element, more than "
+            "max_steps = 20000; valid: delta_d * max_steps >= 1 (delta_d in [5e-05, 0.1]",
+        ),
+        (
+            ["--radial-load-n", "1e-300"],
+            "radial_load_n = 1e-300 N gives a contact semi-width b "
+            "= 1.11e-105 m, below the 1e-07 m (the raceway roughness)",
+        ),
     ],
 )
 def test_life_bad_input(capsys, tmp_path, args, match):

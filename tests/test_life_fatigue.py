@@ -138,6 +138,7 @@ def test_static_capacity_warning_and_limit():
         (dict(delta_d=0.5), "delta_d = 0.5 .* valid range"),
         (dict(stop="never"), "stop = 'never' is invalid"),
         (dict(element_size=1e-4), "does not resolve"),
+        (dict(element_size=1e-306), "is finer than b/200"),
     ],
 )
 def test_bad_input(kw, match):
@@ -145,9 +146,29 @@ def test_bad_input(kw, match):
         contact_fatigue_life(B6206, 5000.0, mesh="coarse", **kw)
 
 
+def test_smallest_load_is_a_0p1_um_contact():
+    """Issue 14 sweep: F_r = 1e-300 N graded a mesh over 200 decades (never finished), 1e-30 N
+    failed with "increase fine_margin"; a load whose contact is narrower than the raceway
+    roughness (b < 0.1 um) is refused, the valid range starting at the load that gives 0.1 um."""
+    for bearing in (B6206, get_bearing("NU204-ECP")):
+        with pytest.raises(ConfigError, match="below the 1e-07 m") as ei:
+            contact_fatigue_life(bearing, 1e-300, mesh="coarse")
+        f_min = float(str(ei.value).split("valid range [")[1].split(",")[0])
+        assert_allclose(inner_contact(bearing, f_min).b, 1e-7, rtol=5e-3)
+
+
 def test_step_limit_warns():
     with pytest.warns(RuntimeWarning, match="did not reach the surface"):
         r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=22)
     assert math.isfinite(r.cycles_initiation) and math.isnan(r.cycles_spall)
-    with pytest.warns(RuntimeWarning, match="no element failed"):
+    # issue 14 sweep: a limit the damage cannot reach (3 blocks of 0.05; --delta-d 1e-300 ran
+    # 20000 blocks for minutes) is refused before any work; it used to warn "no element failed"
+    with pytest.raises(ConfigError) as ei:
         contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=3)
+    assert str(ei.value) == (
+        "delta_d = 0.05 needs at least 20 damage blocks to fail an element, more than max_steps "
+        "= 3; valid: delta_d * max_steps >= 1 (delta_d in [0.333333, 0.1], or max_steps >= 20)"
+    )
+    r = contact_fatigue_life(B6206, 5000.0, mesh="coarse", delta_d=0.05, max_steps=20,
+                             stop="initiation")  # fmt: skip
+    assert r.steps_initiation == 20  # exactly 1/delta_d blocks: the bound is reached

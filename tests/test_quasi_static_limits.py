@@ -94,6 +94,28 @@ def test_cli_zero_load_zero_clearance(run_cli, tmp_path):
     assert "no stiffness at zero deflection" in line and not out.exists()
 
 
+def test_negligible_load_with_clearance_refused(run_cli):
+    """Issue 14 sweep: ``stiffness --fy-n 1e-300`` gave an all-zero stiffness and NaN relative
+    fluctuations with exit 0 (the Hertz deflection 1e-206 m vanishes beside the 6 um clearance);
+    1e-30 N "too few balls hold the ring". Below a deflection of 1e-12 of the clearance the load
+    is refused like a zero load; 1e-15 N (deflection 2e-17 m) still runs."""
+    K = qs_geometry(B6205).k
+    f_min = K * (1e-12 * 6e-6) ** 1.5
+    for run in (run_quasi_static, run_iso16281):
+        with pytest.raises(ConfigError, match="ring position is undetermined") as ei:
+            run(B6205, 0.0, 0.0, 1e-300)
+        assert f"valid: |F| >= {f_min:.3g} N" in str(ei.value)
+    with pytest.raises(ConfigError, match=r"load = 5.12821e-299 N \(largest force, or moment"):
+        run_quasi_static(B6205, 0.0, my=1e-300)  # a moment over the pitch radius 19.5 mm
+    base = ["stiffness", "6205", "--cage-revs", "1", "--points-per-rev", "36", "--json"]
+    line = one_line_error(run_cli(*base, "--fy-n", "1e-300"))
+    assert line.startswith("error: load = 1e-300 N (largest force, or moment / pitch radius)")
+    r = run_cli(*base, "--fy-n", "1e-15")
+    assert r.code == 0, r.err
+    fl = r.json()["fluctuation"]
+    assert all(math.isfinite(fl[k]["peak_to_peak_rel"]) for k in ("radial", "axial", "tilt"))
+
+
 # ---------------------------------------------------------------------------------- angles
 def test_load_cage_angle_range(run_cli):
     """Issue 14: ``load --cage-angle-deg 1e30`` gave delta_max 9.8e54 m."""

@@ -401,12 +401,13 @@ def test_ias_run_too_short_to_analyse_is_one_line(run_cli, tmp_path):
 @pytest.mark.parametrize(
     ("args", "parts"),
     [
-        # Hypothesis (long profile): a ZeroDivisionError in the first-bending bound
+        # Hypothesis (long profile): a ZeroDivisionError in the first-bending bound; the two
+        # bearings (15 and 12 mm wide) would overlap
+        (["--shaft-length-mm", "7e-252"], ["shaft_length_m = 7e-255 m", "would overlap"]),
         (
-            ["--shaft-length-mm", "7e-252"],
-            ["shaft_length_m = 7e-255 m", "slender shaft", "valid range (0.01253, inf) m"],
+            ["--shaft-length-mm", "13.6", "--shaft-diameter-mm", "14"],
+            ["shaft_length_m = 0.0136 m", "slender shaft", "valid range (0.014, inf) m"],
         ),
-        (["--shaft-length-mm", "1"], ["shaft_length_m = 0.001 m"]),
         # a disk no larger than the shaft divided by a zero annulus area
         (["--shaft-diameter-mm", "46.07"], ["disk_diameter_m = 0.04607 m", "(0.04607, inf) m"]),
         # 100 kg of armature on the seed's 46 mm disk is 8.3 m long: it cannot sit between

@@ -434,13 +434,22 @@ def test_response_roundtrip_netcdf(tmp_path):
         (lambda: Armature(n_disks=2, positions=(0.05, 0.3)), None),
         (lambda: Housing(-1.0, 1e8, 1e8, 10.0, 10.0), "housing_mass_kg"),
         (lambda: Housing(1.0, 0.0, 1e8, 10.0, 10.0), "housing_stiffness_x_n_m"),
+        (lambda: Housing(1.0, 1e8, 1e-300, 10.0, 10.0), "housing_stiffness_y_n_m = 1e-300 N/m "
+         r"puts the housing's mount frequency at .* below the 0.001 Hz"),
         (lambda: Shaft(mass=0.0), "shaft_mass_kg"),
         (lambda: Shaft(youngs_modulus=-5.0), "shaft_youngs_modulus_pa"),
+        # issue 14 sweep: a shaft of 1e30 Pa was accepted; the bearings' materials' range
+        (lambda: Shaft(youngs_modulus=1e30), r"shaft_youngs_modulus_pa = 1e\+30 Pa is out of "
+         r"range; valid range \[1e\+09, 1.2e\+12\] Pa"),
+        # and a shaft of 1e-303 m: ZeroDivisionError (the bearings cannot overlap)
+        (lambda: cwru_rotor_config(shaft=Shaft(length=1e-3)), r"shaft_length_m = 0.001 m is "
+         r"shorter than half the widths of the two bearings .* valid range \[0.0135001, inf\) m"),
         (lambda: Armature(mass=-1.0), "rotor_mass_kg"),
         (lambda: Defect("middle"), "fault_race"),
         (lambda: Defect("outer", width=9e-3), None),
     ],
-    ids=["pos-outside", "housing-mass", "housing-k", "shaft-mass", "shaft-E", "rotor-mass",
+    ids=["pos-outside", "housing-mass", "housing-k", "housing-soft", "shaft-mass", "shaft-E",
+         "shaft-E-huge", "shaft-short", "rotor-mass",
          "race", "wide-defect"],
 )  # fmt: skip
 def test_bad_input_python(make, match):
@@ -480,11 +489,20 @@ def test_bad_input_messages_name_field_value_range():
         (["--rotor-mass-kg", "0"], "rotor_mass_kg = 0 kg is out of range; valid range (0, inf)"),
         (["--shaft-mass-kg", "-1"], "shaft_mass_kg = -1 kg is out of range"),
         (["--shaft-E-pa", "0"], "shaft_youngs_modulus_pa = 0 Pa is out of range"),
+        # issue 14 sweep: tracebacks (ZeroDivisionError, LinAlgError) and 1e30 Pa accepted
+        (["--shaft-length-mm", "1e-300"], "shaft_length_m = 1e-303 m is shorter than half the "
+         "widths of the two bearings (0.0150012 m and 0.011999 m), which would overlap"),
+        (["--rotor-mass-kg", "1e-300"], "rotor_mass_kg / 9 disks = 1.11111e-301 kg is 3.27e-301 "
+         "times the heaviest lumped mass 0.34 kg: the mass matrix is singular"),
+        (["--shaft-E-pa", "1e30"], "shaft_youngs_modulus_pa = 1e+30 Pa is out of range; valid "
+         "range [1e+09, 1.2e+12] Pa"),
+        (["--rpm", "1e30"], "speed_rpm = 1e+30 r/min gives the speed factor n d_m = 3.9e+31 mm "
+         "r/min of 6205-cwru (d_m = 39.04 mm), above 1e+07, where a steel ring bursts"),
         (["--disks", "9", "--elements", "3"], "n_elements = 3 is too few; valid range [10, inf)"),
         (["--disks", "0"], "n_disks = 0 is out of range; valid range [1, inf)"),
     ],
-    ids=["pos-outside", "pos-negative", "rotor-mass", "shaft-mass", "shaft-E", "elements",
-         "disks"],
+    ids=["pos-outside", "pos-negative", "rotor-mass", "shaft-mass", "shaft-E", "shaft-short",
+         "rotor-mass-tiny", "shaft-E-huge", "rpm-burst", "elements", "disks"],
 )  # fmt: skip
 def test_bad_input_cli(args, needle, capsys):
     from bearingsim.cli import main

@@ -86,6 +86,10 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--housing-mass-kg", "0"], "housing_mass_kg = 0 kg is out of range; valid range (0,"),
         (["--housing-stiffness-n-per-m", "-3"],
          "housing_stiffness_n_per_m = -3 N/m is out of range"),
+        # issue 14 sweep: 1e-300 N/m sagged the housing 1e301 m, then ZeroDivisionError
+        (["--housing-stiffness-n-per-m", "1e-300"],
+         "housing_stiffness_n_per_m = 1e-300 N/m puts the housing's mount frequency at 6.18e-152 "
+         "Hz, below the 0.001 Hz the rotor model resolves; valid range [0.000262058, inf) N/m"),
         (["--contact-damping-n-s-per-m", "-1"],
          "contact_damping_n_s_per_m = -1 N s/m is out of range"),
         (["--disks", "9", "--elements", "4"], "n_elements = 4 is too few; valid range [10, inf)"),
@@ -94,9 +98,16 @@ def test_scenario_file_with_rotor_keys_and_per_ball(tmp_path):
         (["--de-bearing", "nope"], "nope"),
         (["--de-fault", "outer", "--defect-width-m", "0.01"],
          "defect_width_m = 0.01 m is out of range"),
+        # issue 14 sweep: without a fault the defect keys were not checked (1e30 m accepted)
+        (["--defect-width-m", "1e30"], "defect_width_m = 1e+30 m is wider than the ball can "
+         "span; valid range (0, 0.00794004) m"),
+        (["--defect-depth-m", "1e30"], "defect_depth_m = 1e+30 m is not less than the outer "
+         "ring wall 0.00250953 m of 6205-cwru"),
     ],
-    ids=["pos-outside", "pos-at-bearing", "housing-mass", "housing-stiffness", "contact-damping",
-         "elements", "disks", "ring-fault-key", "bearing-id", "defect-width"],
+    ids=["pos-outside", "pos-at-bearing", "housing-mass", "housing-stiffness", "housing-soft",
+         "contact-damping",
+         "elements", "disks", "ring-fault-key", "bearing-id", "defect-width", "unused-width",
+         "unused-depth"],
 )  # fmt: skip
 def test_cli_simulate_rotor_bad_input(args, needle, capsys, tmp_path):
     out = tmp_path / "x.nc"

@@ -261,6 +261,19 @@ def test_cli_scenario_file_and_override(run_cli, tmp_path):
             ["--fs-hz", "2000", "--dt-s", "5e-4", "--duration-s", "0.05"],
             "dt_s = 0.0005 s is too large",
         ),
+        (  # issue 14 sweep: the defect keys without --fault were not checked (1e30 m accepted)
+            ["--defect-width-m", "1e30"],
+            "defect_width_m = 1e+30 m is wider than the ball can span; valid range (0, 0.00794) m",
+        ),
+        (
+            ["--defect-depth-m", "1e30"],
+            "defect_depth_m = 1e+30 m is not less than the outer ring wall 0.00253 m of 6205",
+        ),
+        (  # issue 14 sweep: resolved at this fs, but beyond where a steel ring bursts
+            ["--rpm", "300000", "--fs-hz", "400000", "--duration-s", "0.001"],
+            "rpm = 300000 r/min gives the speed factor n d_m = 1.17e+07 mm r/min of 6205 (d_m = "
+            "39 mm), above 1e+07, where a steel ring bursts",
+        ),
     ],
 )
 def test_cli_bad_input(args, match, tmp_path, capsys):

@@ -98,6 +98,10 @@ HOUSING_DAMPING_N_S_M = 2210.7
 #: damping of each ball–race contact [N s/m] (seed ROTOR eq. (11) ``C_v``; the seed gives no
 #: value: an assumption, see docs/models.md)
 CONTACT_DAMPING_N_S_M = 50.0
+#: lowest natural frequency the rotor model resolves [Hz]: below it a root is a rigid-body mode;
+#: the rotor's first bending mode (``bearingsim.dynamics.rotor.model.rotor_modes``) and each
+#: housing's mount frequency ``sqrt(k/m) / (2 pi)`` must lie above it
+MIN_MODE_HZ = 1e-3
 #: seed ROTOR: the rotor mass carried by 9 equal disks
 SEED_ROTOR_DISKS = 9
 
@@ -155,6 +159,22 @@ _FAULTS = ("none", "outer", "inner")
 def _family_of(model: Any) -> type[Scenario]:
     m = parse_enum(Model, model, "model")
     return _FAMILY[m]
+
+
+def check_mount(stiffness: float, mass: float, name: str = "housing_stiffness_n_per_m") -> float:
+    """Refuse a housing mount whose frequency ``sqrt(k/m) / (2 pi)`` is below
+    :data:`MIN_MODE_HZ` (one-line :class:`ConfigError`): the rotor model cannot resolve it, and
+    a mount that soft sags beyond what its static solution can represent (1e-300 N/m: 1e301 m).
+    Returns ``stiffness`` [N/m] (``mass`` [kg])."""
+    f = math.sqrt(stiffness / mass) / (2.0 * math.pi)
+    if not f >= MIN_MODE_HZ:
+        k_min = mass * (2.0 * math.pi * MIN_MODE_HZ) ** 2
+        raise ConfigError(
+            f"{name} = {stiffness:.6g} N/m puts the housing's mount frequency at {f:.3g} Hz, "
+            f"below the {MIN_MODE_HZ:g} Hz the rotor model resolves; valid range "
+            f"[{k_min:.6g}, inf) N/m for housing_mass_kg = {mass:.6g} kg"
+        )
+    return stiffness
 
 
 # ------------------------------------------------------------------ the base schema
@@ -656,6 +676,7 @@ class RotorScenario(Scenario):
             "housing_stiffness_n_per_m",
             check_positive("housing_stiffness_n_per_m", self.housing_stiffness_n_per_m, "N/m"),
         )
+        check_mount(self.housing_stiffness_n_per_m, self.housing_mass_kg)
         for name in ("housing_damping_n_s_per_m", "contact_damping_n_s_per_m"):
             s(self, name, check_range(name, getattr(self, name), 0.0, unit="N s/m"))
         s(

@@ -22,6 +22,8 @@ __all__ = [
     "characteristic_frequencies",
     "check_clearance",
     "check_defect_depth",
+    "check_speed_limit",
+    "check_unused_defect",
     "clearance_range",
     "CONFORMITY_RANGE",
     "CONTACT_ANGLE_MAX",
@@ -48,6 +50,7 @@ __all__ = [
     "ring_wall",
     "ROLLER_LENGTH_RANGE",
     "RollerBearing",
+    "SPEED_FACTOR_MAX",
     "Z_MAX",
 ]
 
@@ -466,6 +469,42 @@ def characteristic_frequencies(bearing: Bearing, shaft_hz: float) -> KinematicFr
     )
 
 
+#: largest speed factor ``n d_m`` [mm r/min] a shaft speed may have: a steel ring bursts there.
+#: The hoop stress of a thin rotating ring is ``rho v^2`` (``v`` its peripheral speed; Timoshenko
+#: & Goodier, "Theory of Elasticity", rotating disks); it reaches the ~2 GPa tensile strength of
+#: hardened bearing steel (rho = 7850 kg/m^3) at v ~ 500 m/s, i.e. ``n d_m = 60 v / pi`` ~ 1e7
+#: mm r/min taken at the pitch diameter (the inner ring turns inside it: a little below its burst
+#: speed). The fastest bearings built (hybrid, oil-jet lubricated) reach ~4e6.
+SPEED_FACTOR_MAX = 1.0e7
+
+
+def check_speed_limit(bearing: Bearing, rpm: float, name: str = "rpm", lo: str = "(0") -> float:
+    """Refuse (one-line :class:`ConfigError`) a shaft speed ``rpm`` [r/min] whose speed factor
+    ``n d_m`` exceeds :data:`SPEED_FACTOR_MAX`, where the rings burst; returns ``rpm``.
+
+    Parameters
+    ----------
+    bearing : BallBearing or RollerBearing
+        The bearing the shaft turns in (its pitch diameter ``d_m``).
+    rpm : float
+        Shaft speed [r/min] (finite; its lower bound is checked by the caller).
+    name : str
+        Field name in the message.
+    lo : str
+        Lower end of the valid range in the message (``"(0"`` or ``"[0"``).
+    """
+    dm_mm = bearing.pitch_diameter * 1e3
+    hi = SPEED_FACTOR_MAX / dm_mm
+    if rpm > hi:
+        raise ConfigError(
+            f"{name} = {rpm:.6g} r/min gives the speed factor n d_m = {rpm * dm_mm:.3g} mm r/min "
+            f"of {bearing.id} (d_m = {dm_mm:.4g} mm), above {SPEED_FACTOR_MAX:.3g}, where a steel "
+            f"ring bursts (hoop stress rho v^2 beyond its strength); valid range {lo}, "
+            f"{hi:.6g}] r/min"
+        )
+    return rpm
+
+
 # ------------------------------------------------------------------------- raceways and defects
 
 
@@ -667,6 +706,24 @@ def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
             f"{what} {wall:.6g} m of {bearing.id}; valid range (0, {wall:.6g}) m"
         )
     return defect.depth
+
+
+def check_unused_defect(bearing: Bearing, width: float, depth: float) -> None:
+    """The defect keys of a scenario without a fault (``fault = "none"``): unused, but refused
+    (one-line :class:`ConfigError`, as for a fault of the outer ring) when neither raceway of
+    ``bearing`` could have a defect of ``width`` x ``depth`` [m] (``--defect-width-m 1e30``
+    without ``--fault`` was accepted)."""
+    first: ConfigError | None = None
+    for race in (Race.OUTER, Race.INNER):
+        try:
+            d = Defect(race, width, depth)
+            defect_geometry(bearing, d)
+            check_defect_depth(bearing, d)
+            return
+        except ConfigError as exc:
+            first = first or exc
+    assert first is not None
+    raise first
 
 
 def raceway_radius(bearing: Bearing, race: Race) -> float:

@@ -10,7 +10,7 @@ import click
 
 from ..catalog import list_bearings
 from ..errors import check_range
-from ..geometry import Bearing, characteristic_frequencies
+from ..geometry import Bearing, characteristic_frequencies, check_speed_limit
 from .common import Number, bearing_options, bearing_summary, cli, emit_json, json_option
 
 __all__ = [
@@ -46,7 +46,7 @@ def bearings_cmd(as_json: bool) -> None:
 @json_option
 def info_cmd(bearing: Bearing, rpm: float, as_json: bool) -> None:
     """Kinematic frequencies of BEARING at --rpm (outer ring fixed)."""
-    rpm = check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
+    rpm = check_speed_limit(bearing, check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min"))
     kin = characteristic_frequencies(bearing, rpm / 60.0).as_dict()
     if as_json:
         emit_json(kin)

@@ -398,6 +398,7 @@ def vsm_trace_cmd(
     from ..dynamics.checks import check_load
     from ..dynamics.ring.scenario import model_inputs
     from ..dynamics.ring.trace import stiffness_trace, trace_estimate
+    from ..geometry import check_speed_limit
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o/--output OUT.csv, --plot PNG and/or --json")
@@ -405,6 +406,7 @@ def vsm_trace_cmd(
     step = check_range("step_deg", step_deg, 0.0, 10.0, lo_open=True, unit="deg")
     sc = _scenario(None, {**kw, "first_ball_angle_deg": first_ball_deg, "duration_s": 1.0})
     inputs = model_inputs(sc)
+    check_speed_limit(inputs.bearing, sc.rpm)  # the speed the trace's shaft angle assumes
     if ball is not None and not 1 <= ball <= inputs.bearing.n_elements:
         raise ConfigError(
             f"ball = {ball} is out of range; valid range [1, {inputs.bearing.n_elements}]"
@@ -530,7 +532,7 @@ def analyze_cmd(
     rec = load_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
     if fs_hz is not None or rpm is not None:  # the record must resolve the lines at fs and rpm
         check_resolvable(rec)
-    if bearing_id or bearing_file:
+    if bearing_id is not None or bearing_file is not None:  # an empty id is an error too
         bearing = resolve_bearing(bearing_id, bearing_file)
     elif rec.bearing is not None:
         bearing = rec.bearing

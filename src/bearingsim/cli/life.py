@@ -10,7 +10,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_positive, check_range
-from ..geometry import Bearing
+from ..geometry import Bearing, check_speed_limit
 from .common import (
     Number,
     bearing_options,
@@ -32,7 +32,10 @@ __all__ = [
 @click.option(
     "--radial-load-n",
     "radial_load",
-    type=Number(valid="(0, 2 C0] N, C0 the static capacity (ISO 76)"),
+    type=Number(
+        valid="[F_min, 2 C0] N, F_min the load of a 0.1 um contact semi-width, C0 the static "
+        "capacity (ISO 76)"
+    ),
     required=True,
     help="Radial load F_r [N].",
 )
@@ -52,14 +55,14 @@ __all__ = [
 )
 @click.option(
     "--element-size-um",
-    type=Number(valid="(0, b/4] um, b the contact half-width"),
+    type=Number(valid="[b/200, b/4] um, b the contact half-width"),
     default=None,
     show_default="from --mesh",
     help="Explicit fine element size [um] instead of --mesh (must be <= b/4).",
 )
 @click.option(
     "--delta-d",
-    type=Number(0.0, 0.1, lo_open=True),
+    type=Number(valid="[1/max_steps, 0.1]"),
     default=0.001,
     help="Damage block: increment of the fastest element [-] (seed LIFE eq. (7)).",
 )
@@ -160,7 +163,7 @@ def life_cmd(
 
     fr = check_positive("radial_load_n", radial_load, "N")
     if rpm is not None:
-        rpm = check_positive("rpm", rpm, "r/min")
+        rpm = check_speed_limit(bearing, check_positive("rpm", rpm, "r/min"))
     h = None
     if element_size_um is not None:
         h = 1e-6 * check_positive("element_size_um", element_size_um, "um")

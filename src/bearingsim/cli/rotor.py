@@ -15,6 +15,7 @@ from typing import Any
 import click
 
 from ..errors import ConfigError
+from ..materials import YOUNGS_MODULUS_RANGE
 from .common import DeferredDefaultOption, Number, cli, deprecated, emit_json, json_option
 from .common import scenario_default as _d
 from .limits import budget_options
@@ -239,7 +240,7 @@ def rotor_options(f: Callable) -> Callable:
     @click.option(
         "--shaft-E-pa",
         "shaft_e",
-        type=Number(0.0, lo_open=True, unit="Pa"),
+        type=Number(*YOUNGS_MODULUS_RANGE, unit="Pa"),
         help="Young's modulus of the shaft [Pa].",
         **_seed("SEED_SHAFT_E_PA"),
     )

@@ -12,7 +12,7 @@ import warnings
 
 from ..contact.capacity import check_load
 from ..errors import ConfigError, check_positive
-from ..geometry import Bearing, characteristic_frequencies
+from ..geometry import Bearing, characteristic_frequencies, check_speed_limit
 
 __all__ = [
     "SPEED_FACTOR_WARN",
@@ -53,7 +53,8 @@ def check_speed(bearing: Bearing, rpm: float, fs_hz: float, name: str = "rpm") -
     Refuses (one-line :class:`~bearingsim.errors.ConfigError`) a speed whose inner-race ball-pass
     frequency BPFI (the fastest element-pass frequency of the kinematics, Harris & Kotzalas 2007,
     ch. 8; :func:`bearingsim.geometry.characteristic_frequencies`) is above the Nyquist frequency
-    of the output: the output could not represent one ball passage, whatever the step. Warns
+    of the output: the output could not represent one ball passage, whatever the step, and a
+    speed where the rings burst (:func:`bearingsim.geometry.check_speed_limit`). Warns
     (:class:`SpeedWarning`) above the speed factor :data:`SPEED_FACTOR_WARN`. Returns ``rpm``.
 
     Parameters
@@ -77,6 +78,7 @@ def check_speed(bearing: Bearing, rpm: float, fs_hz: float, name: str = "rpm") -
             f"{fs_hz:.6g} Hz: the output cannot resolve the ball passes; valid range "
             f"(0, {hi:.6g}] r/min at this fs_hz"
         )
+    check_speed_limit(bearing, n, name)
     a = speed_factor(bearing, n)
     if a > SPEED_FACTOR_WARN:
         warnings.warn(

@@ -135,7 +135,7 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
     from .cwru import read_cwru_mat
 
     rec = read_cwru_mat(p)
-    ch = (channel or "DE").upper()
+    ch = ("DE" if channel is None else channel).upper()
     if ch not in rec.channels or ch not in ("DE", "FE", "BA"):
         raise ConfigError(
             f"channel = {ch!r} not in {p.name} (keys X###_{ch}_time); valid: "
@@ -167,7 +167,7 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
     from ..results import SimulationResult
 
     res = SimulationResult.load(p)
-    ch = (channel or "y").lower()
+    ch = ("y" if channel is None else channel).lower()
     # rotor results also carry the fan-end housing (acc_x_fe, acc_y_fe) and its bearing
     valid = ("x", "y", "x_fe", "y_fe") if "acc_y_fe" in res.channels else ("x", "y")
     if ch not in valid:

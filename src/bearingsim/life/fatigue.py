@@ -47,6 +47,13 @@ from .damage import GCR15_TORSION, DamageLaw, fit_sn_curve
 from .fe import ShearMeasure, contact_section, core_substructure, section_spec
 from .validation import validate_against_hertz
 
+#: smallest contact semi-width ``b`` the model takes [m]: smooth-surface Hertz contact needs a
+#: contact much wider than the surface roughness, of the order of 0.1 um on ground and honed
+#: raceways; the FE section, graded from ``b/n`` up to its 12 mm, also loses the load position in
+#: double precision below ~10 nm (radial_load_n = 1e-30 N: "the load reaches outside the fine
+#: zone"; 1e-300 N: a mesh graded over 200 decades that never finished)
+MIN_CONTACT_HALF_WIDTH_M = 1e-7
+
 __all__ = [
     "ContactLoad",
     "ElementLoadMethod",
@@ -360,7 +367,8 @@ def contact_fatigue_life(
     stop : {"spall", "initiation"}
         Stop at the first failed surface element, or at the first failed element.
     max_steps : int
-        Limit on damage blocks [-].
+        Limit on damage blocks [-]; at least ``1 / delta_d``, the blocks the fastest element
+        needs to fail (refused otherwise, before any work).
     residual_stiffness : float
         Stiffness fraction kept by failed elements [-], in (0, 0.1].
     length, height : float
@@ -374,7 +382,7 @@ def contact_fatigue_life(
     """
     from tqdm import tqdm
 
-    from .iso281 import check_static_load
+    from .iso281 import STATIC_LIMIT_FACTOR, check_static_load
 
     fr = check_positive("radial_load_n", radial_load, "N")
     dd = check_range("delta_d", delta_d, 0.0, 0.1, lo_open=True)
@@ -388,10 +396,26 @@ def contact_fatigue_life(
     if stop not in ("spall", "initiation"):
         raise ConfigError(f"stop = {stop!r} is invalid; valid values 'spall', 'initiation'")
     max_steps = int(check_range("max_steps", max_steps, 1, 10_000_000))
+    if dd * max_steps < 1.0:  # the fastest element gains delta_d per block, from D = 0 to 1
+        raise ConfigError(
+            f"delta_d = {dd:.6g} needs at least {1.0 / dd:.6g} damage blocks to fail an element, "
+            f"more than max_steps = {max_steps}; valid: delta_d * max_steps >= 1 (delta_d in "
+            f"[{1.0 / max_steps:.6g}, 0.1], or max_steps >= {math.ceil(1.0 / dd - 1e-9):.6g})"
+        )
     measure = ShearMeasure(measure)
     law = law if law is not None else default_damage_law()
-    check_static_load(bearing, fr)
+    cap = check_static_load(bearing, fr)
     contact = inner_contact(bearing, fr, load_method)
+    if contact.b < MIN_CONTACT_HALF_WIDTH_M:
+        # Hertz: b grows as Q^(1/3) (point contact) or Q^(1/2) (line contact), Q ~ F_r
+        e = 3.0 if isinstance(bearing, BallBearing) else 2.0
+        f_min = fr * (MIN_CONTACT_HALF_WIDTH_M / contact.b) ** e
+        raise ConfigError(
+            f"radial_load_n = {fr:.6g} N gives a contact semi-width b = {contact.b:.3g} m, below "
+            f"the {MIN_CONTACT_HALF_WIDTH_M:g} m (the raceway roughness) under which the "
+            f"smooth-surface Hertz contact and the FE section do not apply; valid range "
+            f"[{f_min:.3g}, {STATIC_LIMIT_FACTOR * cap.c0:.6g}] N"
+        )
     spec = section_spec(
         contact.b,
         mesh,

@@ -50,6 +50,7 @@ __all__ = [
     "core_substructure",
     "CoreSubstructure",
     "MESH_PRESETS",
+    "MAX_ELEMENTS_PER_B",
     "MIN_ELEMENTS_PER_B",
     "section_spec",
     "SectionSpec",
@@ -85,6 +86,9 @@ class ShearMeasure(enum.Enum):
 MESH_PRESETS: dict[str, float] = {"coarse": 5.0, "default": 10.0, "fine": 16.0, "finer": 24.0}
 #: the fine-zone element size must not exceed ``b / MIN_ELEMENTS_PER_B``
 MIN_ELEMENTS_PER_B = 4.0
+#: ... nor fall below ``b / MAX_ELEMENTS_PER_B`` (8 times the finest preset; a finer fine zone
+#: has more than ~10^6 elements: 1e-300 um asked numpy for 1e302 node coordinates)
+MAX_ELEMENTS_PER_B = 200.0
 
 
 @dataclass(frozen=True)
@@ -190,16 +194,22 @@ def section_spec(
                 )
             per_b = MESH_PRESETS[mesh]
         else:
-            per_b = check_range("elements_per_b", mesh, MIN_ELEMENTS_PER_B, 200.0)
+            per_b = check_range("elements_per_b", mesh, MIN_ELEMENTS_PER_B, MAX_ELEMENTS_PER_B)
         h = b / per_b
     else:
         h = check_positive("element_size_m", element_size, "m")
-        if h > b / MIN_ELEMENTS_PER_B * (1 + 1e-12):
+        lo, hi = b / MAX_ELEMENTS_PER_B, b / MIN_ELEMENTS_PER_B
+        if h > hi * (1 + 1e-12):
             raise ConfigError(
                 f"element_size_m = {h:.4g} m ({1e6 * h:.3g} um) does not resolve the contact "
                 f"semi-width b = {1e6 * b:.3g} um; need element size <= b/{MIN_ELEMENTS_PER_B:g} = "
-                f"{1e6 * b / MIN_ELEMENTS_PER_B:.3g} um "
-                f"(valid range (0, {b / MIN_ELEMENTS_PER_B:.4g}] m)"
+                f"{1e6 * hi:.3g} um (valid range [{lo:.4g}, {hi:.4g}] m)"
+            )
+        if h < lo * (1 - 1e-12):
+            raise ConfigError(
+                f"element_size_m = {h:.4g} m ({1e6 * h:.3g} um) is finer than "
+                f"b/{MAX_ELEMENTS_PER_B:g} = {1e6 * lo:.3g} um, b = {1e6 * b:.3g} um the contact "
+                f"semi-width (the mesh would be too large); valid range [{lo:.4g}, {hi:.4g}] m"
             )
     n_half = max(1, int(round(traverse_b * b / h)))
     return SectionSpec(

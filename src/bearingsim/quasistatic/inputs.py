@@ -387,6 +387,11 @@ class _Case:
     single: bool
 
 
+#: smallest ball deflection, relative to the diametral clearance, that fixes the ring's position
+#: [-] (double precision resolves 2.2e-16; four more digits are kept for the Newton iteration)
+RESOLVED_DEFLECTION_REL = 1e-12
+
+
 def _validate_case(
     geom: QSGeometry,
     cage_angles: ArrayLike,
@@ -423,6 +428,19 @@ def _validate_case(
             "load = 0 with positive clearance and no misalignment: the ring position is "
             "undetermined; apply a force or moment (valid: |F| > 0)"
         )
+    if np.any(F) and geom.clearance > 0 and not mis.any and not inertia:
+        # the ring sits at half the clearance plus the balls' Hertz deflection; a load whose
+        # deflection (F/K)^(2/3) on one ball is below RESOLVED_DEFLECTION_REL of the clearance is
+        # lost beside it in double precision (1e-300 N: zero stiffness, NaN fluctuation)
+        f = max(math.hypot(F[0], F[1]), abs(F[2]), math.hypot(F[3], F[4]) / (0.5 * geom.dm))
+        f_min = geom.k * (RESOLVED_DEFLECTION_REL * geom.clearance) ** 1.5
+        if f < f_min:
+            raise ConfigError(
+                f"load = {f:.6g} N (largest force, or moment / pitch radius) with positive "
+                f"clearance: its Hertz deflection is lost beside the clearance {geom.clearance:.6g}"
+                f" m, so the ring position is undetermined; apply a larger force or moment "
+                f"(valid: |F| >= {f_min:.3g} N)"
+            )
     if not np.any(F) and geom.clearance == 0 and not mis.any and not inertia:
         # every ball just touches both grooves: the ring is held (any displacement compresses
         # some ball), but Q = K delta^1.5 has no tangent stiffness at delta = 0, so the

@@ -55,6 +55,7 @@ from ..geometry import (
     ISO_OUTER_CONFORMITY,
     BallBearing,
     Bearing,
+    check_speed_limit,
     parse_enum,
 )
 from .inputs import (
@@ -350,6 +351,8 @@ def run_iso16281(
             "centrifugal/gyroscopic loads are not part of the ISO/TS 16281 method; "
             "valid: method 'jones' for inertia loads"
         )
+    if speed is not None:
+        check_speed_limit(bearing, speed.shaft_speed * 30.0 / math.pi, "shaft speed", "[0")
     geom, _cp, Ri = iso_geometry(bearing, clearance, conformities, max_contact_angle, stiffness)
     case = _validate_case(
         geom,

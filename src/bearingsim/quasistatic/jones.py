@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..contact.capacity import check_element_load, check_load
 from ..errors import ConfigError, SolverError
-from ..geometry import Bearing
+from ..geometry import Bearing, check_speed_limit
 from ._kernels import (
     B_ALPHA,
     B_DELTA,
@@ -248,6 +248,7 @@ def run_quasi_static(
     fc, mg0, gam = _inertia(geom, spd)
     # the centrifugal force presses each ball on the outer raceway: the same static limit
     check_element_load(bearing, fc, allow_overload, name="ball centrifugal force F_c")
+    check_speed_limit(bearing, spd.shaft_speed * 30.0 / math.pi, "shaft speed", "[0")
     p = _params(
         geom,
         F,

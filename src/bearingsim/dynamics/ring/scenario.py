@@ -18,7 +18,12 @@ from ..._version import __version__
 from ...catalog import resolve_bearing
 from ...config import Model, RingScenario, Solver
 from ...errors import SolverError
-from ...geometry import characteristic_frequencies, defect_at_edge, defect_geometry
+from ...geometry import (
+    characteristic_frequencies,
+    check_unused_defect,
+    defect_at_edge,
+    defect_geometry,
+)
 from ...results import SimulationResult
 from ..budget import F8, Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
@@ -73,6 +78,8 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
             scenario.defect_depth_m,
             scenario.defect_edge_angle_rad,
         )
+    else:
+        check_unused_defect(bearing, scenario.defect_width_m, scenario.defect_depth_m)
     return ModelInputs(
         bearing=bearing,
         fx=scenario.fx_n,

@@ -25,6 +25,7 @@ from ...config import (
     HOUSING_DAMPING_N_S_M,
     HOUSING_MASS_KG,
     HOUSING_STIFFNESS_N_M,
+    check_mount,
 )
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
@@ -164,6 +165,8 @@ class Housing:
         check_positive("housing_mass_kg", self.mass, "kg")
         check_positive("housing_stiffness_x_n_m", self.stiffness_x, "N/m")
         check_positive("housing_stiffness_y_n_m", self.stiffness_y, "N/m")
+        check_mount(self.stiffness_x, self.mass, "housing_stiffness_x_n_m")
+        check_mount(self.stiffness_y, self.mass, "housing_stiffness_y_n_m")
         check_range("housing_damping_x_n_s_m", self.damping_x, 0.0, unit="N s/m")
         check_range("housing_damping_y_n_s_m", self.damping_y, 0.0, unit="N s/m")
 
@@ -353,6 +356,14 @@ class RotorConfig:
             check_range("bearing_load_n", fx, unit="N")
             check_range("bearing_load_n", fy, unit="N")
         L = self.shaft.length
+        widths = [sup.bearing.width for sup in (self.de, self.fe)]
+        if all(w is not None for w in widths) and L < 0.5 * sum(widths):
+            # the bearings sit at z = 0 and z = L (their centres): they cannot overlap
+            raise ConfigError(
+                f"shaft_length_m = {L:.6g} m is shorter than half the widths of the two bearings "
+                f"({widths[0]:.6g} m and {widths[1]:.6g} m), which would overlap; valid range "
+                f"[{0.5 * sum(widths):.6g}, inf) m"
+            )
         self._check_geometry()
         given = () if self.armature.distributed else (self.armature.positions or ())
         for z in given:  # equally spaced positions (the default) are inside and distinct

@@ -39,7 +39,7 @@ import numpy as np
 import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 
-from ...errors import ConfigError, check_positive, check_range
+from ...errors import ConfigError, SolverError, check_positive, check_range
 
 __all__ = [
     "assemble_rotor",
@@ -490,9 +490,12 @@ def complex_modes(
         return Modes(freq, np.zeros(freq.size), np.full(freq.size, "planar", dtype="<U8"))
     A = np.zeros((2 * n, 2 * n))
     A[:n, n:] = np.eye(n)
-    Minv = np.linalg.inv(M)
-    A[n:, :n] = -Minv @ K
-    A[n:, n:] = -Minv @ D
+    with np.errstate(over="ignore", invalid="ignore"):
+        Minv = np.linalg.inv(M)
+        A[n:, :n] = -Minv @ K
+        A[n:, n:] = -Minv @ D
+    if not np.all(np.isfinite(A)):  # a mass negligible beside its stiffness: K/m overflows
+        raise SolverError("complex_modes: M^-1 K is not finite in double precision")
     lam, vec = np.linalg.eig(A)
     sel = lam.imag > 2 * math.pi * min_hz
     lam = lam[sel]

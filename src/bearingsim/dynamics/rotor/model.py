@@ -28,13 +28,14 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares, root
 
 from ..._version import __version__
-from ...config import Solver
+from ...config import MIN_MODE_HZ, Solver  # lowest frequency resolved [Hz]: rigid-body below
 from ...contact.hertz import ball_contact
 from ...errors import ConfigError, SolverError, check_positive, check_range
 from ...geometry import (
     DefectProfile,
     Race,
     characteristic_frequencies,
+    check_speed_limit,
     defect_geometry,
     parse_enum,
 )
@@ -90,8 +91,6 @@ FE_ARRAYS_SIMULATE = 10
 #: the same for :func:`rotor_modes`: M, K, G and the first-order state matrix ``(2n)^2`` with its
 #: complex eigenvectors [-]
 FE_ARRAYS_MODES = 24
-#: lowest natural frequency :func:`rotor_modes` reports [Hz] (lower roots are rigid-body modes)
-MIN_MODE_HZ = 1e-3
 #: largest first-order state (2 x FE DOFs) :func:`rotor_modes` solves with the dense
 #: non-symmetric eigensolver (a spinning rotor) [-]: LAPACK's QR algorithm costs ~25 N^3 flops,
 #: about half a minute at N = 4000 on one core of a 2-core VM (measured: 8.5 min at N = 7320);
@@ -304,6 +303,8 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
     """
     supports = parse_enum(Supports, supports, "supports")
     spin = check_range("speed_rpm", speed_rpm, 0.0, unit="r/min") * math.pi / 30.0
+    for sup in (config.de, config.fe):  # the shaft turns in both bearings
+        check_speed_limit(sup.bearing, float(speed_rpm), "speed_rpm", "[0")
     f1 = first_bending_hz(config)
     if f1 < MIN_MODE_HZ:
         sh = config.shaft
@@ -346,10 +347,12 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
     ]  # fmt: skip
     try:
         modes = complex_modes(Mc, Kc, Gc, spin, x_dofs=xd, y_dofs=yd, min_hz=MIN_MODE_HZ)
-    except np.linalg.LinAlgError as exc:
+    except (SolverError, np.linalg.LinAlgError):
+        arm, sh = config.armature, config.shaft
         raise SolverError(
-            f"rotor modes: the eigensolver failed ({str(exc).splitlines()[0]}); the mass and "
-            "stiffness matrices are too ill-conditioned for double precision"
+            f"rotor_mass_kg = {arm.mass:.6g} kg, shaft_mass_kg = {sh.mass:.6g} kg: a mass this "
+            "small beside the shaft's stiffness overflows the modal problem in double precision "
+            "(M^-1 K is not finite); valid: masses that are not negligible"
         ) from None
     k = int(n_modes)
     if modes.frequency_hz.size == 0:

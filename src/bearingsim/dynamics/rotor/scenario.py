@@ -24,7 +24,8 @@ import numpy as np
 from ..._version import __version__
 from ...catalog import get_bearing
 from ...config import RotorScenario
-from ...geometry import Defect
+from ...errors import ConfigError
+from ...geometry import Defect, check_unused_defect
 from ...results import SimulationResult
 from ..budget import Budget, Estimate
 from ..checks import check_speed
@@ -48,6 +49,16 @@ def _support(bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario) -
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     """The :class:`RotorConfig` of a ``model = "rotor"`` scenario (validates every input and
     raises a one-line :class:`~bearingsim.errors.ConfigError` on bad values)."""
+    if sc.de_fault == sc.fe_fault == "none":  # the defect keys are unused: a defect of either
+        errors = []  # bearing, as a fault there would be
+        for b in dict.fromkeys((sc.de_bearing, sc.fe_bearing)):
+            try:
+                check_unused_defect(get_bearing(b), sc.defect_width_m, sc.defect_depth_m)
+                break
+            except ConfigError as exc:
+                errors.append(exc)
+        else:
+            raise errors[0]
     pos = None
     if sc.disk_positions_mm is not None:
         pos = tuple(v * 1e-3 for v in sc.disk_positions_mm)
