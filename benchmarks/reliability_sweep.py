@@ -54,12 +54,14 @@ Part 2, kills: ``--kills`` SIGKILLs at seeded random instants (half uniform over
 its last 20 %, where the output is written) into ``simulate -o`` (vsm, dem, rotor), ``ias -o
 --plot``, ``stiffness -o``, ``life -o`` and ``sweep run`` (20 DEM runs, a fresh dataset, killed,
 then resumed with the same command; the whole process group is killed, or the client alone,
-leaving its workers). Half of the single-file trials write over an existing output. After each
-kill the output must be absent or complete (``bearingsim.results.load_result``; a PNG must end
-with its IEND chunk); the same command is then run to the end, and must succeed, write a readable
-output and leave no temporary (``.NAME.*``) beside it. A resumed sweep must end with every run
-ok, no run committed before the kill computed again, and data equal to an uninterrupted sweep and
-to ``simulate`` of the same scenario.
+leaving its workers; 3 kills in 4 at a uniform instant after the dataset appears, while runs
+are committed, 1 in 4 from the start). Half of the single-file trials write over an existing
+output. After each kill the output must be absent or complete
+(``bearingsim.results.load_result``; a PNG must end with its IEND chunk); the same command is
+then run to the end, and must succeed, write a readable output and leave no temporary
+(``.NAME.*``) beside it. A resumed sweep must end with every run ok, no run committed before the
+kill computed again, and data equal to an uninterrupted sweep and to ``simulate`` of the same
+scenario.
 
 Run (about 25 min on 2 cores)::
 
@@ -122,11 +124,16 @@ CLASSES = (
     "bad-output",
 )
 OUTPUT_OPTIONS = ("--output", "--plot", "--plot-curve")
-#: JSON keys that are null by design when an option asks for less (not computed): a fixed
-#: --band-hz has no kurtogram, --stop initiation no spall (nor its hours with --rpm),
+#: JSON keys that are null by design (not computed, not detected): a fixed --band-hz has no
+#: kurtogram, a CSV with a per-sample rpm column no single rpm, --stop initiation no spall (nor
+#: its hours with --rpm), a healthy IAS run (or a spall outside the load zone) no spall event,
 #: --timing-runs 0 times nothing, a given --runs-per-task needs no run-time estimate
 KNOWN_NULLS = {
     ("analyze", ".kurtosis"),
+    ("analyze", ".rpm"),
+    ("ias", ".fault_order_measured"),
+    ("ias", ".spall_crossing_angle_rad"),
+    ("ias", ".spall_width_estimate_m"),
     ("life", ".hours_spall"),
     ("sweep plan", ".compute_s_per_run"),
     ("sweep plan", ".compute_s_total"),
@@ -780,7 +787,7 @@ def make_fixtures(fx: Path, env: dict[str, str], seed: int) -> None:
     (fx / "spec_rpm_true.toml").write_text(spec.replace("rpm = 1750.0", "rpm = true"))
     (fx / "spec20.toml").write_text(
         '[sweep]\nchannels = ["acc_x", "acc_y"]\nlabel = "fault"\n\n'
-        '[base]\nmodel = "dem"\nduration_s = 1.0\nfs_hz = 48000.0\n\n'
+        '[base]\nmodel = "dem"\nduration_s = 4.0\nfs_hz = 48000.0\n\n'
         '[axes]\nfault = ["outer", "inner"]\nrpm = { start = 1700.0, stop = 1800.0, num = 10 }\n'
     )
     # results and signals
@@ -1069,6 +1076,7 @@ class Trial:
     overwrite: bool
     kill_at: float
     mode: str = "group"  # sweep: "group" or "client"
+    after_created: bool = False  # sweep: kill_at counts from the dataset's appearance
     # results
     killed: bool = False
     after_kill: str = ""  # absent / complete / damaged
@@ -1080,6 +1088,7 @@ class Trial:
     duplicated: int = 0
     changed: int = 0
     orphans: int = 0
+    ok_at_kill: int = 0  # sweep: runs committed ok when it was killed
 
 
 KILL_TARGETS = {
@@ -1154,8 +1163,9 @@ def _temps(folder: Path, name: str) -> list[str]:
     return sorted(n for n in os.listdir(folder) if n.startswith(f".{name}."))
 
 
-def _kill_run(argv, cwd, env, kill_at, mode="group"):
-    """Start ``bearingsim argv``, SIGKILL it at ``kill_at`` s; returns (killed, orphans)."""
+def _kill_run(argv, cwd, env, kill_at, mode="group", after: Path | None = None):
+    """Start ``bearingsim argv``, SIGKILL it at ``kill_at`` s (counted from the appearance of
+    ``after``, when given); returns (killed, orphans)."""
     proc = subprocess.Popen(
         [sys.executable, "-m", "bearingsim", *argv],
         cwd=cwd,
@@ -1164,6 +1174,10 @@ def _kill_run(argv, cwd, env, kill_at, mode="group"):
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
+    if after is not None:
+        t0 = time.monotonic()
+        while not after.exists() and proc.poll() is None and time.monotonic() - t0 < TIMEOUT_S:
+            time.sleep(0.01)
     try:
         proc.wait(timeout=kill_at)
         killed = False
@@ -1278,9 +1292,11 @@ def run_trial(
         shutil.copy2(ref, out)
     offsets: dict[str, int] = {}
     ok_before: set[int] = set()
-    t.killed, t.orphans = _kill_run(argv, tdir, env, t.kill_at, t.mode)
+    after = out if t.after_created else None
+    t.killed, t.orphans = _kill_run(argv, tdir, env, t.kill_at, t.mode, after)
     if t.target == "sweep run":
         t.after_kill, ok_before, offsets = _store_state(out)
+        t.ok_at_kill = len(ok_before)
     else:
         states = [_state(out)] + [_state(tdir / e) for e in t.extra_outputs]
         t.after_kill = "damaged" if "damaged" in states else states[0]
@@ -1329,12 +1345,23 @@ def kill_sweep(n_kills: int, work: Path, fx: Path, env, jobs: int, seed: int) ->
     kdir.mkdir()
     refs: dict[str, tuple[float, Path]] = {}
     print(f"kill sweep: reference runs of {len(KILL_TARGETS)} targets", file=sys.stderr)
+    created = 0.0  # when the dataset of the reference sweep appeared [s]
     for name, (argv, output, _, _) in KILL_TARGETS.items():
         d = kdir / ("ref-" + name.replace(" ", "-"))
         d.mkdir()
-        code, _, err, wall = _run([a.replace("{fx}", str(fx)) for a in argv], d, env, 600)
-        if code != 0:
-            raise RuntimeError(f"reference run of {name} failed: {err}")
+        t0 = time.monotonic()
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "bearingsim", *[a.replace("{fx}", str(fx)) for a in argv]],
+            cwd=d, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        )  # fmt: skip
+        while proc.poll() is None:
+            if not created and name == "sweep run" and (d / output).exists():
+                created = time.monotonic() - t0
+            time.sleep(0.01)
+        wall = time.monotonic() - t0
+        if proc.returncode != 0:
+            raise RuntimeError(f"reference run of {name} failed: {proc.stderr.read()}")
+        proc.stderr.close()
         refs[name] = (wall, d / output)
     check = SweepCheck(fx, refs["sweep run"][1])
     trials: list[Trial] = []
@@ -1350,7 +1377,10 @@ def kill_sweep(n_kills: int, work: Path, fx: Path, env, jobs: int, seed: int) ->
             at = rng.uniform(0.8 * wall, 1.0 * wall) if late else rng.uniform(0.05, wall)
             mode = "client" if name == "sweep run" and k % 3 == 2 else "group"
             over = name != "sweep run" and rng.random() < 0.5
-            trials.append(Trial(name, argv, output, extra, over, at, mode))
+            after = name == "sweep run" and k % 4 != 0  # 3 in 4 while the runs are committed
+            if after:
+                at = rng.uniform(0.0, max(0.1, wall - created))
+            trials.append(Trial(name, argv, output, extra, over, at, mode, after))
     done: list[Trial] = []
     retry_budget = n_kills
     with (
@@ -1489,6 +1519,7 @@ def kill_figures(res: dict[str, Any]) -> dict[str, Any]:
             d |= {
                 "client_only_kills": sum(t.mode == "client" for t in k),
                 "orphaned_workers_after_30s": sum(t.orphans for t in k),
+                "runs_ok_at_kill": sorted(t.ok_at_kill for t in k),
                 "runs_lost": sum(t.lost for t in ts),
                 "runs_duplicated": sum(t.duplicated for t in ts),
                 "runs_changed": sum(t.changed for t in ts),
@@ -1532,7 +1563,8 @@ def print_kills(fig: dict[str, Any], res: dict[str, Any]) -> None:
     if s:
         print(
             f"sweep run: {s['kills']} kills ({s['client_only_kills']} of the client alone, "
-            f"{s['orphaned_workers_after_30s']} left workers alive after 30 s); after resume: "
+            f"{s['orphaned_workers_after_30s']} left workers alive after 30 s; runs committed "
+            f"at the kill: {s['runs_ok_at_kill']}); after resume: "
             f"runs lost {s['runs_lost']}, duplicated {s['runs_duplicated']}, changed "
             f"{s['runs_changed']}; uninterrupted sweep vs simulate(): "
             f"{res['ref_vs_simulate_changed']} runs differ"
