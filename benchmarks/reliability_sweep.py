@@ -63,7 +63,7 @@ then run to the end, and must succeed, write a readable output and leave no temp
 kill computed again, and data equal to an uninterrupted sweep and to ``simulate`` of the same
 scenario.
 
-Run (about 25 min on 2 cores)::
+Run (about 20 min on 2 cores: 14 min of cases, 6 of kills)::
 
     PYTHONPATH=src python benchmarks/reliability_sweep.py --json relsweep.json
 
