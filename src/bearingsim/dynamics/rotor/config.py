@@ -412,10 +412,9 @@ class RotorConfig:
                 f"{hi:.6g} kg: the mass matrix is singular in double precision; valid: a ratio "
                 f"of at least {MASS_RATIO_MIN:g}"
             )
-        area = math.pi * (arm.diameter - sh.diameter) * (arm.diameter + sh.diameter) / 4.0
-        length = arm.mass / (arm.density * area)
+        length = self.armature_length
         if not length <= sh.length:
-            m_max = sh.length * arm.density * area
+            m_max = sh.length * arm.mass / length
             raise ConfigError(
                 f"rotor_mass_kg = {arm.mass:.6g} kg makes an armature {length:.6g} m long (density "
                 f"{arm.density:g} kg/m^3, diameters {arm.diameter:.6g} / {sh.diameter:.6g} m), "
@@ -431,6 +430,14 @@ class RotorConfig:
     def omega(self) -> float:
         """Shaft speed [rad/s]."""
         return 2 * math.pi * self.shaft_hz
+
+    @property
+    def armature_length(self) -> float:
+        """Length of the armature [m]: its mass over its density times the annulus between the
+        disk and shaft diameters, ``m / (rho pi (D^2 - d^2) / 4)`` (sets the disks' inertia)."""
+        arm = self.armature
+        area = math.pi * ((0.5 * arm.diameter) ** 2 - (0.5 * self.shaft.diameter) ** 2)
+        return arm.mass / (arm.density * area)
 
     @property
     def disk_positions(self) -> tuple[float, ...]:

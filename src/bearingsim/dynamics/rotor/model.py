@@ -163,12 +163,19 @@ class RotorAssembly:
         return int(self.M.shape[0])
 
 
+def fe_nodes(config: RotorConfig) -> NDArray[np.float64]:
+    """Node positions [m] of ``config``'s beam mesh (:func:`.fe.mesh_nodes` with the bearings and
+    disks as nodes; ``n_elements`` or 16, at least one element between neighbours)."""
+    pos = config.disk_positions
+    ne = config.n_elements or max(16, len(pos) + 1)
+    return mesh_nodes(config.shaft.length, pos, ne)
+
+
 def build_fe(config: RotorConfig) -> RotorFE:
     """Finite-element rotor (no supports) of ``config``: shaft, disks, lumped shaft halves."""
     sh, arm = config.shaft, config.armature
     pos = config.disk_positions
-    ne = config.n_elements or max(16, len(pos) + 1)
-    z = mesh_nodes(sh.length, pos, ne)
+    z = fe_nodes(config)
     L = sh.length
     rho_a = rho_i = 0.0
     lumped: dict[int, float] = {}
@@ -184,8 +191,7 @@ def build_fe(config: RotorConfig) -> RotorFE:
         rho_a += arm.mass / L
         rho_i += arm.mass / L * (ro2 + ri2) / 4.0
     else:
-        area = math.pi * (ro2 - ri2)
-        length = arm.mass / (arm.density * area)
+        length = config.armature_length
         m = arm.mass / len(pos)
         for zp in pos:
             disks.append(Disk.from_geometry(zp, m, arm.diameter, sh.diameter, length / len(pos)))
@@ -316,8 +322,7 @@ def rotor_modes(config: RotorConfig, supports: Supports | str = Supports.PINNED,
             f"({sh.diameter:.6g}, {l_max:.6g}] m for this shaft and rotor mass"
         )
     check_budget(fe_estimate(config, FE_ARRAYS_MODES), budget)
-    ne = config.n_elements or max(16, len(config.disk_positions) + 1)
-    n_nodes = mesh_nodes(config.shaft.length, config.disk_positions, ne).size
+    n_nodes = fe_nodes(config).size
     n_state = 2 * NDOF_NODE * n_nodes
     if spin > 0.0 and n_state > MAX_GYRO_STATE:
         raise ConfigError(
