@@ -24,10 +24,22 @@ def test_report_files(report_dir):
     html = (report_dir / "report.html").read_text()
     assert rows and "<table>" in html
     for r in rows:
-        assert {"quantity", "source", "published", "ours", "rel_diff", "status"} <= set(r)
-        assert r["status"] in {"match", "explained", "mismatch"}
+        assert {
+            "quantity",
+            "source",
+            "published",
+            "ours",
+            "rel_diff",
+            "status",
+            "reference_kind",
+            "verified_by",
+            "size",
+        } <= set(r)
+        assert r["status"] in {"match", "deviates", "mismatch", "info"}
+        assert r["reference_kind"] in {"paper", "measured", "standard", "none"}
     for png in report_dir.glob("*.png"):
         assert png.name in html
+    assert "<h2>Summary</h2>" in html
 
 
 def test_foundation_rows(report_dir):
@@ -39,9 +51,11 @@ def test_foundation_rows(report_dir):
     by_q = {r["quantity"]: r for r in rows}
     assert by_q["6205 BPFI at 1748 r/min [Hz]"]["status"] == "match"
     psi = by_q["6205 load-zone half angle psi_L [deg]"]
-    assert psi["status"] == "explained" and psi["note"]
+    assert psi["status"] == "deviates" and psi["note"] and psi["reference_kind"] == "paper"
+    assert psi["verified_by"] == "tests/test_deviations.py::test_psi_l_68_deg_needs_k_028_hertz"
     assert psi["published"] == value("vsm.s2_1.load_zone_half_angle")
     assert not [r for r in rows if r["status"] == "mismatch"]
+    assert by_q["6205-cwru BPFI order [-]"]["reference_kind"] == "standard"
 
 
 def test_reproduce_cli_json(run_cli, tmp_path):
@@ -49,4 +63,34 @@ def test_reproduce_cli_json(run_cli, tmp_path):
     assert r.code == 0, r.err
     d = r.json()
     assert d["sections"] == ["foundation"] and d["counts"]["match"] > 10
+    assert d["counts_by_kind"]["standard"]["match"] == 8  # the CWRU bearing table
     assert "foundation" in SECTIONS
+
+
+# ------------------------------------------------------------------------- status rules
+
+
+def test_status_rules():
+    """A miss against a measurement is a mismatch whatever the reason; against a paper or a
+    standard it deviates only with a reason and the test verifying it; no reference is info."""
+    from bearingsim.report import Row, compare, info, judge
+
+    tid = "tests/test_deviations.py::test_psi_l_68_deg_needs_k_028_hertz"
+    assert compare("q", "s", 1.0, 1.05, 0.1, kind="measured").status == "match"
+    m = compare("q", "s", 1.0, 100.0, 0.1, "a reason", kind="measured", verified_by=tid)
+    assert m.status == "mismatch" and m.note == "a reason" and m.verified_by == ""
+    assert m.size == "100× high (+40.0 dB)"
+    assert compare("q", "s", 1.0, 2.0, 0.1, "a reason", kind="paper").status == "mismatch"
+    d = compare("q", "s", 1.0, 2.0, 0.1, "a reason", kind="standard", verified_by=tid)
+    assert d.status == "deviates" and d.verified_by == tid
+    assert compare("q", "s", 4.0, 0.04, 0.1, kind="paper").size == "100× low (-40.0 dB)"
+    assert judge("q", "s", "ball", "none", False, "why", kind="measured").status == "mismatch"
+    assert info("q", "s", 3.0).status == "info"
+    with pytest.raises(ValueError, match="never 'deviates'"):
+        Row("q", "s", 1.0, 2.0, 1.0, "deviates", "why", reference_kind="measured", verified_by=tid)
+    with pytest.raises(ValueError, match="verified_by"):
+        Row("q", "s", 1.0, 2.0, 1.0, "deviates", "why", reference_kind="paper")
+    with pytest.raises(ValueError, match="info"):
+        Row("q", "s", None, 2.0, None, "match", reference_kind="none")
+    with pytest.raises(ValueError, match="needs a reference"):
+        compare("q", "s", 1.0, 2.0, 0.1, kind="none")

@@ -27,10 +27,15 @@ def rotor_rows(tmp_path_factory):
 
 def test_rotor_section_rows_and_figures(rotor_rows):
     out, rows = rotor_rows
-    assert not [q for q, r in rows.items() if r["status"] == "mismatch"], rows
     for q, r in rows.items():
-        if r["status"] == "explained":
-            assert r["note"], f"explained row without a reason: {q}"
+        if r["status"] in ("deviates", "mismatch"):
+            assert r["note"], f"{r['status']} row without a reason: {q}"
+        if r["status"] == "deviates":
+            assert r["reference_kind"] in ("paper", "standard") and r["verified_by"], q
+    # the model analyses: no mismatch against a paper's model or a closed form
+    assert not [
+        q for q, r in rows.items() if r["status"] == "mismatch" and q.startswith("rotor alone")
+    ]
     for png in ("rotor_fig5_6_cwru132.png", "rotor_fig7_spectra.png", "rotor_fig7_amplitude.png"):
         assert (out / png).stat().st_size > 10_000
     html = (out / "report.html").read_text()
@@ -50,5 +55,15 @@ def test_rotor_section_key_comparisons(rotor_rows):
     )
     drop = rows["envelope amplitude at BPFO, highest to lowest disk case [%]"]
     assert drop["published"] == value("rotor.s3.amplitude_drop")
-    assert drop["status"] in ("match", "explained")
+    assert drop["status"] in ("match", "mismatch")
+    # the amplitude misses against the measured record stay mismatches until the model closes
+    # them (issue 15): a reason explains a difference, it does not remove it
+    for q in (
+        "DE acceleration RMS, 1 s [m/s²]",
+        "DE envelope amplitude at BPFO (2-5 kHz band) [m/s²]",
+    ):
+        r = rows[q]
+        assert r["reference_kind"] == "measured"
+        ratio = r["ours"] / r["published"]
+        assert r["status"] == ("match" if abs(ratio - 1) <= 0.5 else "mismatch"), (q, ratio)
     assert rows["rotor alone, 1 disk, pinned: 1st natural frequency [Hz]"]["status"] == "match"

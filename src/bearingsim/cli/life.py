@@ -74,9 +74,10 @@ __all__ = [
 )
 @click.option(
     "--measure",
-    type=click.Choice(["orthogonal", "critical_plane", "max_shear"]),
-    default="orthogonal",
-    help="Shear range driving damage (orthogonal = tau_xz in the rolling plane).",
+    type=click.Choice(["max_shear", "orthogonal", "critical_plane"]),
+    default="max_shear",
+    help="Shear range driving damage: max_shear = range of the in-plane Tresca shear (the "
+    "seed's table-3 driver), orthogonal = range of tau_xz in the rolling plane.",
 )
 @click.option(
     "--load-method",
@@ -122,6 +123,13 @@ __all__ = [
     default=None,
     help="Write the damage-vs-cycles PNG.",
 )
+@click.option(
+    "--plot-weibull",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write the Weibull-paper PNG: the damage life beside ISO 281 L10, ISO/TS 16281 L10r "
+    "and, for the seed's case (6206 at 5000 N), its three fatigue tests.",
+)
 @output_option(
     "Result file (netCDF .nc, lossless; LifeResult.load reads it).", required=True, dest="out"
 )
@@ -143,6 +151,7 @@ def life_cmd(
     max_steps: int,
     plot: str | None,
     plot_curve: str | None,
+    plot_weibull: str | None,
     out: str,
     as_json: bool,
 ) -> None:
@@ -150,7 +159,12 @@ def life_cmd(
 
     Damage mechanics on a plane-strain FE section of the most loaded inner contact (seed LIFE),
     with ISO 281 L10 and the ISO/TS 16281-style L10r."""
-    check_outputs(("-o/--output", out), ("--plot", plot), ("--plot-curve", plot_curve))
+    check_outputs(
+        ("-o/--output", out),
+        ("--plot", plot),
+        ("--plot-curve", plot_curve),
+        ("--plot-weibull", plot_weibull),
+    )
     from ..life.damage import DamageLaw
     from ..life.fatigue import contact_fatigue_life, default_damage_law
     from ..life.iso281 import (
@@ -203,6 +217,11 @@ def life_cmd(
     for w in caught:
         click.echo(f"warning: {' '.join(str(w.message).split())}", err=True)
     u = inner_race_cycles_per_revolution(bearing)
+    tests = _tests_beside(bearing, fr, res.cycles_spall, l10 * u, l10r * u)
+    if plot_weibull:
+        from ..report.figures import save_figure
+
+        save_figure(_weibull_figure(bearing, fr, res.cycles_spall, l10 * u, l10r * u), plot_weibull)
     if plot:
         from ..report.figures import save_figure
 
@@ -232,6 +251,9 @@ def life_cmd(
         "cycles_per_rev": u,
         "l10_iso281_cycles": l10 * u,
         "l10r_iso16281_cycles": l10r * u,
+        "life_over_l10": res.cycles_spall / (l10 * u),
+        "life_over_l10r": res.cycles_spall / (l10r * u),
+        "tests": tests,
         "rev_initiation": res.cycles_initiation / u,
         "rev_spall": res.cycles_spall / u,
         "steps_initiation": res.steps_initiation,
@@ -271,4 +293,76 @@ def life_cmd(
         f"  ISO 281: C = {rating.c / 1e3:.2f} kN, L10 = {l10:.4g} rev = {l10 * u:.4g} cycles "
         f"({u:.3f} cycles/rev); ISO/TS 16281-style L10r = {l10r:.4g} rev"
     )
+    click.echo(
+        f"  damage life (spall) = {d['life_over_l10']:.3g} x L10 = {d['life_over_l10r']:.3g} x L10r"
+    )
+    if tests is not None:
+        click.echo(
+            f"  tests ({tests['source']}): "
+            + ", ".join(f"{c:.3g}" for c in tests["cycles"])
+            + " cycles; the damage life is "
+            + ", ".join(f"{r:.3g}" for r in tests["life_over_tests"])
+            + f" x each, at {100 * tests['life_failed_fraction']:.1f} % failed on their Weibull "
+            "fit "
+            f"(beta {tests['weibull_beta']:.2f}, eta {tests['weibull_eta_cycles']:.3g} cycles)"
+        )
     click.echo(f"  wrote {out}")
+
+
+def _seed_tests(bearing: Bearing, fr: float) -> tuple[tuple[float, ...], str] | None:
+    """The fatigue-test lives measured for this bearing and load [inner-race cycles], if any:
+    seed LIFE table 4 (three 6206 at 5 kN)."""
+    from ..report.published import entry
+
+    if bearing.id != "6206" or not math.isclose(fr, 5000.0, rel_tol=1e-9):
+        return None
+    e = entry("life.table4.test_lives")
+    return tuple(float(v) for v in e.si), e.source  # type: ignore[union-attr]
+
+
+def _tests_beside(
+    bearing: Bearing, fr: float, life: float, l10: float, l10r: float
+) -> dict[str, Any] | None:
+    """The measured lives of this case beside the damage life and the ratings (cycles)."""
+    from ..life.weibull import weibull_fit
+
+    found = _seed_tests(bearing, fr)
+    if found is None:
+        return None
+    cycles, source = found
+    fit = weibull_fit(cycles)
+    ok = math.isfinite(life)
+    return {
+        "source": source,
+        "cycles": list(cycles),
+        "weibull_beta": fit.beta,
+        "weibull_eta_cycles": fit.eta,
+        "weibull_l10_cycles": fit.l10,
+        "weibull_l50_cycles": fit.l50,
+        "life_over_tests": [life / c for c in cycles],
+        "life_failed_fraction": fit.probability_at(life) if ok else math.nan,
+        "l10_failed_fraction": fit.probability_at(l10),
+        "l10r_failed_fraction": fit.probability_at(l10r),
+        "tests_below_l10": sum(c < l10 for c in cycles),
+    }
+
+
+def _weibull_figure(bearing: Bearing, fr: float, life: float, l10: float, l10r: float):
+    """Weibull-paper figure of this case (the tests when there are, else the ratings alone)."""
+    from ..life.weibull import LP_SLOPE_POINT, WeibullFit, median_ranks, weibull_fit
+
+    marks = {
+        "damage life (spall)": life,
+        "ISO 281 L10": l10,
+        "ISO/TS 16281 L10r": l10r,
+    }
+    found = _seed_tests(bearing, fr)
+    title = f"{bearing.id} at {fr:g} N: inner-race cycles"
+    if found is not None:
+        return weibull_fit(found[0]).plot(marks, title=title + " (tests: " + found[1] + ")")
+    # no tests: the ISO 281 population itself (Weibull slope 10/9 through L10)
+    eta = l10 / (-math.log(0.9)) ** (1.0 / LP_SLOPE_POINT)
+    pop = WeibullFit((l10,), tuple(median_ranks(1).tolist()), LP_SLOPE_POINT, eta)
+    return pop.plot(
+        marks, title=title, line_label="ISO 281 population (slope 10/9 through L10)", points=False
+    )

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..report import SECTIONS, run_report
+from ..report import REF_KINDS, SECTIONS, STATUSES, run_report
 from .common import check_outputs, cli, deprecated, emit_json, json_option, output_option
 
 __all__ = [
@@ -34,13 +34,27 @@ def reproduce_cmd(quick: bool, out_dir: str, sections: tuple[str, ...], as_json:
     check_outputs(("-o/--output", out_dir), directory=True)
     done = run_report(out_dir, quick=quick, sections=list(sections) or None, progress=not as_json)
     counts: dict[str, int] = {}
+    by_kind: dict[str, dict[str, int]] = {}
     for s in done:
         for r in s.rows:
             counts[r.status] = counts.get(r.status, 0) + 1
+            k = by_kind.setdefault(r.reference_kind, {})
+            k[r.status] = k.get(r.status, 0) + 1
     if as_json:
-        emit_json({"out_dir": out_dir, "counts": counts, "sections": [s.name for s in done]})
+        emit_json(
+            {
+                "out_dir": out_dir,
+                "counts": counts,
+                "counts_by_kind": by_kind,
+                "sections": [s.name for s in done],
+            }
+        )
         return
     click.echo(
         f"wrote {out_dir}/report.html and results.json: "
-        + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
+        + ", ".join(f"{k} {counts[k]}" for k in STATUSES if k in counts)
     )
+    for kind in REF_KINDS:
+        if kind in by_kind:
+            n = by_kind[kind]
+            click.echo(f"  {kind:>8}: " + ", ".join(f"{k} {n[k]}" for k in STATUSES if k in n))

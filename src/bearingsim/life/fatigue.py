@@ -44,7 +44,7 @@ from ..errors import ConfigError, SolverError, check_positive, check_range
 from ..geometry import BallBearing, Bearing
 from ..results import Result, json_attr, read_json_attr, var_attrs
 from .damage import GCR15_TORSION, DamageLaw, fit_sn_curve
-from .fe import ShearMeasure, contact_section, core_substructure, section_spec
+from .fe import DEFAULT_MEASURE, ShearMeasure, contact_section, core_substructure, section_spec
 from .validation import validate_against_hertz
 
 #: smallest contact semi-width ``b`` the model takes [m]: smooth-surface Hertz contact needs a
@@ -327,7 +327,7 @@ def contact_fatigue_life(
     delta_d: float = 0.001,
     delta_d_spall: float | None = 0.01,
     law: DamageLaw | None = None,
-    measure: ShearMeasure | str = ShearMeasure.ORTHOGONAL,
+    measure: ShearMeasure | str = DEFAULT_MEASURE,
     load_method: ElementLoadMethod | str = ElementLoadMethod.STRIBECK,
     stop: str = "spall",
     max_steps: int = 20000,
@@ -360,8 +360,10 @@ def contact_fatigue_life(
         with 0.001 the growth to the surface takes thousands of blocks.
     law : DamageLaw, optional
         kappa [-], sigma_t [Pa]; default the seed's GCr15 fit (11.1, 5979 MPa).
-    measure : ShearMeasure
-        Which shear range drives damage (default the orthogonal shear tau_xz).
+    measure : ShearMeasure or str
+        Which shear range drives damage (default ``max_shear``: the range of the in-plane
+        Tresca shear, the seed's table-3 damage driver; see :class:`ShearMeasure` for why);
+        an unknown name is refused with the valid ones.
     load_method : ElementLoadMethod
         Most-loaded element load: Stribeck 4.37 F_r/Z (seed) or the discrete distribution.
     stop : {"spall", "initiation"}
@@ -402,7 +404,7 @@ def contact_fatigue_life(
             f"more than max_steps = {max_steps}; valid: delta_d * max_steps >= 1 (delta_d in "
             f"[{1.0 / max_steps:.6g}, 0.1], or max_steps >= {math.ceil(1.0 / dd - 1e-9):.6g})"
         )
-    measure = ShearMeasure(measure)
+    measure = ShearMeasure.parse(measure)
     law = law if law is not None else default_damage_law()
     cap = check_static_load(bearing, fr)
     contact = inner_contact(bearing, fr, load_method)

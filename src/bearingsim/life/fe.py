@@ -49,6 +49,7 @@ __all__ = [
     "ContactSection",
     "core_substructure",
     "CoreSubstructure",
+    "DEFAULT_MEASURE",
     "MESH_PRESETS",
     "MAX_ELEMENTS_PER_B",
     "MIN_ELEMENTS_PER_B",
@@ -63,23 +64,50 @@ class ShearMeasure(enum.Enum):
     """Which shear-stress range ``Delta_tau`` over one load pass drives damage (seed LIFE
     eq. (4)).
 
-    ``ORTHOGONAL`` (default; the seed's choice, §2.2)
+    ``MAX_SHEAR`` (default)
+        Range of the in-plane maximum (Tresca) shear ``sqrt(((sigma_x - sigma_z)/2)^2 + tau_xz^2)``
+        over the pass: ``0 -> tau_max -> 0`` as the ball passes (the pass starts and ends
+        unloaded, see :meth:`SectionStresses.shear_range`), so the range is ``tau_max`` itself,
+        ``0.300 p_max`` at ``z = 0.78 b`` for the line-contact field (``0.314 p_max`` at
+        ``0.75 b`` with the finite section's ``sigma_x``, docs/validation.md). This is the
+        seed's own damage driver: its table 3 gives the "maximum shear stress" (最大切应力) of the
+        contact as 459 MPa, and eq. (4) takes ``Delta_tau`` as twice the amplitude; the 3-D Hertz
+        maximum shear of its contact (6206 inner race at 5 kN: a/b = 11.1, p_max = 2890 MPa) is
+        ``0.313 p_max = 906 MPa``, of which 459 MPa is (to 1.3 %) the half — the amplitude of the
+        ``0 -> tau_max -> 0`` cycle — and ``Delta_tau = 2 x 459 = 918 MPa``
+        (``tests/test_fe_life.py::test_seed_table3_shear_is_half_the_hertz_tresca_shear``).
+    ``ORTHOGONAL``
         Range (max − min over the pass) of the orthogonal shear ``tau_xz`` in the rolling plane
         (``x`` rolling, ``z`` depth). Fully reversed under a rolling Hertz contact:
-        ``Delta_tau = 0.5 p_max`` at ``z = 0.5 b``.
+        ``Delta_tau = 0.5 p_max`` at ``z = 0.5 b`` (1445 MPa for the seed's contact, which the
+        seed's law turns into a life ~250 x shorter than its tests; it was our default before).
     ``CRITICAL_PLANE``
         Largest range, over all in-plane orientations ``theta``, of the shear stress on the plane
         at ``theta``: ``max_theta (max_k tau_theta,k - min_k tau_theta,k)``. With
         ``tau_theta = -(sigma_x - sigma_z)/2 sin 2theta + tau_xz cos 2theta`` this is the diameter
-        of the point set ``{((sigma_x - sigma_z)/2, tau_xz)_k}`` over the pass.
-    ``MAX_SHEAR``
-        Range of the in-plane maximum shear ``sqrt(((sigma_x - sigma_z)/2)^2 + tau_xz^2)``
-        (Tresca in the rolling plane); ``0.30 p_max`` at ``z = 0.78 b``.
+        of the point set ``{((sigma_x - sigma_z)/2, tau_xz)_k}`` over the pass; equals the
+        orthogonal range under a rolling Hertz contact.
     """
 
     ORTHOGONAL = "orthogonal"
     CRITICAL_PLANE = "critical_plane"
     MAX_SHEAR = "max_shear"
+
+    @classmethod
+    def parse(cls, value: ShearMeasure | str, field: str = "measure") -> ShearMeasure:
+        """The measure named ``value``; an unknown name raises a one-line :class:`ConfigError`
+        listing the valid ones."""
+        try:
+            return cls(value)
+        except ValueError:
+            raise ConfigError(
+                f"{field} = {value!r} is not a damage measure; valid: "
+                + ", ".join(m.value for m in cls)
+            ) from None
+
+
+#: the damage driver used unless another is asked for (see :class:`ShearMeasure`)
+DEFAULT_MEASURE = ShearMeasure.MAX_SHEAR
 
 
 #: fine-zone elements per contact semi-width ``b`` of the named meshes
@@ -265,17 +293,26 @@ class SectionStresses:
     tau_xz: NDArray[np.float64]
     sigma_y: NDArray[np.float64]
 
-    def shear_range(self, measure: ShearMeasure = ShearMeasure.ORTHOGONAL) -> NDArray[np.float64]:
-        """``Delta_tau`` per element over the load pass [Pa] (see :class:`ShearMeasure`)."""
-        measure = ShearMeasure(measure)
+    def shear_range(self, measure: ShearMeasure | str = DEFAULT_MEASURE) -> NDArray[np.float64]:
+        """``Delta_tau`` per element over one ball pass [Pa] (see :class:`ShearMeasure`).
+
+        A pass starts and ends with the ball far away, where the (elastic) section is unloaded,
+        so the zero-stress state belongs to every pass: the range is taken over the load
+        positions and that state. Without it the finite traverse (``+/- traverse_b b``) would
+        cut the pass short: an element at the centre would never see the Tresca shear return
+        to zero (it is still ~0.07 p_max with the load 2 b away) and the damage would start at
+        the ends of the traverse, an artefact of its length. The orthogonal shear reverses
+        within +/- b, so the state changes its range only outside the reversal zone.
+        """
+        measure = ShearMeasure.parse(measure)
         if measure is ShearMeasure.ORTHOGONAL:
-            return self.tau_xz.max(axis=1) - self.tau_xz.min(axis=1)
+            t = self.tau_xz
+            return np.maximum(t.max(axis=1), 0.0) - np.minimum(t.min(axis=1), 0.0)
         a = 0.5 * (self.sigma_x - self.sigma_z)
         if measure is ShearMeasure.MAX_SHEAR:
-            t = np.hypot(a, self.tau_xz)
-            return t.max(axis=1) - t.min(axis=1)
-        # CRITICAL_PLANE: diameter of the point set (a_k, tau_k) over the positions
-        out = np.zeros(a.shape[0])
+            return np.hypot(a, self.tau_xz).max(axis=1)  # from 0 (unloaded) to the peak
+        # CRITICAL_PLANE: diameter of the point set (a_k, tau_k) over the positions and (0, 0)
+        out = np.hypot(a, self.tau_xz).max(axis=1)
         for k in range(a.shape[1]):
             d = np.hypot(a - a[:, k : k + 1], self.tau_xz - self.tau_xz[:, k : k + 1]).max(axis=1)
             np.maximum(out, d, out=out)

@@ -24,14 +24,25 @@ from ..io.atomic import check_output, write_json
 __all__ = [
     "compare",
     "Context",
+    "info",
+    "judge",
+    "kind_of",
+    "REF_KINDS",
+    "RefKind",
     "Row",
     "run_report",
     "Section",
     "SECTIONS",
     "Status",
+    "STATUSES",
 ]
 
-Status = Literal["match", "explained", "mismatch"]
+Status = Literal["match", "deviates", "mismatch", "info"]
+RefKind = Literal["paper", "measured", "standard", "none"]
+#: the statuses, in the order the report lists them
+STATUSES: tuple[str, ...] = ("mismatch", "deviates", "match", "info")
+#: the reference kinds, in the order the report lists them
+REF_KINDS: tuple[str, ...] = ("measured", "paper", "standard", "none")
 
 #: preferred order of the report sections; any other module in ``report/sections`` follows
 _ORDER = ["foundation", "vsm", "qs5", "ias", "life", "rotor", "sweep"]
@@ -44,11 +55,21 @@ SECTIONS = sorted(
 
 @dataclass
 class Row:
-    """One published-vs-ours comparison.
+    """One reference-vs-ours comparison.
 
     ``published`` and ``ours`` in the unit named in ``quantity``; ``rel_diff`` is
-    ``(ours - published)/|published|``; ``status``: ``match`` (within ``tolerance``), ``explained``
-    (differs for a documented reason, see ``note``), ``mismatch``.
+    ``(ours - published)/|published|``.
+
+    ``reference_kind`` says what ``published`` is: ``paper`` (a number a paper computed with its
+    model), ``measured`` (a measurement: a CWRU record, a fatigue test), ``standard`` (ISO, a
+    catalogue, the CWRU bearing table) or ``none`` (no reference: ``published`` is ``None``).
+
+    ``status``: ``match`` (within ``tolerance``, the tolerance the source supports),
+    ``deviates`` (outside it against a ``paper`` or ``standard`` reference, with a quantitative
+    reason in ``note`` that the test named in ``verified_by`` checks), ``mismatch`` (outside the
+    tolerance: always so against a ``measured`` reference, whatever the reason; the note stays)
+    or ``info`` (no reference). The combinations are checked on construction: a row that breaks
+    them raises :class:`ValueError` (a report bug, not a user error).
     """
 
     quantity: str
@@ -59,6 +80,106 @@ class Row:
     status: Status = "match"
     note: str = ""
     tolerance: float | None = None
+    reference_kind: RefKind = field(kw_only=True)
+    verified_by: str = field(default="", kw_only=True)
+
+    def __post_init__(self) -> None:
+        if self.status not in STATUSES:
+            raise ValueError(f"row {self.quantity!r}: status {self.status!r} not in {STATUSES}")
+        if self.reference_kind not in REF_KINDS:
+            raise ValueError(
+                f"row {self.quantity!r}: reference_kind {self.reference_kind!r} not in {REF_KINDS}"
+            )
+        no_ref = self.reference_kind == "none"
+        if no_ref != (self.status == "info"):
+            raise ValueError(
+                f"row {self.quantity!r}: status 'info' goes with reference_kind 'none' and only "
+                f"with it (got {self.status!r}, {self.reference_kind!r})"
+            )
+        if no_ref and self.published is not None:
+            raise ValueError(f"row {self.quantity!r}: reference_kind 'none' with a published value")
+        if self.status == "deviates":
+            if self.reference_kind == "measured":
+                raise ValueError(
+                    f"row {self.quantity!r}: a miss against a measurement is a mismatch, "
+                    "never 'deviates'"
+                )
+            if not (self.verified_by and self.note):
+                raise ValueError(
+                    f"row {self.quantity!r}: 'deviates' needs a reason (note) and the test "
+                    "that verifies it (verified_by)"
+                )
+        if self.verified_by and self.status != "deviates":
+            # a verified reason is only carried by a deviating row
+            self.verified_by = ""
+
+    @property
+    def factor(self) -> float | None:
+        """``ours / published`` when both are non-zero finite numbers of the same sign [-]."""
+        p, o = self.published, self.ours
+        if isinstance(p, bool) or isinstance(o, bool):
+            return None
+        if not (isinstance(p, int | float) and isinstance(o, int | float)):
+            return None
+        if not (p and o and math.isfinite(p) and math.isfinite(o)) or (p > 0) != (o > 0):
+            return None
+        return o / p
+
+    @property
+    def size(self) -> str:
+        """How far ``ours`` is from ``published``: ``"58.1× low (-35.3 dB)"``, or in per cent
+        within 10 % (``"+0.39 % (+0.03 dB)"``); ``""`` when :attr:`factor` is undefined."""
+        r = self.factor
+        if r is None:
+            return ""
+        db = 20.0 * math.log10(r)
+        if 1 / 1.1 < r < 1.1:  # a small miss reads better in per cent
+            return f"{100 * (r - 1):+.2g} % ({db:+.2f} dB)"
+        word = f"{r:.3g}× high" if r >= 1 else f"{1 / r:.3g}× low"
+        return f"{word} ({db:+.1f} dB)"
+
+
+def kind_of(eid: str) -> RefKind:
+    """The reference kind of the ``published.toml`` entry ``eid``."""
+    from .published import entry
+
+    return entry(eid).kind.value  # type: ignore[return-value]
+
+
+def info(quantity: str, source: str, ours: float | str | None, note: str = "") -> Row:
+    """A row without a reference (status ``info``): a result of ours shown for context."""
+    return Row(quantity, source, None, ours, None, "info", note, None, reference_kind="none")
+
+
+def _judged(
+    quantity: str,
+    source: str,
+    published: float | str,
+    ours: float | str,
+    rel: float | None,
+    ok: bool,
+    note: str,
+    tolerance: float | None,
+    kind: RefKind,
+    verified_by: str,
+) -> Row:
+    """The row of a comparison whose outcome ``ok`` is known: the status rules in one place."""
+    if kind == "none":
+        raise ValueError(f"row {quantity!r}: a comparison needs a reference; use info()")
+    deviates = kind != "measured" and bool(note) and bool(verified_by)
+    status: Status = "match" if ok else ("deviates" if deviates else "mismatch")
+    return Row(
+        quantity,
+        source,
+        published,
+        ours,
+        rel,
+        status,
+        note,
+        tolerance,
+        reference_kind=kind,
+        verified_by=verified_by if status == "deviates" else "",
+    )
 
 
 def compare(
@@ -68,14 +189,39 @@ def compare(
     ours: float,
     tolerance: float,
     explanation: str = "",
+    *,
+    kind: RefKind,
+    verified_by: str = "",
 ) -> Row:
-    """Row comparing two numbers; ``match`` within ``tolerance`` (relative), otherwise
-    ``explained`` when an explanation is given, else ``mismatch``."""
+    """Row comparing two numbers against a reference of ``kind``.
+
+    ``match`` within ``tolerance`` (relative); outside it ``deviates`` when the reference is a
+    ``paper`` or ``standard`` one and both a reason (``explanation``) and the test verifying it
+    (``verified_by``, a pytest node id such as ``"tests/test_x.py::test_y"``) are given, else
+    ``mismatch`` (always so for a ``measured`` reference; the reason stays in the note).
+    """
     rel = (ours - published) / abs(published) if published else math.nan
     ok = abs(rel) <= tolerance
-    status: Status = "match" if ok else ("explained" if explanation else "mismatch")
-    return Row(
-        quantity, source, published, ours, rel, status, explanation if not ok else "", tolerance
+    note = explanation if not ok else ""
+    return _judged(quantity, source, published, ours, rel, ok, note, tolerance, kind, verified_by)
+
+
+def judge(
+    quantity: str,
+    source: str,
+    published: str,
+    ours: str,
+    ok: bool,
+    explanation: str = "",
+    *,
+    kind: RefKind,
+    verified_by: str = "",
+) -> Row:
+    """Row for a qualitative comparison (a statement, a label): ``match`` when ``ok``, otherwise
+    ``deviates`` or ``mismatch`` by the rules of :func:`compare`; ``explanation`` is kept as the
+    note either way."""
+    return _judged(
+        quantity, source, published, ours, None, ok, explanation, None, kind, verified_by
     )
 
 
@@ -139,6 +285,7 @@ def run_report(
     for sec in done:
         for r in sec.rows:
             d = asdict(r)
+            d["size"] = r.size
             d["section"] = sec.name
             rows.append(d)
     write_json(out / "results.json", rows)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import html
+import math
 from pathlib import Path
 
 from .._version import __version__
@@ -21,42 +22,88 @@ def _fmt(v) -> str:
     return html.escape(str(v))
 
 
+def _summary(sections) -> list[str]:
+    """The counts per reference kind x status, then every mismatch with its size."""
+    from . import REF_KINDS, STATUSES
+
+    rows = [(s, r) for s in sections for r in s.rows]
+    n = {(k, st): 0 for k in REF_KINDS for st in STATUSES}
+    for _s, r in rows:
+        n[(r.reference_kind, r.status)] += 1
+    out = [
+        "<h2>Summary</h2><table class='counts'><tr><th>reference</th>"
+        + "".join(f"<th class='{st}'>{st}</th>" for st in STATUSES)
+        + "<th>all</th></tr>"
+    ]
+    for k in REF_KINDS:
+        cells = "".join(f"<td>{n[(k, st)] or '–'}</td>" for st in STATUSES)
+        out.append(f"<tr><th>{k}</th>{cells}<td>{sum(n[(k, st)] for st in STATUSES)}</td></tr>")
+    tot = "".join(f"<td>{sum(n[(k, st)] for k in REF_KINDS)}</td>" for st in STATUSES)
+    out.append(f"<tr><th>all</th>{tot}<td>{len(rows)}</td></tr></table>")
+    bad = [(s, r) for s, r in rows if r.status == "mismatch"]
+    if bad:
+        # measured first, then by size (largest miss first)
+        def miss(r) -> float:
+            return 0.0 if r.factor is None else abs(math.log(r.factor))
+
+        bad.sort(key=lambda sr: (sr[1].reference_kind != "measured", -miss(sr[1])))
+        out.append(
+            f"<h3>Mismatches ({len(bad)})</h3><table><tr><th>section</th><th>quantity</th>"
+            "<th>kind</th><th>reference</th><th>ours</th><th>size</th><th>note</th></tr>"
+        )
+        for s, r in bad:
+            out.append(
+                f"<tr class='mismatch'><td>{html.escape(s.name)}</td>"
+                f"<td>{html.escape(r.quantity)}</td><td>{r.reference_kind}</td>"
+                f"<td>{_fmt(r.published)}</td><td>{_fmt(r.ours)}</td>"
+                f"<td>{html.escape(r.size) or '–'}</td><td>{html.escape(r.note)}</td></tr>"
+            )
+        out.append("</table>")
+    return out
+
+
 def write_html(path: Path, sections, quick: bool) -> None:
     """Write the report page."""
     css = (
         "body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
         "table{border-collapse:collapse;width:100%;font-size:90%}"
         "td,th{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top}"
-        ".match{background:#e6f4e6}.explained{background:#fff5d6}.mismatch{background:#fadada}"
+        ".match{background:#e6f4e6}.deviates{background:#fff5d6}.mismatch{background:#fadada}"
+        ".info{background:#f2f2f2}table.counts{width:auto}table.counts td{text-align:right}"
         "figure{display:inline-block;margin:0.5em;max-width:48%}figure img{max-width:100%}"
     )
     parts = [
         f"<!doctype html><html><head><meta charset='utf-8'><title>bearingsim reproduction report"
         f"</title><style>{css}</style></head><body>",
         f"<h1>bearingsim {__version__}: reproduction report</h1>",
-        f"<p>Mode: {'quick' if quick else 'full'}. Every row: the published value, ours, the "
-        "relative difference and a status (match within the stated tolerance; explained = differs "
-        "for a documented reason, see docs/validation.md; mismatch).</p>",
+        f"<p>Mode: {'quick' if quick else 'full'}. Every row compares ours with a reference of "
+        "one kind: <b>measured</b> (a CWRU record, a fatigue test), <b>paper</b> (a number a "
+        "paper, a textbook solution or a simulation's known input gives), <b>standard</b> (ISO, "
+        "a catalogue, the CWRU bearing table) or <b>none</b>. Status: <b>match</b> (within the "
+        "tolerance the source supports), <b>deviates</b> (outside it against a paper or a "
+        "standard, for a quantitative reason that the named test verifies), <b>mismatch</b> "
+        "(outside it; always so against a measurement, whatever the reason), <b>info</b> (no "
+        "reference). See docs/validation.md.</p>",
     ]
-    counts: dict[str, int] = {}
-    for s in sections:
-        for r in s.rows:
-            counts[r.status] = counts.get(r.status, 0) + 1
-    parts.append("<p>" + ", ".join(f"{k}: {v}" for k, v in sorted(counts.items())) + "</p>")
+    parts += _summary(sections)
     for s in sections:
         parts.append(f"<h2>{html.escape(s.title)}</h2><p><small>{s.wall_s:.1f} s</small></p>")
         if s.text:
             parts.append(f"<p>{html.escape(s.text)}</p>")
         parts.append(
-            "<table><tr><th>quantity</th><th>source</th><th>published</th><th>ours</th>"
-            "<th>rel. diff</th><th>status</th><th>note</th></tr>"
+            "<table><tr><th>quantity</th><th>source</th><th>reference</th><th>ours</th>"
+            "<th>rel. diff</th><th>kind</th><th>status</th><th>note</th></tr>"
         )
         for r in s.rows:
             rel = "–" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %"
+            status = r.status
+            if r.verified_by:
+                status += f"<br><small>verified by {html.escape(r.verified_by)}</small>"
             parts.append(
                 f"<tr class='{r.status}'><td>{html.escape(r.quantity)}</td><td>"
                 f"{html.escape(r.source)}</td><td>{_fmt(r.published)}</td><td>{_fmt(r.ours)}</td>"
-                f"<td>{rel}</td><td>{r.status}</td><td>{html.escape(r.note)}</td></tr>"
+                f"<td>{rel}</td><td>{r.reference_kind}</td><td>{status}</td>"
+                f"<td>{html.escape(r.note)}</td></tr>"
             )
         parts.append("</table>")
         for fname, cap in s.figures:

@@ -16,7 +16,7 @@ from ...quasistatic import (
     run_quasi_static,
     stiffness_vs_cage,
 )
-from .. import Context, Row, Section, compare
+from .. import Context, Row, Section, compare, judge
 from ..figures import save_figure
 from ..published import value
 
@@ -38,7 +38,7 @@ def _dominant_row(
     c = res.spectra[series].components[0]
     bin_shaft = res.solution.geometry.cage_ratio / res.cage_revs
     tol = 1.5 * bin_shaft / published_order
-    row = compare(quantity, source, published_order, c.order_shaft, tol)
+    row = compare(quantity, source, published_order, c.order_shaft, tol, kind="paper")
     row.note = f"published: {published_txt}; ours: {c.label or '?'} ({c.amplitude_rel:.3%})"
     return row
 
@@ -96,14 +96,14 @@ def run(ctx: Context) -> Section:
         a = cases["inner"].fluctuation()[s]["peak_to_peak_rel"]
         e = cases["inner_err"].fluctuation()[s]["peak_to_peak_rel"]
         rows.append(
-            Row(
+            judge(
                 f"inner misalignment: k_{s} peak-to-peak with/without ball errors [-]",
                 src,
                 "> 1 (errors increase the amplitude)",
-                e / a,
-                None,
-                "match" if e > a else "mismatch",
+                f"{e / a:.4g}",
+                e > a,
                 f"peak-to-peak {a:.3%} without, {e:.3%} with errors",
+                kind="paper",
             )
         )
     # --- cross-checks: SPEC §5 radial limit and ISO/TS 16281
@@ -111,11 +111,12 @@ def run(ctx: Context) -> Section:
     qs = run_quasi_static(b, 0.0, 10.0, 50.0)
     rows.append(
         compare(
-            "5-DOF vs radial model: delta_max, seed VSM case [um]",
+            "5-DOF vs radial model: delta_max, seed VSM case [µm]",
             "SPEC §5 cross-check (foundation §0.4)",
             float(ld.delta_max[0]) * 1e6,
             float(qs.delta_max[0]) * 1e6,
             1e-6,
+            kind="paper",
         )
     )
     rows.append(
@@ -125,6 +126,7 @@ def run(ctx: Context) -> Section:
             math.degrees(ld.psi_l[0]),
             math.degrees(qs.psi_l[0]),
             1e-6,
+            kind="paper",
         )
     )
     _geo, cp, _ri = iso_geometry(b)
@@ -135,6 +137,7 @@ def run(ctx: Context) -> Section:
             cp,
             qs.geometry.k,
             1e-3,
+            kind="standard",
         )
     )
     for label, loads in (
@@ -150,6 +153,7 @@ def run(ctx: Context) -> Section:
                 float(i.ball_loads.max()),
                 float(j.ball_loads.max()),
                 2e-3,
+                kind="standard",
             )
         )
     # --- figures
@@ -167,7 +171,7 @@ def run(ctx: Context) -> Section:
         save_figure(res.plot(), ctx.out_dir / fn)
         sec.figures.append((fn, captions[name]))
     sec.text = (
-        "6205 (seed VSM geometry, P_d = 6 um), radial load F_y = 500 N, misalignment tilts held "
+        "6205 (seed VSM geometry, P_d = 6 µm), radial load F_y = 500 N, misalignment tilts held "
         f"at {TILT * 1e3:g} mrad (the seed's own load and tilt values are beyond the cut-off "
         f"text). {revs} cage revolutions x {ppr} positions; spectra in shaft orders "
         f"(FTF = {cage:.4f}, Z x FTF = {vc:.4f}). Published statements (seed abstract): "

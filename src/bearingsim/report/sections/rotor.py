@@ -25,7 +25,7 @@ from ...dynamics.rotor.model import rotor_modes, simulate_rotor
 from ...geometry import Defect
 from ...io.cwru import cwru_data_dir
 from ...signal import amplitude_spectrum, envelope, envelope_spectrum, load_signal
-from .. import Context, Row, Section, compare
+from .. import Context, Row, Section, compare, info, judge, kind_of
 from ..figures import save_figure
 from ..published import value
 
@@ -72,6 +72,7 @@ def _rotor_alone(sec: Section) -> None:
             fa,
             float(rotor_modes(cfg).frequency_hz[0]),
             1e-6,
+            kind="paper",
         )
     )
     # shaft and rotor mass distributed: a pinned Rayleigh beam
@@ -96,6 +97,7 @@ def _rotor_alone(sec: Section) -> None:
                 math.sqrt(sh.ei * k**4 / (rho_a + rho_i * k**2)) / (2 * math.pi),
                 float(f[n - 1]),
                 0.01,
+                kind="paper",
             )
         )
     # mesh convergence (distributed shaft mass, 3 disks)
@@ -112,6 +114,7 @@ def _rotor_alone(sec: Section) -> None:
             float(f64),
             float(f8),
             1e-3,
+            kind="paper",
         )
     )
     # gyroscopics: Friswell et al. (2010) Example 5.9.1 at 4000 r/min, computed by ROSS
@@ -138,6 +141,7 @@ def _rotor_alone(sec: Section) -> None:
                 ross,
                 float(m.frequency_hz[i] * 2 * math.pi),
                 3e-3,
+                kind=kind_of("friswell.ex5_9_1.ross_4000rpm"),
             )
         )
 
@@ -172,14 +176,15 @@ def _band_tuned(sec: Section, meas: dict[str, float]) -> None:
     tag = "band-tuned housing (not literature)"
     f_m, f_s = meas["meas_psd_hz"], _psd_peak_hz(xs, FS)
     sec.rows += [
-        Row(f"{tag}: DE ringing frequency, Welch PSD maximum [Hz]", "CWRU 132 DE", f_m, f_s,
-            (f_s - f_m) / f_m, "explained",
-            "equal by construction: this housing's mount frequency was chosen from this "
-            "record's resonance band; not a validation"),
-        compare(f"{tag}: DE acceleration RMS, 1 s [g]", "CWRU 132 DE",
-                meas["meas_rms"] / G0, float(np.std(xs)) / G0, 0.5, why),
-        compare(f"{tag}: DE envelope amplitude at BPFO (2-5 kHz band) [m/s^2]", "CWRU 132 DE",
-                meas["meas_env"], _near(envelope_spectrum(xs, FS, BAND), bpfo)[1], 0.5, why),
+        info(f"{tag}: DE ringing frequency, Welch PSD maximum [Hz]",
+             "identified from CWRU 132 DE (not a comparison)", f_s,
+             f"the record rings at {f_m:.5g} Hz; equal by construction: this housing's mount "
+             "frequency was chosen from this record's resonance band; not a validation"),
+        compare(f"{tag}: DE acceleration RMS, 1 s [m/s²]", "CWRU 132 DE",
+                meas["meas_rms"], float(np.std(xs)), 0.5, why, kind="measured"),
+        compare(f"{tag}: DE envelope amplitude at BPFO (2-5 kHz band) [m/s²]", "CWRU 132 DE",
+                meas["meas_env"], _near(envelope_spectrum(xs, FS, BAND), bpfo)[1], 0.5, why,
+                kind="measured"),
     ]  # fmt: skip
 
 
@@ -221,6 +226,8 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
             order_m,
             1e-3,
             speed_note,
+            kind=kind_of("cwru.drive_end.bpfo_order"),
+            verified_by="tests/test_deviations.py::test_record_132_fault_line_is_above_the_table_order",
         )
     )
     sec.rows.append(
@@ -231,6 +238,7 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
             fsim,
             res / fm,
             speed_note,
+            kind="measured",
         )
     )
     for h in (2, 3):
@@ -244,6 +252,7 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
                 fsh,
                 res / fmh,
                 speed_note,
+                kind="measured",
             )
         )
     n_m = _impacts(rec.x, rec.fs, 1 / bpfo)
@@ -255,6 +264,7 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
             float(n_m),
             float(n_s),
             0.0,
+            kind="measured",
         )
     )
     why = (
@@ -272,24 +282,26 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
             _psd_peak_hz(xs, FS),
             0.05,
             why,
+            kind="measured",
         )
     )
     for lab, key in (("RMS", "rms"), ("peak", "peak")):
         sec.rows.append(
             compare(
-                f"DE acceleration {lab}, 1 s [g]",
+                f"DE acceleration {lab}, 1 s [m/s²]",
                 "CWRU 132 DE",
-                out[f"meas_{key}"] / G0,
-                out[f"sim_{key}"] / G0,
+                out[f"meas_{key}"],
+                out[f"sim_{key}"],
                 0.5,
                 why,
+                kind="measured",
             )
         )
-    sp_m = amplitude_spectrum(xm / G0, rec.fs, "g")
-    sp_s = amplitude_spectrum(xs / G0, FS, "g")
+    sp_m = amplitude_spectrum(xm, rec.fs, "m/s^2")
+    sp_s = amplitude_spectrum(xs, FS, "m/s^2")
     sec.rows.append(
         compare(
-            "DE raw-spectrum amplitude at BPFO, 1 s [g]",
+            "DE raw-spectrum amplitude at BPFO, 1 s [m/s²]",
             "CWRU 132 DE",
             _near(sp_m, bpfo)[1],
             _near(sp_s, bpfo)[1],
@@ -297,16 +309,18 @@ def _cwru(ctx: Context, sec: Section) -> dict[str, float]:
             "with only the rotor weight (20 N) as radial load the model's DE housing moves "
             "little at BPFO itself; the rig's structure (motor frame, base, coupling) that "
             "carries the measured low-frequency response is not modelled",
+            kind="measured",
         )
     )
     sec.rows.append(
         compare(
-            "DE envelope amplitude at BPFO (2-5 kHz band) [m/s^2]",
+            "DE envelope amplitude at BPFO (2-5 kHz band) [m/s²]",
             "CWRU 132 DE",
             am,
             asim,
             0.5,
             why,
+            kind="measured",
         )
     )
     _band_tuned(sec, out)
@@ -405,6 +419,7 @@ def _disks(ctx: Context, sec: Section, cwru: dict[str, float]) -> None:
             f"envelope peak frequencies {sorted(set(round(v, 3) for v in fpk.values()))} Hz, "
             f"bin {res:.3g} Hz",
             res,
+            reference_kind="paper",
         )
     )
     for name, amp in (("envelope", env), ("raw-spectrum", raw)):
@@ -419,35 +434,36 @@ def _disks(ctx: Context, sec: Section, cwru: dict[str, float]) -> None:
                 "the impacts excite the bearing node and ball contacts at 1-5 kHz, where "
                 "the shaft's flexibility isolates the disks from the bearing, so the "
                 "rotor's mass distribution changes little; see docs/validation.md",
+                kind=kind_of("rotor.s3.amplitude_drop"),
             )
         )
     two = env["2"] > env["1"]
     sec.rows.append(
-        Row(
+        judge(
             "envelope amplitude at BPFO: 2 disks above 1 disk",
             "seed ROTOR §3",
             "yes",
             "yes" if two else "no",
-            None,
-            "match" if two else "explained",
-            "" if two else "see docs/validation.md",
+            two,
+            "" if two else f"{env['2']:.4g} vs {env['1']:.4g} m/s²; see docs/validation.md",
+            kind="paper",
         )
     )
     if "meas_env" in cwru:
         trend = env["FE limit"] < env["1"]
         closer = abs(env["FE limit"] - cwru["meas_env"]) < abs(env["1"] - cwru["meas_env"])
         sec.rows.append(
-            Row(
+            judge(
                 "more disks bring the amplitude towards the measured one",
                 "seed ROTOR §3",
                 "yes",
                 "yes" if closer else f"no (trend {'down' if trend else 'up'}, but below test)",
-                None,
-                "match" if closer else "explained",
+                closer,
                 ""
                 if closer
                 else "our simulated amplitude is below the measured one for "
                 "every disk count, so the (small) decrease moves it away",
+                kind="paper",
             )
         )
     sec.text += (
