@@ -63,6 +63,37 @@ def test_life_json(run_cli, tmp_path):
     assert r.err == ""
 
 
+def test_life_json_beside_tests_l10_l10r(run_cli, tmp_path):
+    """Issue 15: the damage life, ISO 281 L10, ISO/TS 16281 L10r and, for the seed's case, its
+    three fatigue tests (seed LIFE table 4) in one object, all in inner-race cycles; the
+    Weibull-paper figure on request. Another load has no tests (``null``)."""
+    fast = ["--mesh", "coarse", "--delta-d", "0.05", "--delta-d-spall", "0.1"]
+    png = tmp_path / "weibull.png"
+    r = run_cli(
+        "life", "6206", "--radial-load-n", "5000", *fast, "--plot-weibull", png,
+        "-o", tmp_path / "a.nc", "--json",
+    )  # fmt: skip
+    assert r.code == 0, r.err
+    d = r.json()
+    life = d["cycles_spall"]
+    assert d["measure"] == "max_shear" and math.isfinite(life)
+    assert_allclose(d["life_over_l10"], life / d["l10_iso281_cycles"], rtol=1e-12)
+    assert_allclose(d["life_over_l10r"], life / d["l10r_iso16281_cycles"], rtol=1e-12)
+    assert_allclose(d["l10_iso281_cycles"], d["l10_iso281_rev"] * d["cycles_per_rev"], rtol=1e-12)
+    t = d["tests"]
+    assert t["cycles"] == list(value("life.table4.test_lives"))
+    assert_allclose(t["life_over_tests"], [life / c for c in t["cycles"]], rtol=1e-12)
+    assert 0 < t["life_failed_fraction"] < 1 and 1 < t["weibull_beta"] < 5
+    assert t["tests_below_l10"] == sum(c < d["l10_iso281_cycles"] for c in t["cycles"])
+    assert png.stat().st_size > 10_000
+    r2 = run_cli(
+        "life", "6206", "--radial-load-n", "4000", *fast, "--stop", "initiation",
+        "-o", tmp_path / "b.nc", "--json",
+    )  # fmt: skip
+    assert r2.code == 0, r2.err
+    assert r2.json()["tests"] is None
+
+
 def test_life_text_output(run_cli, tmp_path):
     r = run_cli("life", "6206", "--radial-load-n", "5000", *QUICK, "-o", tmp_path / "a.nc")
     assert r.code == 0, r.err
@@ -93,6 +124,10 @@ def _bad(capsys, args, tmp_path, match):
         (["--radial-load-n", "5000", "--element-size-um", "100"], "does not resolve"),
         (["--radial-load-n", "5000", "--delta-d", "0"], "delta_d = 0"),
         (["--radial-load-n", "5000", "--mesh", "huge"], "Invalid value for '--mesh'"),
+        (
+            ["--radial-load-n", "5000", "--measure", "tresca"],
+            "'tresca' is not one of 'max_shear', 'orthogonal', 'critical_plane'",
+        ),
         # issue 14 sweep: a traceback and two runs that never finished
         (["--radial-load-n", "5000", "--element-size-um", "1e-300"], "is finer than b/200"),
         (

@@ -142,6 +142,11 @@ def test_static_capacity_warning_and_limit():
         (dict(stop="never"), "stop = 'never' is invalid"),
         (dict(element_size=1e-4), "does not resolve"),
         (dict(element_size=1e-306), "is finer than b/200"),
+        (
+            dict(measure="tresca"),
+            "measure = 'tresca' is not a damage measure; valid: orthogonal, critical_plane, "
+            "max_shear",
+        ),
     ],
 )
 def test_bad_input(kw, match):
