@@ -20,7 +20,7 @@ from ...life.iso281 import (
 from ...life.reference_life import reference_rating_life
 from ...life.validation import validate_against_hertz
 from .. import Context, Row, Section, compare
-from ..figures import save_figure
+from ..figures import HALF_WIDTH, new_figure, save_figure
 from ..published import entry, value
 
 __all__ = ["TITLE", "run"]
@@ -35,12 +35,10 @@ SEED_ERRORS_PCT = value("life.table4.relative_errors")
 
 def _fe_figure(section, st):
     """tau_xz vs depth under the orthogonal-shear peak: FE element averages vs McEwen."""
-    import matplotlib.pyplot as plt
-
     b, p0 = section.b, section.p_max
     k0 = int(np.argmin(np.abs(section.positions)))
     cx, cz = section.centroids
-    fig, ax = plt.subplots(figsize=(5.5, 4))
+    fig, ax = new_figure(width=HALF_WIDTH, height=4.6)
     for xb, mk in ((-0.87, "o"), (0.87, "s")):
         col = np.isclose(cx, cx[np.argmin(np.abs(cx - xb * b))], rtol=0, atol=1e-9)
         sel = col & (cz < 3 * b)
@@ -58,9 +56,9 @@ def _fe_figure(section, st):
         ax.plot(mcewen_stresses(cx[sel][0], zz, p0, b).tau_xz / p0, zz / b, "k-", lw=1)
     ax.plot([], [], "k-", label="McEwen (Johnson eq. 4.75)")
     ax.invert_yaxis()
-    ax.set_xlabel("tau_xz / p_max [-]")
+    ax.set_xlabel("orthogonal shear τ_xz / p_max [-]")
     ax.set_ylabel("depth z / b [-]")
-    ax.legend(fontsize=8)
+    fig.legend(loc="outside lower center", ncols=2)
     ax.set_title("undamaged section, load at x = 0")
     return fig
 
@@ -115,11 +113,11 @@ def run(ctx: Context) -> Section:
     sec.figures.append(
         (
             "life_torsion.png",
-            "Seed LIFE fig. 3 analogue: torsion 1000 -> 400 MPa "
-            "by 50 MPa; the damage law (blocks Delta D = 0.001) against the S-N "
+            "Seed LIFE fig. 3 analogue: torsion 1000 → 400 MPa "
+            "by 50 MPa; the damage law (blocks ΔD = 0.001) against the S-N "
             "curve. The seed compares with the scattered test points (not "
             "available); against its own fitted curve the law agrees to the "
-            "block error Delta_D (kappa+1)/2 = 0.6 %.",
+            "block error ΔD (κ+1)/2 = 0.6 %.",
         )
     )
     # ---------------------------------------------------------------- §2.1 contact
@@ -184,13 +182,10 @@ def run(ctx: Context) -> Section:
         )
     )
     save_figure(_fe_figure(fe, st), out / "life_fe_vs_mcewen.png")
-    sec.figures.append(
-        (
-            "life_fe_vs_mcewen.png",
-            f"Undamaged plane-strain section (default mesh, {fe.n_elements} "
-            f"elements, h = b/10): tau_xz vs depth at x = +/-0.87 b against the "
-            "McEwen line-contact field",
-        )
+    fe_caption = (
+        f"Undamaged plane-strain section (default mesh, {fe.n_elements} "
+        f"elements, h = b/10): τ_xz vs depth at x = ±0.87 b against the "
+        "McEwen line-contact field"
     )
     # ---------------------------------------------------------------- damage life
     dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.01)
@@ -291,7 +286,7 @@ def run(ctx: Context) -> Section:
         (
             "life_damage_field.png",
             "Seed LIFE fig. 15 analogue: damage field when the first surface element "
-            f"fails ({variant}); white squares = failed elements",
+            f"fails ({variant.replace('Delta_D', 'ΔD')}); white squares = failed elements",
         )
     )
     save_figure(res.plot_damage_field("initiation"), out / "life_damage_initiation.png")
@@ -300,8 +295,14 @@ def run(ctx: Context) -> Section:
     )
     save_figure(res.plot_damage_curve(), out / "life_damage_curve.png")
     sec.figures.append(
-        ("life_damage_curve.png", "largest element damage and failed elements vs load cycles")
+        (
+            "life_damage_curve.png",
+            "Largest element damage and failed elements vs load cycles; right: the failed "
+            "elements after the first failure (initiation and spall are close on the left)",
+        )
     )
+    # after the damage figures: the two damage fields share a row of the page
+    sec.figures.append(("life_fe_vs_mcewen.png", fe_caption))
     # ---------------------------------------------------------------- ISO 281 / 16281
     u = inner_race_cycles_per_revolution(b6206)
     for bid in ("6206", "6205"):
