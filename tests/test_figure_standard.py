@@ -193,6 +193,21 @@ def test_label_helpers_leave_out_overlapping_labels():
     plt.close(fig)
 
 
+def test_strict_save_refuses_a_figure_off_the_standard(tmp_path, monkeypatch):
+    from bearingsim.report.figures import STRICT_ENV, save_figure
+
+    monkeypatch.setenv(STRICT_ENV, "1")
+    with pytest.raises(ValueError, match="bad.png breaks the figure standard: .*no quantity"):
+        save_figure(_bad_figure(), tmp_path / "bad.png")
+    assert not (tmp_path / "bad.png").exists()
+    fig, _ax = plt.subplots()  # no layout engine, no axis labels
+    with pytest.raises(ValueError, match="layout is not constrained"):
+        save_figure(fig, tmp_path / "plain.png")
+    monkeypatch.setenv(STRICT_ENV, "0")  # outside the tests: written as it is
+    fig, _ax = plt.subplots()
+    assert save_figure(fig, tmp_path / "plain.png").is_file()
+
+
 def test_min_font_is_9_px_in_the_report():
     """The report shows figures at 96 CSS px per inch: the smallest font is 9 px or more."""
     assert MIN_FONT_PT * CSS_PX_PER_IN / 72.0 >= 9.0
@@ -211,6 +226,8 @@ def test_report_page_links_every_figure_at_the_planned_size(tmp_path):
     save_figure(fig, tmp_path / "wide.png")
     fig, ax = new_figure()
     ax.plot([0, 1], [0, 1])
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("amplitude [m/s²]")
     save_figure(fig, tmp_path / "half.png")
     sec = Section("s", "a section", figures=[("wide.png", "two panels"), ("half.png", "one")])
     write_html(tmp_path / "report.html", [sec], quick=True)

@@ -58,7 +58,7 @@ def figure_html(out_dir: Path, fname: str, caption: str) -> str:
     if size is None:
         style = ""
     else:
-        w, h, dpi = size
+        w, _h, dpi = size
         css_w = round(w * CSS_PX_PER_IN / dpi)
         style = f" style='width:{css_w}px'"
     return (
