@@ -4,11 +4,16 @@ absent) and a CLI runner."""
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import pytest
 
 from bearingsim.io.cwru import SHARED_ENV, cwru_data_dir
+
+# every report figure drawn by a test (and by the CLI it starts) must meet the figure standard
+# (bearingsim.report.figures.save_figure refuses one that does not)
+os.environ["BEARINGSIM_STRICT_FIGURES"] = "1"
 
 #: ``<shared>/data/cwru``: ``$BEARINGSIM_SHARED/data/cwru`` when that variable is set, else the
 #: ``shared/`` found beside the repository (CI clones the repo with shared/ beside it); it may

@@ -17,7 +17,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 
 #: (layer, module prefixes), lowest first (a copy of the table in docs/architecture.md)
 LAYERS: list[tuple[str, tuple[str, ...]]] = [
-    ("base", ("bearingsim._version", "bearingsim.errors")),
+    ("base", ("bearingsim._version", "bearingsim.errors", "bearingsim.plotting")),
     ("io", ("bearingsim.io",)),
     ("bearing data", ("bearingsim.materials", "bearingsim.geometry", "bearingsim.catalog")),
     ("scenarios", ("bearingsim.config",)),

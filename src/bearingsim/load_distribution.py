@@ -311,10 +311,9 @@ class LoadDistribution:
 
     def plot(self, index: int = 0):
         """Polar bar plot of the element loads at cage angle ``index``; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from .plotting import HALF_WIDTH, new_figure
 
-        fig = plt.figure(figsize=(5, 5))
-        ax = fig.add_subplot(projection="polar")
+        fig, ax = new_figure(width=HALF_WIDTH, height=5.0, polar=True)
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ang = self.ball_angles[index]
@@ -323,8 +322,10 @@ class LoadDistribution:
         th = math.atan2(*self.displacement[index])
         for s in (-1, 1):
             ax.plot([th + s * psl] * 2, [0, self.ball_loads[index].max() * 1.1], "r--", lw=1)
+        ax.set_ylabel("element load Q [N]", labelpad=28)
         ax.set_title(
-            f"element loads [N], F_r = {self.fr:.4g} N, psi_L = {math.degrees(psl):.1f} deg"
+            f"element loads at their angles (0° at the top): F_r = {self.fr:.4g} N,\n"
+            f"load zone ψ_L = ±{math.degrees(psl):.1f}° (red dashes)"
         )
         return fig
 

@@ -252,6 +252,23 @@ def _from_dataset(cls: type[Result], ds: Any, path: str | Path) -> Result:
         ) from None
 
 
+#: words for the channel-name prefixes of :class:`SimulationResult` (axis labels)
+_CHANNEL_WORDS = {
+    "acc": "acceleration",
+    "vel": "velocity",
+    "disp": "displacement",
+    "shaft": "shaft displacement",
+    "k": "stiffness",
+    "n": "number",
+}
+
+
+def _quantity(channel: str) -> str:
+    """Axis quantity of a channel: ``"acc_y"`` -> ``"acceleration acc_y"``."""
+    word = _CHANNEL_WORDS.get(channel.split("_")[0])
+    return f"{word} {channel}" if word else channel
+
+
 def load_result(path: str | Path, _ds: Any = None) -> Result:
     """Read any bearingsim result file; the class comes from its ``format`` attribute."""
     ds = _open(path) if _ds is None else _ds
@@ -385,41 +402,71 @@ class SimulationResult(Result):
 
     # ------------------------------------------------------------------------ plots
     def plot_time(self, channel: str = "acc_y", t_range: tuple[float, float] | None = None):
-        """Time waveform of ``channel``; returns the Figure."""
-        import matplotlib.pyplot as plt
+        """Time waveform of ``channel`` (page-wide figure of :mod:`bearingsim.plotting`);
+        returns the Figure.
+
+        Parameters
+        ----------
+        channel : str
+            Channel name (e.g. ``"acc_y"`` [m/s^2]).
+        t_range : (float, float), optional
+            Time window shown [s].
+        """
+        from .plotting import FULL_WIDTH, new_figure, unit_text
 
         x = self[channel]
         t = self.time
         sel = slice(None) if t_range is None else (t >= t_range[0]) & (t <= t_range[1])
-        fig, ax = plt.subplots(figsize=(8, 3))
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(t[sel], x[sel], lw=0.6)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"{channel} [{self.units.get(channel, '')}]")
+        ax.set_ylabel(f"{_quantity(channel)} [{unit_text(self.units.get(channel, '')) or '-'}]")
         ax.set_title(self.title)
         return fig
 
     def plot_stiffness(self):
         """Total effective stiffness along the load direction vs time; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from .plotting import FULL_WIDTH, new_figure
 
-        fig, ax = plt.subplots(figsize=(8, 3))
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(self.time, self["k_load"] / 1e6, lw=0.8)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel("k_load [MN/m]")
+        ax.set_ylabel("stiffness along the load k_load [MN/m]")
         ax.set_title(self.title)
         return fig
 
     def plot_envelope(
         self, channel: str = "acc_y", band: tuple[float, float] | None = None, f_max: float = 600.0
     ):
-        """Envelope spectrum of ``channel`` (band from the kurtogram unless given)."""
+        """Envelope spectrum of ``channel`` up to ``f_max`` [Hz] (band [Hz] from the kurtogram
+        unless given; named in the title) with the harmonics of the simulated fault's
+        characteristic frequency marked; returns the Figure."""
+        from .plotting import FULL_WIDTH, legend_outside, mark_lines, new_figure, unit_text
         from .signal import envelope_spectrum, fast_kurtogram
 
         x = self[channel]
         if band is None:
             band = fast_kurtogram(x, self.fs_hz).band
-        es = envelope_spectrum(x, self.fs_hz, band)
-        return es.plot(f_max=f_max, title=f"{self.title}, band {band[0]:.0f}-{band[1]:.0f} Hz")
+        es = envelope_spectrum(x, self.fs_hz, band, unit=unit_text(self.units.get(channel, "")))
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.4)
+        es.plot(f_max=f_max, ax=ax, quantity=f"envelope amplitude of {channel}")
+        ax.set_title(f"{self.title}: envelope band {band[0]:.0f}-{band[1]:.0f} Hz")
+        fault = self.scenario.get("fault") or self.scenario.get("de_fault")
+        key = {"outer": "bpfo", "inner": "bpfi", "ball": "bsf"}.get(str(fault))
+        kin = self.meta.get("kinematics") or {}
+        if key and f"{key}_hz" in kin:
+            f0 = (2.0 if key == "bsf" else 1.0) * float(kin[f"{key}_hz"])
+            name = "2xBSF" if key == "bsf" else key.upper()
+            n = int(f_max // f0)
+            if n:
+                mark_lines(
+                    ax,
+                    f0 * np.arange(1, n + 1),
+                    f"{name} = {f0:.2f} Hz and harmonics",
+                    texts=[f"{h}x" for h in range(1, n + 1)],
+                )
+                legend_outside(ax)
+        return fig
 
     @property
     def title(self) -> str:

@@ -542,8 +542,15 @@ def analyze_cmd(
     if plot:
         from ..report.figures import save_figure
 
+        # CWRU channels and result accelerations are in m/s^2; a text column's unit is unknown
+        acc = not rec.columns and (
+            rec.channel.upper() in ("DE", "FE", "BA") or rec.channel.startswith("acc")
+        )
         save_figure(
-            d.plot(title=f"{Path(path).name} [{rec.channel}]: {d.diagnosis} ({d.confidence:.2f})"),
+            d.plot(
+                title=f"{Path(path).name} [{rec.channel}]: {d.diagnosis} ({d.confidence:.2f})",
+                unit="m/s^2" if acc else None,
+            ),
             plot,
         )
     out = d.as_dict()

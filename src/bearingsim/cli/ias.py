@@ -49,9 +49,9 @@ def _print_summary(d: dict[str, Any]) -> None:
 
 
 def _summary_figure(summary, title: str):
-    import matplotlib.pyplot as plt
+    from ..plotting import FULL_WIDTH, new_figure
 
-    fig, ax = plt.subplots(3, 1, figsize=(8, 9))
+    fig, ax = new_figure(3, 1, width=FULL_WIDTH, row_height=2.6)
     sig = summary.signal
     ax[0].plot(sig.angle / TWO_PI, sig.value * 60 / TWO_PI, lw=0.7)
     ax[0].set_xlabel("shaft angle [rev]")
@@ -60,7 +60,15 @@ def _summary_figure(summary, title: str):
     marks = []
     if summary.bpfo_order:
         marks = summary.bpfo_order * np.arange(1, int(30 / summary.bpfo_order) + 1)
-    summary.spectrum.plot(30.0, ax=ax[1], scale=60 / TWO_PI, unit="r/min", marks=marks)
+    summary.spectrum.plot(
+        30.0,
+        ax=ax[1],
+        scale=60 / TWO_PI,
+        unit="r/min",
+        marks=marks,
+        marks_label="BPFO order and harmonics" if len(marks) else None,
+        quantity="IAS amplitude",
+    )
     e = summary.estimate
     if e is not None:
         ax[2].plot(e.phase, e.average * 60 / TWO_PI, lw=1.0)
@@ -72,14 +80,13 @@ def _summary_figure(summary, title: str):
             min(e.phase[-1], e.exit_angle + e.crossing_angle),
         )
         ax[2].set_title(
-            f"averaged roller pass: crossing {e.crossing_angle:.4f} rad -> "
+            f"averaged roller pass: crossing {e.crossing_angle:.4f} rad → "
             f"L_d = {e.width * 1e3:.3f} mm"
         )
     else:
         ax[2].text(0.5, 0.5, "no spall event detected", ha="center", transform=ax[2].transAxes)
     ax[2].set_xlabel("shaft angle within one roller pass [rad]")
     ax[2].set_ylabel("IAS [r/min]")
-    fig.tight_layout()
     return fig
 
 

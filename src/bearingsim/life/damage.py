@@ -184,26 +184,27 @@ class SNFit:
     def plot(self, curve: SNCurve | None = None):
         """The S–N data and the fitted integrated law (seed LIFE fig. 1 analogue); returns the
         Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import HALF_WIDTH, new_figure
 
-        fig, ax = plt.subplots(figsize=(6, 4))
+        fig, ax = new_figure(width=HALF_WIDTH, height=4.4)
         lo, hi = float(self.n_cycles.min()), float(self.n_cycles.max())
         n = np.logspace(math.log10(lo), math.log10(hi), 200)
         if curve is not None:
-            lab = f"S-N curve: {curve.source[:40]}"
+            lab = f"S-N curve ({curve.source.split(':')[0]})"
             ax.semilogx(n, curve.amplitude(n) / 1e6, "k-", lw=2, label=lab)
         ax.semilogx(self.n_cycles, self.delta_tau / 2e6, "o", ms=4, label="data (amplitude)")
         ax.semilogx(
             n,
             self.law.stress_range(n) / 2e6,
             "r--",
-            label=f"eq. (6): kappa={self.law.kappa:.3f}, sigma_t={self.law.sigma_t / 1e6:.0f} MPa",
+            label=f"damage law eq. (6): κ = {self.law.kappa:.3f}, "
+            f"σ_t = {self.law.sigma_t / 1e6:.0f} MPa",
         )
-        ax.set_xlabel("cycles to failure N [-]")
+        ax.set_xlabel("cycles to failure N [cycles]")
         ax.set_ylabel("shear stress amplitude [MPa]")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        ax.set_title("GCr15 torsional S-N curve and damage-law fit (seed LIFE fig. 1)")
+        fig.legend(loc="outside lower center")
+        ax.set_title("GCr15 torsional S-N curve and damage-law fit\n(seed LIFE fig. 1)")
         return fig
 
 
@@ -345,9 +346,9 @@ class TorsionCheck:
 
     def plot(self):
         """Predicted vs S–N lives (seed LIFE fig. 3 analogue); returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import HALF_WIDTH, new_figure
 
-        fig, ax = plt.subplots(figsize=(6, 4))
+        fig, ax = new_figure(width=HALF_WIDTH, height=4.4)
         ta = self.tau_amplitude / 1e6
         n = np.logspace(
             math.log10(self.cycles_sn.min() / 3), math.log10(self.cycles_sn.max() * 3), 200
@@ -358,14 +359,14 @@ class TorsionCheck:
             ta,
             "rs",
             mfc="none",
-            label=f"damage law, blocks Delta D = {self.delta_d:g}",
+            label=f"damage law, blocks ΔD = {self.delta_d:g}",
         )
         ax.semilogx(self.cycles_exact, ta, "b+", label="damage law, exact eq. (6)")
-        ax.set_xlabel("cycles to failure N [-]")
+        ax.set_xlabel("cycles to failure N [cycles]")
         ax.set_ylabel("shear stress amplitude [MPa]")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        ax.set_title("GCr15 torsion: predicted vs S-N life (seed LIFE fig. 3)")
+        fig.legend(loc="outside lower center")
+        ax.set_title("GCr15 torsion: predicted vs S-N life\n(seed LIFE fig. 3)")
         return fig
 
 

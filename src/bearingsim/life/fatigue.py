@@ -260,8 +260,9 @@ class LifeResult(Result):
         zoom_b : float
             Half-width and depth of the window in units of ``b`` [-].
         """
-        import matplotlib.pyplot as plt
         from matplotlib.collections import PolyCollection
+
+        from ..plotting import HALF_WIDTH, new_figure
 
         D = self.damage_final if which == "final" else self.damage_initiation
         cx, cz = self.centroids
@@ -269,7 +270,9 @@ class LifeResult(Result):
         x0, x1, z0, z1 = cx - w / 2, cx + w / 2, cz - h / 2, cz + h / 2
         verts = np.stack([np.c_[x0, z0], np.c_[x1, z0], np.c_[x1, z1], np.c_[x0, z1]], axis=1)
         b = float(self.meta["b_m"])
-        fig, ax = plt.subplots(figsize=(7, 3.4))
+        depth = min(zoom_b, float(cz.max() + h.max()) / b)
+        # height for the equal-aspect box (about 3.8 in of the width) plus title and x axis
+        fig, ax = new_figure(width=HALF_WIDTH, height=1.1 + 3.8 * depth / (2 * zoom_b))
         pc = PolyCollection(verts / b, array=D, cmap="jet", edgecolors="face", linewidths=0.1)
         pc.set_clim(0.0, 1.0)
         ax.add_collection(pc)
@@ -277,44 +280,55 @@ class LifeResult(Result):
         if np.any(failed):
             ax.plot(cx[failed] / b, cz[failed] / b, "ws", ms=2, mfc="none", mew=0.5)
         ax.set_xlim(-zoom_b, zoom_b)
-        ax.set_ylim(min(zoom_b, float(cz.max() + h.max()) / b), 0)
+        ax.set_ylim(depth, 0)
         ax.set_aspect("equal")
         ax.set_xlabel("x / b [-]")
         ax.set_ylabel("depth z / b [-]")
-        fig.colorbar(pc, ax=ax, label="damage D [-]", shrink=0.8)
+        fig.colorbar(pc, ax=ax, label="damage D [-]")
         n = (
             self.cycles_spall
             if which == "final" and np.isfinite(self.cycles_spall)
             else (self.cycles_initiation if which != "final" else float(self.cycles[-1]))
         )
-        ax.set_title(f"{self.meta.get('bearing', '')} damage field ({which}), N = {n:.3g} cycles")
+        ax.set_title(f"{self.meta.get('bearing', '')} damage field ({which}),\nN = {n:.4g} cycles")
         return fig
 
     def plot_damage_curve(self):
-        """Largest damage and number of failed elements vs cycles; returns the Figure."""
-        import matplotlib.pyplot as plt
+        """Largest damage and number of failed elements vs load cycles [10^6 cycles] (left) and,
+        when the run went on after the first failure, the failed elements against the cycles
+        after it (right: initiation and spall are often too close to tell apart on the left);
+        returns the Figure."""
+        from matplotlib.ticker import MaxNLocator
 
-        fig, ax = plt.subplots(figsize=(6, 4))
-        ax.plot(self.cycles, self.damage_max, "b-", label="max D")
-        ax.set_xlabel("load cycles N [-]")
+        from ..plotting import FULL_WIDTH, new_figure
+
+        init, spall = self.cycles_initiation, self.cycles_spall
+        after = np.isfinite(init) & (self.cycles >= init)
+        two = int(np.count_nonzero(after)) > 1
+        fig, axs = new_figure(1, 2 if two else 1, width=FULL_WIDTH, height=3.6, squeeze=False)
+        ax = axs[0, 0]
+        ax.plot(self.cycles / 1e6, self.damage_max, "b-", label="largest damage D")
+        ax.set_xlabel("load cycles N [10⁶ cycles]")
         ax.set_ylabel("largest element damage D [-]", color="b")
         ax2 = ax.twinx()
-        ax2.plot(self.cycles, self.n_failed, "r-", label="failed elements")
+        ax2.plot(self.cycles / 1e6, self.n_failed, "r-", label="failed elements")
         ax2.set_ylabel("failed elements [-]", color="r")
-        for k, (val, lab, st) in enumerate(
-            ((self.cycles_initiation, "initiation", "--"), (self.cycles_spall, "spall", ":"))
-        ):
+        ax2.yaxis.set_major_locator(MaxNLocator(integer=True))
+        for val, lab, st in ((init, "initiation", "--"), (spall, "spall", ":")):
             if np.isfinite(val):
-                ax.axvline(val, color="k", ls=st, lw=1)
-                ax.text(
-                    val,
-                    0.55 + 0.12 * k,
-                    f"{lab} {val:.4g} ",
-                    fontsize=8,
-                    ha="right",
-                    transform=ax.get_xaxis_transform(),
-                )
+                ax.axvline(val / 1e6, color="k", ls=st, lw=1, label=f"{lab}, N = {val:.4g}")
         ax.set_title("damage evolution (semi-decoupled, seed LIFE eqs. (7)-(8))")
+        if two:
+            a = axs[0, 1]
+            a.step(self.cycles[after] - init, self.n_failed[after], "r-", where="post")
+            if np.isfinite(spall):
+                a.axvline(spall - init, color="k", ls=":", lw=1)
+            a.set_xlabel("load cycles after the first failure N - N_init [cycles]")
+            a.set_ylabel("failed elements [-]")
+            a.yaxis.set_major_locator(MaxNLocator(integer=True))
+            a.set_title("after initiation")
+        handles = ax.get_legend_handles_labels()[0] + ax2.get_legend_handles_labels()[0]
+        fig.legend(handles=handles, loc="outside lower center", ncols=len(handles))
         return fig
 
 

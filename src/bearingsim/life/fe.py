@@ -437,14 +437,15 @@ class ContactSection:
 
     def plot_mesh(self, zoom: float | None = None):
         """The mesh (optionally zoomed to ``|x|, z <= zoom`` [m]); returns the Figure."""
-        import matplotlib.pyplot as plt
         from matplotlib.collections import PolyCollection
+
+        from ..plotting import FULL_WIDTH, new_figure
 
         m = self.mesh
         verts = np.moveaxis(m.p[:, m.t], 0, -1).transpose(1, 0, 2)
         verts = verts.copy()
         verts[..., 1] *= -1.0
-        fig, ax = plt.subplots(figsize=(7, 3))
+        fig, ax = new_figure(width=FULL_WIDTH, height=4.0)
         ax.add_collection(
             PolyCollection(verts * 1e3, facecolors="none", edgecolors="k", linewidths=0.2)
         )
@@ -454,7 +455,7 @@ class ContactSection:
         ax.set_aspect("equal")
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("depth z [mm]")
-        ax.set_title(f"{self.n_elements} elements, h = {1e6 * self.spec.element_size:.1f} um")
+        ax.set_title(f"{self.n_elements} elements, h = {1e6 * self.spec.element_size:.1f} µm")
         return fig
 
 

@@ -104,25 +104,23 @@ class WeibullFit:
         """Weibull-paper plot: the lives at their median ranks (``points``), the fitted line
         (``line_label``, default "Weibull fit of the tests") and vertical lines at ``marks``
         (label -> life, e.g. a predicted life, L10); returns the figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import ANNOTATION_PT, legend_outside, new_figure
 
         def y_of(f):
             return np.log(-np.log1p(-np.asarray(f, dtype=float)))
 
-        fig, ax = plt.subplots(figsize=(7.5, 4.8), layout="constrained")
+        fig, ax = new_figure(width=9.0, height=4.4)
         lives = np.asarray(self.lives)
         vals = [lives.min(), lives.max(), *(marks or {}).values()]
         vals = [v for v in vals if math.isfinite(v) and v > 0]
-        lo, hi = (
-            10 ** math.floor(math.log10(min(vals)) - 0.3),
-            10 ** math.ceil(math.log10(max(vals)) + 0.3),
-        )
+        lo = 10 ** math.floor(math.log10(min(vals)) - 0.3)
+        hi = 10 ** math.ceil(math.log10(max(vals)) + 0.3)
         x = np.geomspace(lo, hi, 200)
         f_line = -np.expm1(-((x / self.eta) ** self.beta))
         ok = (f_line > 1e-4) & (f_line < 0.9999)
         lab = line_label or "Weibull fit of the tests"
         ax.plot(x[ok], y_of(f_line[ok]), "k-", lw=1.2,
-                label=f"{lab}: beta {self.beta:.2f}, eta {self.eta:.3g}")  # fmt: skip
+                label=f"{lab}: β {self.beta:.2f}, η {self.eta:.3g}")  # fmt: skip
         if points:
             ax.plot(lives, y_of(self.ranks), "ko", ms=7, mfc="white", mew=1.5,
                     label="tests at median ranks")  # fmt: skip
@@ -138,9 +136,9 @@ class WeibullFit:
         ax.set_yticks(y_of(ticks), [f"{100 * t:g}" for t in ticks])
         ax.set_ylim(y_of(0.005), y_of(0.995))
         ax.set_xlabel(f"life [{unit}]")
-        ax.set_ylabel("failed [%] (Weibull scale)")
+        ax.set_ylabel("failed, Weibull scale [%]")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8, loc="upper left")
+        legend_outside(ax, fontsize=ANNOTATION_PT)
         if title:
             ax.set_title(title)
         return fig

@@ -201,10 +201,10 @@ class StiffnessMatrix(Result):
     def plot_matrix(self, index: int = 0):
         """Entries of position ``index`` as a colour map of ``log10 |K_ij|`` with the values and
         units written in; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import ANNOTATION_PT, FULL_WIDTH, new_figure
 
         K = self.stack[index]
-        fig, ax = plt.subplots(figsize=(6.5, 5))
+        fig, ax = new_figure(width=FULL_WIDTH * 0.75, height=6.0)
         with np.errstate(divide="ignore"):
             im = ax.imshow(np.log10(np.abs(K)), cmap="viridis")
         for i in range(5):
@@ -215,12 +215,14 @@ class StiffnessMatrix(Result):
                     f"{K[i, j]:.3g}\n{STIFFNESS_UNITS[i][j]}",
                     ha="center",
                     va="center",
-                    fontsize=6,
+                    fontsize=ANNOTATION_PT,
                     color="w",
                 )
         ax.set_xticks(range(5), DOF_NAMES)
         ax.set_yticks(range(5), LOAD_NAMES)
-        fig.colorbar(im, ax=ax, label="log10 |K_ij| (SI)")
+        ax.set_xlabel("displacement or rotation u_j [m or rad]")
+        ax.set_ylabel("force or moment F_i [N or N m]")
+        fig.colorbar(im, ax=ax, label="log10 |K_ij| of the SI value [-]")
         title = "tangent stiffness dF/du"
         if self.cage_angle is not None:
             c = self.cage_angle if not self.is_stack else self.cage_angle[index]
@@ -460,14 +462,17 @@ class QuasiStaticSolution(Result):
     # ------------------------------------------------------------------------------ plots
     def plot_loads(self, index: int = 0):
         """Polar bar plot of the ball loads at cage position ``index``; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import HALF_WIDTH, new_figure
 
-        fig = plt.figure(figsize=(5, 5))
-        ax = fig.add_subplot(projection="polar")
+        fig, ax = new_figure(width=HALF_WIDTH, height=5.0, polar=True)
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ax.bar(self.ball_angles[index], self.ball_loads[index], width=0.15, alpha=0.8)
-        ax.set_title(f"ball loads [N] at cage angle {math.degrees(self.cage_angle[index]):.1f} deg")
+        ax.set_ylabel("ball load Q [N]", labelpad=28)
+        ax.set_title(
+            f"ball loads at their angles (0° at the top),\n"
+            f"cage angle {math.degrees(self.cage_angle[index]):.1f}°"
+        )
         return fig
 
 

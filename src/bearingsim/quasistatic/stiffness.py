@@ -53,6 +53,8 @@ __all__ = [
 #: the three scalar stiffness series, in order
 SERIES = ("radial", "axial", "tilt")
 _UNITS = {"radial": "N/m", "axial": "N/m", "tilt": "N m/rad"}
+#: plotted unit of each series: (factor from SI, unit)
+_PLOT_UNITS = {"radial": (1e6, "MN/m"), "axial": (1e6, "MN/m"), "tilt": (1.0, "N m/rad")}
 
 
 @dataclass(frozen=True)
@@ -353,16 +355,40 @@ class StiffnessResult(Result):
         )
 
     # ---------------------------------------------------------------------------- plots
+    def _draw_series(self, ax, name: str) -> None:
+        f, u = _PLOT_UNITS[name]
+        ax.plot(np.degrees(self.solution.cage_angle), self.series(name) / f, lw=1)
+        ax.set_ylabel(f"k_{name} [{u}]")
+        ax.ticklabel_format(axis="y", useOffset=False)
+        ax.grid(alpha=0.3)
+
+    def _draw_spectrum(self, ax, name: str, top: float) -> None:
+        from ..plotting import label_points
+
+        f, u = _PLOT_UNITS[name]
+        sp = self.spectra[name]
+        sel = (sp.order_shaft > 0) & (sp.order_shaft <= top)
+        ax.plot(sp.order_shaft[sel], sp.amplitude[sel] / f, lw=1)
+        comps = [c for c in sp.components[:3] if c.order_shaft <= top]
+        label_points(
+            ax,
+            [c.order_shaft for c in comps],
+            [c.amplitude / f for c in comps],
+            [c.label or f"{c.order_shaft:.3f}" for c in comps],
+            marker=None,
+            min_sep=0.12,
+        )
+        ax.set_ylim(top=1.25 * ax.get_ylim()[1])  # room for the labels
+        ax.set_ylabel(f"k_{name} amplitude [{u}]")
+        ax.grid(alpha=0.3)
+
     def plot_series(self):
         """Radial, axial and tilting stiffness vs cage angle; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import FULL_WIDTH, new_figure
 
-        fig, axs = plt.subplots(3, 1, figsize=(7, 7), sharex=True)
-        deg = np.degrees(self.solution.cage_angle)
+        fig, axs = new_figure(3, 1, width=FULL_WIDTH, row_height=2.0, sharex=True)
         for ax, name in zip(axs, SERIES, strict=True):
-            ax.plot(deg, self.series(name), lw=1)
-            ax.set_ylabel(f"k_{name} [{_UNITS[name]}]")
-            ax.grid(alpha=0.3)
+            self._draw_series(ax, name)
         axs[-1].set_xlabel("cage angle [deg]")
         axs[0].set_title(
             f"{self.solution.bearing_id}: stiffness vs cage angle ({self.solution.method.value})"
@@ -372,60 +398,31 @@ class StiffnessResult(Result):
     def plot_spectra(self, max_order_shaft: float | None = None):
         """Amplitude spectra in shaft orders with the dominant peaks labelled; returns the
         Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import FULL_WIDTH, new_figure
 
         g = self.solution.geometry
         top = max_order_shaft or 2.5 * g.n_balls * g.cage_ratio
-        fig, axs = plt.subplots(3, 1, figsize=(7, 7), sharex=True)
+        fig, axs = new_figure(3, 1, width=FULL_WIDTH, row_height=2.0, sharex=True)
         for ax, name in zip(axs, SERIES, strict=True):
-            sp = self.spectra[name]
-            sel = (sp.order_shaft > 0) & (sp.order_shaft <= top)
-            ax.plot(sp.order_shaft[sel], sp.amplitude[sel], lw=1)
-            for c in sp.components[:3]:
-                if c.order_shaft <= top:
-                    ax.annotate(
-                        c.label or f"{c.order_shaft:.3f}",
-                        (c.order_shaft, c.amplitude),
-                        fontsize=7,
-                        xytext=(2, 2),
-                        textcoords="offset points",
-                    )
-            ax.set_ylabel(f"|k_{name}| [{_UNITS[name]}]")
-            ax.grid(alpha=0.3)
+            self._draw_spectrum(ax, name, top)
         axs[-1].set_xlabel("order [cycles per shaft revolution]")
         axs[0].set_title("stiffness fluctuation spectra")
         return fig
 
     def plot(self):
         """Series (left) and spectra (right) of the three stiffnesses; returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import FULL_WIDTH, new_figure
 
         g = self.solution.geometry
         top = 2.5 * g.n_balls * g.cage_ratio
-        fig, axs = plt.subplots(3, 2, figsize=(11, 7))
-        deg = np.degrees(self.solution.cage_angle)
+        fig, axs = new_figure(3, 2, width=FULL_WIDTH, row_height=2.1, sharex="col")
         for row, name in enumerate(SERIES):
-            axs[row, 0].plot(deg, self.series(name), lw=1)
-            axs[row, 0].set_ylabel(f"k_{name} [{_UNITS[name]}]")
-            sp = self.spectra[name]
-            sel = (sp.order_shaft > 0) & (sp.order_shaft <= top)
-            axs[row, 1].plot(sp.order_shaft[sel], sp.amplitude[sel], lw=1)
-            for c in sp.components[:3]:
-                if c.order_shaft <= top:
-                    axs[row, 1].annotate(
-                        c.label or f"{c.order_shaft:.3f}",
-                        (c.order_shaft, c.amplitude),
-                        fontsize=7,
-                        xytext=(2, 2),
-                        textcoords="offset points",
-                    )
-            for ax in axs[row]:
-                ax.grid(alpha=0.3)
+            self._draw_series(axs[row, 0], name)
+            self._draw_spectrum(axs[row, 1], name, top)
         axs[-1, 0].set_xlabel("cage angle [deg]")
         axs[-1, 1].set_xlabel("order [cycles per shaft revolution]")
         axs[0, 0].set_title(f"{self.solution.bearing_id}: stiffness vs cage angle")
-        axs[0, 1].set_title("amplitude spectra")
-        fig.tight_layout()
+        axs[0, 1].set_title("fluctuation amplitude spectra")
         return fig
 
     def plot_loads(self, index: int = 0):

@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import html
 import math
+import struct
 from pathlib import Path
 
 from .._version import __version__
 from ..io.atomic import atomic_open
+from ..plotting import CSS_PX_PER_IN
+from .figures import DPI
 
 __all__ = [
     "write_html",
@@ -62,15 +65,61 @@ def _summary(sections) -> list[str]:
     return out
 
 
+def png_size(path: Path) -> tuple[int, int, float] | None:
+    """Width and height [px] and resolution [dots/in] of a PNG (its ``pHYs`` chunk, else
+    :data:`~.figures.DPI`); None when the file is missing or not a PNG."""
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return None
+    if data[:8] != b"\x89PNG\r\n\x1a\n" or data[12:16] != b"IHDR":
+        return None
+    w, h = struct.unpack(">II", data[16:24])
+    dpi = float(DPI)
+    pos = 8
+    while pos + 8 <= len(data):
+        n, kind = struct.unpack(">I4s", data[pos : pos + 8])
+        if kind == b"pHYs" and n == 9:
+            ppu, _ppu_y, unit = struct.unpack(">IIB", data[pos + 8 : pos + 17])
+            if unit == 1 and ppu > 0:  # pixels per metre
+                dpi = ppu * 0.0254
+            break
+        if kind in (b"IDAT", b"IEND"):
+            break
+        pos += 12 + n
+    return w, h, dpi
+
+
+def figure_html(out_dir: Path, fname: str, caption: str) -> str:
+    """One figure: the PNG shown at :data:`~bearingsim.plotting.CSS_PX_PER_IN` CSS px per inch of
+    figure (so its text is as large on screen as the figure standard plans), linked to the
+    full-size image, with its caption."""
+    src, cap = html.escape(fname), html.escape(caption)
+    size = png_size(out_dir / fname)
+    if size is None:
+        style = ""
+    else:
+        w, _h, dpi = size
+        css_w = round(w * CSS_PX_PER_IN / dpi)
+        style = f" style='width:{css_w}px'"
+    return (
+        f"<figure{style}><a href='{src}' title='open the full-size image'>"
+        f"<img src='{src}' alt='{cap}'></a><figcaption>{cap}</figcaption></figure>"
+    )
+
+
 def write_html(path: Path, sections, quick: bool) -> None:
     """Write the report page."""
     css = (
-        "body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
+        "body{font-family:sans-serif;max-width:1120px;margin:auto;padding:1em}"
         "table{border-collapse:collapse;width:100%;font-size:90%}"
         "td,th{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top}"
         ".match{background:#e6f4e6}.deviates{background:#fff5d6}.mismatch{background:#fadada}"
         ".info{background:#f2f2f2}table.counts{width:auto}table.counts td{text-align:right}"
-        "figure{display:inline-block;margin:0.5em;max-width:48%}figure img{max-width:100%}"
+        "figure{display:inline-block;vertical-align:top;margin:0.6em 0.35em;max-width:100%;"
+        "box-sizing:border-box}figure a{display:block}figure img{width:100%;height:auto;"
+        "display:block;box-sizing:border-box;border:1px solid #eee}"
+        "figcaption{font-size:90%;margin-top:0.3em}"
     )
     parts = [
         f"<!doctype html><html><head><meta charset='utf-8'><title>bearingsim reproduction report"
@@ -107,10 +156,7 @@ def write_html(path: Path, sections, quick: bool) -> None:
             )
         parts.append("</table>")
         for fname, cap in s.figures:
-            parts.append(
-                f"<figure><img src='{html.escape(fname)}' alt='{html.escape(cap)}'>"
-                f"<figcaption>{html.escape(cap)}</figcaption></figure>"
-            )
+            parts.append(figure_html(path.parent, fname, cap))
     parts.append("</body></html>")
     with atomic_open(path, "w", encoding="utf-8") as fh:
         fh.write("\n".join(parts))

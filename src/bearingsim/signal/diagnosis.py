@@ -173,18 +173,36 @@ class Diagnosis:
             "notes": self.notes,
         }
 
-    def plot(self, title: str = "", f_max: float | None = None):
-        """Envelope spectrum with the examined lines marked; returns the Figure."""
+    def plot(self, title: str = "", f_max: float | None = None, unit: str | None = None):
+        """Envelope spectrum with the detected lines marked, one colour and legend entry per
+        family; the fundamentals and harmonics are labelled where the labels do not overlap
+        (sidebands are marked, not labelled). Returns the Figure.
+
+        Parameters
+        ----------
+        title : str
+            Axes title (default: the band [Hz] and the diagnosis).
+        f_max : float, optional
+            Largest frequency shown [Hz or -] (default 1.15 x the highest line examined).
+        unit : str, optional
+            Unit of the analysed signal (e.g. ``"m/s^2"``); ``"signal unit"`` when not given.
+        """
+        from ..plotting import FULL_WIDTH, label_points, legend_outside, new_figure
+
         fmax = f_max or 1.15 * max((p.target_hz for p in self.peaks), default=500.0)
-        fig = self.spectrum.plot(
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.6)
+        dom = "Hz" if self.domain is Domain.HZ else "orders"
+        self.spectrum.plot(
             f_max=fmax,
+            ax=ax,
+            unit=unit,
+            quantity="envelope amplitude",
             title=title
             or (
-                f"envelope spectrum, band {self.band_hz[0]:.0f}-{self.band_hz[1]:.0f}: "
-                f"{self.diagnosis} ({self.confidence:.2f})"
+                f"envelope spectrum, band {self.band_hz[0]:.0f}-{self.band_hz[1]:.0f} {dom}: "
+                f"{self.diagnosis} (confidence {self.confidence:.2f})"
             ),
         )
-        ax = fig.axes[0]
         colors = {
             "outer": "tab:red",
             "inner": "tab:green",
@@ -192,20 +210,58 @@ class Diagnosis:
             "cage": "tab:gray",
             "shaft": "tab:orange",
         }
-        for p in self.peaks:
-            fam = _family(p.label)
-            if p.detected and fam in colors:
-                ax.plot(p.freq_hz, p.amplitude, "v", color=colors[fam], ms=5)
-                ax.annotate(
-                    p.label,
-                    (p.freq_hz, p.amplitude),
-                    fontsize=6,
-                    rotation=90,
-                    xytext=(0, 4),
-                    textcoords="offset points",
-                    ha="center",
-                )
+        names = {
+            "outer": "BPFO family",
+            "inner": "BPFI family",
+            "ball": "2xBSF family",
+            "cage": "FTF",
+            "shaft": "shaft f_r",
+        }
+        ax.set_ylim(top=1.18 * ax.get_ylim()[1])  # room for the labels above the peaks
+        labelled = []
+        for fam, col in colors.items():
+            found = [
+                p
+                for p in self.peaks
+                if p.detected and _family(p.label) == fam and p.freq_hz <= fmax
+            ]
+            if not found:
+                continue
+            ax.plot(
+                [p.freq_hz for p in found],
+                [p.amplitude for p in found],
+                "v",
+                color=col,
+                ms=5,
+                label=f"{names[fam]} (detected)",
+            )
+            # lines of the series are labelled, sidebands only marked
+            labelled += [(p, col) for p in found if "+" not in p.label and "-" not in p.label]
+        # the fundamentals first, then the harmonics in order: a label that would overlap one
+        # already written is left out
+        labelled.sort(key=lambda pc: (_harmonic(pc[0].label), pc[0].freq_hz))
+        label_points(
+            ax,
+            [p.freq_hz for p, _ in labelled],
+            [p.amplitude for p, _ in labelled],
+            [p.label for p, _ in labelled],
+            color=[c for _, c in labelled],
+            marker=None,
+        )
+        if labelled or any(p.detected for p in self.peaks):
+            legend_outside(ax)
         return fig
+
+
+def _harmonic(label: str) -> int:
+    """Harmonic number of a line label (``"3xBPFO"`` -> 3, ``"2xBSF"`` -> 1, sidebands 99)."""
+    for name, _attr, _mult in _FUNDAMENTALS:
+        if label == name:
+            return 1
+        head, _, rest = label.partition("x")
+        if rest == name and head.isdigit():
+            return int(head)
+    return 99
 
 
 def _family(label: str) -> str:

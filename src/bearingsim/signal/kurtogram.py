@@ -57,24 +57,25 @@ class Kurtogram:
 
     def plot(self, title: str = ""):
         """Kurtogram image (frequency vs level); returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ..plotting import FULL_WIDTH, new_figure
 
-        fig, ax = plt.subplots(figsize=(7, 4))
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.8)
         nyq = 0.5 * self.fs
         fine = int(np.lcm.reduce(self.n_bands))
         img = np.full((self.levels.size, fine), np.nan)
         for i, nb in enumerate(self.n_bands):
             img[i] = np.repeat(self.kurtosis[i, :nb], fine // nb)
-        ax.imshow(
+        im = ax.imshow(
             img,
             aspect="auto",
             origin="upper",
-            extent=(0, nyq, self.levels.size - 0.5, -0.5),
+            extent=(0, nyq / 1e3, self.levels.size - 0.5, -0.5),
             cmap="viridis",
         )
         ax.set_yticks(range(self.levels.size), [f"{v:.1f}" for v in self.levels])
-        ax.set_xlabel("frequency [Hz]")
-        ax.set_ylabel("level")
+        ax.set_xlabel("frequency [kHz]")
+        ax.set_ylabel("level [-]")
+        fig.colorbar(im, ax=ax, label="spectral kurtosis [-]")
         ax.set_title(
             title
             or f"kurtogram: max {self.max_kurtosis:.2f} at level {self.level:.1f}, "

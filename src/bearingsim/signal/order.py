@@ -113,11 +113,11 @@ class AngleSignal:
         ylabel : str
             Label of the value axis.
         """
-        import matplotlib.pyplot as plt
+        from ..plotting import FULL_WIDTH, new_figure
 
         fig = None
         if ax is None:
-            fig, ax = plt.subplots(figsize=(8, 3.5))
+            fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(self.angle / TWO_PI, self.value * scale, lw=0.8, label=label)
         ax.set_xlabel("shaft angle [rev]")
         ax.set_ylabel(ylabel)

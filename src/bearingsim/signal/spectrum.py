@@ -108,9 +108,12 @@ class Spectrum:
         scale: float = 1.0,
         unit: str | None = None,
         marks: ArrayLike | None = None,
+        marks_label: str | None = None,
+        quantity: str = "amplitude",
         **kw,
     ):
-        """Line plot up to ``f_max`` [Hz or -]; returns the Figure.
+        """Line plot up to ``f_max`` [Hz or -]; returns the Figure (of :mod:`bearingsim.plotting`'s
+        standard when it makes one).
 
         Parameters
         ----------
@@ -123,23 +126,31 @@ class Spectrum:
         scale : float
             Factor applied to the amplitude (e.g. ``60 / (2 pi)`` for rad/s -> r/min) [-].
         unit : str, optional
-            Unit label of the scaled amplitude (default :attr:`unit`).
+            Unit label of the scaled amplitude (default :attr:`unit`; ``"signal unit"`` when
+            neither is known).
         marks : array_like, optional
             Abscissae marked with dashed vertical lines [Hz or -].
+        marks_label : str, optional
+            Legend entry of the marks.
+        quantity : str
+            Quantity of the amplitude axis (``"envelope amplitude"``...).
         """
-        import matplotlib.pyplot as plt
+        from ..plotting import legend_outside, mark_lines, new_figure, unit_text
 
         if ax is None:
-            fig, ax = plt.subplots(figsize=(8, 3))
+            fig, ax = new_figure(height=3.2)
         else:
             fig = ax.figure
         sel = slice(None) if f_max is None else self.freq <= f_max
         ax.plot(self.freq[sel], self.amplitude[sel] * scale, lw=0.8, **kw)
-        for m in np.atleast_1d(marks if marks is not None else []):
-            ax.axvline(m, color="r", ls="--", lw=0.7)
+        m = np.atleast_1d(marks if marks is not None else [])
+        if m.size:
+            mark_lines(ax, m, marks_label, ls="--", lw=0.7)
+            if marks_label:
+                legend_outside(ax)
         ax.set_xlabel("frequency [Hz]" if self.domain is Domain.HZ else "order [-]")
         u = self.unit if unit is None else unit
-        ax.set_ylabel(f"amplitude [{u}]" if u else "amplitude")
+        ax.set_ylabel(f"{quantity} [{unit_text(u) or 'signal unit'}]")
         if title:
             ax.set_title(title)
         return fig

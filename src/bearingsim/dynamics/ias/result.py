@@ -215,14 +215,15 @@ class IasResult(Result):
 
     def plot_ias(self, skip_s: float | None = None, revs: float | None = None):
         """IAS [r/min] vs shaft angle [rev] (seed fig. 8 analogue); returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ...plotting import FULL_WIDTH, new_figure
 
         sig = self.angle_signal(skip_s)
-        fig, ax = plt.subplots(figsize=(8, 3.5))
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         n = sig.value.size if revs is None else int(revs * sig.samples_per_rev)
         ax.plot(sig.angle[:n] / (2 * np.pi), sig.value[:n] * 60 / (2 * np.pi), lw=0.8)
         ax.set_xlabel("shaft angle [rev]")
         ax.set_ylabel("IAS [r/min]")
+        ax.ticklabel_format(axis="y", useOffset=False)
         lab = (
             f"spall {self.params.spall_width * 1e3:g} mm"
             if self.params.spall_width > 0
@@ -246,8 +247,10 @@ class IasResult(Result):
             scale=60.0 / (2 * np.pi),
             unit="r/min",
             marks=bp * np.arange(1, int(max_order / bp) + 1),
+            marks_label=f"BPFO order {bp:.4f} and harmonics",
+            quantity="IAS amplitude",
         )
-        fig.axes[0].set_title(f"IAS order spectrum (BPFO order {bp:.4f} and harmonics dashed)")
+        fig.axes[0].set_title("IAS order spectrum")
         return fig
 
     # ------------------------------------------------------------------------- files

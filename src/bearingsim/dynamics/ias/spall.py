@@ -123,9 +123,9 @@ class SpallEstimate:
 
     def plot(self, scale: float = 60.0 / TWO_PI):
         """Averaged roller pass with the detected entry/impact/exit (seed fig. 10 analogue)."""
-        import matplotlib.pyplot as plt
+        from ...plotting import HALF_WIDTH, legend_outside, new_figure
 
-        fig, ax = plt.subplots(figsize=(7, 3.5))
+        fig, ax = new_figure(width=HALF_WIDTH, height=3.4)
         ax.plot(self.phase, self.average * scale, lw=1.0)
         for a, lab, col in (
             (self.entry_angle, "entry", "g"),
@@ -141,10 +141,11 @@ class SpallEstimate:
         ax.set_xlabel("shaft angle within one roller pass [rad]")
         ax.set_ylabel("IAS [r/min]")
         ax.set_title(
-            f"crossing {self.crossing_angle:.4f} rad -> L_d = {self.width * 1e3:.3f} mm "
-            f"({self.method.value}, {self.n_periods} passes)"
+            f"crossing {self.crossing_angle:.4f} rad → L_d = {self.width * 1e3:.3f} mm\n"
+            f"({self.method.value} reading, {self.n_periods} passes averaged)"
         )
-        ax.legend(loc="lower right")
+        ax.ticklabel_format(axis="y", useOffset=False)
+        legend_outside(ax)
         return fig
 
 

@@ -277,10 +277,10 @@ class StiffnessTrace(Result):
 
     def plot_total(self, ax=None):
         """Total effective stiffness vs cage angle (seed VSM figs. 5–8); returns the Figure."""
-        import matplotlib.pyplot as plt
+        from ...plotting import FULL_WIDTH, new_figure
 
         if ax is None:
-            fig, axs = plt.subplots(3, 1, figsize=(7, 6), sharex=True)
+            fig, axs = new_figure(3, 1, width=FULL_WIDTH, row_height=2.0, sharex=True)
         else:
             axs = ax
             fig = axs[0].figure
@@ -288,45 +288,45 @@ class StiffnessTrace(Result):
         for a, k, lab in zip(
             axs,
             (self.k_load, self.k_x, self.k_y),
-            ("k_eq,r (load dir.)", "k_eq,x", "k_eq,y"),
+            ("k_eq,r (load direction)", "k_eq,x", "k_eq,y"),
             strict=True,
         ):
             a.plot(deg, k / 1e6, lw=1)
             a.set_ylabel(f"{lab} [MN/m]")
-        axs[-1].set_xlabel("cage angle theta_m [deg]")
+        axs[-1].set_xlabel("cage angle θ_m [deg]")
         axs[0].set_title(f"VSM total effective stiffness: {self.label}")
         return fig
 
     def plot_ball(self, ball: int):
         """Effective stiffness, contact force and deformation of one ball (seed figs. 9, 11)."""
-        import matplotlib.pyplot as plt
+        from ...plotting import FULL_WIDTH, new_figure
 
         j = ball - 1
         deg = np.degrees(self.cage_angle)
-        fig, axs = plt.subplots(3, 1, figsize=(7, 6), sharex=True)
+        fig, axs = new_figure(3, 1, width=FULL_WIDTH, row_height=2.0, sharex=True)
         axs[0].plot(deg, self.ball_k_load[:, j] / 1e6)
-        axs[0].set_ylabel("k_j [MN/m]")
+        axs[0].set_ylabel("stiffness k_j [MN/m]")
         axs[1].plot(deg, self.ball_load[:, j])
-        axs[1].set_ylabel("Q_j [N]")
+        axs[1].set_ylabel("contact force Q_j [N]")
         axs[2].plot(deg, self.ball_deformation[:, j] * 1e6)
-        axs[2].set_ylabel("deformation [um]")
-        axs[2].set_xlabel("cage angle theta_m [deg]")
+        axs[2].set_ylabel("deformation δ_j [µm]")
+        axs[2].set_xlabel("cage angle θ_m [deg]")
         axs[0].set_title(f"ball {ball}: {self.label}")
         return fig
 
     def plot_balls(self, balls: list[int]):
         """Contact force and deformation of several balls (seed figs. 10, 12)."""
-        import matplotlib.pyplot as plt
+        from ...plotting import FULL_WIDTH, legend_outside, new_figure
 
         deg = np.degrees(self.cage_angle)
-        fig, axs = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+        fig, axs = new_figure(2, 1, width=FULL_WIDTH, row_height=2.2, sharex=True)
         for b in balls:
             axs[0].plot(deg, self.ball_load[:, b - 1], label=f"ball {b}")
             axs[1].plot(deg, self.ball_deformation[:, b - 1] * 1e6, label=f"ball {b}")
-        axs[0].set_ylabel("Q_j [N]")
-        axs[1].set_ylabel("deformation [um]")
-        axs[1].set_xlabel("cage angle theta_m [deg]")
-        axs[0].legend(fontsize=8)
+        axs[0].set_ylabel("contact force Q_j [N]")
+        axs[1].set_ylabel("deformation δ_j [µm]")
+        axs[1].set_xlabel("cage angle θ_m [deg]")
+        legend_outside(axs[0])
         axs[0].set_title(self.label)
         return fig
 

@@ -76,9 +76,10 @@ class RotorResponse(Result):
         return self.acceleration[:, 2 * ENDS.index(end) + ("x", "y").index(axis)]
 
     def plot_waveform(self, end: str = "DE", axis: str = "y", t0: float | None = None,
-                      t1: float | None = None, unit_g: bool = True):  # fmt: skip
-        """Housing acceleration against time between ``t0`` and ``t1`` [s]; returns a Figure."""
-        from matplotlib.figure import Figure
+                      t1: float | None = None, unit_g: bool = False):  # fmt: skip
+        """Housing acceleration [m/s^2, or g with ``unit_g``] against time between ``t0`` and
+        ``t1`` [s]; returns a Figure."""
+        from ...plotting import FULL_WIDTH, new_figure
 
         a = self.channel(end, axis) / (G0 if unit_g else 1.0)
         m = np.ones(self.time.size, bool)
@@ -86,13 +87,11 @@ class RotorResponse(Result):
             m &= self.time >= t0
         if t1 is not None:
             m &= self.time <= t1
-        fig = Figure(figsize=(7, 3))
-        ax = fig.add_subplot()
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(self.time[m], a[m], lw=0.7)
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"{end} {axis} acceleration [{'g' if unit_g else 'm/s$^2$'}]")
+        ax.set_ylabel(f"{end} {axis} acceleration [{'g' if unit_g else 'm/s²'}]")
         ax.set_title(f"rotor model, {self.meta['n_disks_label']}")
-        fig.tight_layout()
         return fig
 
     def spectrum(self, end: str = "DE", axis: str = "y", unit_g: bool = True):
@@ -106,21 +105,21 @@ class RotorResponse(Result):
     def plot_spectrum(self, end: str = "DE", axis: str = "y", f_max: float = 1000.0,
                       mark: str = "bpfo", n_harmonics: int = 3):  # fmt: skip
         """Amplitude spectrum up to ``f_max`` [Hz] with the ``mark`` frequency ("bpfo",
-        "bpfi", "ftf", "bsf" of that end's bearing) and its harmonics; returns a Figure."""
-        from matplotlib.figure import Figure
+        "bpfi", "ftf", "bsf" of that end's bearing) and its harmonics; amplitude [m/s^2];
+        returns a Figure."""
+        from ...plotting import FULL_WIDTH, legend_outside, mark_lines, new_figure
 
-        f, amp = self.spectrum(end, axis)
+        f, amp = self.spectrum(end, axis, unit_g=False)
         m = f <= f_max
-        fig = Figure(figsize=(7, 3))
-        ax = fig.add_subplot()
+        fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(f[m], amp[m], lw=0.7)
         fk = getattr(self.kinematics[end.upper()], f"{mark}_hz")
-        for k in range(1, n_harmonics + 1):
-            ax.axvline(k * fk, color="r", ls=":", lw=0.8)
+        mark_lines(ax, fk * np.arange(1, n_harmonics + 1),
+                   f"{mark.upper()} = {fk:.2f} Hz and harmonics")  # fmt: skip
+        legend_outside(ax)
         ax.set_xlabel("frequency [Hz]")
-        ax.set_ylabel("amplitude [g]")
-        ax.set_title(f"{end} {axis}: {mark.upper()} = {fk:.2f} Hz (red)")
-        fig.tight_layout()
+        ax.set_ylabel(f"{end} {axis} acceleration amplitude [m/s²]")
+        ax.set_title(f"rotor model, {self.meta['n_disks_label']}: amplitude spectrum")
         return fig
 
     def to_dataset(self):

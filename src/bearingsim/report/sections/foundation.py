@@ -12,7 +12,7 @@ from ...contact.hertz import ball_contact, subsurface_stresses
 from ...geometry import Race, characteristic_frequencies
 from ...load_distribution import radial_load_distribution, stribeck_qmax
 from .. import Context, Section, compare, info, kind_of
-from ..figures import save_figure
+from ..figures import HALF_WIDTH, new_figure, save_figure
 from ..published import value
 
 __all__ = ["TITLE", "run"]
@@ -183,7 +183,7 @@ def run(ctx: Context) -> Section:
             0.01,
             f"Hertz K = {K:.4g} N/m^1.5 (exact elliptic integrals, E 207 GPa) with P_d = 6 µm "
             f"gives {psi:.2f} deg. The paper's 68.2 deg needs K = {k_needed:.3g} N/m^1.5 "
-            f"({k_needed / K:.2f} x Hertz) or P_d = {pd_needed * 1e6:.2f} um; the seed does not "
+            f"({k_needed / K:.2f} x Hertz) or P_d = {pd_needed * 1e6:.2f} µm; the seed does not "
             "state its K. We keep the Hertz value (docs/validation.md).",
             kind=kind_of("vsm.s2_1.load_zone_half_angle"),
             verified_by="tests/test_deviations.py::test_psi_l_68_deg_needs_k_028_hertz",
@@ -203,38 +203,43 @@ def run(ctx: Context) -> Section:
     sec.figures.append(
         (
             "foundation_load_6205.png",
-            f"6205, F_rx=10 N, F_ry=50 N, P_d=6 um: element loads at cage angle 0; "
-            f"psi_L = {psi:.1f} deg (paper 68.2 deg)",
+            f"6205, F_rx = 10 N, F_ry = 50 N, P_d = 6 µm: element loads at cage angle 0; "
+            f"ψ_L = {psi:.1f}° (paper 68.2°)",
         )
     )
-    import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     cage = np.radians(np.linspace(0, 80, 801))
     ldc = radial_load_distribution(b6205, 10.0, 50.0, cage)
-    fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    fig, ax = new_figure(2, 1, width=HALF_WIDTH, height=5.0, sharex=True)
     ax[0].plot(np.degrees(cage), ldc.delta_max * 1e6)
-    ax[0].set_ylabel("delta_max [um]")
+    ax[0].set_ylabel("δ_max [µm]")
+    ax[0].ticklabel_format(axis="y", useOffset=False)
     ax[1].step(np.degrees(cage), ldc.n_loaded, where="post")
     ax[1].set_ylabel("loaded balls [-]")
+    ax[1].yaxis.set_major_locator(MaxNLocator(integer=True))
     ax[1].set_xlabel("cage angle [deg]")
-    ax[0].set_title("6205 seed VSM case: discrete-ball load distribution vs cage angle")
+    ax[0].set_title("6205, seed VSM case: largest deflection\nand loaded balls vs cage angle")
     save_figure(fig, ctx.out_dir / "foundation_cage_6205.png")
     sec.figures.append(
-        ("foundation_cage_6205.png", "delta_max and number of loaded balls over two ball passes")
+        (
+            "foundation_cage_6205.png",
+            "Largest ball deflection δ_max and number of loaded balls over two ball passes",
+        )
     )
     s = subsurface_stresses(ci, 0.3)
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for arr, lab in ((s.sigma_x, "sigma_x"), (s.sigma_y, "sigma_y"), (s.sigma_z, "sigma_z")):
+    fig, ax = new_figure(width=HALF_WIDTH, height=4.4)
+    for arr, lab in ((s.sigma_x, "σ_x"), (s.sigma_y, "σ_y"), (s.sigma_z, "σ_z")):
         ax.plot(arr / 1e6, s.depth * 1e3, label=lab)
     tau = 0.5 * (
         np.max([s.sigma_x, s.sigma_y, s.sigma_z], 0) - np.min([s.sigma_x, s.sigma_y, s.sigma_z], 0)
     )
-    ax.plot(tau / 1e6, s.depth * 1e3, "k", label="tau_max")
+    ax.plot(tau / 1e6, s.depth * 1e3, "k", label="τ_max")
     ax.invert_yaxis()
     ax.set_xlabel("stress [MPa]")
-    ax.set_ylabel("depth [mm]")
-    ax.legend()
-    ax.set_title(f"6206 inner contact at Q = {q:.0f} N: p_max {float(ci.p_max) / 1e6:.0f} MPa")
+    ax.set_ylabel("depth below the surface z [mm]")
+    ax.legend(loc="lower left")
+    ax.set_title(f"6206 inner contact at Q = {q:.0f} N:\np_max = {float(ci.p_max) / 1e6:.0f} MPa")
     save_figure(fig, ctx.out_dir / "foundation_subsurface_6206.png")
     sec.figures.append(
         (

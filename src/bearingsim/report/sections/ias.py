@@ -18,7 +18,7 @@ from ...dynamics.ias.model import (
 )
 from ...dynamics.ias.spall import SpallEstimator
 from .. import Context, Section, compare, info, kind_of
-from ..figures import save_figure
+from ..figures import FULL_WIDTH, new_figure, save_figure
 from ..published import value
 
 __all__ = ["TITLE", "run"]
@@ -29,8 +29,6 @@ TWO_PI = 2.0 * math.pi
 
 
 def run(ctx: Context) -> Section:
-    import matplotlib.pyplot as plt
-
     sec = Section("ias", TITLE)
     rows = sec.rows
     seed = IasParams(get_bearing("NU204-ECP"))
@@ -179,7 +177,7 @@ def run(ctx: Context) -> Section:
     )
 
     # --- fig. 8 analogue
-    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    fig, ax = new_figure(2, 1, width=FULL_WIDTH, row_height=2.4, sharex=True)
     for a, (lab, s) in zip(ax, (("healthy", h), ("1 mm outer-race spall", f)), strict=True):
         sig = s.signal
         m = sig.angle - sig.angle[0] <= 2 * TWO_PI
@@ -191,7 +189,6 @@ def run(ctx: Context) -> Section:
             " rev (paper 0.237)"
         )
     ax[1].set_xlabel("shaft angle [rev]")
-    fig.tight_layout()
     save_figure(fig, ctx.out_dir / "ias_fig8_ias.png")
     sec.figures.append(
         (
@@ -201,20 +198,31 @@ def run(ctx: Context) -> Section:
         )
     )
     # --- fig. 9 analogue
-    fig, ax = plt.subplots(2, 1, figsize=(8, 6))
+    fig, ax = new_figure(2, 1, width=FULL_WIDTH, row_height=2.4, sharex=True)
     marks = k.bpfo_order * np.arange(1, 8)
     for a, s in zip(ax, (h, f), strict=True):
-        s.spectrum.plot(30.0, ax=a, scale=60 / TWO_PI, unit="r/min", marks=marks)
+        s.spectrum.plot(
+            30.0,
+            ax=a,
+            scale=60 / TWO_PI,
+            unit="r/min",
+            marks=marks,
+            marks_label=f"BPFO order {k.bpfo_order:.4f} and harmonics",
+            quantity="IAS amplitude",
+        )
+    ax[0].set_xlabel("")
     ax[0].set_title("healthy")
     ax[1].set_title(
-        "1 mm spall: peaks " + ", ".join(f"{o:.3f}" for o in top3) + " (paper 4.22, 8.44, 12.66)"
+        "1 mm spall: peaks at orders "
+        + ", ".join(f"{o:.3f}" for o in top3)
+        + " (paper 4.22, 8.44, 12.66)"
     )
-    fig.tight_layout()
     save_figure(fig, ctx.out_dir / "ias_fig9_orders.png")
     sec.figures.append(
         (
             "ias_fig9_orders.png",
-            "Seed IAS fig. 9 analogue: IAS order spectra; dashed: BPFO order 4.2156 and harmonics",
+            f"Seed IAS fig. 9 analogue: IAS order spectra; dashed: BPFO order {k.bpfo_order:.4f} "
+            "and harmonics",
         )
     )
     # --- fig. 10 analogue
@@ -224,8 +232,8 @@ def run(ctx: Context) -> Section:
         (
             "ias_fig10_spall.png",
             f"Seed IAS fig. 10 analogue: averaged roller pass of the 1 mm spall; "
-            f"crossing {e.crossing_angle:.4f} rad -> {e.width * 1e3:.3f} mm "
-            "(paper 0.12 rad -> 0.96 mm)",
+            f"crossing {e.crossing_angle:.4f} rad → {e.width * 1e3:.3f} mm "
+            "(paper 0.12 rad → 0.96 mm)",
         )
     )
     sec.text = (

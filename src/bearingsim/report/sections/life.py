@@ -23,7 +23,7 @@ from ...life.reference_life import reference_rating_life
 from ...life.validation import validate_against_hertz
 from ...life.weibull import rating_life_ratio, weibull_fit
 from .. import Context, Section, compare, info, judge, kind_of
-from ..figures import save_figure
+from ..figures import HALF_WIDTH, new_figure, save_figure
 from ..published import entry, value
 
 __all__ = ["TITLE", "run"]
@@ -42,12 +42,10 @@ TRESCA_TOL = 0.02
 
 def _fe_figure(section, st):
     """tau_xz vs depth under the orthogonal-shear peak: FE element averages vs McEwen."""
-    import matplotlib.pyplot as plt
-
     b, p0 = section.b, section.p_max
     k0 = int(np.argmin(np.abs(section.positions)))
     cx, cz = section.centroids
-    fig, ax = plt.subplots(figsize=(5.5, 4))
+    fig, ax = new_figure(width=HALF_WIDTH, height=4.6)
     for xb, mk in ((-0.87, "o"), (0.87, "s")):
         col = np.isclose(cx, cx[np.argmin(np.abs(cx - xb * b))], rtol=0, atol=1e-9)
         sel = col & (cz < 3 * b)
@@ -65,9 +63,9 @@ def _fe_figure(section, st):
         ax.plot(mcewen_stresses(cx[sel][0], zz, p0, b).tau_xz / p0, zz / b, "k-", lw=1)
     ax.plot([], [], "k-", label="McEwen (Johnson eq. 4.75)")
     ax.invert_yaxis()
-    ax.set_xlabel("tau_xz / p_max [-]")
+    ax.set_xlabel("orthogonal shear τ_xz / p_max [-]")
     ax.set_ylabel("depth z / b [-]")
-    ax.legend(fontsize=8)
+    fig.legend(loc="outside lower center", ncols=2)
     ax.set_title("undamaged section, load at x = 0")
     return fig
 
@@ -125,11 +123,11 @@ def run(ctx: Context) -> Section:
     sec.figures.append(
         (
             "life_torsion.png",
-            "Seed LIFE fig. 3 analogue: torsion 1000 -> 400 MPa "
-            "by 50 MPa; the damage law (blocks Delta D = 0.001) against the S-N "
+            "Seed LIFE fig. 3 analogue: torsion 1000 → 400 MPa "
+            "by 50 MPa; the damage law (blocks ΔD = 0.001) against the S-N "
             "curve. The seed compares with the scattered test points (not "
             "available); against its own fitted curve the law agrees to the "
-            "block error Delta_D (kappa+1)/2 = 0.6 %.",
+            "block error ΔD (κ+1)/2 = 0.6 %.",
         )
     )
     # ---------------------------------------------------------------- §2.1 contact
@@ -216,6 +214,12 @@ def run(ctx: Context) -> Section:
             kind=kind_of("life.table3.max_shear"),
         )
     )
+    save_figure(_fe_figure(fe, st), out / "life_fe_vs_mcewen.png")
+    fe_caption = (
+        f"Undamaged plane-strain section (default mesh, {fe.n_elements} "
+        f"elements, h = b/10): τ_xz vs depth at x = ±0.87 b against the "
+        "McEwen line-contact field"
+    )
     # ---------------------------------------------------------------- damage life
     dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.01)
     res = contact_fatigue_life(
@@ -223,9 +227,9 @@ def run(ctx: Context) -> Section:
     )
     life = res.cycles_spall
     variant = (
-        f"default mesh (h = b/10), Delta_D = {dd:g}"
+        f"default mesh (h = b/10), ΔD = {dd:g}"
         + (" (quick variant; the seed's 0.001 in the full report)" if ctx.quick else "")
-        + f", Delta_D = {dds:g} after initiation; Delta_tau = range of the in-plane Tresca shear"
+        + f", ΔD = {dds:g} after initiation; Δτ = range of the in-plane Tresca shear"
     )
     u = inner_race_cycles_per_revolution(b6206)
     l10 = basic_rating_life(b6206, 5000.0)
@@ -241,7 +245,7 @@ def run(ctx: Context) -> Section:
             life,
             0.1,
             f"same law and criterion; a uniformly stressed element lives {uniform_fe:.3g} cycles "
-            f"at our Delta_tau = {tresca_fe / 1e6:.0f} MPa and {uniform_seed:.3g} at the seed's "
+            f"at our Δτ = {tresca_fe / 1e6:.0f} MPa and {uniform_seed:.3g} at the seed's "
             f"2 x 459 = 918 MPa: our FE life is {life / uniform_fe:.2f} x its uniform-element "
             f"value, the seed's {SEED_PREDICTED / uniform_seed:.2f} x — the seed's damage "
             "redistribution (or its unstated 3-D/plane-stress details) gains more life than "
@@ -306,22 +310,21 @@ def run(ctx: Context) -> Section:
             kind="paper",
         )
     )
-    # uniform-element estimates per Delta_tau definition (from the undamaged default mesh)
+    # uniform-element estimates per Δτ definition (from the undamaged default mesh)
     est = []
     for m in ShearMeasure:
         dt = float(st.shear_range(m).max())
         est.append(
-            f"{m.value}: Delta_tau {dt / 1e6:.0f} MPa -> "
-            f"{float(law.cycles_to_failure(dt)):.3g} cycles"
+            f"{m.value}: Δτ {dt / 1e6:.0f} MPa -> {float(law.cycles_to_failure(dt)):.3g} cycles"
         )
     rows.append(
         info(
             "uniform-element life eq. (6) with the seed's table-3 shear amplitude "
-            "459 MPa (Delta_tau = 918 MPa) [cycles]",
+            "459 MPa (Δτ = 918 MPa) [cycles]",
             "derived from seed LIFE table 3",
             uniform_seed,
             "the order of magnitude of the seed's 2.72e8 follows from its 459 MPa; "
-            "Hertz-field estimates per Delta_tau definition: " + "; ".join(est),
+            "Hertz-field estimates per Δτ definition: " + "; ".join(est),
         )
     )
     save_figure(res.plot_damage_field("final"), out / "life_damage_field.png")
@@ -338,7 +341,11 @@ def run(ctx: Context) -> Section:
     )
     save_figure(res.plot_damage_curve(), out / "life_damage_curve.png")
     sec.figures.append(
-        ("life_damage_curve.png", "largest element damage and failed elements vs load cycles")
+        (
+            "life_damage_curve.png",
+            "Largest element damage and failed elements vs load cycles; right: the failed "
+            "elements after the first failure (initiation and spall are close on the left)",
+        )
     )
     marks = {
         "damage life (spall), ours": life,
@@ -359,6 +366,8 @@ def run(ctx: Context) -> Section:
             "calibration",
         )
     )
+    # after the damage figures: the two damage fields share a row of the page
+    sec.figures.append(("life_fe_vs_mcewen.png", fe_caption))
     # ---------------------------------------------------------------- ISO 281 / 16281
     for bid in ("6206", "6205"):
         nsk, skf = value(f"catalogue.nsk.{bid}.c_r"), value(f"catalogue.skf.{bid}.c_r")
@@ -416,7 +425,7 @@ def run(ctx: Context) -> Section:
         "represented by its central strip, a 12 x 4 mm section in the rolling plane loaded by "
         "p(x) = p_max sqrt(1 - (x/b)^2) with the point-contact p_max and b from Hertz theory; "
         "the pressure moves across the surface (+/-2 b in steps of h), one pass = one cycle; "
-        "Delta_tau = range of the in-plane maximum (Tresca) shear over a pass (the seed's "
+        "Δτ = range of the in-plane maximum (Tresca) shear over a pass (the seed's "
         "table-3 driver; the orthogonal tau_xz range is an option). "
         f"Damage run: {res.meta['n_core_elements']} core elements, "
         f"{res.meta['n_positions']} load positions, {res.meta['n_steps']} blocks in "

@@ -19,7 +19,7 @@ from ...load_distribution import radial_load_distribution
 from ...signal import analyze_record, diagnose, envelope_spectrum, fast_kurtogram, load_signal
 from ...simulation import simulate
 from .. import Context, Section, compare, judge, kind_of
-from ..figures import save_figure
+from ..figures import ACC, FULL_WIDTH, new_figure, save_figure
 from ..published import entry, value
 
 __all__ = ["TITLE", "run"]
@@ -74,7 +74,7 @@ def _inputs(loc, gamma=0.38, **kw):
 
 
 def _traces(ctx: Context, sec: Section) -> None:
-    import matplotlib.pyplot as plt
+    from ...plotting import legend_outside
 
     step = 0.05 if ctx.quick else 0.01
     cage = np.radians(np.arange(0.0, 360.0 + 1e-9, step))
@@ -161,27 +161,27 @@ def _traces(ctx: Context, sec: Section) -> None:
             )
         )
     # ---- figures 5-8
-    fig, axs = plt.subplots(3, 1, figsize=(8, 7), sharex=True)
+    fig, axs = new_figure(3, 1, width=FULL_WIDTH, row_height=2.3, sharex=True)
     deg = np.degrees(cage)
-    axs[0].plot(deg, healthy_kp.k_load / 1e6, label=f"K {kp:.3g} (psi_L 68.2)")
-    axs[0].plot(deg, healthy.k_load / 1e6, label="Hertz K (psi_L 56.0)")
+    axs[0].plot(deg, healthy_kp.k_load / 1e6, label=f"K = {kp:.3g} N/m^1.5 (ψ_L 68.2°)")
+    axs[0].plot(deg, healthy.k_load / 1e6, label="Hertz K (ψ_L 56.0°)")
     axs[0].set_title("fig. 5: healthy, total effective (secant) stiffness along the load")
     for g in (0.8, 0.38, 0.0):
         tr = stiffness_trace(_inputs("outer", gamma=g, stiffness=kp), cage)
-        axs[1].plot(deg, tr.k_load / 1e6, label=f"gamma {g:g}")
-    axs[1].set_title("figs. 6-7: outer defect b = 1 mm at 10 deg, drops every 40 deg")
+        axs[1].plot(deg, tr.k_load / 1e6, label=f"γ = {g:g}")
+    axs[1].set_title("figs. 6-7: outer defect b = 1 mm at 10°, drops every 40°")
     inner = stiffness_trace(_inputs("inner", stiffness=kp), cage)
-    axs[2].plot(deg, inner.k_load / 1e6, label="gamma 0.38")
+    axs[2].plot(deg, inner.k_load / 1e6, label="γ = 0.38")
     axs[2].set_title("fig. 8: inner defect, drops of varying depth")
     for a in axs:
         a.set_ylabel("k_load [MN/m]")
-        a.legend(fontsize=7)
+        legend_outside(a)
     axs[-1].set_xlabel("cage angle [deg]")
     save_figure(fig, ctx.out_dir / "vsm_stiffness_figs5-8.png")
     sec.figures.append(
         (
             "vsm_stiffness_figs5-8.png",
-            "Total effective stiffness vs cage angle "
+            "Total effective stiffness along the load vs cage angle "
             "(seed VSM figs. 5-8); secant definition (docs/models.md)",
         )
     )
@@ -210,8 +210,6 @@ def _near(es, f, tol=0.01):
 
 
 def _dynamics(ctx: Context, sec: Section) -> None:
-    import matplotlib.pyplot as plt
-
     dur = 0.5 if ctx.quick else 2.0
     cases = {
         "outer": ({"fault": "outer", "rpm": 1796.0, "defect_width_m": 1.778e-4}, "135"),
@@ -227,7 +225,7 @@ def _dynamics(ctx: Context, sec: Section) -> None:
         kin = characteristic_frequencies(
             get_bearing("6205-cwru"), (rec.rpm if rec else kw["rpm"]) / 60
         )
-        fig, axs = plt.subplots(4, 2, figsize=(11, 8))
+        fig, axs = new_figure(4, 2, width=FULL_WIDTH, row_height=2.2, sharex="col")
         rows = [("test", rec.x if rec else None, rec.fs if rec else 48000.0)]
         rows += [(m.upper(), s["acc_y"], s.fs_hz) for m, s in sims.items()]
         amp[fault] = {}
@@ -245,18 +243,26 @@ def _dynamics(ctx: Context, sec: Section) -> None:
                 )
             n = int(0.05 * fs)
             t = np.arange(n) / fs
+            name = f"CWRU {rec_id}" if lab == "test" else lab
             axs[i, 0].plot(t * 1e3, x[:n], lw=0.6)
-            axs[i, 0].set_ylabel(f"{lab} [m/s^2]")
+            axs[i, 0].set_ylabel(f"acceleration [{ACC}]")
+            axs[i, 0].set_title(f"{name}: acceleration, first 50 ms", loc="left")
             es, band = _envelope_peaks(x, fs, kin.shaft_hz, kin)
             sel = es.freq <= 500
             axs[i, 1].plot(es.freq[sel], es.amplitude[sel], lw=0.7)
-            axs[i, 1].set_ylabel(f"{band[0] / 1e3:.1f}-{band[1] / 1e3:.1f} kHz")
+            axs[i, 1].set_ylabel(f"envelope amplitude [{ACC}]")
+            axs[i, 1].set_title(
+                f"{name}: envelope spectrum, band {band[0] / 1e3:.1f}-{band[1] / 1e3:.1f} kHz",
+                loc="left",
+            )
             amp[fault][lab] = float(np.max(np.abs(x - x.mean())))
             amp[fault][lab + "_rms"] = float(np.std(x))
         axs[-1, 0].set_xlabel("time [ms]")
         axs[-1, 1].set_xlabel("envelope frequency [Hz]")
-        axs[0, 0].set_title(f"{fault} race: acceleration (first 50 ms)")
-        axs[0, 1].set_title("envelope spectrum (kurtogram band)")
+        fig.suptitle(
+            f"{fault} race defect: measured and simulated acceleration, envelope spectra in the "
+            "kurtogram band"
+        )
         name = "vsm_fig14_outer.png" if fault == "outer" else "vsm_fig15_inner.png"
         save_figure(fig, ctx.out_dir / name)
         sec.figures.append(
@@ -410,12 +416,12 @@ def _dynamics(ctx: Context, sec: Section) -> None:
             )
         )
         sec.text += (
-            f" CWRU 109 peak {test_pk:.3g} m/s^2; simulated at its conditions: "
+            f" CWRU 109 peak {test_pk:.3g} m/s²; simulated at its conditions: "
             + ", ".join(f"{k} {v:.3g}" for k, v in pk.items())
             + "."
         )
     sec.text += (
-        " Peak |acceleration| [m/s^2] — outer: "
+        " Peak |acceleration| [m/s²] — outer: "
         + ", ".join(f"{k} {v:.3g}" for k, v in o.items() if not k.endswith("_rms"))
         + "; inner: "
         + ", ".join(f"{k} {v:.3g}" for k, v in i.items() if not k.endswith("_rms"))
