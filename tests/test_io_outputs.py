@@ -93,6 +93,11 @@ OUTPUTS = {
         "--plot-curve",
         "bearingsim.life.fatigue.contact_fatigue_life",
     ),
+    "life --plot-weibull": (
+        ["life", "6205", "--radial-load-n", "1000", "-o", "{ok}", "--plot-weibull", "{out}"],
+        "--plot-weibull",
+        "bearingsim.life.fatigue.contact_fatigue_life",
+    ),
     "stiffness -o": (
         ["stiffness", "6205", "--fy-n", "1000", "-o", "{out}"],
         "-o/--output",
