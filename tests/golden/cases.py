@@ -352,15 +352,22 @@ CASES: dict[str, Case] = {
         why="the modes have no float input: a dense symmetric eigenproblem (LAPACK), exact to "
         "rounding (~1e-14)",
         looser={
-            "run.": (
+            "run.DE.": (
                 1e-3,
-                1e-6,
+                1e-2,
                 _ULP.format(s="2e-5")
-                + ": the run starts from the static equilibrium, which MINPACK's hybrid method "
-                "solves to its default xtol 1.5e-8 (dynamics.rotor.model.static_state), and "
-                "another machine's rounding can end that solve elsewhere within xtol; rtol 1e-3 "
-                "is 50 x the measured change",
-            )
+                + "; between two machines (same library versions) the drive-end outputs moved "
+                "by up to 3.7e-3 of their largest magnitude: atol 1e-2 of it (cause not found: "
+                "a tighter static solve moves the run by 1e-5 only; tests/golden/README.md)",
+            ),
+            "run.FE.": (
+                1e-3,
+                1e-1,
+                _ULP.format(s="2e-5")
+                + "; between two machines (same library versions) the fan-end outputs, whose "
+                "balls carry little more than the rotor weight, moved by up to 4.5e-2 of their "
+                "largest magnitude: atol 1e-1 of it (tests/golden/README.md)",
+            ),
         },
     ),
     "ias": Case(
