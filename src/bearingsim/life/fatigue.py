@@ -187,7 +187,7 @@ class LifeResult(Result):
         delta_d, delta_d_spall, measure, mesh (elements per b), element_size_m, order,
         traverse_m, section_length_m, section_height_m, stop, max_steps, n_elements,
         n_core_elements, n_positions, residual_stiffness, outer_rate_ratio, fe validation,
-        wall_s, version.
+        solver, n_factorizations, n_preconditioner, n_iterations, wall_s, version.
     """
 
     FORMAT: ClassVar[str] = "bearingsim.LifeResult/1"
@@ -350,6 +350,7 @@ def contact_fatigue_life(
     height: float = 4e-3,
     traverse_b: float = 2.0,
     order: int = 1,
+    solver: str = "pcg",
     progress: bool = False,
 ) -> LifeResult:
     """Contact-fatigue life of the most loaded inner-race contact (seed LIFE §2.3, eqs. (2),
@@ -393,6 +394,13 @@ def contact_fatigue_life(
         Half-length of the load traverse in units of b [-].
     order : int
         Element order (1 bilinear, 2 biquadratic).
+    solver : {"pcg", "direct"}
+        How each block's FE system is solved: ``"pcg"`` (default) conjugate gradients from the
+        previous blocks' displacements, preconditioned by the factorization of an earlier
+        block, on the load positions ``x_c <= 0`` (the others are their mirror images:
+        :class:`~bearingsim.life.fe.CoreSubstructure`); residual below 1e-5 of the load
+        (:class:`~bearingsim.life.block_solver.BlockSolver`); ``"direct"``: a new sparse LU
+        factorization every block, all positions (the reference).
     progress : bool
         Show a progress bar on stderr.
     """
@@ -419,6 +427,8 @@ def contact_fatigue_life(
             f"[{1.0 / max_steps:.6g}, 0.1], or max_steps >= {math.ceil(1.0 / dd - 1e-9):.6g})"
         )
     measure = ShearMeasure.parse(measure)
+    if solver not in ("pcg", "direct"):
+        raise ConfigError(f"solver = {solver!r} is invalid; valid values 'pcg', 'direct'")
     law = law if law is not None else default_damage_law()
     cap = check_static_load(bearing, fr)
     contact = inner_contact(bearing, fr, load_method)
@@ -470,12 +480,13 @@ def contact_fatigue_life(
     s_init = s_spall = -1
     z_init = x_init = math.nan
     dtau0 = None
+    blocks = core.block_solver() if solver == "pcg" else None
     bar = tqdm(desc="damage blocks", unit="block", disable=not progress, leave=False)
     t1 = time.perf_counter()
     try:
         for step in range(1, max_steps + 1):
             fac = np.maximum(1.0 - D, res_k)
-            st = core.solve(fac)
+            st = core.solve(fac) if blocks is None else core.stresses(blocks.solve(fac), fac)
             dtau = st.shear_range(measure)
             if dtau0 is None:
                 dtau0 = dtau.copy()
@@ -559,6 +570,10 @@ def contact_fatigue_life(
         "fe_tau_depth_m": val.depth_fe,
         "fe_tau_error": val.tau_error,
         "fe_depth_error": val.depth_error,
+        "solver": solver,
+        "n_factorizations": len(cyc) - 1 if blocks is None else blocks.n_factorizations,
+        "n_preconditioner": 0 if blocks is None else blocks.n_preconditioner,
+        "n_iterations": 0 if blocks is None else blocks.n_iterations,
         "n_steps": len(cyc) - 1,
         "setup_s": t_setup,
         "wall_s": wall,

@@ -479,6 +479,13 @@ class CoreSubstructure:
         Core degrees of freedom [-].
     n_interface : int
         Boundary degrees of freedom carrying the condensed outer region [-].
+
+    Mirror symmetry: the section, its mesh and the load positions are symmetric about the
+    contact centre ``x = 0``, so for a damage field that is symmetric too (the undamaged one,
+    and every one the damage law grows from it) the stresses under the load at ``-x_c`` are the
+    mirror image of those under ``+x_c`` (``tau_xz`` changes sign). :attr:`half_loads` are the
+    load columns with ``x_c <= 0``; :meth:`stresses` accepts displacements for those columns
+    only and mirrors the rest: half the solve work.
     """
 
     section: ContactSection = field(repr=False)
@@ -495,6 +502,8 @@ class CoreSubstructure:
     _Bxx: sp.csr_matrix = field(repr=False)
     _Byy: sp.csr_matrix = field(repr=False)
     _Gxy: sp.csr_matrix = field(repr=False)
+    #: mirror image (x -> -x) of each core element, or None if the model is not mirror-symmetric
+    _mirror: NDArray[np.int64] | None = field(default=None, repr=False)
 
     @property
     def n_elements(self) -> int:
@@ -525,6 +534,38 @@ class CoreSubstructure:
         U = lu.solve(self._F)
         if not np.all(np.isfinite(U)):
             raise SolverError("plane-strain FE: non-finite displacements (stiffness too degraded)")
+        return self.stresses(U, f)
+
+    @property
+    def symmetric(self) -> bool:
+        """Whether the model is mirror-symmetric about ``x = 0`` (see the class docstring)."""
+        return self._mirror is not None
+
+    @property
+    def half_loads(self) -> NDArray[np.float64]:
+        """Load columns of the positions ``x_c <= 0`` [N] (all columns if not symmetric)."""
+        if self._mirror is None:
+            return self._F
+        return self._F[:, : (self._F.shape[1] + 1) // 2]
+
+    def symmetrize(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Mean of an element field and its mirror image (exactly mirror-symmetric) [-]."""
+        v = np.asarray(values, dtype=float)
+        return v if self._mirror is None else 0.5 * (v + v[self._mirror])
+
+    def block_solver(self, **options):
+        """A :class:`~bearingsim.life.block_solver.BlockSolver` for this core's stiffness and
+        loads (preconditioned conjugate gradients reusing the work between damage blocks)."""
+        from .block_solver import BlockSolver
+
+        return BlockSolver(
+            self._P, self._s_data, self._indptr, self._indices, self.half_loads, **options
+        )
+
+    def stresses(self, U: NDArray[np.float64], factor: NDArray[np.float64]) -> SectionStresses:
+        """Core-element stresses [Pa] from core displacements ``U`` (n_dofs, n_positions) [m]
+        and element factors ``1 - D`` [-]."""
+        f = np.asarray(factor, dtype=float)
         sec = self.section
         E, nu = sec.material.youngs_modulus, sec.material.poisson_ratio
         lam = E * nu / ((1 + nu) * (1 - 2 * nu))
@@ -533,9 +574,17 @@ class CoreSubstructure:
         ff = f[:, None]
         sxx = ff * ((lam + 2 * mu) * exx + lam * eyy)
         syy = ff * (lam * exx + (lam + 2 * mu) * eyy)
-        return SectionStresses(
-            sigma_x=sxx, sigma_z=syy, tau_xz=-ff * mu * gxy, sigma_y=nu * (sxx + syy)
-        )
+        txz = -ff * mu * gxy
+        n_pos = self._F.shape[1]
+        if U.shape[1] != n_pos:
+            if self._mirror is None or U.shape[1] != (n_pos + 1) // 2:
+                raise ValueError(f"U has {U.shape[1]} columns; expected {n_pos} or its half")
+            # position n_pos - 1 - k is the mirror of position k: mirror element, tau_xz sign
+            m, rest = self._mirror, slice(n_pos // 2 - 1, None, -1)
+            sxx = np.hstack([sxx, sxx[m, rest]])
+            syy = np.hstack([syy, syy[m, rest]])
+            txz = np.hstack([txz, -txz[m, rest]])
+        return SectionStresses(sigma_x=sxx, sigma_z=syy, tau_xz=txz, sigma_y=nu * (sxx + syy))
 
 
 def _csr_pattern(r: NDArray[np.int64], c: NDArray[np.int64], n: int):
@@ -602,6 +651,18 @@ def core_substructure(section: ContactSection) -> CoreSubstructure:
     P.sum_duplicates()
     s_data = np.bincount(inv[n_el_entries:], weights=S.ravel(), minlength=uniq.size)
     Fc = np.asfortranarray(F[core_dofs])
+    # mirror map: the element at (-x, z) of each core element, if the model is symmetric
+    ccx, ccz = cx[core_el], cz[core_el]
+    order = np.lexsort((ccz, ccx))
+    morder = np.lexsort((ccz, -ccx))
+    mirror = np.empty(core_el.size, dtype=np.int64)
+    mirror[order] = morder
+    pos = section.positions
+    symmetric = (
+        np.allclose(ccx[mirror], -ccx, rtol=0.0, atol=tol)
+        and np.allclose(ccz[mirror], ccz, rtol=0.0, atol=tol)
+        and np.allclose(pos, -pos[::-1], rtol=0.0, atol=tol)
+    )
     ops = []
     for M in (section._Bxx, section._Byy, section._Gxy):
         Mc = M[core_el][:, core_dofs].tocsr()
@@ -619,6 +680,7 @@ def core_substructure(section: ContactSection) -> CoreSubstructure:
         _Bxx=ops[0],
         _Byy=ops[1],
         _Gxy=ops[2],
+        _mirror=mirror if symmetric else None,
     )
 
 
