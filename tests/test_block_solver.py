@@ -122,3 +122,16 @@ def test_pcg_life_agrees_with_the_direct_solve():
 def test_unknown_solver_is_refused():
     with pytest.raises(ConfigError, match="solver = 'lu' is invalid; valid values 'pcg', 'direct'"):
         contact_fatigue_life(B6206, 5000.0, mesh="coarse", solver="lu")
+
+
+@pytest.mark.parametrize("measure", ["max_shear", "orthogonal", "critical_plane"])
+@pytest.mark.parametrize("half", [True, False])
+def test_compiled_shear_range_equals_the_stress_path(core, measure, half):
+    f = _symmetric_factor(core, np.random.default_rng(6))
+    K = core.stiffness(f).tocsc()
+    U = spsolve(K, core.half_loads if half else core._F)
+    want = core.stresses(U, f).shear_range(measure)
+    got = core.shear_range_from(U, f, measure)
+    assert_allclose(got, want, rtol=1e-12, atol=1e-12 * want.max())
+    if half and measure != "critical_plane":  # compiled: exactly mirror-symmetric
+        assert np.array_equal(got, got[core._mirror])

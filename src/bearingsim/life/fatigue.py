@@ -486,8 +486,10 @@ def contact_fatigue_life(
     try:
         for step in range(1, max_steps + 1):
             fac = np.maximum(1.0 - D, res_k)
-            st = core.solve(fac) if blocks is None else core.stresses(blocks.solve(fac), fac)
-            dtau = st.shear_range(measure)
+            if blocks is None:
+                dtau = core.solve(fac).shear_range(measure)
+            else:
+                dtau = core.shear_range_from(blocks.solve(fac), fac, measure)
             if dtau0 is None:
                 dtau0 = dtau.copy()
             rate = (dtau / (law.sigma_t * fac)) ** law.kappa  # seed LIFE eq. (4)

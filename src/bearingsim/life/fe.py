@@ -504,6 +504,8 @@ class CoreSubstructure:
     _Gxy: sp.csr_matrix = field(repr=False)
     #: mirror image (x -> -x) of each core element, or None if the model is not mirror-symmetric
     _mirror: NDArray[np.int64] | None = field(default=None, repr=False)
+    #: the strain operators on one CSR pattern (indptr, indices, xx, yy, xy values), built once
+    _ops: tuple | None = field(default=None, repr=False)
 
     @property
     def n_elements(self) -> int:
@@ -552,6 +554,39 @@ class CoreSubstructure:
         """Mean of an element field and its mirror image (exactly mirror-symmetric) [-]."""
         v = np.asarray(values, dtype=float)
         return v if self._mirror is None else 0.5 * (v + v[self._mirror])
+
+    def shear_range_from(
+        self, U: NDArray[np.float64], factor: NDArray[np.float64], measure: ShearMeasure | str
+    ) -> NDArray[np.float64]:
+        """``Delta_tau`` per core element [Pa] from displacements ``U`` [m] (all positions, or
+        the half of a symmetric model) and element factors [-]; the same numbers as
+        ``stresses(U, factor).shear_range(measure)`` (compiled for the ``max_shear`` and
+        ``orthogonal`` measures, which the damage loop evaluates every block)."""
+        measure = ShearMeasure.parse(measure)
+        f = np.asarray(factor, dtype=float)
+        n_pos = self._F.shape[1]
+        if measure is ShearMeasure.CRITICAL_PLANE or U.shape[1] not in (n_pos, (n_pos + 1) // 2):
+            return self.stresses(U, f).shear_range(measure)
+        from .block_solver import _shear_range
+
+        if self._ops is None:
+            ops = [M.tocsr() for M in (self._Bxx, self._Byy, self._Gxy)]
+            pat = (abs(ops[0]) + abs(ops[1]) + abs(ops[2])).tocsr()  # the union pattern
+            pat.sort_indices()
+            rows = np.repeat(np.arange(pat.shape[0]), np.diff(pat.indptr))
+            vals = [np.ascontiguousarray(np.asarray(M[rows, pat.indices]).ravel()) for M in ops]
+            self._ops = (pat.indptr, pat.indices, *vals)
+        E, nu = self.section.material.youngs_modulus, self.section.material.poisson_ratio
+        mu = E / (2 * (1 + nu))
+        mirror = self._mirror if U.shape[1] != n_pos else np.zeros(0, dtype=np.int64)
+        return _shear_range(
+            *self._ops,
+            np.ascontiguousarray(U),
+            f,
+            mu,
+            mirror,
+            measure is ShearMeasure.ORTHOGONAL,
+        )
 
     def block_solver(self, **options):
         """A :class:`~bearingsim.life.block_solver.BlockSolver` for this core's stiffness and
