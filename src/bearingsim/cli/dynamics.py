@@ -265,6 +265,14 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     help="Set any scenario key of the model's family (repeatable), e.g. --set "
     "spall_width_m=2e-3 for --model ias; VALUE is a TOML value.",
 )
+@click.option(
+    "--rig",
+    "rig_name",
+    default=None,
+    metavar="NAME|FILE",
+    help="Pass the output through a measurement chain (a shipped rig profile or a rig TOML "
+    "file): the sensor's signal is written as channel acc_sensor [m/s^2] (bearingsim.rig).",
+)
 @allow_overload_option
 @budget_options()
 @output_option("Output file (netCDF-4).", required=True)
@@ -275,6 +283,7 @@ def simulate_cmd(
     as_json: bool,
     budget: Any,
     allow_overload: bool,
+    rig_name: str | None,
     **kw: Any,
 ) -> None:
     """Simulate a (faulty) bearing and write a self-describing netCDF file.
@@ -287,6 +296,25 @@ def simulate_cmd(
     from ..simulation import simulate, validate_scenario
 
     sc = _scenario(scenario_file, kw)
+    rig = None
+    if rig_name is not None:  # the rig is checked before any work, like the scenario
+        from ..rig import load_rig
+
+        rig = load_rig(rig_name)
+        if sc.model is Model.IAS:
+            raise ConfigError("--rig applies to acceleration outputs; model ias has none")
+        rig.check_rate(sc.fs_hz)
+        if rig.input_channel not in ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"):
+            raise ConfigError(
+                f"rig {rig.name!r}: input_channel {rig.input_channel!r} is not an acceleration "
+                f"output of model {sc.model.value}; valid: acc_x, acc_y"
+                + (", acc_x_fe, acc_y_fe" if sc.model is Model.ROTOR else "")
+            )
+        if rig.input_channel.endswith("_fe") and sc.model is not Model.ROTOR:
+            raise ConfigError(
+                f"rig {rig.name!r}: input_channel {rig.input_channel!r} exists for model rotor "
+                f"only; valid for {sc.model.value}: acc_x, acc_y"
+            )
     seen: set[str] = set()
     with echo_warnings(seen):  # everything checked before any work or output
         validate_scenario(sc, budget, allow_overload)
@@ -311,6 +339,10 @@ def simulate_cmd(
             res = simulate(sc, progress=progress, budget=budget, allow_overload=allow_overload)
     finally:
         bar.close()
+    if rig is not None:
+        from ..rig import apply_rig
+
+        res = apply_rig(res, rig)
     res.save(output)
     wall = time.perf_counter() - t0
     out = {
@@ -332,6 +364,10 @@ def simulate_cmd(
             out["rms_acc_y_fe"] = res.rms("acc_y_fe")
         fault = sc.fault if sc.model is not Model.ROTOR else f"DE {sc.de_fault} / FE {sc.fe_fault}"
         what = f"RMS acc x {out['rms_acc_x']:.4g} y {out['rms_acc_y']:.4g} m/s^2"
+        if rig is not None:
+            out["rig"] = rig.name
+            out["rms_acc_sensor"] = res.rms("acc_sensor")
+            what += f", through rig {rig.name}: RMS {out['rms_acc_sensor']:.4g} m/s^2"
     if as_json:
         emit_json(out)
         return

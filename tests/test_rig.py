@@ -1,0 +1,210 @@
+"""The measurement chain ("rig", issue 16 item 3): a linear transfer path, background, tones and
+sensor noise applied to a model's output; rig files validated with one-line errors."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose, assert_array_equal
+from scipy.signal import welch
+
+import bearingsim
+from bearingsim import simulate
+from bearingsim.errors import ConfigError
+from bearingsim.results import load_result
+from bearingsim.rig import Background, Mode, Rig, Tone, apply_rig, available_rigs, load_rig
+
+SRC = str(Path(bearingsim.__file__).resolve().parents[1])
+
+RIG_TOML = """
+name = "test-rig"
+description = "a rig written for the tests"
+provenance = "written by hand for tests/test_rig.py"
+input_channel = "acc_y"
+
+[path]
+gain = 0.5
+provenance = "test value"
+
+[[mode]]
+frequency_hz = 3350.0
+damping_ratio = 0.05
+gain = 4.0
+provenance = "test value"
+
+[background]
+frequency_hz = [20.0, 6000.0]
+psd_m2_per_s4_per_hz = [1e-4, 1e-6]
+provenance = "test value"
+
+[[tone]]
+order = 1.0
+amplitude_m_per_s2 = 0.05
+provenance = "test value"
+
+[sensor]
+noise_rms_m_per_s2 = 0.01
+provenance = "test value"
+"""
+
+
+@pytest.fixture()
+def rig_file(tmp_path):
+    p = tmp_path / "rig.toml"
+    p.write_text(RIG_TOML, encoding="utf-8")
+    return p
+
+
+def _rig(**kw) -> Rig:
+    base = dict(name="r", description="", provenance="test", gain=0.0)
+    return Rig(**(base | kw))
+
+
+def test_mode_resonance_gain_and_bandwidth():
+    """The discretised mode keeps its natural frequency, its gain there and its half-power
+    bandwidth 2 zeta f_n (the band-pass of one degree of freedom) at f_n = 0.28 fs, where a
+    bilinear transform pre-warped at f_n alone narrows the band to 0.56 of it."""
+    fs, fn, zeta, g = 12000.0, 3350.0, 0.05, 4.0
+    rig = _rig(modes=(Mode(fn, zeta, g, "test"),))
+    f = np.linspace(1000.0, 5500.0, 45001)
+    h = np.abs(rig.transfer(f, fs))
+    assert f[np.argmax(h)] == pytest.approx(fn, abs=0.2)
+    assert h.max() == pytest.approx(g, rel=1e-6)
+    above = f[h >= g / np.sqrt(2.0)]
+    # iirpeak pre-warps the band edges: the digital bandwidth is the mode's (grid step 0.1 Hz)
+    assert above[-1] - above[0] == pytest.approx(2 * zeta * fn, abs=0.3)
+
+
+def test_identity_rig_returns_the_signal():
+    x = np.random.default_rng(1).standard_normal(1000)
+    rig = Rig(name="id", description="", provenance="test")  # gain 1, nothing else
+    assert_array_equal(rig.apply(x, 12000.0), x)
+
+
+def test_background_has_the_tabulated_psd():
+    fs, n = 12000.0, 12000 * 40
+    bg = Background((20.0, 6000.0), (1e-4, 1e-6), "test")
+    y = bg.synthesize(n, fs, np.random.default_rng(2))
+    f, p = welch(y, fs=fs, nperseg=4096)
+    band = (f > 100.0) & (f < 5000.0)
+    ratio = p[band] / bg.psd_at(f[band])
+    assert np.median(ratio) == pytest.approx(1.0, abs=0.03)
+    assert np.all((ratio > 0.6) & (ratio < 1.6))
+    # the RMS is the integral of the PSD
+    ff = np.linspace(20.0, 6000.0, 200001)
+    assert np.std(y) == pytest.approx(np.sqrt(np.trapezoid(bg.psd_at(ff), ff)), rel=0.02)
+
+
+def test_tone_and_sensor_noise_levels():
+    fs, n = 12000.0, 120000
+    rig = _rig(tones=(Tone(0.05, "test", order=1.0),))
+    y = rig.apply(np.zeros(n), fs, shaft_hz=29.5)
+    spec = np.abs(np.fft.rfft(y)) * 2 / n
+    f = np.fft.rfftfreq(n, 1 / fs)
+    assert f[np.argmax(spec)] == pytest.approx(29.5, abs=0.1)
+    assert spec.max() == pytest.approx(0.05, rel=0.01)
+    noisy = _rig(noise_rms_m_per_s2=0.01)
+    assert np.std(noisy.apply(np.zeros(n), fs)) == pytest.approx(0.01, rel=0.02)
+
+
+def test_seeded_and_bit_reproducible(rig_file):
+    rig = load_rig(rig_file)
+    x = np.sin(np.arange(6000) * 0.3)
+    a = rig.apply(x, 12000.0, shaft_hz=29.0, seed=4)
+    assert_array_equal(a, rig.apply(x, 12000.0, shaft_hz=29.0, seed=4))
+    assert not np.array_equal(a, rig.apply(x, 12000.0, shaft_hz=29.0, seed=5))
+
+
+def test_file_round_trip(rig_file):
+    rig = load_rig(rig_file)
+    assert rig.name == "test-rig" and len(rig.modes) == 1 and rig.gain == 0.5
+    again = Rig.from_dict(rig.to_dict(), source="again")
+    assert again == rig
+
+
+def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
+    res = simulate(dict(model="vsm", duration_s=0.1, fs_hz=12000.0, fault="outer"))
+    out = apply_rig(res, rig_file)
+    assert "acc_sensor" in out.channels and out.units["acc_sensor"] == "m/s^2"
+    assert_array_equal(out["acc_y"], res["acc_y"])  # the model's channels are untouched
+    assert out.meta["rig"]["name"] == "test-rig" and out.meta["rig"]["seed"] == 0
+    p = tmp_path / "r.nc"
+    out.save(p)
+    back = load_result(p)
+    assert_allclose(back["acc_sensor"], out["acc_sensor"], rtol=0, atol=0)
+    assert back.meta["rig"]["mode"][0]["frequency_hz"] == 3350.0
+
+
+@pytest.mark.parametrize(
+    "edit, message",
+    [
+        (("name = ", "colour = 1\nname = "), "unknown key 'colour'"),
+        (("damping_ratio = 0.05", "damping_ratio = -0.05"), "mode[0].damping_ratio = -0.05"),
+        (("gain = 4.0", "gain = nan"), "mode[0].gain = nan is not finite"),
+        (
+            ('provenance = "written by hand for tests/test_rig.py"\n', ""),
+            "rig.provenance is missing",
+        ),
+        (
+            (
+                'gain = 4.0\nprovenance = "test value"',
+                "gain = 4.0",
+            ),
+            "mode[0].provenance is missing",
+        ),  # fmt: skip
+        (("[20.0, 6000.0]", "[6000.0, 20.0]"), "must increase strictly"),
+        (("order = 1.0", "order = 1.0\nfrequency_hz = 60.0"), "exactly one of order and frequency"),
+    ],
+)
+def test_bad_rig_files_are_refused_in_one_line(tmp_path, edit, message):
+    old, new = edit
+    assert old in RIG_TOML
+    p = tmp_path / "bad.toml"
+    p.write_text(RIG_TOML.replace(old, new, 1), encoding="utf-8")
+    with pytest.raises(ConfigError) as exc:
+        load_rig(p)
+    text = str(exc.value)
+    assert message in text and "\n" not in text and text.startswith("bad.toml: ")
+
+
+def test_mode_above_nyquist_is_refused(rig_file):
+    rig = load_rig(rig_file)
+    with pytest.raises(ConfigError, match=r"mode\[0\].frequency_hz = 3350 Hz is at or above"):
+        rig.apply(np.zeros(100), 6000.0)
+
+
+def test_unknown_profile_name_lists_the_shipped_ones():
+    with pytest.raises(ConfigError, match="neither a file nor a shipped profile; shipped: "):
+        load_rig("no-such-rig")
+    assert isinstance(available_rigs(), list)
+
+
+def _cli(*args, cwd):
+    import os
+
+    env = {**os.environ, "PYTHONPATH": SRC}
+    return subprocess.run([sys.executable, "-m", "bearingsim", *args], capture_output=True,
+                          text=True, env=env, cwd=cwd)  # fmt: skip
+
+
+def test_cli_simulate_with_a_rig(rig_file, tmp_path):
+    out = tmp_path / "s.nc"
+    r = _cli("simulate", "--model", "vsm", "--duration-s", "0.05", "--fs-hz", "12000",
+             "--rig", str(rig_file), "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "through rig test-rig" in r.stdout
+    assert "acc_sensor" in load_result(out).channels
+
+
+def test_cli_refuses_a_bad_rig_before_any_work(rig_file, tmp_path):
+    out = tmp_path / "s.nc"
+    r = _cli("simulate", "--model", "vsm", "--duration-s", "0.05", "--fs-hz", "6000",
+             "--rig", str(rig_file), "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: rig.toml: mode[0].frequency_hz")
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["rig.toml"]
