@@ -133,6 +133,16 @@ OUTPUTS = {
         "--plot",
         "bearingsim.signal.order.read_shaft_signal",
     ),
+    "rig identify -o": (
+        ["rig", "identify", "{file}", "--name", "x", "-o", "{out}"],
+        "-o/--output",
+        "bearingsim.io.signal.read_signal",
+    ),
+    "rig identify --plot": (
+        ["rig", "identify", "{file}", "--name", "x", "-o", "{ok}", "--plot", "{out}"],
+        "--plot",
+        "bearingsim.io.signal.read_signal",
+    ),
     "reproduce -o": (
         ["reproduce", "--quick", "-o", "{out}"],
         "-o/--output",

@@ -58,6 +58,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "life",
         "Contact-fatigue life of BEARING by damage mechanics, beside ISO 281 and ISO/TS 16281.",
     ),
+    "rig": (
+        "rig",
+        "Measurement chains (rigs): identify one from measured records, show one.",
+    ),
     "sweep": (
         "sweep",
         "Parameter sweeps: plan, run (local Dask cluster or --scheduler), summary.",

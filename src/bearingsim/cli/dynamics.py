@@ -270,8 +270,9 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "rig_name",
     default=None,
     metavar="NAME|FILE",
-    help="Pass the output through a measurement chain (a shipped rig profile or a rig TOML "
-    "file): the sensor's signal is written as channel acc_sensor [m/s^2] (bearingsim.rig).",
+    help="Pass the output through a measurement chain (a shipped rig profile such as "
+    "cwru-de-12k, or a rig TOML file): the sensor's signal is written as channel acc_sensor "
+    "(bearingsim.rig).",
 )
 @allow_overload_option
 @budget_options()

@@ -1,0 +1,131 @@
+"""``bearingsim rig``: measurement chains (issue 16): identify one from measured records, show
+one."""
+
+from __future__ import annotations
+
+import shlex
+import sys
+
+import click
+
+from .common import Number, check_outputs, cli, emit_json, json_option, output_option
+
+
+@cli.group("rig")
+def rig_group() -> None:
+    """Measurement chains (rigs): identify one from measured records, show one."""
+
+
+@rig_group.command("identify")
+@click.argument("records", nargs=-1, required=True, metavar="RECORD...")
+@click.option("--name", required=True, help="Name of the rig (written into the file).")
+@click.option("--description", default="", help="What the rig is (sensor, machine).")
+@click.option(
+    "--channel",
+    default=None,
+    show_default="DE for .mat",
+    help="DE|FE|BA (CWRU .mat), x|y (result), or a CSV column; the same for every record.",
+)
+@click.option(
+    "--rpm",
+    type=Number(0.0, lo_open=True, unit="r/min"),
+    default=None,
+    show_default="from each file",
+    help="Shaft speed [r/min] of every record (for the shaft-order tones).",
+)
+@click.option(
+    "--max-modes",
+    type=Number(1, integer=True),
+    default=3,
+    show_default=True,
+    help="Largest number of modes.",
+)
+@click.option(
+    "--plot",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="PNG: measured vs identified spectra and the impulsive spectrum.",
+)
+@output_option("Rig TOML file to write.", required=True)
+@json_option
+def identify_cmd(
+    records: tuple[str, ...],
+    name: str,
+    description: str,
+    channel: str | None,
+    rpm: float | None,
+    max_modes: int,
+    plot: str | None,
+    output: str,
+    as_json: bool,
+) -> None:
+    """Identify a rig from measured records of one machine and channel (output-only: modes
+    from the impulsive spectrum and the ringing decay, background, shaft-order tones)."""
+    check_outputs(("-o/--output", output), ("--plot", plot))
+    from ..io.atomic import atomic_open
+    from ..io.signal import read_signal
+    from ..rig import Rig
+    from ..rig_identify import identify_rig, rig_to_toml
+
+    recs = [read_signal(p, channel=channel, rpm=rpm) for p in records]
+    # the exact command, as typed (run from the folder it names its files relative to)
+    command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
+    ir = identify_rig(
+        recs,
+        name=name,
+        description=description,
+        provenance=f"identified by `{command}` (bearingsim.rig_identify, output-only)",
+        max_modes=int(max_modes),
+    )
+    text = rig_to_toml(ir.rig)
+    Rig.from_dict(__import__("tomllib").loads(text), source="identified rig")  # round-trip check
+    with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
+        fh.write(text)
+    if plot:
+        from ..report.figures import save_figure
+
+        save_figure(ir.plot(), plot)
+    out = {
+        "output": str(output),
+        "name": name,
+        "records": [str(r.source) for r in recs],
+        "modes": [
+            {"frequency_hz": m.frequency_hz, "damping_ratio": m.damping_ratio, "gain": m.gain}
+            for m in ir.rig.modes
+        ],
+        "tones": [
+            {"order": t.order, "amplitude_m_per_s2": t.amplitude_m_per_s2} for t in ir.rig.tones
+        ],
+    }
+    if as_json:
+        emit_json(out)
+        return
+    modes = ", ".join(
+        f"{m.frequency_hz:.0f} Hz (zeta {m.damping_ratio:.3f}, gain {m.gain:.2f})"
+        for m in ir.rig.modes
+    )
+    click.echo(f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}")
+
+
+@rig_group.command("show")
+@click.argument("rig_name", metavar="NAME|FILE")
+@json_option
+def show_cmd(rig_name: str, as_json: bool) -> None:
+    """Print a rig (a shipped profile or a file) after validating it."""
+    from ..rig import load_rig
+
+    r = load_rig(rig_name)
+    if as_json:
+        emit_json(r.to_dict())
+        return
+    click.echo(f"rig {r.name}: {r.description}")
+    click.echo(f"  provenance: {r.provenance}")
+    click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}")
+    for m in r.modes:
+        click.echo(f"  mode {m.frequency_hz:.1f} Hz, zeta {m.damping_ratio:.4f}, gain {m.gain:.3g}")
+    for t in r.tones:
+        where = f"order {t.order:g}" if t.order is not None else f"{t.frequency_hz:g} Hz"
+        click.echo(f"  tone {where}: {t.amplitude_m_per_s2:.4g} m/s^2")
+    if r.background is not None:
+        click.echo(f"  background: {len(r.background.psd)} PSD points")
+    click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")

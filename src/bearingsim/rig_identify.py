@@ -1,0 +1,386 @@
+"""Identify a measurement chain ("rig") from measured records of one machine (issue 16, item 4).
+
+Output-only identification: the records are what the sensor gave; the bearing's own vibration is
+not known. What can be identified from them, and how:
+
+1. **Resonances of the path** -- a bearing fault excites the structure with short impacts, so
+   the path's modes are where the signal is impulsive. The spectral kurtosis
+   ``SK(f) = <|X(t, f)|^4> / <|X(t, f)|^2>^2 - 2`` of a short-time Fourier transform (Antoni
+   2006, MSSP 20) marks those frequencies; the impulsive part of the power spectrum is taken as
+   ``E(f) = max(SK(f), 0) PSD(f)``, averaged over the records (each normalised to its total).
+   The largest peaks of the smoothed ``E`` are the modes (``max_modes``, at least a factor
+   ``min_separation`` apart in frequency).
+2. **Damping** -- from the decay of the ringing after each impact: the signal is band-passed
+   around the mode (zero-phase Butterworth, the band at least 5 half-power bandwidths wide so
+   the filter's own ringing is short), its envelope (Hilbert) is cut after each impact (the
+   envelope maxima above ``median + 0.4 (P99.5 - median)``, 2 ms apart at least), the
+   median envelope is fitted by ``exp(-sigma t)`` from the peak down to 20 % of it, and
+   ``zeta = sigma / (2 pi f_n)`` (a lightly damped mode rings at ``f_n`` and decays at
+   ``zeta w_n``).
+3. **Gain** -- output-only, a gain is a ratio of levels in the measured spectrum: near a mode
+   the bearing's excitation is broadband and smooth, so the measured PSD at ``f_n`` over the
+   PSD of its shoulders (log-log trend of the background one octave around it, the mode
+   excluded) is ``|1 + g|^2`` for a path of direct gain 1: ``g = sqrt(peak/shoulder) - 1``.
+   What the bearing model itself gives is not an input of the identification; how a model plus
+   this rig compares with a record is the side-by-side test (issue 16, item 5).
+4. **Background** -- the machine's own vibration: the median-averaged Welch PSD of each record
+   (impacts inflate some segments' periodograms, the median ignores them), the median over the
+   records, smoothed over 1/6 octave and tabulated at log-spaced frequencies.
+5. **Tones** -- the amplitude-spectrum lines at 1, 2 and 3 times the shaft speed of each record
+   (its own rpm), kept where the line stands at least 6 dB above the background; the median
+   amplitude over the records.
+
+A record too short (under 1 s), one whose channel does not exist, and a set of records without
+impulsive content (``SK`` nowhere above ``min_kurtosis``) are refused with one line.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import ConfigError
+from .rig import Background, Mode, Rig, Tone
+
+__all__ = ["IdentifiedRig", "identify_rig"]
+
+#: shortest record [s]
+MIN_DURATION_S = 1.0
+#: smallest mode gain kept [-]: a PSD peak 1.21 x its shoulders (0.8 dB) is within the scatter
+MIN_GAIN = 0.1
+
+
+@dataclass
+class IdentifiedRig:
+    """A rig and the spectra it was identified from.
+
+    Attributes
+    ----------
+    rig : Rig
+        The identified chain.
+    freq : ndarray
+        Frequencies of the spectra [Hz].
+    psd_records : ndarray, shape (n_records, n_freq)
+        Mean-averaged Welch PSD of each record [(m/s^2)^2/Hz].
+    freq_sk : ndarray
+        Frequencies of the impulsive spectrum (the STFT's) [Hz].
+    impulsive : ndarray
+        The records' mean normalised impulsive spectrum ``E(f)`` [1/Hz].
+    sources : list of str
+        The records.
+    decay : list of dict
+        Per mode: the fitted decay rate [1/s] and the number of impacts used.
+    """
+
+    rig: Rig
+    freq: NDArray[np.float64]
+    psd_records: NDArray[np.float64]
+    freq_sk: NDArray[np.float64]
+    impulsive: NDArray[np.float64]
+    sources: list[str]
+    decay: list[dict]
+
+    def plot(self):
+        """Measured PSDs and the identified background (sensor side), the identified path's
+        power gain ``|H(f)|^2`` with its modes, and the impulsive spectrum the modes were found
+        in; returns the Figure."""
+        from .plotting import FULL_WIDTH, legend_outside, new_figure
+
+        fs = 2.0 * float(self.freq[-1])
+        f = self.freq[1:]
+        fig, (a, b, c) = new_figure(3, 1, width=FULL_WIDTH, height=7.5, sharex=True)
+        for k, p in enumerate(self.psd_records):
+            a.loglog(f, p[1:], color="0.7", lw=0.6,
+                     label="measured records (Welch)" if k == 0 else None)  # fmt: skip
+        bg = self.rig.background
+        if bg is not None:
+            fb = np.asarray(bg.frequency_hz)
+            a.loglog(fb, bg.psd, "b.-", lw=1.2, ms=3, label="identified background (table)")
+        a.set_ylabel("PSD [(m/s²)²/Hz]")
+        a.set_title(f"rig {self.rig.name}: measured spectra, identified background and path")
+        b.loglog(f, np.abs(self.rig.transfer(f, fs)) ** 2, "r-", lw=1.0,
+                 label="path power gain |H(f)|² (direct gain + modes)")  # fmt: skip
+        b.set_ylabel("|H(f)|² [-]")
+        c.semilogx(self.freq_sk[1:], self.impulsive[1:], "k.-", lw=1.0, ms=3,
+                   label="impulsive spectrum E(f)")  # fmt: skip
+        for ax in (b, c):
+            for m in self.rig.modes:
+                ax.axvline(m.frequency_hz, color="r", ls=":", lw=1.0)
+        c.plot([], [], "r:", label="identified modes")
+        c.set_xlabel("frequency [Hz]")
+        c.set_ylabel("E(f), normalised [1/Hz]")
+        for ax in (a, b, c):
+            legend_outside(ax)
+        return fig
+
+
+def _stft_power(x: NDArray[np.float64], fs: float, nperseg: int):
+    from scipy.signal import stft
+
+    f, _, Z = stft(x, fs=fs, nperseg=nperseg, noverlap=nperseg * 3 // 4, boundary=None,
+                   padded=False)  # fmt: skip
+    return f, np.abs(Z) ** 2
+
+
+def _spectral_kurtosis(x, fs, nperseg):
+    f, P = _stft_power(x, fs, nperseg)
+    m2 = P.mean(axis=1)
+    m4 = (P * P).mean(axis=1)
+    sk = np.where(m2 > 0, m4 / np.maximum(m2, 1e-300) ** 2 - 2.0, 0.0)
+    # the DC and Nyquist bins are real: a Gaussian gives SK = 1 there, not 0
+    sk[0] = 0.0
+    if nperseg % 2 == 0:
+        sk[-1] = 0.0
+    return f, sk
+
+
+def _smooth_octave(f, y, frac):
+    """Mean over ``[f 2^(-frac/2), f 2^(frac/2)]`` at each frequency."""
+    out = np.empty_like(y)
+    c = np.concatenate([[0.0], np.cumsum(y)])
+    lo = np.searchsorted(f, f * 2.0 ** (-frac / 2.0), side="left")
+    hi = np.searchsorted(f, f * 2.0 ** (frac / 2.0), side="right")
+    out[:] = (c[hi] - c[lo]) / np.maximum(hi - lo, 1)
+    return out
+
+
+def _decay_rate(x, fs, fn, bw):
+    """Median envelope decay rate [1/s] of the ringing at ``fn`` [Hz] after the impacts, and
+    the number of impacts used."""
+    from scipy.signal import butter, find_peaks, hilbert, sosfiltfilt
+
+    half = max(2.5 * bw, 0.08 * fn, 150.0)
+    lo, hi = max(fn - half, 20.0), min(fn + half, 0.49 * fs)
+    y = sosfiltfilt(butter(4, [lo, hi], btype="band", fs=fs, output="sos"), x)
+    env = np.abs(hilbert(y))
+    med = np.median(env)
+    # impacts: envelope maxima well above its median (between it and the top 0.5 % level)
+    thr = med + 0.4 * (float(np.percentile(env, 99.5)) - med)
+    peaks, _ = find_peaks(env, height=thr, distance=max(1, int(0.002 * fs)))
+    n = int(0.004 * fs)
+    segs = [env[p : p + n] / env[p] for p in peaks if p + n <= env.size]
+    if len(segs) < 5:
+        return math.nan, len(segs)
+    m = np.median(np.array(segs), axis=0)
+    below = np.flatnonzero(m < 0.2)
+    cut = int(below[0]) if below.size else n
+    if cut < 3:
+        return math.nan, len(segs)
+    t = np.arange(cut) / fs
+    sigma = -np.polyfit(t, np.log(m[:cut]), 1)[0]
+    return float(sigma), len(segs)
+
+
+def identify_rig(
+    records: list,
+    *,
+    name: str,
+    description: str = "",
+    provenance: str = "",
+    max_modes: int = 3,
+    min_separation: float = 1.25,
+    min_kurtosis: float = 0.5,
+    nperseg_sk: int | None = None,
+    n_background: int = 40,
+) -> IdentifiedRig:
+    """Identify a rig from measured records of one machine and channel (see the module
+    docstring).
+
+    Parameters
+    ----------
+    records : list of SignalRecord
+        Records of one channel at one sample rate (:func:`bearingsim.io.signal.read_signal`),
+        each at least 1 s long, with the shaft speed known (``rpm``) for the tones.
+    name, description, provenance : str
+        The rig's name, description and provenance (the command that made it).
+    max_modes : int
+        Largest number of modes [-].
+    min_separation : float
+        Smallest frequency ratio between two modes [-].
+    min_kurtosis : float
+        Spectral kurtosis below which a record set counts as without impulsive content [-].
+    nperseg_sk : int, optional
+        STFT segment for the spectral kurtosis [samples] (default: 2.5 ms, a power of 2).
+    n_background : int
+        Points of the background table [-].
+    """
+    from scipy.signal import welch
+
+    if not records:
+        raise ConfigError("rig identify: no records given")
+    fs = float(records[0].fs)
+    for r in records:
+        if float(r.fs) != fs:
+            raise ConfigError(
+                f"rig identify: {Path(r.source).name} is sampled at {r.fs:g} Hz, the first record "
+                f"at {fs:g} Hz; identify one sample rate at a time"
+            )
+        dur = r.x.size / fs
+        if dur < MIN_DURATION_S:
+            raise ConfigError(
+                f"rig identify: {Path(r.source).name} is {dur:.3g} s long; at least "
+                f"{MIN_DURATION_S:g} s is needed"
+            )
+    nps = nperseg_sk or int(2 ** round(math.log2(0.0025 * fs)))
+    nwelch = int(2 ** round(math.log2(fs / 4.0)))  # ~4 Hz resolution
+    psd_mean, psd_med, imp = [], [], []
+    f_sk = None
+    for r in records:
+        x = np.asarray(r.x, dtype=float) - float(np.mean(r.x))
+        f, pm = welch(x, fs=fs, nperseg=nwelch)
+        _, pd = welch(x, fs=fs, nperseg=nwelch, average="median")
+        psd_mean.append(pm)
+        psd_med.append(pd)
+        f_sk, sk = _spectral_kurtosis(x, fs, nps)
+        _, P = _stft_power(x, fs, nps)
+        p = P.mean(axis=1)
+        e = np.maximum(sk, 0.0) * p
+        imp.append((e / max(float(np.trapezoid(e, f_sk)), 1e-300), float(np.max(sk))))
+    f = np.asarray(f)
+    if max(k for _, k in imp) < min_kurtosis:
+        raise ConfigError(
+            f"rig identify: no impulsive content (spectral kurtosis at most "
+            f"{max(k for _, k in imp):.2g}, below {min_kurtosis:g}): the modes of the path "
+            "cannot be seen; give records with a fault"
+        )
+    E = np.mean([e for e, _ in imp], axis=0)
+    # modes: largest peaks of E, separated
+    from scipy.signal import find_peaks
+
+    Es = _smooth_octave(f_sk, E, 1.0 / 6.0)
+    cand, _ = find_peaks(Es)
+    cand = cand[np.argsort(Es[cand])[::-1]]
+    chosen: list[int] = []
+    for c in cand:
+        if f_sk[c] < 100.0 or f_sk[c] > 0.45 * fs or Es[c] < 0.1 * Es[cand[0]]:
+            continue
+        if all(max(f_sk[c], f_sk[k]) / min(f_sk[c], f_sk[k]) >= min_separation for k in chosen):
+            chosen.append(int(c))
+        if len(chosen) == max_modes:
+            break
+    bg_psd = np.median(np.array(psd_med), axis=0)
+    bg_s = _smooth_octave(f, bg_psd, 1.0 / 6.0)
+    mean_psd = np.median(np.array(psd_mean), axis=0)
+    modes, decay = [], []
+    for c in sorted(chosen, key=lambda k: f_sk[k]):
+        # refine the frequency on the fine Welch grid: the PSD maximum within +/- 1/12 octave
+        fc = float(f_sk[c])
+        band = (f >= fc * 2 ** (-1 / 12)) & (f <= fc * 2 ** (1 / 12))
+        fn = float(f[band][np.argmax(_smooth_octave(f, mean_psd, 1 / 24)[band])])
+        sig = [_decay_rate(np.asarray(r.x, float) - np.mean(r.x), fs, fn, 0.05 * fn)
+               for r in records]  # fmt: skip
+        rates = [s for s, n in sig if np.isfinite(s)]
+        if not rates:
+            continue
+        sigma = float(np.median(rates))
+        zeta = min(max(sigma / (2 * math.pi * fn), 0.005), 0.5)
+        # gain: PSD at fn over the shoulders' log-log trend (one octave, the mode's band out)
+        bwn = 2 * zeta * fn
+        sh = ((f > fn / 2) & (f < fn - 3 * bwn)) | (
+            (f > fn + 3 * bwn) & (f < min(2 * fn, 0.45 * fs))
+        )
+        if np.count_nonzero(sh) < 4:
+            continue
+        coef = np.polyfit(np.log(f[sh]), np.log(bg_s[sh]), 1)
+        shoulder = float(np.exp(np.polyval(coef, np.log(fn))))
+        peak = float(_smooth_octave(f, mean_psd, 1 / 24)[np.argmin(np.abs(f - fn))])
+        gain = math.sqrt(peak / shoulder) - 1.0
+        if gain < MIN_GAIN:  # no resonance stands out of the shoulders: not a mode of the path
+            continue
+        modes.append(
+            Mode(fn, zeta, gain,
+                 f"impulsive-spectrum peak at {fc:.0f} Hz refined on the PSD; zeta from the median "
+                 f"envelope decay of {sum(n for _, n in sig)} impacts (sigma = {sigma:.0f} 1/s); "
+                 f"gain = sqrt(PSD peak / shoulder trend) - 1 = sqrt({peak / shoulder:.3g}) - 1")
+        )  # fmt: skip
+        decay.append({"frequency_hz": fn, "sigma_per_s": sigma, "impacts": sum(n for _, n in sig)})
+    if not modes:
+        raise ConfigError(
+            "rig identify: no mode could be identified (no impact ringing found around the "
+            "impulsive frequencies); give records with a fault"
+        )
+    # background table at log-spaced points from 10 Hz to 0.45 fs
+    fb = np.geomspace(10.0, 0.45 * fs, n_background)
+    pb = np.exp(np.interp(np.log(fb), np.log(f[1:]), np.log(np.maximum(bg_s[1:], 1e-30))))
+    bg = Background(
+        tuple(float(v) for v in fb),
+        tuple(float(v) for v in pb),
+        f"median-averaged Welch PSD (nperseg {nwelch}) of each record, median over "
+        f"{len(records)} records, mean over 1/6 octave, at {n_background} log-spaced points",
+    )
+    # tones at shaft orders
+    tones = []
+    for order in (1.0, 2.0, 3.0):
+        amps = []
+        for r in records:
+            if not r.rpm:
+                continue
+            x = np.asarray(r.x, float) - np.mean(r.x)
+            n = x.size
+            spec = np.abs(np.fft.rfft(x * np.hanning(n))) * 2.0 / np.sum(np.hanning(n))
+            ff = np.fft.rfftfreq(n, 1.0 / fs)
+            ft = order * r.rpm / 60.0
+            k = np.argmin(np.abs(ff - ft))
+            w = slice(max(k - 2, 0), k + 3)
+            line = float(spec[w].max())
+            # background amplitude in the same resolution: sqrt(PSD * ENBW)
+            enbw = 1.5 * fs / n
+            bgl = math.sqrt(float(np.interp(ft, f, bg_s)) * enbw)
+            amps.append(line if line > 2.0 * bgl else 0.0)
+        if amps and np.median(amps) > 0.0:
+            tones.append(
+                Tone(float(np.median(amps)),
+                     f"median over {len(amps)} records of the Hann-window amplitude-spectrum line "
+                     f"at {order:g} x the record's shaft speed (kept where >= 6 dB above the "
+                     "background)", order=order)
+            )  # fmt: skip
+    rig = Rig(
+        name=name,
+        description=description,
+        provenance=provenance or "bearingsim.rig_identify.identify_rig",
+        input_channel="acc_y",
+        gain=1.0,
+        gain_provenance="output-only identification: the path's direct gain is taken as 1 and "
+        "each mode's gain is relative to it (bearingsim.rig_identify, item 3)",
+        modes=tuple(modes),
+        background=bg,
+        tones=tuple(tones),
+        noise_rms_m_per_s2=0.0,
+        noise_provenance="not separable from the background in output-only data: part of it",
+    )
+    return IdentifiedRig(
+        rig=rig,
+        freq=f,
+        psd_records=np.array(psd_mean),
+        freq_sk=np.asarray(f_sk),
+        impulsive=E,
+        sources=[str(r.source) for r in records],
+        decay=decay,
+    )
+
+
+def rig_to_toml(rig: Rig) -> str:
+    """The rig as TOML text (the layout :func:`bearingsim.rig.load_rig` reads)."""
+    d = rig.to_dict()
+
+    def val(v):
+        if isinstance(v, str):
+            return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, list):
+            return "[" + ", ".join(val(x) for x in v) + "]"
+        return repr(float(v)) if isinstance(v, float) else str(v)
+
+    lines = [f"{k} = {val(d[k])}" for k in ("name", "description", "provenance", "input_channel")]
+    for table in ("path", "background", "sensor"):
+        if table in d:
+            lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]
+    for arr in ("mode", "tone"):
+        for item in d.get(arr, []):
+            lines += ["", f"[[{arr}]]"] + [f"{k} = {val(v)}" for k, v in item.items()]
+    return "\n".join(lines) + "\n"
