@@ -496,7 +496,11 @@ def connect(
             threads_per_worker=1,
             processes=True,
             dashboard_address=":0",  # the scheduler's HTTP server on a free port: no clash
-            silence_logs=logging.ERROR,
+            # CRITICAL, not ERROR: a worker whose scheduler closed first (Ctrl-C sent to the
+            # whole process group) logs "Failed to communicate with scheduler during heartbeat"
+            # at ERROR with a traceback on the client's stderr, breaking its one-line message
+            # (CI, 2026-11-26); a failed run still reaches the client as its task's exception
+            silence_logs=logging.CRITICAL,
         )
     try:
         client = Client(cluster, set_as_default=False, direct_to_workers=True)
