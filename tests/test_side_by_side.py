@@ -1,0 +1,70 @@
+"""Simulated beside measured (issue 16, item 5, first version): the same numbers computed the
+same way on both signals."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bearingsim.errors import ConfigError
+from bearingsim.io.signal import read_signal
+from bearingsim.side_by_side import side_by_side, signal_metrics, within_bounds
+
+CWRU = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
+needs_data = pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+
+
+def test_metrics_of_periodic_impacts():
+    """Impacts at 100 Hz ringing at 3 kHz (zeta 0.03) in weak white noise: the envelope line at
+    100 Hz stands far out, the kurtosis is high, the RMS is the signal's."""
+    fs, fn, zeta, rate = 12000.0, 3000.0, 0.03, 100.0
+    n = int(2 * fs)
+    x = np.zeros(n)
+    x[:: int(fs / rate)] = 1.0
+    t = np.arange(int(0.02 * fs)) / fs
+    h = np.exp(-zeta * 2 * np.pi * fn * t) * np.sin(2 * np.pi * fn * t)
+    y = np.convolve(x, h)[:n] + 0.001 * np.random.default_rng(0).standard_normal(n)
+    k = signal_metrics(y, fs, rate)
+    assert k.rms == pytest.approx(np.std(y), rel=1e-9)
+    # the kurtogram takes the most impulsive band: here the impacts' short broadband part above
+    # the ringing (4-6 kHz), where the envelope line stands out most
+    assert 0.0 <= k.band_lo_hz < k.band_hi_hz <= fs / 2
+    assert k.prominence_db > 30.0
+    assert k.kurtosis > 5.0  # impulsive
+
+
+def test_a_pure_tone_has_kurtosis_1_5_and_crest_sqrt2():
+    fs = 12000.0
+    t = np.arange(24000) / fs
+    k = signal_metrics(np.sin(2 * np.pi * 1000.0 * t), fs, 100.0)
+    assert k.kurtosis == pytest.approx(1.5, rel=1e-3)
+    assert k.crest == pytest.approx(np.sqrt(2), rel=1e-3)
+
+
+def test_bounds():
+    ok = within_bounds({"rms": 1.9, "line": 0.6, "kurtosis": 1.4, "prominence_db": -5.0})
+    assert all(ok.values())
+    bad = within_bounds({"rms": 2.1, "line": 0.4, "kurtosis": 1.6, "prominence_db": 6.5})
+    assert not any(bad.values())
+
+
+@needs_data
+def test_record_132_side_by_side():
+    rec = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
+    s = side_by_side(rec, "cwru-de-12k", duration_s=0.5)
+    assert s["fault"] == "outer" and s["end"] == "DE" and s["fs_hz"] == 12000.0
+    assert s["scenario"]["defect_width_m"] == pytest.approx(0.007 * 0.0254)
+    x = read_signal(rec, channel="DE").x[:6000]
+    x = x - x.mean()
+    assert s["measured"]["rms"] == pytest.approx(np.sqrt(np.mean(x * x)), rel=1e-12)
+    for k in ("rms", "kurtosis", "crest", "line"):
+        assert s["ratio"][k] == pytest.approx(s["simulated"][k] / s["measured"][k])
+    assert s["fault_hz"] == pytest.approx(3.5848 * s["rpm"] / 60.0, rel=1e-3)  # BPFO order
+
+
+@needs_data
+def test_ball_records_are_refused_in_one_line():
+    with pytest.raises(ConfigError, match="no ball-defect model yet"):
+        side_by_side(CWRU / "12k_Drive_End_B007_2_120.mat", "cwru-de-12k", duration_s=0.2)
