@@ -375,6 +375,10 @@ class RingScenario(Scenario):
     ``seed``                        0               seed of the measurement noise (integer >= 0)
     ``noise_rms_m_per_s2``          0.0             RMS of white measurement noise on the
                                                     accelerations [m/s^2]
+    ``slip_percent``                0.0             random slip: standard deviation of each
+                                                    ball-pass interval [% of its mean], 1–2 in
+                                                    real bearings (Randall & Antoni 2011); 0 =
+                                                    kinematic; needs ``solver = "rk4"``
     ``mass_kg``                     by fault        vibrating mass m [kg]; seed table 1: 0.063
                                                     (outer ring, also ``none``), 0.045 (inner)
     ``damping_n_s_per_m``           300.0           c_eq [N s/m] (seed table 1)
@@ -413,6 +417,7 @@ class RingScenario(Scenario):
         "fs_hz",
         "seed",
         "noise_rms_m_per_s2",
+        "slip_percent",
         "mass_kg",
         "damping_n_s_per_m",
         "stiffness_n_per_m1_5",
@@ -443,6 +448,7 @@ class RingScenario(Scenario):
     fy_n: float = SEED_VSM_FY_N
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
+    slip_percent: float = 0.0
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
     stiffness_n_per_m1_5: float | None = None
@@ -472,6 +478,13 @@ class RingScenario(Scenario):
             "noise_rms_m_per_s2",
             check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
+        s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
+        if self.slip_percent > 0.0 and self.solver is not Solver.RK4:
+            raise ConfigError(
+                f"slip_percent = {self.slip_percent:g} % needs solver = 'rk4' (the adaptive "
+                f"solver has no slip); valid: slip_percent = 0 with solver = "
+                f"'{self.solver.value}'"
+            )
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
         s(

@@ -92,6 +92,9 @@ P_CRW = 31  #: cached ball-1 angle past the fixed-zone edge (scratch) [rad]
 P_CELL = 32  #: 1 = average the defect/zone indicators over the RK4 quadrature cell of t [-]
 P_CHD = 33  #: cached angular half-width of the defect cell (scratch) [rad]
 P_CHW = 34  #: cached angular half-width of the zone cell (scratch) [rad]
+P_SLIP = 35  #: offset in ``p`` of the slip table of ball-pass instants (0 = no slip) [-]
+P_SLIPN = 36  #: entries of the slip table [-]
+P_SLIPDT = 37  #: nominal ball-pass period 2 pi / (Z w_cage) [s]
 HEADER = 40  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
@@ -125,11 +128,35 @@ def wrap(x):
 
 
 @njit(cache=True, inline="always")
+def slip_phase(t, p):
+    """Random slip: the cage's angle at ``t`` minus its kinematic angle ``w_cage t`` [rad]
+    (0 without slip). The table at ``p[P_SLIP]`` holds the ball-pass instants ``t_k`` (the
+    cage at ``k 2 pi / Z``); between two of them the cage turns uniformly (see
+    :meth:`.base.ModelInputs.slip_table`)."""
+    off = int(p[P_SLIP])
+    if off == 0:
+        return 0.0
+    n = int(p[P_SLIPN])
+    step = TWO_PI / p[P_Z]
+    k = int(math.floor(t / p[P_SLIPDT]))  # the nominal pass; the jittered one is near
+    k = 0 if k < 0 else (n - 2 if k > n - 2 else k)
+    while k > 0 and p[off + k] > t:
+        k -= 1
+    while k < n - 2 and p[off + k + 1] <= t:
+        k += 1
+    t0 = p[off + k]
+    t1 = p[off + k + 1]
+    return step * (k + (t - t0) / (t1 - t0)) - p[P_WCAGE] * t
+
+
+@njit(cache=True, inline="always")
 def frame(t, p):
     """Angles of ball 1 at time ``t``: its azimuth (eq. (12)), its angle past the defect's left
     edge modulo 2 pi (eqs. (13), (15)) and past the lower edge of a fixed load-zone window
     (eq. (14)) [rad]."""
     th = p[P_WCAGE] * t + p[P_ALPHA0]  # seed VSM eq. (12)
+    if p[P_SLIP] > 0.0:
+        th += slip_phase(t, p)
     fault = int(p[P_FAULT])
     rel_d = 0.0
     if fault == 2:
@@ -330,6 +357,8 @@ def static_kernel(times, point, p, table, residual, ux, uy):
         t = times[i]
         # ---- ball positions and defect/zone indicators (eqs. 12-15)
         th = wc * t + a0
+        if p[P_SLIP] > 0.0:
+            th += slip_phase(t, p)
         rd = 0.0
         if fault == 2.0:
             rd = wrap(th - ws * t - beta0)

@@ -85,6 +85,13 @@ class ModelInputs:
         balls inside the fixed window ``theta_0 +/- psi_L`` carry load.
     tol : float
         Relative force tolerance of the static balance [-].
+    slip : float
+        Random slip: standard deviation of each ball-pass interval relative to its mean [-]
+        (0: the cage turns at the FTF exactly). Literature: 0.01–0.02 (Randall & Antoni 2011,
+        MSSP 25). See :meth:`slip_table`.
+    slip_seed : int
+        Seed of the slip process (``numpy.random.SeedSequence([slip_seed, 1])``: a stream of
+        its own, apart from the measurement noise's ``default_rng(seed)``).
     """
 
     bearing: Bearing
@@ -100,6 +107,8 @@ class ModelInputs:
     retention_factor: float | None = None
     load_zone_half_angle: float | None = None
     tol: float = 1e-12
+    slip: float = 0.0
+    slip_seed: int = 0
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -182,6 +191,22 @@ class ModelInputs:
     def theta0(self) -> float:
         """Load direction from +y towards +x [rad]."""
         return math.atan2(self.fx, self.fy)
+
+    def slip_table(self, duration: float) -> tuple[NDArray[np.float64], float]:
+        """The ball-pass instants ``t_k`` [s] (the cage at ``k 2 pi / Z``, ``t_0 = 0``)
+        covering ``duration`` [s], and the nominal ball-pass period ``dt`` [s].
+
+        Model (random slip, Antoni & Randall 2002; Randall & Antoni 2011): the rolling elements
+        do not keep their kinematic rate; from one ball pass to the next the cage turns at
+        ``w_cage (1 + s_k)``, ``s_k`` independent and normal with standard deviation ``slip``,
+        so the ball-pass intervals are ``dt / (1 + s_k)``: jittered by ``slip`` of their
+        period, the mean speed the FTF, the phase a random walk. Between two passes the cage
+        turns uniformly. The run starts at ``t_0 = 0`` from the static state."""
+        dt = 1.0 / (self.bearing.n_elements * self.cage_hz)
+        n = int(math.ceil(1.1 * duration / dt)) + 4
+        rng = np.random.default_rng(np.random.SeedSequence([int(self.slip_seed), 1]))
+        s = np.clip(self.slip * rng.standard_normal(n - 1), -0.5, 0.5)
+        return np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))]), dt
 
     def header(self, per_ball: bool = False) -> NDArray[np.float64]:
         """The parameter vector header (layout :mod:`._balance`), without a table."""
@@ -337,6 +362,19 @@ def integrate_model(
     h = 0.5 * dt
     header[bl.P_CELL] = 1.0 if cell_average else 0.0
     header[bl.P_HTAB] = h
+    slip = np.zeros(0)
+    if inputs.slip > 0.0:  # the slip table goes at the end of every parameter vector
+        slip, sdt = inputs.slip_table(n_out / fs)
+        header[bl.P_SLIPN] = slip.size
+        header[bl.P_SLIPDT] = sdt
+
+    def with_slip(q: NDArray[np.float64]) -> NDArray[np.float64]:
+        if slip.size == 0:
+            return q
+        out = np.concatenate([q, slip])
+        out[bl.P_SLIP] = q.size
+        return out
+
     t_all = np.empty(n_out)
     y_all = np.empty((n_out, 4))
     a_all = np.empty((n_out, na))
@@ -355,14 +393,16 @@ def integrate_model(
             times = t_start + h * np.arange(n_tab)
             table = np.empty((n_tab, bl.NCOL))
             res = np.empty(n_tab)
-            ux, uy = call_compiled(bl.quasi_static_path, times, header, table, res, ux, uy)
+            ux, uy = call_compiled(
+                bl.quasi_static_path, times, with_slip(header), table, res, ux, uy
+            )
             res_max = max(res_max, float(res.max()))
-            p = np.concatenate([header, table.ravel()])
+            p = with_slip(np.concatenate([header, table.ravel()]))
             p[bl.P_T0] = t_start
             p[bl.P_HTAB] = h
             p[bl.P_NTAB] = n_tab
         else:
-            p = header.copy()
+            p = with_slip(header.copy())
         tr = run_fixed(
             kernel.rhs,
             kernel.aux,

@@ -99,6 +99,8 @@ def _dem_rhs(t, y, p, dydt):
         wc = p[bl.P_WCAGE]
         fault = p[bl.P_FAULT]
         th = wc * t + p[bl.P_ALPHA0]  # seed VSM eq. (12)
+        if p[bl.P_SLIP] > 0.0:
+            th += bl.slip_phase(t, p)
         rd = 0.0
         if fault == 2.0:
             rd = bl.wrap(th - p[bl.P_WSHAFT] * t - p[bl.P_BETA0])  # eqs. (13), (15)

@@ -97,6 +97,8 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
             if scenario.load_zone_half_angle_deg is None
             else math.radians(scenario.load_zone_half_angle_deg)
         ),
+        slip=scenario.slip_percent / 100.0,
+        slip_seed=scenario.seed,
     )
 
 
@@ -304,6 +306,12 @@ def run_ring(
             "rms_m_s2": scenario.noise_rms_m_per_s2,
             "seed": scenario.seed,
             "generator": "numpy.random.default_rng(seed).standard_normal((n, 2))",
+        },
+        "slip": {
+            "interval_sd_percent": scenario.slip_percent,
+            "seed": scenario.seed,
+            "model": "cage speed w_cage (1 + s_k) over each ball-pass period, s_k ~ "
+            "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]) (ModelInputs.slip_table)",
         },
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
