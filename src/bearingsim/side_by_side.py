@@ -43,7 +43,7 @@ class SignalMetrics:
 
     rms: float  #: root mean square [m/s^2]
     kurtosis: float  #: Pearson kurtosis (3 for a Gaussian) [-]
-    crest: float  #: peak |x| over RMS [-]
+    crest: float  #: largest absolute value over the RMS [-]
     line: float  #: envelope-spectrum amplitude at the fault frequency [m/s^2]
     prominence_db: float  #: that line over the median 20-600 Hz level [dB]
     band_lo_hz: float  #: the envelope band (fast kurtogram), low edge [Hz]
