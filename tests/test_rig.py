@@ -206,5 +206,21 @@ def test_cli_refuses_a_bad_rig_before_any_work(rig_file, tmp_path):
              "--rig", str(rig_file), "-o", str(out), cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2
     lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: rig.toml: mode[0].frequency_hz")
+    assert len(lines) == 1 and lines[0].startswith("error: ")
+    assert "rig.toml: mode[0].frequency_hz = 3350 Hz is at or above" in lines[0]
     assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == ["rig.toml"]
+
+
+def test_rig_as_a_scenario_key(rig_file, tmp_path):
+    """The rig is a scenario key of the ring and rotor families (and so of sweeps): the result
+    carries acc_sensor; a rig file named relative to the scenario file is found beside it."""
+    res = simulate(dict(model="vsm", duration_s=0.05, fs_hz=12000.0, rig=str(rig_file)))
+    assert "acc_sensor" in res.channels and res.meta["rig"]["name"] == "test-rig"
+    sc = tmp_path / "sc.toml"
+    sc.write_text('model = "vsm"\nduration_s = 0.05\nfs_hz = 12000.0\nrig = "rig.toml"\n')
+    res2 = simulate(sc)
+    assert_array_equal(res2["acc_sensor"], res["acc_sensor"])
+    rot = simulate(dict(model="rotor", duration_s=0.02, fs_hz=12000.0, rig="cwru-de-12k"))
+    assert "acc_sensor" in rot.channels
+    with pytest.raises(ConfigError, match="at or above the Nyquist"):
+        simulate(dict(model="vsm", duration_s=0.05, fs_hz=6000.0, rig=str(rig_file)))

@@ -334,6 +334,9 @@ class Scenario:
             bf = Path(data["bearing_file"])
             if not bf.is_absolute():
                 data["bearing_file"] = str(p.parent / bf)
+        rig = data.get("rig")
+        if isinstance(rig, str) and rig.lower().endswith(".toml") and not Path(rig).is_absolute():
+            data["rig"] = str(p.parent / rig)  # a rig file beside the scenario
         return cls.from_dict(data, origin=p.name)
 
 
@@ -347,6 +350,24 @@ def _check_bearing(sc: Any, default: str) -> None:
         s(sc, "bearing", default)
     elif not isinstance(sc.bearing, str) or not sc.bearing:
         raise ConfigError(f"bearing = {sc.bearing!r} is invalid; valid: a catalogue id")
+
+
+def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
+    """A ``rig`` key: a loadable rig (one-line errors), its modes below the output's Nyquist
+    frequency, its input one of the family's acceleration channels."""
+    if sc.rig is None:
+        return
+    if not isinstance(sc.rig, str) or not sc.rig:
+        raise ConfigError(f"rig = {sc.rig!r} is invalid; valid: a rig profile name or TOML file")
+    from .rig import load_rig
+
+    r = load_rig(sc.rig)
+    r.check_rate(sc.fs_hz)
+    if r.input_channel not in channels:
+        raise ConfigError(
+            f"rig {r.name!r}: input_channel {r.input_channel!r} is not an acceleration output of "
+            f"model {sc.model.value}; valid: " + ", ".join(channels)
+        )
 
 
 # ------------------------------------------------------------------ ring models
@@ -392,6 +413,10 @@ class RingScenario(Scenario):
                                                     auto: omega_max dt <= 0.35
     ``solver``                      ``"rk4"``       ``rk4`` | ``dopri5`` (adaptive check)
     ``per_ball``                    false           also store per-ball loads and deformations
+    ``rig``                         –               measurement chain applied to the output: a
+                                                    shipped profile name or a rig TOML file
+                                                    (:mod:`bearingsim.rig`; channel
+                                                    ``acc_sensor``)
     ==============================  ==============  ================================================
 
     Renamed in 0.2.0 (same meanings; the old keys warn): ``defect_angle_deg`` →
@@ -427,6 +452,7 @@ class RingScenario(Scenario):
         "dt_s",
         "solver",
         "per_ball",
+        "rig",
     )
     RENAMED: ClassVar[dict[str, str]] = {
         "defect_angle_deg": "defect_edge_angle_deg",
@@ -456,6 +482,7 @@ class RingScenario(Scenario):
     retention_factor: float | None = None
     load_zone_half_angle_deg: float | None = None
     per_ball: bool = False
+    rig: str | None = None
 
     def _validate(self) -> None:
         s = object.__setattr__
@@ -521,6 +548,7 @@ class RingScenario(Scenario):
                 ),
             )
         _bool("per_ball", self.per_ball)
+        _check_rig(self, ("acc_x", "acc_y"))
 
     @property
     def shaft_hz(self) -> float:
@@ -580,6 +608,8 @@ class RotorScenario(Scenario):
                                                         a DAQ)
     ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
     ``per_ball``                        false           also store per-ball contact forces
+    ``rig``                             –               measurement chain applied to the output
+                                                        (:mod:`bearingsim.rig`; ``acc_sensor``)
     ==================================  ==============  ============================================
     """
 
@@ -620,6 +650,7 @@ class RotorScenario(Scenario):
         "dt_s",
         "solver",
         "per_ball",
+        "rig",
     )
 
     model: Model = Model.ROTOR
@@ -647,6 +678,7 @@ class RotorScenario(Scenario):
     unbalance_kg_m: float = 0.0
     antialias: bool = True
     per_ball: bool = False
+    rig: str | None = None
 
     def _validate(self) -> None:
         s = object.__setattr__
@@ -699,6 +731,7 @@ class RotorScenario(Scenario):
         )
         for name in ("distributed_rotor", "gravity", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
+        _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 
     @property
     def shaft_hz(self) -> float:

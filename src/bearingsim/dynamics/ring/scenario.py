@@ -316,4 +316,9 @@ def run_ring(
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
-    return SimulationResult(raw.t[:n].copy(), ch, units, scenario.to_dict(), meta)
+    res = SimulationResult(raw.t[:n].copy(), ch, units, scenario.to_dict(), meta)
+    if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
+        from ...rig import apply_rig
+
+        res = apply_rig(res, scenario.rig)
+    return res

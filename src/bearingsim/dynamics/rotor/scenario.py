@@ -181,4 +181,9 @@ def run_rotor(
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
-    return SimulationResult(r.time.copy(), ch, units, scenario.to_dict(), meta, dims)
+    res = SimulationResult(r.time.copy(), ch, units, scenario.to_dict(), meta, dims)
+    if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
+        from ...rig import apply_rig
+
+        res = apply_rig(res, scenario.rig)
+    return res
