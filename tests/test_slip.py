@@ -88,3 +88,15 @@ def test_slip_out_of_range_is_refused():
         ConfigError, match=r"slip_percent = 12 % is out of range; valid range \[0, 10\]"
     ):
         simulate(SC | {"slip_percent": 12.0})
+
+
+def test_rotor_slip_is_seeded_and_zero_slip_unchanged():
+    """The rotor model's cages slip too (each bearing its own process); zero slip is the
+    kinematic model (the golden rotor case)."""
+    sc = dict(model="rotor", de_fault="outer", duration_s=0.2, fs_hz=12000.0)
+    a = simulate(sc | {"slip_percent": 1.5, "seed": 4})
+    b = simulate(sc | {"slip_percent": 1.5, "seed": 4})
+    k = simulate(sc)
+    assert_array_equal(a["acc_y"], b["acc_y"])
+    assert not np.array_equal(a["acc_y"], k["acc_y"])
+    assert np.std(a["acc_y"]) == pytest.approx(np.std(k["acc_y"]), rel=0.2)

@@ -606,6 +606,8 @@ class RotorScenario(Scenario):
     ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
                                                         FIR decimation of the accelerations (like
                                                         a DAQ)
+    ``slip_percent``                    0.0             random slip of each bearing's cage: standard
+                                                        deviation of each ball-pass interval [%]
     ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
     ``per_ball``                        false           also store per-ball contact forces
     ``rig``                             –               measurement chain applied to the output
@@ -635,6 +637,7 @@ class RotorScenario(Scenario):
         "fs_hz",
         "seed",
         "noise_rms_m_per_s2",
+        "slip_percent",
         "disks",
         "disk_positions_mm",
         "distributed_rotor",
@@ -665,6 +668,7 @@ class RotorScenario(Scenario):
     rpm: float = DEFAULT_RPM
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
+    slip_percent: float = 0.0
     disks: int = SEED_ROTOR_DISKS
     disk_positions_mm: tuple[float, ...] | None = None
     distributed_rotor: bool = False
@@ -731,6 +735,7 @@ class RotorScenario(Scenario):
         )
         for name in ("distributed_rotor", "gravity", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
+        s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 
     @property

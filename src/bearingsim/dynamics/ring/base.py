@@ -193,20 +193,14 @@ class ModelInputs:
         return math.atan2(self.fx, self.fy)
 
     def slip_table(self, duration: float) -> tuple[NDArray[np.float64], float]:
-        """The ball-pass instants ``t_k`` [s] (the cage at ``k 2 pi / Z``, ``t_0 = 0``)
-        covering ``duration`` [s], and the nominal ball-pass period ``dt`` [s].
+        """The ball-pass instants ``t_k`` [s] covering ``duration`` [s] and the nominal
+        ball-pass period [s] of random slip (:mod:`bearingsim.dynamics.slip`; seed
+        ``SeedSequence([slip_seed, 1])``)."""
+        from ..slip import ball_pass_instants
 
-        Model (random slip, Antoni & Randall 2002; Randall & Antoni 2011): the rolling elements
-        do not keep their kinematic rate; from one ball pass to the next the cage turns at
-        ``w_cage (1 + s_k)``, ``s_k`` independent and normal with standard deviation ``slip``,
-        so the ball-pass intervals are ``dt / (1 + s_k)``: jittered by ``slip`` of their
-        period, the mean speed the FTF, the phase a random walk. Between two passes the cage
-        turns uniformly. The run starts at ``t_0 = 0`` from the static state."""
-        dt = 1.0 / (self.bearing.n_elements * self.cage_hz)
-        n = int(math.ceil(1.1 * duration / dt)) + 4
-        rng = np.random.default_rng(np.random.SeedSequence([int(self.slip_seed), 1]))
-        s = np.clip(self.slip * rng.standard_normal(n - 1), -0.5, 0.5)
-        return np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))]), dt
+        return ball_pass_instants(
+            self.bearing.n_elements, self.cage_hz, self.slip, duration, (int(self.slip_seed), 1)
+        )
 
     def header(self, per_ball: bool = False) -> NDArray[np.float64]:
         """The parameter vector header (layout :mod:`._balance`), without a table."""

@@ -90,7 +90,10 @@ B_RSIGN = 16  # -1 outer (concave) race, +1 inner (convex) race (seed VSM eq. 2)
 B_PROFILE = 17  # 0 geometric ball path, 1 rectangular (constant h_min)
 B_HMAX = 18  # h_min = min(h_d, h_s) [m]
 B_FOMEGA = 19  # angular speed of the defect [rad/s] (0 outer, Omega inner)
-BRG_LEN = 20
+B_SLIP = 20  # offset in p of the bearing's ball-pass instants (random slip); 0 = no slip
+B_SLIPN = 21  # entries of that table
+B_SLIPDT = 22  # nominal ball-pass period [s]
+BRG_LEN = 23
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -136,6 +139,24 @@ def defect_drop(p, o, dpsi):
     return d, -dd_de * rr * sgn
 
 
+@njit(cache=True, inline="always")
+def _slip(t, p, o, z, wc):
+    """Random slip (:mod:`bearingsim.dynamics.slip`): the cage's angle at ``t`` minus
+    ``wc t`` [rad] and its speed there [rad/s], from the bearing's ball-pass instants."""
+    off = int(p[o + B_SLIP])
+    n = int(p[o + B_SLIPN])
+    k = int(math.floor(t / p[o + B_SLIPDT]))
+    k = 0 if k < 0 else (n - 2 if k > n - 2 else k)
+    while k > 0 and p[off + k] > t:
+        k -= 1
+    while k < n - 2 and p[off + k + 1] <= t:
+        k += 1
+    t0 = p[off + k]
+    t1 = p[off + k + 1]
+    step = TWO_PI / z
+    return step * (k + (t - t0) / (t1 - t0)) - wc * t, step / (t1 - t0)
+
+
 @njit(cache=True)
 def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav):
     """Ball forces of one bearing; writes the ball accelerations and returns the forces on the
@@ -164,6 +185,10 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     ca = math.cos(step)
     sa = math.sin(step)
     psi = p[o + B_PSI0] + wc * t
+    if p[o + B_SLIP] > 0.0:
+        ph, wc = _slip(t, p, o, z, wc)
+        psi += ph
+        rel_speed = wc - p[o + B_FOMEGA]
     sp = math.sin(psi)
     cp = math.cos(psi)
     fsx = 0.0

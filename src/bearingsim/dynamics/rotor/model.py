@@ -17,6 +17,7 @@ frequencies of the rotor alone) and :func:`simulate_rotor` -> :class:`RotorRespo
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import math
 import time
@@ -467,6 +468,28 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
     return PackedModel(p, rot, nr, nb, nr + 4 + nb, z_de, z_fe)
 
 
+def _with_slip(
+    model: PackedModel, config: RotorConfig, slip: float, seed: int, duration: float
+) -> PackedModel:
+    """``model`` with each bearing's ball-pass instants (random slip) appended to ``p``."""
+    from ..slip import ball_pass_instants
+
+    p = model.p.copy()
+    tables = []
+    off = p.size
+    for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
+        b = sup.bearing
+        ftf = characteristic_frequencies(b, config.shaft_hz).ftf_hz
+        t_k, dt = ball_pass_instants(b.n_elements, ftf, slip, duration, (int(seed), 1, e))
+        o = int(p[key])
+        p[o + rk.B_SLIP] = off
+        p[o + rk.B_SLIPN] = t_k.size
+        p[o + rk.B_SLIPDT] = dt
+        tables.append(t_k)
+        off += t_k.size
+    return dataclasses.replace(model, p=np.concatenate([p, *tables]))
+
+
 def n_aux(model: PackedModel, ball_forces: bool) -> int:
     """Number of auxiliary outputs per sample."""
     return 4 + (2 * model.n_balls if ball_forces else 0)
@@ -735,6 +758,8 @@ def simulate_rotor(
     atol: float = 1e-13,
     progress: Callable[[int], None] | None = None,
     budget: Budget | None = None,
+    slip: float = 0.0,
+    slip_seed: int = 0,
 ) -> RotorResponse:
     """Simulate the bearing–rotor–housing system from static equilibrium.
 
@@ -765,6 +790,11 @@ def simulate_rotor(
     budget : Budget, optional
         Memory [B] and step limits (:class:`bearingsim.dynamics.budget.Budget`), checked before
         the run by :func:`plan_rotor`.
+    slip : float
+        Random slip: standard deviation of each ball-pass interval relative to its mean [-]
+        (:mod:`bearingsim.dynamics.slip`), each bearing's cage its own process; 0 = kinematic.
+    slip_seed : int
+        Seed of the slip processes (``SeedSequence([slip_seed, 1, end])``, end 0 DE, 1 FE).
 
     Returns
     -------
@@ -777,6 +807,8 @@ def simulate_rotor(
     model, y0, fs, q, decim = plan.model, plan.y0, plan.fs, plan.q, plan.decim
     method, cutoff = plan.method, plan.cutoff
     duration = check_positive("duration_s", duration, "s")
+    if slip > 0.0:
+        model = _with_slip(model, config, slip, slip_seed, duration)
     fs_int = q * fs
     na = n_aux(model, ball_forces)
     if method == "rk4":

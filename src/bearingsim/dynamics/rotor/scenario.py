@@ -132,6 +132,8 @@ def run_rotor(
         method=scenario.solver.value,
         progress=progress,
         budget=budget,
+        slip=scenario.slip_percent / 100.0,
+        slip_seed=scenario.seed,
     )
     ch: dict[str, np.ndarray] = {}
     units: dict[str, str] = {}

@@ -1,0 +1,33 @@
+"""Random slip of the rolling elements (issue 16, item 1), shared by the ring and rotor models.
+
+Rolling elements do not keep their kinematic rate (Antoni & Randall 2002, "Differential
+diagnosis of gear and bearing faults", J. Vib. Acoust. 124; Randall & Antoni 2011, MSSP 25):
+the ball-pass instants jitter by about 1-2 % of their period. Model: from one ball pass to the
+next the cage turns at ``w_cage (1 + s_k)``, ``s_k`` independent and normal with standard
+deviation ``slip``, so the ball-pass intervals are ``T / (1 + s_k)``: jittered by ``slip`` of
+their period, the mean speed the FTF, the phase a random walk. Between two passes the cage turns
+uniformly. The compiled kernels read the tabulated pass instants ``t_k`` (the cage at
+``k 2 pi / Z``, ``t_0 = 0``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["ball_pass_instants"]
+
+
+def ball_pass_instants(
+    n_balls: int, cage_hz: float, slip: float, duration: float, seed: tuple[int, ...]
+) -> tuple[NDArray[np.float64], float]:
+    """The ball-pass instants ``t_k`` [s] covering ``duration`` [s] and the nominal period
+    ``1 / (Z f_cage)`` [s] (see the module docstring); the jitter comes from
+    ``numpy.random.SeedSequence(seed)`` (a stream of its own, apart from any noise)."""
+    dt = 1.0 / (n_balls * cage_hz)
+    n = int(math.ceil(1.1 * duration / dt)) + 4
+    rng = np.random.default_rng(np.random.SeedSequence(list(seed)))
+    s = np.clip(slip * rng.standard_normal(n - 1), -0.5, 0.5)
+    return np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))]), dt
