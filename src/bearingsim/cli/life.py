@@ -280,13 +280,13 @@ def life_cmd(
         return
     click.echo(
         f"{bearing.id}: F_r = {fr:g} N, Q_max = {m['q_n']:.1f} N, "
-        f"p_max = {m['p_max_pa'] / 1e6:.0f} MPa, b = {m['b_m'] * 1e6:.1f} um; "
+        f"p_max = {m['p_max_pa'] / 1e6:.0f} MPa, b = {m['b_m'] * 1e6:.1f} µm; "
         f"kappa = {m['kappa']:.3f}, "
         f"sigma_t = {m['sigma_t_pa'] / 1e6:.0f} MPa; measure {m['measure']}"
     )
     click.echo(
         f"  damage life: initiation {res.cycles_initiation:.4g} cycles "
-        f"({res.steps_initiation} blocks, depth {res.initiation_depth * 1e6:.1f} um), "
+        f"({res.steps_initiation} blocks, depth {res.initiation_depth * 1e6:.1f} µm), "
         f"spall {res.cycles_spall:.4g} cycles ({res.steps_spall} blocks); {wall:.1f} s"
     )
     click.echo(

@@ -217,8 +217,8 @@ def run(ctx: Context) -> Section:
     save_figure(_fe_figure(fe, st), out / "life_fe_vs_mcewen.png")
     fe_caption = (
         f"Undamaged plane-strain section (default mesh, {fe.n_elements} "
-        f"elements, h = b/10): τ_xz vs depth at x = ±0.87 b against the "
-        "McEwen line-contact field"
+        f"elements, h = b/10): τ_xz vs depth in the element columns nearest x = ±0.87 b (where "
+        "τ_xz peaks; their centroids at ±0.85 b) against the McEwen line-contact field there"
     )
     # ---------------------------------------------------------------- damage life
     dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.01)
