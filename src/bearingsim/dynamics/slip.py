@@ -15,9 +15,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 from numpy.typing import NDArray
 
-__all__ = ["ball_pass_instants"]
+__all__ = ["ball_pass_instants", "cage_angle"]
 
 
 def ball_pass_instants(
@@ -31,3 +32,19 @@ def ball_pass_instants(
     rng = np.random.default_rng(np.random.SeedSequence(list(seed)))
     s = np.clip(slip * rng.standard_normal(n - 1), -0.5, 0.5)
     return np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))]), dt
+
+
+@njit(cache=True, inline="always")
+def cage_angle(t, p, off, n, dt, step):  # pragma: no cover - compiled
+    """The cage's angle [rad] past its position at ``t = 0`` and its speed [rad/s] at ``t``,
+    from the ``n`` ball-pass instants at ``p[off:]`` (nominal spacing ``dt`` [s], the cage at
+    ``k step`` at the ``k``-th): uniform rotation between two passes."""
+    k = int(math.floor(t / dt))  # the nominal pass; the jittered one is near
+    k = 0 if k < 0 else (n - 2 if k > n - 2 else k)
+    while k > 0 and p[off + k] > t:
+        k -= 1
+    while k < n - 2 and p[off + k + 1] <= t:
+        k += 1
+    t0 = p[off + k]
+    t1 = p[off + k + 1]
+    return step * (k + (t - t0) / (t1 - t0)), step / (t1 - t0)

@@ -53,6 +53,7 @@ import numpy as np
 from numba import njit
 
 from ...load_distribution import _solve_1d
+from ..slip import cage_angle
 
 __all__: list[str] = []  # private: compiled helpers of the ring models
 
@@ -136,17 +137,8 @@ def slip_phase(t, p):
     off = int(p[P_SLIP])
     if off == 0:
         return 0.0
-    n = int(p[P_SLIPN])
-    step = TWO_PI / p[P_Z]
-    k = int(math.floor(t / p[P_SLIPDT]))  # the nominal pass; the jittered one is near
-    k = 0 if k < 0 else (n - 2 if k > n - 2 else k)
-    while k > 0 and p[off + k] > t:
-        k -= 1
-    while k < n - 2 and p[off + k + 1] <= t:
-        k += 1
-    t0 = p[off + k]
-    t1 = p[off + k + 1]
-    return step * (k + (t - t0) / (t1 - t0)) - p[P_WCAGE] * t
+    angle, _ = cage_angle(t, p, off, int(p[P_SLIPN]), p[P_SLIPDT], TWO_PI / p[P_Z])
+    return angle - p[P_WCAGE] * t
 
 
 @njit(cache=True, inline="always")

@@ -49,6 +49,7 @@ import numpy as np
 from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
+from ..slip import cage_angle
 
 __all__: list[str] = []  # private: the compiled right-hand side of the rotor model
 
@@ -143,18 +144,10 @@ def defect_drop(p, o, dpsi):
 def _slip(t, p, o, z, wc):
     """Random slip (:mod:`bearingsim.dynamics.slip`): the cage's angle at ``t`` minus
     ``wc t`` [rad] and its speed there [rad/s], from the bearing's ball-pass instants."""
-    off = int(p[o + B_SLIP])
-    n = int(p[o + B_SLIPN])
-    k = int(math.floor(t / p[o + B_SLIPDT]))
-    k = 0 if k < 0 else (n - 2 if k > n - 2 else k)
-    while k > 0 and p[off + k] > t:
-        k -= 1
-    while k < n - 2 and p[off + k + 1] <= t:
-        k += 1
-    t0 = p[off + k]
-    t1 = p[off + k + 1]
-    step = TWO_PI / z
-    return step * (k + (t - t0) / (t1 - t0)) - wc * t, step / (t1 - t0)
+    angle, speed = cage_angle(
+        t, p, int(p[o + B_SLIP]), int(p[o + B_SLIPN]), p[o + B_SLIPDT], TWO_PI / z
+    )
+    return angle - wc * t, speed
 
 
 @njit(cache=True)
