@@ -127,6 +127,7 @@ def _stft_power(x: NDArray[np.float64], fs: float, nperseg: int):
 
 
 def _spectral_kurtosis(x, fs, nperseg):
+    """Frequencies [Hz], spectral kurtosis [-] and mean power of the STFT (one transform)."""
     f, P = _stft_power(x, fs, nperseg)
     m2 = P.mean(axis=1)
     m4 = (P * P).mean(axis=1)
@@ -135,7 +136,7 @@ def _spectral_kurtosis(x, fs, nperseg):
     sk[0] = 0.0
     if nperseg % 2 == 0:
         sk[-1] = 0.0
-    return f, sk
+    return f, sk, m2
 
 
 def _smooth_octave(f, y, frac):
@@ -229,15 +230,13 @@ def identify_rig(
     nwelch = int(2 ** round(math.log2(fs / 4.0)))  # ~4 Hz resolution
     psd_mean, psd_med, imp = [], [], []
     f_sk = None
-    for r in records:
-        x = np.asarray(r.x, dtype=float) - float(np.mean(r.x))
+    xs = [np.asarray(r.x, dtype=float) - float(np.mean(r.x)) for r in records]  # centred
+    for x in xs:
         f, pm = welch(x, fs=fs, nperseg=nwelch)
         _, pd = welch(x, fs=fs, nperseg=nwelch, average="median")
         psd_mean.append(pm)
         psd_med.append(pd)
-        f_sk, sk = _spectral_kurtosis(x, fs, nps)
-        _, P = _stft_power(x, fs, nps)
-        p = P.mean(axis=1)
+        f_sk, sk, p = _spectral_kurtosis(x, fs, nps)
         e = np.maximum(sk, 0.0) * p
         imp.append((e / max(float(np.trapezoid(e, f_sk)), 1e-300), float(np.max(sk))))
     f = np.asarray(f)
@@ -265,14 +264,14 @@ def identify_rig(
     bg_psd = np.median(np.array(psd_med), axis=0)
     bg_s = _smooth_octave(f, bg_psd, 1.0 / 6.0)
     mean_psd = np.median(np.array(psd_mean), axis=0)
+    mean_psd_s = _smooth_octave(f, mean_psd, 1 / 24)
     modes, decay = [], []
     for c in sorted(chosen, key=lambda k: f_sk[k]):
         # refine the frequency on the fine Welch grid: the PSD maximum within +/- 1/12 octave
         fc = float(f_sk[c])
         band = (f >= fc * 2 ** (-1 / 12)) & (f <= fc * 2 ** (1 / 12))
-        fn = float(f[band][np.argmax(_smooth_octave(f, mean_psd, 1 / 24)[band])])
-        sig = [_decay_rate(np.asarray(r.x, float) - np.mean(r.x), fs, fn, 0.05 * fn)
-               for r in records]  # fmt: skip
+        fn = float(f[band][np.argmax(mean_psd_s[band])])
+        sig = [_decay_rate(x, fs, fn, 0.05 * fn) for x in xs]
         rates = [s for s, n in sig if np.isfinite(s)]
         if not rates:
             continue
@@ -287,7 +286,7 @@ def identify_rig(
             continue
         coef = np.polyfit(np.log(f[sh]), np.log(bg_s[sh]), 1)
         shoulder = float(np.exp(np.polyval(coef, np.log(fn))))
-        peak = float(_smooth_octave(f, mean_psd, 1 / 24)[np.argmin(np.abs(f - fn))])
+        peak = float(mean_psd_s[np.argmin(np.abs(f - fn))])
         gain = math.sqrt(peak / shoulder) - 1.0
         if gain < MIN_GAIN:  # no resonance stands out of the shoulders: not a mode of the path
             continue
@@ -312,17 +311,15 @@ def identify_rig(
         f"median-averaged Welch PSD (nperseg {nwelch}) of each record, median over "
         f"{len(records)} records, mean over 1/6 octave, at {n_background} log-spaced points",
     )
-    # tones at shaft orders
+    # tones at shaft orders: each record's amplitude spectrum (Hann), computed once
+    from .signal.spectrum import amplitude_spectrum
+
+    spectra = [(r, amplitude_spectrum(x, fs)) for r, x in zip(records, xs, strict=True) if r.rpm]
     tones = []
     for order in (1.0, 2.0, 3.0):
         amps = []
-        for r in records:
-            if not r.rpm:
-                continue
-            x = np.asarray(r.x, float) - np.mean(r.x)
-            n = x.size
-            spec = np.abs(np.fft.rfft(x * np.hanning(n))) * 2.0 / np.sum(np.hanning(n))
-            ff = np.fft.rfftfreq(n, 1.0 / fs)
+        for r, sp in spectra:
+            spec, ff, n = sp.amplitude, sp.freq, len(r.x)
             ft = order * r.rpm / 60.0
             k = np.argmin(np.abs(ff - ft))
             w = slice(max(k - 2, 0), k + 3)

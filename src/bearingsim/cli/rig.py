@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import shlex
 import sys
+import tomllib
 
 import click
 
@@ -78,7 +79,7 @@ def identify_cmd(
         max_modes=int(max_modes),
     )
     text = rig_to_toml(ir.rig)
-    Rig.from_dict(__import__("tomllib").loads(text), source="identified rig")  # round-trip check
+    Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
         fh.write(text)
     if plot:
