@@ -12,8 +12,10 @@ import functools
 import importlib
 import json
 import math
+import os
+import sys
 import warnings
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -343,6 +345,68 @@ def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> 
             check_output(path, option, directory=directory)
 
 
+def available_cores() -> int:
+    """Cores this process may run on (its CPU affinity; the machine's count where the platform
+    has no affinity)."""
+    if hasattr(os, "sched_getaffinity"):
+        return max(len(os.sched_getaffinity(0)), 1)
+    return os.cpu_count() or 1
+
+
+def _ignore_sigint() -> None:
+    """Worker initializer: Ctrl-C is the parent's to handle (it cancels what is left)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def map_in_processes(
+    fn: Callable[[Any], Any], items: Iterable[Any], jobs: int, preload: Iterable[str] = ()
+) -> Iterator[Any]:
+    """``fn(item)`` for each item, yielded in the order of ``items`` as soon as it and those
+    before it are done.
+
+    With one job or one item, in this process, one after the other. Otherwise on a pool of
+    ``min(jobs, len(items))`` processes (:class:`concurrent.futures.ProcessPoolExecutor`), started
+    by ``fork`` on Linux after the modules named in ``preload`` are imported here, so that the
+    workers start with them loaded (``spawn`` elsewhere: each worker imports what it needs;
+    ``fn`` must then be a module-level function). Ctrl-C cancels the items not started and
+    waits for the running ones.
+
+    Parameters
+    ----------
+    fn : callable
+        Picklable function of one item.
+    items : iterable
+        The items.
+    jobs : int
+        Largest number of processes [-].
+    preload : iterable of str
+        Modules to import before the workers are started.
+    """
+    items = list(items)
+    n = min(int(jobs), len(items))
+    if n <= 1:
+        for it in items:
+            yield fn(it)
+        return
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    fork = sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
+    if fork:
+        for name in preload:
+            importlib.import_module(name)
+    ctx = multiprocessing.get_context("fork" if fork else "spawn")
+    pool = ProcessPoolExecutor(max_workers=n, mp_context=ctx, initializer=_ignore_sigint)
+    try:
+        futures = [pool.submit(fn, it) for it in items]
+        for f in futures:
+            yield f.result()
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
 def bearing_options(required: bool = True) -> Callable:
     """Decorator adding ``BEARING`` (catalogue id), ``--bearing-file``, ``--E-pa``, ``--nu``.
 
@@ -419,6 +483,7 @@ def bearing_summary(b: Bearing) -> dict[str, Any]:
 
 __all__ = [
     "allow_overload_option",
+    "available_cores",
     "CLEARANCE",
     "Command",
     "DeferredDefaultOption",
@@ -433,6 +498,7 @@ __all__ = [
     "echo_warnings",
     "emit_json",
     "json_option",
+    "map_in_processes",
     "output_option",
     "rad_to_deg",
     "scenario_default",

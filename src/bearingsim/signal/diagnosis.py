@@ -69,6 +69,8 @@ __all__ = [
     "analyze_record",
     "check_resolvable",
     "diagnose",
+    "diagnose_spectrum",
+    "min_band_width",
     "find_lines",
     "load_signal",
 ]
@@ -104,6 +106,11 @@ class DiagnosisRule:
         Score ratio that separates one supported family from another [-].
     sideband_weight : float
         Score added per detected sideband [-].
+    shaft_cursors : bool
+        Also search every shaft harmonic ``k f_r`` below the highest fault line, so that a
+        fault line nearer to a shaft harmonic than to its own target goes to the shaft (the
+        6203's BSF is 1.994 f_r: its lines sit on the shaft harmonics until the harmonic
+        cursors separate them).
     """
 
     n_harmonics: int = 3
@@ -113,6 +120,7 @@ class DiagnosisRule:
     noise_rel: float = 0.1
     dominance: float = 2.0
     sideband_weight: float = 0.1
+    shaft_cursors: bool = False
 
 
 @dataclass(frozen=True)
@@ -287,6 +295,9 @@ _FUNDAMENTALS = (
     ("FTF", "ftf_hz", 1.0),
     (SHAFT, "shaft_hz", 1.0),
 )
+#: relative frequency within which two searched targets of a shared line count as equally near
+#: (then the kinematic positions decide) [-]
+TIE_REL = 1e-4
 #: sidebands: family fundamental -> modulating line
 _SIDEBANDS = {"BPFO": SHAFT, "BPFI": SHAFT, "2xBSF": "FTF"}
 
@@ -320,8 +331,11 @@ def find_lines(
         threshold_db=rule.threshold_db,
     )
     found = {p.label: (p.freq_hz if p.detected else p.target_hz) for p in peaks}
+    nominal = dict(first)  # the kinematic positions, for attributing shared lines
     for name, f in first:
         found.setdefault(name, f)
+        for h in range(2, rule.n_harmonics + 1):
+            nominal[_label(name, h)] = h * f
     for h in range(2, rule.n_harmonics + 1):
         tg = [(_label(n, h), h * found[n]) for n, _ in first if h * found[n] < f_limit]
         peaks += match_peaks(
@@ -330,6 +344,20 @@ def find_lines(
             shaft_hz,
             tol_rel=0.0,
             tol_min_bins=max(rule.tol_min_bins, float(h)),
+            noise_rel=rule.noise_rel,
+            threshold_db=rule.threshold_db,
+        )
+    if rule.shaft_cursors:
+        top = max((h * found[n] for n, _ in first if n != SHAFT for h in (1, rule.n_harmonics)),
+                  default=0.0)  # fmt: skip
+        ks = range(rule.n_harmonics + 1, int(top / found[SHAFT]) + 2) if SHAFT in found else ()
+        nominal.update({_label(SHAFT, k): k * nominal[SHAFT] for k in ks})
+        peaks += match_peaks(
+            es,
+            [(_label(SHAFT, k), k * found[SHAFT]) for k in ks if k * found[SHAFT] < f_limit],
+            shaft_hz,
+            tol_rel=0.0,
+            tol_min_bins=rule.tol_min_bins,
             noise_rel=rule.noise_rel,
             threshold_db=rule.threshold_db,
         )
@@ -342,6 +370,9 @@ def find_lines(
                     (f"{_label(n, h)}-{mod}", c - found[mod]),
                     (f"{_label(n, h)}+{mod}", c + found[mod]),
                 ]
+                if n in nominal and mod in nominal:
+                    nominal[f"{_label(n, h)}-{mod}"] = h * nominal[n] - nominal[mod]
+                    nominal[f"{_label(n, h)}+{mod}"] = h * nominal[n] + nominal[mod]
         tg = [t for t in tg if 0 < t[1] < f_limit]
         peaks += match_peaks(
             es,
@@ -352,20 +383,34 @@ def find_lines(
             noise_rel=rule.noise_rel,
             threshold_db=rule.threshold_db,
         )
-    return _attribute(peaks)
+    return _attribute(peaks, nominal)
 
 
-def _attribute(peaks: list[Peak]) -> list[Peak]:
+def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> list[Peak]:
     """A detected line claimed by targets of different families counts only for the family
-    whose target is nearer."""
+    whose searched target (a multiple of the *found* fundamental) is nearer. When the two
+    targets are equally near (within :data:`TIE_REL` of the line's frequency; 3×BPFO of a
+    fundamental found 0.7 % high lands exactly on 2×BPFI), the kinematic (``nominal``)
+    positions decide."""
+    nominal = nominal or {}
+
+    def _beats(p: Peak, q: Peak) -> bool:
+        """The target of ``q`` is nearer to the line than the target of ``p``."""
+        own = abs(p.freq_hz - p.target_hz)
+        d = abs(p.freq_hz - q.target_hz)
+        tie = TIE_REL * max(p.freq_hz, 1e-12)
+        if d < own - tie:
+            return True
+        own_nom = abs(p.freq_hz - nominal.get(p.label, p.target_hz))
+        return abs(d - own) <= tie and abs(p.freq_hz - nominal.get(q.label, q.target_hz)) < own_nom
+
     out = []
     for p in peaks:
         fam = _family(p.label)
-        own = abs(p.freq_hz - p.target_hz)
         stolen = p.detected and any(
             _family(q.label) != fam
             and abs(q.freq_hz - p.freq_hz) <= 1e-9 * max(1.0, p.freq_hz)
-            and abs(p.freq_hz - q.target_hz) < own
+            and _beats(p, q)
             for q in peaks
             if q is not p
         )
@@ -381,6 +426,34 @@ def _attribute(peaks: list[Peak]) -> list[Peak]:
             )
         )
     return out
+
+
+def min_band_width(bearing: Bearing, shaft_hz: float, fs: float, rule: DiagnosisRule) -> float:
+    """Narrowest envelope band that keeps the first ``rule.n_harmonics`` harmonics of the
+    highest fault line and the shaft sidebands: ``n max(BPFO, BPFI, 2 BSF) + f_r`` [Hz]; a
+    one-line :class:`ConfigError` when it does not fit below ``fs/2``.
+
+    Parameters
+    ----------
+    bearing : Bearing
+        Geometry.
+    shaft_hz : float
+        Shaft frequency [Hz] (1 in the order domain).
+    fs : float
+        Sample rate [Hz].
+    rule : DiagnosisRule
+        For the number of harmonics.
+    """
+    kin = characteristic_frequencies(bearing, shaft_hz)
+    f_max = max(kin.bpfo_hz, kin.bpfi_hz, 2 * kin.bsf_hz)
+    min_bw = rule.n_harmonics * f_max + shaft_hz
+    if min_bw > 0.5 * fs:
+        raise ConfigError(
+            f"fs_hz = {fs:.6g} Hz is too low for an envelope band of {min_bw:.6g} Hz "
+            f"({rule.n_harmonics} x {f_max:.6g} Hz + shaft); valid range ({2 * min_bw:.6g}, "
+            "inf) Hz"
+        )
+    return min_bw
 
 
 def diagnose(
@@ -417,20 +490,13 @@ def diagnose(
     domain = parse_enum(Domain, domain, "domain")
     fs = check_positive("fs_hz", fs, "Hz")
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
-    kin = characteristic_frequencies(bearing, shaft_hz)
-    f_max = max(kin.bpfo_hz, kin.bpfi_hz, 2 * kin.bsf_hz)
     notes: list[str] = []
     kg = None
     kurt = None
     if isinstance(band, str | BandSelection):
         if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
             raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
-        min_bw = rule.n_harmonics * f_max + shaft_hz
-        if min_bw > 0.5 * fs:
-            raise ConfigError(
-                f"fs_hz = {fs:.6g} Hz is too low for an envelope band of {min_bw:.6g} Hz "
-                f"(3 x {f_max:.6g} Hz + shaft); valid range ({2 * min_bw:.6g}, inf) Hz"
-            )
+        min_bw = min_band_width(bearing, shaft_hz, fs, rule)
         kg = fast_kurtogram(x, fs, min_bandwidth_hz=min_bw)
         band_t = kg.band
         kurt = kg.max_kurtosis
@@ -441,6 +507,44 @@ def diagnose(
     else:
         band_t = check_band(tuple(band), fs)
     es = envelope_spectrum(x, fs, band_t, domain=domain)
+    return diagnose_spectrum(es, bearing, shaft_hz, band_t, rule=rule, kurtogram=kg, notes=notes)
+
+
+def diagnose_spectrum(
+    es: Spectrum,
+    bearing: Bearing,
+    shaft_hz: float,
+    band: tuple[float, float],
+    *,
+    rule: DiagnosisRule | None = None,
+    kurtogram: Kurtogram | None = None,
+    notes: list[str] | None = None,
+) -> Diagnosis:
+    """Steps 3–4 of the rule (module docstring) on an envelope spectrum already computed.
+
+    Parameters
+    ----------
+    es : Spectrum
+        Envelope (or squared-envelope) spectrum [Hz or orders].
+    bearing : Bearing
+        Geometry for the characteristic frequencies.
+    shaft_hz : float
+        Shaft frequency [Hz] (1 in the order domain).
+    band : (float, float)
+        The band the envelope was taken in [Hz or orders]; its width bounds the lines searched.
+    rule : DiagnosisRule, optional
+        Decision rule.
+    kurtogram : Kurtogram, optional
+        The kurtogram that chose the band (kept in the result).
+    notes : list of str, optional
+        Notes so far.
+    """
+    rule = rule or DiagnosisRule()
+    domain = es.domain
+    band_t = (float(band[0]), float(band[1]))
+    kg = kurtogram
+    kurt = kg.max_kurtosis if kg is not None else None
+    notes = list(notes or [])
     if es.resolution > shaft_hz / MIN_REVOLUTIONS:
         notes.append(
             f"record too short: resolution {es.resolution:.3g} > f_r/4; cannot resolve "
@@ -538,6 +642,56 @@ def check_resolvable(rec: SignalRecord) -> SignalRecord:
     )
 
 
+#: consecutive samples at the record's largest (or smallest) value that make a flat top: the
+#: signal of a saturated sensor, amplifier or converter. A sampled peak of a vibration signal
+#: is met by one sample, rarely two equal ones (none of the 34 CWRU records, on any channel,
+#: has two) [-]
+CLIPPED_RUN = 3
+
+
+def check_samples(rec: SignalRecord) -> SignalRecord:
+    """Refuse a record whose samples cannot be diagnosed: a sample that is not finite (NaN,
+    inf), a constant record, or a clipped one — :data:`CLIPPED_RUN` or more consecutive samples
+    equal to the record's largest or to its smallest value (a flat top or bottom: the envelope
+    of a clipped impact loses the impact's shape and adds lines of its own). One-line
+    :class:`~bearingsim.errors.ConfigError` naming the file, the channel and the samples.
+
+    Parameters
+    ----------
+    rec : SignalRecord
+        The record (:func:`load_signal`).
+    """
+    x = np.asarray(rec.x, dtype=float)
+    where = f"file = {Path(rec.source).name!r}, channel {rec.channel!r}"
+    bad = ~np.isfinite(x)
+    if bad.any():
+        raise ConfigError(
+            f"{where}: {int(bad.sum())} of {x.size} samples are not finite (NaN or inf; the "
+            f"first is sample {int(np.argmax(bad))}); valid: finite samples"
+        )
+    if x.size == 0:
+        raise ConfigError(f"{where} holds no samples; valid: a vibration signal")
+    hi, lo = float(x.max()), float(x.min())
+    if hi == lo:
+        raise ConfigError(
+            f"{where}: all {x.size} samples equal {hi:.6g}; valid: a vibration signal"
+        )
+    for v, side in ((hi, "largest"), (lo, "smallest")):
+        at = np.concatenate(([0], (x == v).astype(np.int8), [0]))
+        step = np.diff(at)
+        starts, ends = np.flatnonzero(step == 1), np.flatnonzero(step == -1)
+        runs = ends - starts
+        if runs.max() >= CLIPPED_RUN:
+            i = int(np.argmax(runs >= CLIPPED_RUN))
+            raise ConfigError(
+                f"{where} is clipped: {int(runs[i])} consecutive samples ({int(starts[i])} to "
+                f"{int(ends[i]) - 1}) equal its {side} value {v:.6g} (a flat top: a saturated "
+                f"sensor or amplifier); valid: fewer than {CLIPPED_RUN} consecutive samples at "
+                "the extreme value"
+            )
+    return rec
+
+
 def load_signal(
     path: str | Path,
     *,
@@ -581,9 +735,10 @@ def analyze_record(
     band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
     samples_per_rev: int = 512,
-) -> Diagnosis:
-    """Diagnose a :class:`SignalRecord`; with a per-sample speed the signal is first order
-    tracked (:func:`.resample_to_angle`, cubic interpolation) and analysed in the order domain.
+):
+    """Diagnose a :class:`SignalRecord` with the fused benchmark methods
+    (:func:`.fused.diagnose_fused`); with a per-sample speed the signal is first order tracked
+    (:func:`.resample_to_angle`, cubic interpolation) and analysed in the order domain.
 
     Parameters
     ----------
@@ -592,13 +747,28 @@ def analyze_record(
     bearing : Bearing
         Geometry for the characteristic frequencies.
     band : (lo, hi) or BandSelection
-        Envelope band [Hz] (orders when order tracked), or how to choose it
-        (:class:`BandSelection`; ``"auto"`` = the fast kurtogram).
+        Envelope band of every method [Hz] (orders when order tracked), or ``"auto"`` (whole
+        band for the raw and pre-whitened views, kurtogram and infogram bands for the DRS
+        views).
     rule : DiagnosisRule, optional
-        Decision rule.
+        Line search (default: the documented one with shaft cursors).
     samples_per_rev : int
         Order-tracking density [1/rev].
+
+    Returns
+    -------
+    FusedDiagnosis
+        Verdict, calibrated confidence and the evidence of each method.
     """
+    from .fused import diagnose_fused
+
+    if isinstance(band, str | BandSelection):
+        if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
+            raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
+        band_v = None
+    else:
+        band_v = (float(band[0]), float(band[1]))
+    rule = rule or DiagnosisRule(shaft_cursors=True)
     if rec.speed_hz is not None and rec.rpm is None:
         sp = np.asarray(rec.speed_hz, dtype=float)
         if sp.shape != rec.x.shape or not np.all(np.isfinite(sp)) or np.any(sp <= 0):
@@ -612,8 +782,8 @@ def analyze_record(
             samples_per_rev,
             interpolation=Interpolation.CUBIC,
         )
-        return diagnose(
-            sig.value, float(samples_per_rev), bearing, 1.0, band=band, rule=rule,
+        return diagnose_fused(
+            sig.value, float(samples_per_rev), bearing, 1.0, band=band_v, rule=rule,
             domain=Domain.ORDER,
         )  # fmt: skip
-    return diagnose(rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band, rule=rule)
+    return diagnose_fused(rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band_v, rule=rule)

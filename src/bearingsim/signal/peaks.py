@@ -275,14 +275,18 @@ def match_peaks(
     out = []
     for label, ft in targets:
         tol = max(tol_rel * ft, tol_min_bins * df)
-        win = (f >= ft - tol) & (f <= ft + tol)
-        if ft + tol >= f[-1] or not np.any(win):
+        # f is ascending: index ranges instead of masks over the whole spectrum
+        i0 = int(np.searchsorted(f, ft - tol, side="left"))
+        i1 = int(np.searchsorted(f, ft + tol, side="right"))
+        if ft + tol >= f[-1] or i1 <= i0:
             continue
-        idx = np.flatnonzero(win)
-        k = idx[np.argmax(A[idx])]
+        k = int(i0 + np.argmax(A[i0:i1]))
         hw = max(noise_rel * ft, 5.0 * tol)
-        nw = (f >= ft - hw) & (f <= ft + hw) & ~win & (f > 0)
-        floor = float(np.median(A[nw])) if np.any(nw) else float("nan")
+        j0 = int(np.searchsorted(f, ft - hw, side="left"))
+        j1 = int(np.searchsorted(f, ft + hw, side="right"))
+        j0 = max(j0, int(np.searchsorted(f, 0.0, side="right")))  # f > 0
+        nw = np.concatenate((A[j0 : min(i0, j1)], A[max(i1, j0) : j1]))
+        floor = float(np.median(nw)) if nw.size else float("nan")
         snr = 20.0 * math.log10(A[k] / floor) if floor > 0 and A[k] > 0 else float("nan")
         out.append(
             Peak(

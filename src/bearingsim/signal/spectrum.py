@@ -21,6 +21,7 @@ per shaft revolution; ``fs`` is then the number of samples per revolution).
 from __future__ import annotations
 
 import enum
+import functools
 import math
 from dataclasses import dataclass
 
@@ -156,15 +157,20 @@ class Spectrum:
         return fig
 
 
+@functools.lru_cache(maxsize=8)
 def _hann(n: int, sym: bool) -> NDArray[np.float64]:
     """Hann window of ``n`` samples: symmetric (``numpy.hanning``) or periodic
     (``scipy.signal.windows.hann(n, sym=False)``); the two libraries' symmetric windows differ in
-    the last bit, NumPy's is the one the published comparisons were made with."""
+    the last bit, NumPy's is the one the published comparisons were made with. Cached (a batch
+    computes the same window for every spectrum of a record); read-only."""
     if sym:
-        return np.hanning(n)
-    from scipy.signal.windows import hann
+        w = np.hanning(n)
+    else:
+        from scipy.signal.windows import hann
 
-    return hann(n, sym=False)
+        w = hann(n, sym=False)
+    w.flags.writeable = False
+    return w
 
 
 def amplitude_spectrum(

@@ -1,0 +1,312 @@
+"""``bearingsim analyze FILE...`` (issue 17, item 4): several files in one call, analysed in
+parallel and reported in input order (JSON Lines, CSV or text); a bad file reported on its own
+line while the others are analysed; the shaft speed from the CWRU file name; ``--channel auto``;
+the checks of the samples (not finite, clipped)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+from conftest import cwru_record
+
+from bearingsim.errors import ConfigError
+from bearingsim.io import SignalRecord, read_cwru_mat
+from bearingsim.signal.diagnosis import CLIPPED_RUN, check_samples
+
+#: the columns of ``analyze --csv`` (issue 17, item 4)
+CSV_COLUMNS = [
+    "file",
+    "channel",
+    "fs_hz",
+    "rpm",
+    "rpm_source",
+    "bearing",
+    "diagnosis",
+    "confidence",
+    "band_lo_hz",
+    "band_hi_hz",
+    "error",
+]
+#: what ``rpm_source`` says of a speed taken from a CWRU file name at motor load 2 hp
+NAME_LOAD_2 = "name (CWRU nominal speed at load 2 hp)"
+
+
+@pytest.fixture
+def three():
+    """Three short 12 kHz CWRU records, deliberately not in sorted order: 132 (outer race
+    0.007 in @6, drive end), 310 (outer race 0.014 in @3, fan end), 107 (inner race 0.007 in,
+    drive end) — SOURCES.md."""
+    return [cwru_record("132"), cwru_record("310"), cwru_record("107")]
+
+
+def _lines(r) -> list[dict]:
+    return [json.loads(ln) for ln in r.out.splitlines()]
+
+
+def _sine_csv(path, clip: float | None = None, nan_at: int | None = None):
+    """A 500 Hz tone with a little noise at 12 kHz (0.5 s, 24 samples per period), a time
+    column; ``clip``: clipped at ±clip (a flat top of ~5 samples per period at 0.8 of the
+    amplitude: 24 (pi - 2 asin 0.8) / (2 pi) = 4.9); ``nan_at``: one NaN sample."""
+    t = np.arange(6000) / 12000.0
+    x = np.sin(2 * np.pi * 500.0 * t) + 0.01 * np.random.default_rng(17).standard_normal(t.size)
+    if clip is not None:
+        x = np.clip(x, -clip, clip)
+    rows = [f"{a:.17g},{b:.17g}" for a, b in zip(t, x, strict=True)]
+    if nan_at is not None:
+        rows[nan_at] = f"{t[nan_at]:.17g},nan"
+    path.write_text("time_s,acc\n" + "\n".join(rows) + "\n")
+    return path
+
+
+# ------------------------------------------------------------------------- several files
+
+
+def test_several_files_give_json_lines_in_input_order(run_cli, three):
+    """One JSON object per line, in the order of the FILEs, each the object the file alone
+    gives; --channel auto reads the fan-end records' FE channel with the fan-end bearing."""
+    r = run_cli("analyze", *three, "--channel", "auto", "--json", "--jobs", "2")
+    assert r.code == 0, r.err
+    got = _lines(r)
+    assert [d["file"] for d in got] == [str(p) for p in three]
+    assert [d["channel"] for d in got] == ["DE", "FE", "DE"]
+    assert [d["bearing"] for d in got] == ["6205-cwru", "6203-cwru", "6205-cwru"]
+    assert {d["rpm_source"] for d in got} == {"file"}
+    # CWRU labels (SOURCES.md), as in tests/test_analyze.py
+    assert got[0]["diagnosis"] == "outer" and got[2]["diagnosis"] == "inner"
+    for p, d in zip(three, got, strict=True):
+        alone = run_cli("analyze", p, "--channel", "auto", "--json")
+        assert alone.code == 0, alone.err
+        assert alone.json() == d, p.name
+
+
+def test_jobs_1_and_2_give_the_same_output(run_cli, three):
+    one = run_cli("analyze", *three, "--json", "--jobs", "1")
+    two = run_cli("analyze", *three, "--json", "--jobs", "2")
+    assert one.code == two.code == 0, (one.err, two.err)
+    assert one.out == two.out and len(one.out.splitlines()) == 3
+
+
+def test_csv_header_and_rows(run_cli, three):
+    """--csv: the header, then one row per file with the values of --json."""
+    r = run_cli("analyze", *three, "--channel", "auto", "--csv")
+    assert r.code == 0, r.err
+    rows = list(csv.reader(io.StringIO(r.out)))
+    assert rows[0] == CSV_COLUMNS and len(rows) == 4
+    js = _lines(run_cli("analyze", *three, "--channel", "auto", "--json"))
+    for row, d in zip(rows[1:], js, strict=True):
+        c = dict(zip(CSV_COLUMNS, row, strict=True))
+        for k in ("file", "channel", "rpm_source", "bearing", "diagnosis"):
+            assert c[k] == d[k], k
+        for k in ("fs_hz", "rpm", "confidence"):
+            assert float(c[k]) == d[k], k  # written with every digit
+        assert [float(c["band_lo_hz"]), float(c["band_hi_hz"])] == d["band_hz"]
+        assert c["error"] == ""
+
+
+def test_text_output_one_line_per_file(run_cli, three):
+    r = run_cli("analyze", *three)
+    assert r.code == 0, r.err
+    lines = r.out.splitlines()
+    assert len(lines) == 3
+    for p, ln in zip(three, lines, strict=True):
+        assert ln.startswith(f"{p} [DE]: "), ln
+    assert r.err == ""
+
+
+# ------------------------------------------------------------------------- a bad file
+
+
+def _no_de_channel(tmp_path):
+    from scipy.io import savemat
+
+    p = tmp_path / "fe_only.mat"
+    x = np.random.default_rng(3).standard_normal((4000, 1))
+    savemat(p, {"X999_FE_time": x, "X999RPM": np.array([[1750.0]])})
+    return p, "channel = 'DE' not in fe_only.mat"
+
+
+def _text(tmp_path):
+    p = tmp_path / "notes.txt"
+    p.write_text("these are my notes\non the test rig\n")
+    return p, "notes.txt"
+
+
+def _nan_csv(tmp_path):
+    return _sine_csv(tmp_path / "nan.csv", nan_at=100), "not finite"
+
+
+def _clipped_csv(tmp_path):
+    # named as a CWRU record (load 2): the speed comes from the name and the samples are read
+    return _sine_csv(tmp_path / "clipped_2_901.csv", clip=0.8), "is clipped"
+
+
+BAD = {
+    "text file": _text,
+    ".mat without the channel": _no_de_channel,
+    "CSV with NaN": _nan_csv,
+    "clipped CSV": _clipped_csv,
+}
+
+
+@pytest.mark.parametrize("case", list(BAD))
+def test_a_bad_file_in_a_batch_is_its_own_line(run_cli, tmp_path, three, case):
+    """The bad file (second of three) gets {"file", "error"} and one line on stderr; the
+    others are analysed; exit code 2."""
+    bad, needle = BAD[case](tmp_path)
+    files = [three[0], bad, three[2]]
+    r = run_cli("analyze", *files, "--json", "--jobs", "2")
+    assert r.code == 2, r.err
+    got = _lines(r)
+    assert [d["file"] for d in got] == [str(p) for p in files]
+    assert set(got[1]) == {"file", "error"} and needle in got[1]["error"], got[1]
+    assert "\n" not in got[1]["error"]
+    assert got[0]["diagnosis"] == "outer" and got[2]["diagnosis"] == "inner"
+    err = r.err.strip().splitlines()
+    assert err == [f"{bad}: error: {got[1]['error']}"], r.err
+    assert "Traceback" not in r.err
+
+
+def test_a_bad_file_in_csv_and_text_output(run_cli, tmp_path, three):
+    bad, needle = _clipped_csv(tmp_path)
+    files = [three[0], bad, three[2]]
+    c = run_cli("analyze", *files, "--csv")
+    assert c.code == 2
+    rows = list(csv.reader(io.StringIO(c.out)))
+    assert len(rows) == 4 and rows[2][0] == str(bad) and needle in rows[2][-1]
+    assert rows[2][1:-1] == [""] * (len(CSV_COLUMNS) - 2)
+    assert rows[1][-1] == rows[3][-1] == ""
+    t = run_cli("analyze", *files)
+    assert t.code == 2
+    assert [ln.split(" [")[0] for ln in t.out.splitlines()] == [str(three[0]), str(three[2])]
+    err = t.err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"{bad}: error: ") and needle in err[0]
+
+
+def test_a_single_bad_file(run_cli, tmp_path):
+    """One FILE: the text output is the one line ``error: ...`` as before; --json gives its
+    object with the error, and the same line on stderr."""
+    bad, needle = _clipped_csv(tmp_path)
+    t = run_cli("analyze", bad)
+    assert t.code == 2 and t.out == ""
+    assert t.err.strip().splitlines() == [t.err.strip()] and t.err.startswith("error: ")
+    assert needle in t.err
+    j = run_cli("analyze", bad, "--json")
+    assert j.code == 2
+    assert j.json() == {"file": str(bad), "error": t.err.strip().removeprefix("error: ")}
+    assert j.err == t.err
+
+
+# ------------------------------------------------------------------------- the shaft speed
+
+
+def _mat_without_rpm(tmp_path, name):
+    """The drive-end samples of record 107 (inner race 0.007 in, load 2 hp, 1748 r/min in its
+    file) saved without its X###RPM variable."""
+    from scipy.io import savemat
+
+    rec = read_cwru_mat(cwru_record("107"))
+    p = tmp_path / name
+    savemat(p, {"X999_DE_time": rec.channels["DE"][:, None]})
+    return p
+
+
+def test_rpm_from_the_cwru_file_name(run_cli, tmp_path):
+    """No X###RPM, no --rpm: the CWRU nominal speed of the load in the name (2 hp: 1750 r/min,
+    manifest.csv column nominal_rpm); --rpm still wins; the record is still diagnosed as the
+    inner-race fault it is (1750 vs 1748 r/min: 0.1 %, within the 1 % tolerance of the rule)."""
+    mat = _mat_without_rpm(tmp_path, "12k_Drive_End_IR028_2_999.mat")
+    r = run_cli("analyze", mat, "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["rpm"] == 1750.0 and d["rpm_source"] == NAME_LOAD_2
+    assert d["fs_hz"] == 12000.0 and d["diagnosis"] == "inner"
+    t = run_cli("analyze", mat)
+    assert f"rpm 1750 from the file {NAME_LOAD_2}" in t.out.splitlines()[0]
+    o = run_cli("analyze", mat, "--rpm", "1748", "--json")
+    assert o.json()["rpm"] == 1748.0 and o.json()["rpm_source"] == "option"
+
+
+def test_rpm_from_the_name_of_a_csv_and_no_rpm_at_all(run_cli, tmp_path):
+    """A CSV named like a CWRU record at load 3 hp takes 1730 r/min; one that is not gets its
+    own one-line error naming the file and --rpm."""
+    named = _sine_csv(tmp_path / "rig_3_17.csv")
+    plain = _sine_csv(tmp_path / "rig.csv")
+    r = run_cli("analyze", named, plain, "--json")
+    assert r.code == 2
+    a, b = _lines(r)
+    assert a["rpm"] == 1730.0 and a["rpm_source"] == "name (CWRU nominal speed at load 3 hp)"
+    assert b["file"] == str(plain) and "'rig.csv'" in b["error"] and "--rpm" in b["error"]
+
+
+# ------------------------------------------------------------------------- options
+
+
+def test_band_forms(run_cli, three):
+    """--band-hz LO,HI for several files; LO HI (HI a positional number that is no file) too;
+    a lone LO, or two numbers among the FILEs, is refused before any work."""
+    files = three[::2]
+    a = run_cli("analyze", *files, "--band-hz", "2000,5000", "--json")
+    b = run_cli("analyze", *files, "--band-hz", "2000", "5000", "--json")
+    assert a.code == b.code == 0, (a.err, b.err)
+    assert a.out == b.out
+    assert [d["band_hz"] for d in _lines(a)] == [[2000.0, 5000.0]] * 2
+    for argv in (["--band-hz", "2000"], ["--band-hz", "2000", "5000", "6000"]):
+        r = run_cli("analyze", *files, *argv)
+        assert r.code == 2 and r.out == ""
+        assert r.err.startswith("error: band = '2000' is invalid"), r.err
+
+
+def test_refused_before_any_work(run_cli, tmp_path, three):
+    png = tmp_path / "a.png"
+    r = run_cli("analyze", *three, "--plot", png)
+    assert r.code == 2 and r.out == "" and not png.exists()
+    assert (
+        r.err.strip() == "error: --plot writes the figure of one FILE; 3 FILEs given: give one FILE"
+    )
+    r = run_cli("analyze", *three, "--json", "--csv")
+    assert r.code == 2 and r.err.strip() == "error: --json and --csv given together; give one"
+    r = run_cli("analyze", *three, "--jobs", "0")
+    assert r.code == 2 and "jobs = 0 is out of range; valid range [1, inf)" in r.err
+
+
+# ------------------------------------------------------------------------- check_samples
+
+
+def _rec(x):
+    return SignalRecord(np.asarray(x, dtype=float), 1000.0, 1800.0, "/x/r.csv", "acc")
+
+
+def test_check_samples():
+    """Not finite, constant and clipped records are refused; a peak met by CLIPPED_RUN - 1
+    equal samples is not a flat top."""
+    rng = np.random.default_rng(5)
+    x = rng.standard_normal(1000)
+    assert check_samples(_rec(x)).x is not None
+    top = x.copy()
+    top[500 : 500 + CLIPPED_RUN - 1] = 10.0
+    check_samples(_rec(top))
+    for bad, needle in [
+        (np.where(np.arange(1000) == 7, np.nan, x), "1 of 1000 samples are not finite"),
+        (np.where(np.arange(1000) == 9, -np.inf, x), "the first is sample 9"),
+        (np.full(1000, 0.5), "all 1000 samples equal 0.5"),
+        (np.concatenate([x, np.full(CLIPPED_RUN, -10.0)]), "equal its smallest value -10"),
+    ]:
+        with pytest.raises(ConfigError, match="^file = 'r.csv', channel 'acc'") as exc:
+            check_samples(_rec(bad))
+        assert needle in str(exc.value), str(exc.value)
+    top[500 + CLIPPED_RUN - 1] = 10.0
+    with pytest.raises(ConfigError, match=f"is clipped: {CLIPPED_RUN} consecutive samples"):
+        check_samples(_rec(top))
+
+
+def test_the_cwru_records_are_not_clipped():
+    """No channel of any CWRU record has a flat top: the check does not refuse real data."""
+    files = sorted(cwru_record("97").parent.glob("*.mat"))
+    assert len(files) >= 7  # SOURCES.md: 7 records, and the development set
+    for f in files:
+        for x in read_cwru_mat(f).channels.values():
+            check_samples(_rec(x))

@@ -1,0 +1,133 @@
+"""The fused diagnosis on every record of ``../shared/data/cwru`` (measured; truth = the CWRU
+label, grades = Smith & Randall 2015, table B2, via ``manifest.csv``), its calibration and the
+leave-one-mounting-out evaluation (issue 17, "what it must show").
+
+Known misses are strict xfails naming the record: they fail the suite the day they start to
+pass (then the docs must change), and they stay visible in docs/validation.md until then.
+"""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+from conftest import CWRU
+
+from bearingsim.errors import ConfigError
+from bearingsim.signal.fused import CALIBRATION, fit_calibration
+
+pytestmark = pytest.mark.skipif(
+    not (CWRU / "manifest.csv").is_file(), reason=f"shared CWRU data not available in {CWRU}"
+)
+
+ROWS: list[dict] = []
+if (CWRU / "manifest.csv").is_file():
+    with open(CWRU / "manifest.csv", newline="") as fh:
+        ROWS = list(csv.DictReader(fh))
+
+#: records where the fused diagnosis misses what the issue asks; each is in the benchmark table
+#: of docs/validation.md with the reason
+KNOWN_MISS_Y = {
+    "12k_Drive_End_OR014@6_0_197.mat": "BPFO series only in the 2.25-4.5 kHz band (found 0.7 % "
+    "high, 3xBPFO on 2xBPFI); raw view alone supports it, no second view: verdict none",
+}
+KNOWN_CONFIDENT_WRONG = {
+    "12k_Drive_End_B007_2_120.mat": "S&R grade N1: a comb at BPFO/2 = 1.8 orders reads as BPFO "
+    "and BPFI series in three views; inner at p 0.76",
+    "12k_Drive_End_OR014@6_1_198.mat": "S&R grade P2: BPFI series with a sideband in three "
+    "views; the development set has no other mounting with a wrong leading family, so the "
+    "leave-one-mounting-out map cannot learn it: inner at p 0.85",
+}
+
+
+@pytest.fixture(scope="module")
+def bench():
+    from bearingsim.signal.cwru_benchmark import evaluate, evidence
+
+    cal, recs = evaluate(evidence(CWRU))
+    return cal, {r["file"]: r for r in recs}
+
+
+def _param(rows, misses):
+    return [
+        pytest.param(
+            r["file"],
+            marks=pytest.mark.xfail(strict=True, reason=misses[r["file"]])
+            if r["file"] in misses
+            else (),
+            id=r["file"][:-4],
+        )
+        for r in rows
+    ]
+
+
+@pytest.mark.parametrize(
+    "file", _param([r for r in ROWS if r["smith_randall_grade"].startswith("Y")], KNOWN_MISS_Y)
+)
+def test_grade_y_records_right(bench, file):
+    """Every record Smith & Randall grade Y (diagnosable) is diagnosed right."""
+    r = bench[1][file]
+    assert r["verdict"] == r["truth"], r
+
+
+@pytest.mark.parametrize("file", _param(ROWS, KNOWN_CONFIDENT_WRONG))
+def test_no_confident_wrong_fault_type(bench, file):
+    """No wrong fault type with confidence >= 0.5, the confidence of a development record
+    coming from the map fitted without its mounting."""
+    r = bench[1][file]
+    wrong = r["verdict"] in ("inner", "outer", "ball") and r["verdict"] != r["truth"]
+    assert not (wrong and r["confidence"] >= 0.5), r
+
+
+@pytest.mark.parametrize(
+    "file",
+    [r["file"] for r in ROWS if r["smith_randall_grade"].startswith("P") and r["fault"] == "ball"],
+)
+def test_ball_faults_found_where_the_paper_found_them(bench, file):
+    """Smith & Randall found the 0.014 in drive-end ball faults (185-188) partially (P2): the
+    fused diagnosis says ball."""
+    r = bench[1][file]
+    assert r["verdict"] == "ball", r
+
+
+def test_fan_end_ball_faults_not_taken_for_shaft_harmonics(bench):
+    """6203 (fan end): BSF = 1.994 f_r; the ball family must not be built on the 2 f_r line.
+    The four fan-end 0.014 in ball records are ball, and no fan-end race-fault record is."""
+    fe = {f: r for f, r in bench[1].items() if "Fan_End" in f}
+    for r in fe.values():
+        if r["truth"] == "ball":
+            assert r["verdict"] == "ball", r
+        else:
+            assert r["verdict"] == r["truth"], r
+
+
+def test_shipped_calibration_is_the_development_fit(bench):
+    """CALIBRATION in fused.py is what scripts/calibrate_diagnosis.py fits (to the 4 digits
+    shipped)."""
+    cal = bench[0]
+    assert cal.intercept == 0.0 == CALIBRATION.intercept
+    np.testing.assert_allclose(CALIBRATION.slope, cal.slope, atol=6e-5)
+
+
+def test_reliability_is_not_overconfident_in_aggregate(bench):
+    """Over all records with a leading family, the mean stated probability does not exceed the
+    share right by more than 0.05 (the reliability table of docs/validation.md)."""
+    ps = [(r["p"], r["leading"] == r["truth"]) for r in bench[1].values() if r["p"] is not None]
+    assert len(ps) >= 20
+    assert np.mean([p for p, _ in ps]) <= np.mean([ok for _, ok in ps]) + 0.05
+
+
+def test_fit_calibration_properties():
+    """p(0) = 1/2 (no intercept), increasing in the margin, finite on separable data."""
+    m = np.array([0.1, 0.3, 0.5, 0.9, 1.2, 0.05])
+    c = fit_calibration(m, [True] * 6)
+    assert c(0.0) == pytest.approx(0.5)
+    assert 0.5 < c(0.2) < c(1.0) < 1.0
+    assert np.isfinite(c.slope)
+    c2 = fit_calibration(m, [False, True, True, True, True, False])
+    assert c2.slope < c.slope
+    with pytest.raises(ConfigError, match="same length"):
+        fit_calibration([0.1, 0.2], [True])
+    with pytest.raises(ConfigError, match="non-finite"):
+        fit_calibration([0.1, np.nan], [True, False])
