@@ -5,20 +5,21 @@
     python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru]
 
 1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): VSM simulations of
-   every condition of a grid -- healthy, inner and outer race faults x shaft speeds (the CWRU
-   loads' 1730-1797 r/min) x defect widths (0.007, 0.014, 0.021 in) x random slip (1-2 %, three
-   seeds) x the shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``, ``cwru-de-48k``; the
-   drive end's 6205, the fan end's 6203) -- each passed through its rig (``acc_sensor``).
+   every condition of a grid -- healthy, inner and outer race and ball faults x shaft speeds
+   (the CWRU loads' 1730-1797 r/min) x defect widths (0.007, 0.014, 0.021 in) x random slip
+   (1-2 %, three seeds) x the shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``,
+   ``cwru-de-48k``; the drive end's 6205, the fan end's 6203) -- each passed through its rig
+   (``acc_sensor``).
 2. **Features** (the same function on simulated and measured signals): the squared-envelope
    spectrum in the fast-kurtogram band, its levels at the characteristic frequencies of the
-   bearing at the record's speed (BPFO, BPFI and their 2nd harmonics, BPFI +/- shaft, 2 x BSF,
-   the shaft's 1st and 2nd harmonics), each over the spectrum's median in 20-600 Hz [dB], and the
+   bearing at the record's speed (BPFO, BPFI and their 2nd harmonics, BPFI +/- shaft, 2 x BSF and
+   its +/- FTF sidebands, FTF and 2 x FTF, the shaft's 1st and 2nd harmonics), each over the
+   spectrum's median in 20-600 Hz [dB], and the
    signal's log kurtosis. Ratios and levels relative to the record's own floor: the absolute
    level of a model is not what the classifier sees.
 3. **Classifier**: scikit-learn's random forest (an optional dependency: ``pip install
-   bearingsim[ml]``), trained on the simulated set only. Labels ``none``, ``inner``, ``outer``;
-   ``ball`` exists as a label but no simulation has it yet (no ball-defect model), so the
-   classifier never predicts it.
+   bearingsim[ml]``), trained on the simulated set only. Labels ``none``, ``inner``, ``outer``,
+   ``ball`` (the ring models' ball defect, issue 16 item 2).
 
 ``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities"}``.
 ``--evaluate`` labels every record of the CWRU folder, prints the accuracy per class and
@@ -50,7 +51,10 @@ PROFILES = {
     "cwru-de-48k": ("6205-cwru", 48000.0),
 }
 DURATION_S = 1.0
-FEATURES = ("bpfo", "2bpfo", "bpfi", "2bpfi", "bpfi-fs", "bpfi+fs", "2bsf", "fs", "2fs", "logkurt")
+FEATURES = (
+    *("bpfo", "2bpfo", "bpfi", "2bpfi", "bpfi-fs", "bpfi+fs", "2bsf", "2bsf-ftf", "2bsf+ftf"),
+    *("ftf", "2ftf", "fs", "2fs", "logkurt"),
+)
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 CACHE = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "bearingsim"
 
@@ -79,6 +83,10 @@ def features(x: np.ndarray, fs: float, rpm: float, bearing: str) -> np.ndarray:
         kin.bpfi_hz - fsh,
         kin.bpfi_hz + fsh,
         2 * kin.bsf_hz,
+        2 * kin.bsf_hz - kin.ftf_hz,
+        2 * kin.bsf_hz + kin.ftf_hz,
+        kin.ftf_hz,
+        2 * kin.ftf_hz,
         fsh,
         2 * fsh,
     )
@@ -105,7 +113,7 @@ def _grid():
                     slip=slip,
                     seed=seed,
                 )
-                for fault in ("inner", "outer"):
+                for fault in ("inner", "outer", "ball"):
                     for size in SIZES_IN:
                         yield dict(
                             rig=rig,
@@ -214,7 +222,7 @@ def predict(clf, files):
             err = " ".join(str(exc).split())
             yield {"file": str(p), "predicted": None, "probabilities": None, "error": err}
             continue
-        probs = dict.fromkeys(LABELS, 0.0)  # ball: no simulation has it yet
+        probs = dict.fromkeys(LABELS, 0.0)
         probs |= {LABELS[c]: float(v) for c, v in zip(clf.classes_, prob, strict=True)}
         best = max(probs, key=probs.get)
         yield {"file": str(p), "predicted": best, "probabilities": probs}

@@ -41,7 +41,8 @@ def small(monkeypatch):
 
 
 def test_features_are_levels_over_the_floor(small):
-    """An outer-race fault simulated at 1750 r/min: the BPFO line stands above the floor."""
+    """An outer-race fault simulated at 1750 r/min: the BPFO line stands above the floor; a
+    ball fault: the FTF line and 2xBSF do (the ball pattern, Smith & Randall 2015 table 1)."""
     from bearingsim import simulate
 
     r = simulate(dict(model="vsm", fault="outer", duration_s=0.5, fs_hz=12000.0))
@@ -49,12 +50,19 @@ def test_features_are_levels_over_the_floor(small):
     assert f.shape == (len(small.FEATURES),)
     assert f[small.FEATURES.index("bpfo")] > 20.0
     assert np.all(np.isfinite(f))
+    r = simulate(
+        dict(model="vsm", fault="ball", duration_s=1.0, fs_hz=12000.0, defect_width_m=3.556e-4)
+    )
+    f = small.features(r["acc_y"], 12000.0, 1750.0, "6205")
+    assert f[small.FEATURES.index("ftf")] > 10.0
+    assert f[small.FEATURES.index("2bsf")] > 10.0
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
 def test_dataset_is_cached_and_predictions_are_json_lines(small, tmp_path):
     X, y, meta = small.build_dataset(tmp_path, progress=False)
-    assert X.shape == (6, len(small.FEATURES)) and sorted(set(y)) == [0, 1, 2]
+    # 2 speeds x (healthy + inner, outer, ball at one size): labels none, inner, outer, ball
+    assert X.shape == (8, len(small.FEATURES)) and sorted(set(y)) == [0, 1, 2, 3]
     X2, y2, meta2 = small.build_dataset(tmp_path, progress=False)  # from the cache
     assert np.array_equal(X, X2) and np.array_equal(y, y2) and "grid" in meta2
     clf = small.train(X, y)

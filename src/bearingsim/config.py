@@ -154,6 +154,8 @@ def _angle(name: str, value: Any) -> float:
 
 
 _FAULTS = ("none", "outer", "inner")
+#: the ring models also model a defect on one ball (issue 16, item 2)
+_RING_FAULTS = (*_FAULTS, "ball")
 
 
 def _family_of(model: Any) -> type[Scenario]:
@@ -381,13 +383,15 @@ class RingScenario(Scenario):
     ``model``                       ``"vsm"``       ``vsm`` | ``dem`` | ``tvsm``
     ``bearing``                     ``"6205"``      catalogue id (seed VSM table 1 bearing)
     ``bearing_file``                –               user bearing TOML (instead of ``bearing``)
-    ``fault``                       ``"none"``      ``none`` | ``outer`` | ``inner``
-    ``defect_width_m``              1.778e-4        defect width b along the raceway [m] (CWRU
-                                                    0.007 in)
+    ``fault``                       ``"none"``      ``none`` | ``outer`` | ``inner`` | ``ball``
+                                                    (ball: ball 1 carries the defect)
+    ``defect_width_m``              1.778e-4        defect width b along the raceway (or across
+                                                    the ball) [m] (CWRU 0.007 in)
     ``defect_depth_m``              2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
     ``defect_edge_angle_deg``       10.0            the defect's **left edge** at t = 0, seed VSM
                                                     beta_0 [deg] (table 1); its centre is half the
-                                                    defect's extent further on
+                                                    defect's extent further on (ball: the edge's
+                                                    spin angle, 0 = facing the outer race)
     ``first_ball_angle_deg``        0.0             ball 1 azimuth at t = 0, alpha_0 [deg]
     ``rpm``                         1750.0          shaft speed [r/min] (seed table 1)
     ``fx_n``, ``fy_n``              10.0, 50.0      radial force on the inner ring [N] (table 1)
@@ -487,7 +491,7 @@ class RingScenario(Scenario):
     def _validate(self) -> None:
         s = object.__setattr__
         _check_bearing(self, "6205")
-        _choice("fault", self.fault, _FAULTS)
+        _choice("fault", self.fault, _RING_FAULTS)
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
         s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
         s(

@@ -509,11 +509,23 @@ def check_speed_limit(bearing: Bearing, rpm: float, name: str = "rpm", lo: str =
 
 
 class Race(enum.Enum):
-    """A raceway: the ring of a contact, or the ring that carries a local defect. The outer ring
-    is fixed; the inner ring turns with the shaft."""
+    """A raceway: the ring of a contact, or what carries a local defect. The outer ring is
+    fixed; the inner ring turns with the shaft. ``BALL`` is a defect site only (one rolling
+    element carries the defect; the ring models, issue 16 item 2): contact functions refuse it
+    (:func:`contact_race`)."""
 
     INNER = "inner"
     OUTER = "outer"
+    BALL = "ball"
+
+
+def contact_race(race: Race | str, name: str = "race") -> Race:
+    """``race`` as a raceway of a contact (:attr:`Race.INNER` or :attr:`Race.OUTER`); a ball or
+    any other value is a one-line :class:`ConfigError` naming ``name``."""
+    r = parse_enum(Race, race, name)
+    if r is Race.BALL:
+        raise ConfigError(f"{name} = 'ball' is invalid here; valid: inner, outer (a raceway)")
+    return r
 
 
 class DefectProfile(enum.Enum):
@@ -560,8 +572,10 @@ class Defect:
 
     Parameters
     ----------
-    race : Race or {"inner", "outer"}
-        Raceway carrying the defect.
+    race : Race or {"inner", "outer", "ball"}
+        Raceway carrying the defect, or ``"ball"``: one ball carries it (ring models only; its
+        ``angle`` is then the ball's spin angle of the defect centre at ``t = 0``, 0 = facing
+        the outer race).
     width : float
         Width ``b`` (``L_d`` in seed IAS) along the raceway [m], > 0 (default: CWRU 0.007 in).
         Each model states the widths it admits (the element must span the defect).
@@ -604,18 +618,23 @@ class DefectGeometry:
     Attributes
     ----------
     race : Race
-        Raceway.
+        Raceway (or :attr:`Race.BALL`).
     race_radius : float
-        Raceway radius ``r_i`` or ``r_o`` [m].
+        Raceway radius ``r_i`` or ``r_o`` [m] (the ball radius for a ball defect).
     h_s : float
-        Drop of a ball resting on both edges without touching the bottom, eq. (2) [m].
+        Drop of a ball resting on both edges without touching the bottom, eq. (2) [m] (ball
+        defect: the loss of approach at the outer-race contact).
     h_min : float
-        Maximum drop ``min(h_d, h_s)``, eq. (1) [m].
+        Maximum drop ``min(h_d, h_s)``, eq. (1) [m] (ball defect: at the outer-race contact).
     delta_beta : float
-        Central angle spanned by the defect on its raceway, eq. (3) [rad].
+        Central angle spanned by the defect on its raceway, eq. (3) [rad] (ball defect: on the
+        ball, ``2 arcsin(b/d)``).
     edge_angle : float
         Azimuth of the defect's left (lower-azimuth) edge at ``t = 0``, ``beta_0`` of seed VSM
-        [rad]: the defect centre less half the extent.
+        [rad]: the defect centre less half the extent (ball defect: the spin angle).
+    h_min_inner : float or None
+        Ball defect: the maximum loss of approach at the inner-race contact [m] (None for a
+        raceway defect).
     """
 
     race: Race
@@ -624,6 +643,7 @@ class DefectGeometry:
     h_min: float
     delta_beta: float
     edge_angle: float
+    h_min_inner: float | None = None
 
 
 def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
@@ -668,6 +688,19 @@ def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
         )
     half = 0.5 * b
     ball_chord = r - math.sqrt(r * r - half * half)
+    if defect.race is Race.BALL:
+        # the same chords (eq. (2)) with the roles swapped: the raceway's surface enters the
+        # slot on the ball, convex inner race deeper, concave outer race shallower
+        ri = bearing.inner_raceway_radius
+        ro = bearing.outer_raceway_radius
+        h_o = ball_chord - (ro - math.sqrt(ro * ro - half * half))
+        h_i = ball_chord + (ri - math.sqrt(ri * ri - half * half))
+        check_defect_depth(bearing, defect)
+        dpsi = 2.0 * math.asin(b / d)  # the slot's central angle on the ball
+        return DefectGeometry(
+            Race.BALL, r, h_o, min(defect.depth, h_o), dpsi, defect.angle - 0.5 * dpsi,
+            min(defect.depth, h_i),
+        )  # fmt: skip
     if defect.race is Race.INNER:
         rr = bearing.inner_raceway_radius
         h_s = ball_chord + (rr - math.sqrt(rr * rr - half * half))  # seed VSM eq. (2), inner
@@ -686,6 +719,8 @@ def ring_wall(bearing: Bearing, race: Race | str) -> float:
     ``D_out/2 - r_o`` (outer) from the bearing's envelope; the element diameter when the bearing
     gives no bore or outer diameter."""
     race = parse_enum(Race, race, "fault_race")
+    if race is Race.BALL:
+        return 0.5 * bearing.element_diameter  # a slot in a ball is shallower than its radius
     if race is Race.INNER and bearing.bore is not None:
         return bearing.inner_raceway_radius - 0.5 * bearing.bore
     if race is Race.OUTER and bearing.outer_diameter is not None:
@@ -701,6 +736,8 @@ def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
     known = bearing.bore is not None and bearing.outer_diameter is not None
     if defect.depth >= wall:
         what = "ring wall" if known else "element diameter (no bore/outer diameter given)"
+        if defect.race is Race.BALL:
+            what = "ball radius"
         raise ConfigError(
             f"defect_depth_m = {defect.depth:.6g} m is not less than the {defect.race.value} "
             f"{what} {wall:.6g} m of {bearing.id}; valid range (0, {wall:.6g}) m"
@@ -734,7 +771,7 @@ def raceway_radius(bearing: Bearing, race: Race) -> float:
 def angular_extent(bearing: Bearing, race: Race | str, width: float) -> float:
     """Central angle ``Delta_beta = 2 arcsin(b / (2 r_race))`` spanned by a defect of width ``b``
     [m] on ``race`` (seed VSM eq. (3)) [rad]."""
-    rr = raceway_radius(bearing, parse_enum(Race, race, "fault_race"))
+    rr = raceway_radius(bearing, contact_race(race, "fault_race"))
     return 2.0 * math.asin(min(1.0, width / (2.0 * rr)))
 
 
@@ -750,12 +787,17 @@ def defect_at_edge(
     bearing : BallBearing
         Geometry.
     race : Race or str
-        Raceway.
+        Raceway, or ``"ball"``.
     width, depth : float
         Defect width ``b`` and depth ``h_d`` [m].
     edge_angle : float
-        Left-edge azimuth ``beta_0`` [rad].
+        Left-edge azimuth ``beta_0`` [rad] (ball: the edge's spin angle, 0 = facing the outer
+        race).
     """
     race = parse_enum(Race, race, "fault_race")
     w = check_positive("defect_width_m", width, "m")
-    return Defect(race, w, depth, edge_angle + 0.5 * angular_extent(bearing, race, w))
+    if race is Race.BALL:  # the edge's spin angle; the slot spans 2 arcsin(b/d) of the ball
+        ext = 2.0 * math.asin(min(1.0, w / bearing.element_diameter))
+    else:
+        ext = angular_extent(bearing, race, w)
+    return Defect(race, w, depth, edge_angle + 0.5 * ext)

@@ -40,7 +40,7 @@ __all__ = [
     "vsm_trace_cmd",
 ]
 
-_FAULTS = ["none", "outer", "inner"]
+_FAULTS = ["none", "outer", "inner", "ball"]
 
 
 def _opt(f):
@@ -62,7 +62,7 @@ def _opt(f):
             type=click.Choice(_FAULTS),
             default=None,
             show_default=_d("fault"),
-            help="Defect location.",
+            help="Defect location (ball: one ball carries it; vsm, dem, tvsm).",
         ),
         click.option(
             "--defect-width-m",

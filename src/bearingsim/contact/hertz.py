@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
 from ..errors import ConfigError, check_positive
-from ..geometry import BallBearing, Race, RollerBearing, parse_enum
+from ..geometry import BallBearing, Race, RollerBearing, contact_race
 from ..materials import effective_modulus
 from ..signal.peaks import refine_peak
 
@@ -231,7 +231,7 @@ def ball_contact(
     method : EllipticMethod
         Exact (default) or Hamrock–Brewe.
     """
-    race = parse_enum(Race, race, "race")
+    race = contact_race(race, "race")
     rx, ry = ball_race_radii(bearing, race)
     e_eff = effective_modulus(bearing.material, bearing.material)
     return point_contact(load, rx, ry, e_eff, method)
@@ -457,7 +457,7 @@ def line_contact(load: ArrayLike, r_eff: float, length: float, e_eff: float) -> 
 def roller_race_radius(bearing: RollerBearing, race: Race | str) -> float:
     """Effective radius ``R_x`` [m] of a roller/raceway contact (roller radius with the inner
     raceway convex, outer concave)."""
-    race = parse_enum(Race, race, "race")
+    race = contact_race(race, "race")
     rc = 0.5 * bearing.element_diameter
     rr = bearing.inner_raceway_radius if race is Race.INNER else -bearing.outer_raceway_radius
     return 1.0 / (1.0 / rc + 1.0 / rr)

@@ -23,7 +23,7 @@ from ..geometry import (
     Race,
     characteristic_frequencies,
     check_clearance,
-    parse_enum,
+    contact_race,
 )
 from ..load_distribution import check_angles
 
@@ -280,7 +280,7 @@ def max_tilt(geom: QSGeometry, race: Race | str, other: float = 0.0) -> float:
     other : float
         Axial offset already taken by the other ring's tilt, ``r_p * tilt`` [m].
     """
-    race = parse_enum(Race, race, "race")
+    race = contact_race(race, "race")
     budget = geom.y0 * math.tan(geom.max_contact_angle) - other
     r = geom.r_pi if race is Race.INNER else geom.r_po
     return max(budget, 0.0) / r

@@ -69,9 +69,9 @@ P_CLR = 7  #: half diametral clearance P_d/2 [m]
 P_WCAGE = 8  #: cage angular speed 2 pi f_m [rad/s]
 P_WSHAFT = 9  #: shaft angular speed 2 pi f_s [rad/s]
 P_ALPHA0 = 10  #: first-ball azimuth alpha_0 [rad]
-P_FAULT = 11  #: 0 none, 1 outer, 2 inner
-P_BETA0 = 12  #: defect left edge at t = 0, beta_0 [rad]
-P_DBETA = 13  #: defect angular extent Delta_beta [rad]
+P_FAULT = 11  #: 0 none, 1 outer, 2 inner, 3 ball (ball 1 carries the defect)
+P_BETA0 = 12  #: defect left edge at t = 0, beta_0 [rad] (ball: its spin angle)
+P_DBETA = 13  #: defect angular extent Delta_beta [rad] (ball: on the ball)
 P_DFAC = 14  #: load factor of a ball over the defect (prescribed gamma, else 1) [-]
 P_DOFF = 15  #: deflection offset of a ball over the defect (h_min, else 0) [m]
 P_T0 = 16  #: time of the first table row [s]
@@ -96,6 +96,8 @@ P_CHW = 34  #: cached angular half-width of the zone cell (scratch) [rad]
 P_SLIP = 35  #: offset in ``p`` of the slip table of ball-pass instants (0 = no slip) [-]
 P_SLIPN = 36  #: entries of the slip table [-]
 P_SLIPDT = 37  #: nominal ball-pass period 2 pi / (Z w_cage) [s]
+P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min_inner) [m]
+P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
 HEADER = 40  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
@@ -142,6 +144,36 @@ def slip_phase(t, p):
 
 
 @njit(cache=True, inline="always")
+def defect_angle(th, t, p):
+    """Angle past the defect's left edge modulo 2 pi [rad] for ball 1 at azimuth ``th``: on the
+    outer race ``th - beta_0``; on the inner race ``th - w_shaft t - beta_0`` (eq. (13): the
+    defect turns with the shaft); on ball 1 its spin angle ``spin (th - alpha_0) + beta_0``
+    (the ball rolls on the fixed outer race: it spins ``BSF/FTF`` times the cage angle, random
+    slip included), the defect facing the outer race at 0 and the inner race at pi; 0 without a
+    defect."""
+    fault = int(p[P_FAULT])
+    if fault == 1:
+        return wrap(th - p[P_BETA0])
+    if fault == 2:
+        return wrap(th - p[P_WSHAFT] * t - p[P_BETA0])
+    if fault == 3:
+        return wrap(p[P_SPIN] * (th - p[P_ALPHA0]) + p[P_BETA0])
+    return 0.0
+
+
+@njit(cache=True, inline="always")
+def defect_rate(p):
+    """Rate of :func:`defect_angle` [rad/s] (slip aside): ``w_cage`` (outer), ``|w_cage -
+    w_shaft|`` (inner), ``spin w_cage`` (ball)."""
+    fault = int(p[P_FAULT])
+    if fault == 2:
+        return abs(p[P_WCAGE] - p[P_WSHAFT])
+    if fault == 3:
+        return p[P_SPIN] * p[P_WCAGE]
+    return p[P_WCAGE]
+
+
+@njit(cache=True, inline="always")
 def frame(t, p):
     """Angles of ball 1 at time ``t``: its azimuth (eq. (12)), its angle past the defect's left
     edge modulo 2 pi (eqs. (13), (15)) and past the lower edge of a fixed load-zone window
@@ -149,12 +181,7 @@ def frame(t, p):
     th = p[P_WCAGE] * t + p[P_ALPHA0]  # seed VSM eq. (12)
     if p[P_SLIP] > 0.0:
         th += slip_phase(t, p)
-    fault = int(p[P_FAULT])
-    rel_d = 0.0
-    if fault == 2:
-        rel_d = wrap(th - p[P_WSHAFT] * t - p[P_BETA0])  # eq. (13): defect turns with the shaft
-    elif fault == 1:
-        rel_d = wrap(th - p[P_BETA0])
+    rel_d = defect_angle(th, t, p)
     rel_w = 0.0
     if p[P_PSIL] > 0.0:
         rel_w = wrap(th - p[P_TH0] + p[P_PSIL])
@@ -189,8 +216,7 @@ def frame_cached(t, p):
     s0 = math.sin(th)
     c0 = math.cos(th)
     ht = cell_halfwidth(t, p)
-    w_rel = p[P_WCAGE] - (p[P_WSHAFT] if int(p[P_FAULT]) == 2 else 0.0)
-    hd = abs(w_rel) * ht
+    hd = defect_rate(p) * ht
     hw = p[P_WCAGE] * ht
     p[P_CT] = t
     p[P_CS0] = s0
@@ -230,13 +256,31 @@ def cell_fraction(r, half, width):
 
 
 @njit(cache=True, inline="always")
-def ball_flags(rd, rw, hd, hw, fault, psil2, dbeta):
-    """Defect fraction ``f_d`` (eq. (15): 1 = over the defect) and zone factor ``f_z``
-    (eq. (14) fixed window: 1 = inside) of one ball from its angle past the defect edge ``rd``
-    and past the window edge ``rw``, averaged over the quadrature cell [-]."""
-    fr = cell_fraction(rd, hd, dbeta) if fault != 0 else 0.0
+def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi):
+    """Defect fraction ``f_d`` of ball ``j`` (0-based; eq. (15): 1 = over the defect, averaged
+    over the quadrature cell) and its drop [m]. A raceway defect: ``rd`` is the ball's angle
+    past the defect edge. A ball defect (``fault == 3``): only ball 0 carries it, ``rd`` is its
+    spin angle past the defect edge, and the defect meets the outer race (drop ``doff``) at
+    ``rd`` in ``[0, dbeta)`` and the inner race (drop ``doffi``) half a turn later."""
+    if fault == 0:
+        return 0.0, doff
+    if fault != 3:
+        return cell_fraction(rd, hd, dbeta), doff
+    if j != 0:
+        return 0.0, doff
+    fo = cell_fraction(rd, hd, dbeta)
+    fi = cell_fraction(advance(rd, math.pi), hd, dbeta)
+    return fo + fi, (doff if fo >= fi else doffi)
+
+
+@njit(cache=True, inline="always")
+def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi):
+    """Defect fraction ``f_d`` and drop (:func:`defect_fraction`) and zone factor ``f_z``
+    (eq. (14) fixed window: 1 = inside) of ball ``j`` from its angle past the defect edge
+    ``rd`` and past the window edge ``rw``, averaged over the quadrature cell [-]."""
+    fr, dof = defect_fraction(j, rd, hd, fault, dbeta, doff, doffi)
     zf = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
-    return fr, zf
+    return fr, zf, dof
 
 
 @njit(cache=True, inline="always")
@@ -316,11 +360,10 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     cs = np.empty(Z)
     fr = np.empty(Z)
     zf = np.empty(Z)
+    dof = np.empty(Z)
     wc = p[P_WCAGE]
-    ws = p[P_WSHAFT]
     a0 = p[P_ALPHA0]
     fault = p[P_FAULT]
-    beta0 = p[P_BETA0]
     dbeta = p[P_DBETA]
     psil = p[P_PSIL]
     psil2 = 2.0 * psil
@@ -330,6 +373,8 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     step = TWO_PI / Z
     clr = p[P_CLR]
     doff = p[P_DOFF]
+    doffi = p[P_DOFFI]
+    ifault = int(fault)
     dfac = p[P_DFAC]
     K = p[P_K]
     n = p[P_N]
@@ -342,7 +387,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     cell = p[P_CELL] > 0.0 and not point
     hh = p[P_HTAB]
     t0 = p[P_T0]
-    w_rel = abs(wc - (ws if fault == 2.0 else 0.0))
+    w_rel = defect_rate(p)
     px = math.nan
     py = math.nan
     for i in range(times.size):
@@ -351,11 +396,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
         th = wc * t + a0
         if p[P_SLIP] > 0.0:
             th += slip_phase(t, p)
-        rd = 0.0
-        if fault == 2.0:
-            rd = wrap(th - ws * t - beta0)
-        elif fault == 1.0:
-            rd = wrap(th - beta0)
+        rd = defect_angle(th, t, p)
         rw = wrap(th - th0 + psil) if psil > 0.0 else 0.0
         hd = 0.0
         hw = 0.0
@@ -369,8 +410,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
         for j in range(Z):
             sn[j] = s0
             cs[j] = c0
-            fr[j] = cell_fraction(rd, hd, dbeta) if fault != 0.0 else 0.0
-            zf[j] = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
+            fr[j], zf[j], dof[j] = ball_flags(j, rd, rw, hd, hw, ifault, psil2, dbeta, doff, doffi)
             rd = advance(rd, step)
             rw = advance(rw, step)
             s1 = s0 * cc + c0 * ss
@@ -408,7 +448,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
                 for j in range(Z):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load(ue, fr[j], zf[j], clr, doff, dfac, K, n)
+                    q, kk, _e = ball_load(ue, fr[j], zf[j], clr, dof[j], dfac, K, n)
                     if q > 0.0:
                         a = sn[j]
                         b = cs[j]
@@ -525,10 +565,11 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     cc = p[P_CSTEP]
     dbeta = p[P_DBETA]
     clr, doff, dfac, K, n = constants(p)
+    doffi = p[P_DOFFI]
     n_loaded = 0
     for j in range(Z):
-        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
-        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
+        fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, clr, dof, dfac, K, n)
         if q > 0.0:
             n_loaded += 1
         if fill:
@@ -553,8 +594,8 @@ def has_partial(t, p):
     step = TWO_PI / Z
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
-    for _j in range(Z):
-        fr, zf = ball_flags(rd, rw, hd, hw, fault, psil2, p[P_DBETA])
+    for j in range(Z):
+        fr, zf, _dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, p[P_DBETA], 0.0, 0.0)
         if 0.0 < fr < 1.0 or 0.0 < zf < 1.0:
             return True
         rd = advance(rd, step)

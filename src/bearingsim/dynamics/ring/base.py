@@ -26,7 +26,14 @@ from numpy.typing import NDArray
 from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
-from ...geometry import BallBearing, Bearing, Defect, characteristic_frequencies, defect_geometry
+from ...geometry import (
+    BallBearing,
+    Bearing,
+    Defect,
+    Race,
+    characteristic_frequencies,
+    defect_geometry,
+)
 from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
@@ -224,8 +231,13 @@ class ModelInputs:
             p[bl.P_DBETA] = g.delta_beta
             if self.retention_factor is None:
                 p[bl.P_DOFF] = g.h_min  # eq. (11) implicit: gamma K delta^1.5 = K(delta-h)^1.5
+                if g.h_min_inner is not None:  # a ball defect meets both races
+                    p[bl.P_DOFFI] = g.h_min_inner
             else:
                 p[bl.P_DFAC] = self.retention_factor
+            if self.defect.race is Race.BALL:
+                k = characteristic_frequencies(self.bearing, self.shaft_hz)
+                p[bl.P_SPIN] = k.bsf_hz / k.ftf_hz  # spin angle per cage angle
         p[bl.P_NTAB] = 0
         p[bl.P_PERBALL] = 1.0 if per_ball else 0.0
         p[bl.P_WARMX] = math.nan

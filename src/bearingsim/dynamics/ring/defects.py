@@ -29,7 +29,7 @@ __all__ = [
 ]
 
 #: integer codes of the defect's raceway inside the compiled kernels (0 = no defect)
-FAULT_CODE = {None: 0, Race.OUTER: 1, Race.INNER: 2}
+FAULT_CODE = {None: 0, Race.OUTER: 1, Race.INNER: 2, Race.BALL: 3}
 
 
 def retention_factor(delta: ArrayLike, h_min: float) -> NDArray[np.float64]:

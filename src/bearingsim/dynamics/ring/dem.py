@@ -40,6 +40,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     cc = p[bl.P_CSTEP]
     clr = p[bl.P_CLR]
     doff = p[bl.P_DOFF]
+    doffi = p[bl.P_DOFFI]
     dfac = p[bl.P_DFAC]
     K = p[bl.P_K]
     n = p[bl.P_N]
@@ -49,10 +50,10 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     jxx = 0.0
     jxy = 0.0
     jyy = 0.0
-    for _j in range(Z):
+    for j in range(Z):
         # a ball over the defect loses the geometric drop h_min from its deflection
-        fr, zf = bl.ball_flags(rd, rw, hd, hw, fault, psil2, dbeta)
-        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, clr, doff, dfac, K, n)
+        fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
+        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, clr, dof, dfac, K, n)
         if q > 0.0:
             gx += q * s0
             gy += q * c0
@@ -97,15 +98,10 @@ def _dem_rhs(t, y, p, dydt):
         hw = p[bl.P_CHW]
     else:
         wc = p[bl.P_WCAGE]
-        fault = p[bl.P_FAULT]
         th = wc * t + p[bl.P_ALPHA0]  # seed VSM eq. (12)
         if p[bl.P_SLIP] > 0.0:
             th += bl.slip_phase(t, p)
-        rd = 0.0
-        if fault == 2.0:
-            rd = bl.wrap(th - p[bl.P_WSHAFT] * t - p[bl.P_BETA0])  # eqs. (13), (15)
-        elif fault == 1.0:
-            rd = bl.wrap(th - p[bl.P_BETA0])
+        rd = bl.defect_angle(th, t, p)  # eqs. (13), (15); a ball defect's spin angle
         rw = bl.wrap(th - p[bl.P_TH0] + p[bl.P_PSIL]) if p[bl.P_PSIL] > 0.0 else 0.0
         hd = 0.0
         hw = 0.0
@@ -113,7 +109,7 @@ def _dem_rhs(t, y, p, dydt):
             hh = p[bl.P_HTAB]
             k = int(math.floor((t - p[bl.P_T0]) / hh + 0.5))
             ht = hh / 3.0 if k % 2 == 0 else 2.0 * hh / 3.0
-            hd = abs(wc - (p[bl.P_WSHAFT] if fault == 2.0 else 0.0)) * ht
+            hd = bl.defect_rate(p) * ht
             hw = wc * ht
         s0 = math.sin(th)
         c0 = math.cos(th)

@@ -387,14 +387,24 @@ def stiffness_trace(
     defect = inputs.defect
     shaft = times * 2 * math.pi * inputs.shaft_hz
     beta0 = 0.0
+    drop = np.full_like(psi, p[bl.P_DOFF])
     if defect is None:
         over = np.zeros_like(psi, dtype=bool)
+    elif defect.race is Race.BALL:  # ball 1's spin angle past the defect edge (_balance)
+        g = defect_geometry(inputs.bearing, defect)
+        beta0 = g.edge_angle
+        spin = np.mod(p[bl.P_SPIN] * (psi[:, 0] - inputs.first_ball_angle) + beta0, 2 * math.pi)
+        outer = spin < g.delta_beta
+        inner = np.mod(spin + math.pi, 2 * math.pi) < g.delta_beta
+        over = np.zeros_like(psi, dtype=bool)
+        over[:, 0] = outer | inner
+        drop[:, 0] = np.where(inner, p[bl.P_DOFFI], p[bl.P_DOFF])
     else:
         g = defect_geometry(inputs.bearing, defect)
         beta0 = g.edge_angle
         edge = g.edge_angle + (shaft[:, None] if defect.race is Race.INNER else 0.0)
         over = np.mod(psi - edge, 2 * math.pi) < g.delta_beta
-    off = np.where(over, p[bl.P_DOFF], 0.0)
+    off = np.where(over, drop, 0.0)
     fac = np.where(over, p[bl.P_DFAC], 1.0)
     th0 = inputs.theta0
     if inputs.load_zone_half_angle is None:

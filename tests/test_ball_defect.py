@@ -1,0 +1,117 @@
+"""Rolling-element (ball) defects in the ring models (issue 16, item 2).
+
+One ball carries a slot of width b and depth h_d. The ball rolls on the fixed outer race, so its
+spin angle advances BSF/FTF times the cage angle; the slot meets the outer race once and the
+inner race once per spin revolution (2×BSF), and the ball carries it through the load zone once
+per cage revolution (FTF modulation). The loss of approach at each contact follows the same
+chord rule as a raceway defect (seed VSM eq. (2), with the roles of ball and raceway swapped).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from bearingsim import get_bearing
+from bearingsim.config import Scenario
+from bearingsim.dynamics.ring import _balance as bl
+from bearingsim.errors import ConfigError
+from bearingsim.geometry import Defect, Race, characteristic_frequencies, defect_geometry
+from bearingsim.signal import diagnose
+from bearingsim.signal.benchmark import squared_envelope_spectrum
+from bearingsim.signal.peaks import match_peaks
+from bearingsim.simulation import simulate
+
+B = get_bearing("6205")
+#: CWRU 0.014 in slot across the ball, EDM depth 0.011 in [m] (SOURCES.md)
+WIDTH = 0.014 * 0.0254
+DEPTH = 0.011 * 0.0254
+
+
+def test_ball_defect_geometry_is_the_chord_rule_with_roles_swapped():
+    """Seed VSM eq. (2): h_s = [r - sqrt(r^2 - b^2/4)] -/+ [r_race - sqrt(r_race^2 - b^2/4)];
+    at the outer race (concave) the raceway enters the slot less, at the inner race (convex)
+    more; the slot spans 2 arcsin(b/d) of the ball."""
+    g = defect_geometry(B, Defect("ball", WIDTH, DEPTH, 0.0))
+    r = 0.5 * B.element_diameter
+    half = 0.5 * WIDTH
+    chord = r - math.sqrt(r * r - half * half)
+    ro, ri = B.outer_raceway_radius, B.inner_raceway_radius
+    assert g.race is Race.BALL
+    assert g.h_min == pytest.approx(chord - (ro - math.sqrt(ro * ro - half * half)), rel=1e-12)
+    assert g.h_min_inner == pytest.approx(
+        chord + (ri - math.sqrt(ri * ri - half * half)), rel=1e-12
+    )
+    assert g.h_min < g.h_min_inner < DEPTH  # a 0.36 mm slot is not touched at its bottom
+    assert g.delta_beta == pytest.approx(2 * math.asin(WIDTH / B.element_diameter), rel=1e-12)
+
+
+def test_only_ball_one_carries_the_defect_and_it_meets_both_races():
+    """The compiled indicator: ball 0 over the slot facing the outer race (drop h_o) at spin
+    angle in [0, dpsi), facing the inner race (drop h_i) half a turn later; other balls never."""
+    dpsi, ho, hi = 0.2, 1e-6, 2e-6
+    f, d = bl.defect_fraction(0, 0.1, 0.0, 3, dpsi, ho, hi)
+    assert (f, d) == (1.0, ho)
+    f, d = bl.defect_fraction(0, math.pi + 0.1, 0.0, 3, dpsi, ho, hi)
+    assert (f, d) == (1.0, hi)
+    assert bl.defect_fraction(0, 0.5 * math.pi, 0.0, 3, dpsi, ho, hi)[0] == 0.0
+    for j in range(1, 9):
+        assert bl.defect_fraction(j, 0.1, 0.0, 3, dpsi, ho, hi)[0] == 0.0
+    # a raceway defect: every ball, one drop
+    assert bl.defect_fraction(5, 0.1, 0.0, 1, dpsi, ho, hi) == (1.0, ho)
+
+
+@pytest.mark.parametrize("model", ["vsm", "dem", "tvsm"])
+def test_ball_fault_signature_and_diagnosis(model):
+    """A 0.014 in ball defect at 1797 r/min with 1 % slip and CWRU-97-level noise (0.713 m/s^2,
+    tests/test_analyze.py): the squared envelope shows 2×BSF with ±FTF sidebands and the FTF
+    line (>= 12 dB, the detection threshold of bearingsim.signal.diagnosis), and the
+    diagnosis says ball (a BPFO line may remain: the varying compliance of the ball passes,
+    strongest in the DEM)."""
+    s = simulate(
+        Scenario(
+            model=model, fault="ball", rpm=1797.0, duration_s=1.0, defect_width_m=WIDTH,
+            noise_rms_m_per_s2=0.713, seed=1, slip_percent=1.0,
+        )
+    )  # fmt: skip
+    x, fs, fr = s["acc_y"], s.fs_hz, s.shaft_hz
+    k = characteristic_frequencies(B, fr)
+    es = squared_envelope_spectrum(x, fs, (2000.0, 20000.0))
+    got = {
+        p.label: p.snr_db
+        for p in match_peaks(
+            es,
+            [
+                ("FTF", k.ftf_hz),
+                ("2xBSF", 2 * k.bsf_hz),
+                ("2xBSF-FTF", 2 * k.bsf_hz - k.ftf_hz),
+                ("2xBSF+FTF", 2 * k.bsf_hz + k.ftf_hz),
+            ],
+            fr,
+        )
+    }
+    for lab in ("FTF", "2xBSF", "2xBSF-FTF", "2xBSF+FTF"):
+        assert got[lab] >= 12.0, (lab, got)
+    assert diagnose(x, fs, B, fr).diagnosis == "ball"
+
+
+def test_ball_defects_refused_where_not_modelled():
+    """Contacts are between a ball and a raceway; the rotor model has no ball defect yet."""
+    from bearingsim.contact.hertz import ball_contact
+    from bearingsim.dynamics.rotor.config import cwru_rotor_config
+
+    with pytest.raises(ConfigError, match="race = 'ball' is invalid here"):
+        ball_contact(B, 1000.0, "ball")
+    with pytest.raises(ConfigError, match="not modelled in the rotor model"):
+        cwru_rotor_config(de_fault=Defect("ball"))
+
+
+def test_healthy_and_race_faults_unchanged_by_the_ball_branch():
+    """The raceway-defect and healthy paths are the golden cases (tests/test_golden.py); here
+    the scenario key: 'ball' is accepted by the ring family only."""
+    assert Scenario(model="vsm", fault="ball").fault == "ball"
+    with pytest.raises(ConfigError, match="fault"):
+        Scenario(model="vsm", fault="cage")
+    np.testing.assert_equal(bl.defect_rate(np.zeros(bl.HEADER)), 0.0)
