@@ -1,4 +1,4 @@
-"""Rolling-element (ball) defects in the ring models (issue 16, item 2).
+"""Rolling-element (ball) defects in the ring and rotor models (issue 16, item 2).
 
 One ball carries a slot of width b and depth h_d. The ball rolls on the fixed outer race, so its
 spin angle advances BSF/FTF times the cage angle; the slot meets the outer race once and the
@@ -97,21 +97,53 @@ def test_ball_fault_signature_and_diagnosis(model):
     assert diagnose(x, fs, B, fr).diagnosis == "ball"
 
 
-def test_ball_defects_refused_where_not_modelled():
-    """Contacts are between a ball and a raceway; the rotor model has no ball defect yet."""
+def test_contacts_refuse_a_ball_race():
+    """Contacts are between a ball and a raceway: 'ball' is a defect site, not a raceway."""
     from bearingsim.contact.hertz import ball_contact
-    from bearingsim.dynamics.rotor.config import cwru_rotor_config
 
     with pytest.raises(ConfigError, match="race = 'ball' is invalid here"):
         ball_contact(B, 1000.0, "ball")
-    with pytest.raises(ConfigError, match="not modelled in the rotor model"):
-        cwru_rotor_config(de_fault=Defect("ball"))
+
+
+def test_rotor_ball_fault_signature():
+    """Rotor model (seed ROTOR system, CWRU 6205 at the drive end), 0.014 in slot on ball 1,
+    0.5 s: the drive-end housing acceleration's squared envelope (2-20 kHz) shows 2×BSF with
+    ±FTF sidebands and FTF (>= 12 dB), and the fused diagnosis says ball."""
+    from bearingsim.signal.fused import diagnose_fused
+
+    s = simulate(
+        Scenario(
+            model="rotor", de_fault="ball", duration_s=0.5, defect_width_m=WIDTH,
+            noise_rms_m_per_s2=0.05, seed=1,
+        )
+    )  # fmt: skip
+    x, fs, fr = s["acc_y"], s.fs_hz, s.shaft_hz
+    b = get_bearing("6205-cwru")
+    k = characteristic_frequencies(b, fr)
+    es = squared_envelope_spectrum(x, fs, (2000.0, 20000.0))
+    got = {
+        p.label: p.snr_db
+        for p in match_peaks(
+            es,
+            [
+                ("FTF", k.ftf_hz),
+                ("2xBSF", 2 * k.bsf_hz),
+                ("2xBSF-FTF", 2 * k.bsf_hz - k.ftf_hz),
+                ("2xBSF+FTF", 2 * k.bsf_hz + k.ftf_hz),
+            ],
+            fr,
+        )
+    }
+    for lab, v in got.items():
+        assert v >= 12.0, (lab, got)
+    assert diagnose_fused(x, fs, b, fr).diagnosis == "ball"
 
 
 def test_healthy_and_race_faults_unchanged_by_the_ball_branch():
     """The raceway-defect and healthy paths are the golden cases (tests/test_golden.py); here
-    the scenario key: 'ball' is accepted by the ring family only."""
+    the scenario keys: 'ball' is a fault of the ring and rotor families."""
     assert Scenario(model="vsm", fault="ball").fault == "ball"
+    assert Scenario(model="rotor", fe_fault="ball").fe_fault == "ball"
     with pytest.raises(ConfigError, match="fault"):
         Scenario(model="vsm", fault="cage")
     np.testing.assert_equal(bl.defect_rate(np.zeros(bl.HEADER)), 0.0)

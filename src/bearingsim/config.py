@@ -153,9 +153,8 @@ def _angle(name: str, value: Any) -> float:
     return check_range(name, value, -360.0, 360.0, unit="deg")
 
 
-_FAULTS = ("none", "outer", "inner")
-#: the ring models also model a defect on one ball (issue 16, item 2)
-_RING_FAULTS = (*_FAULTS, "ball")
+#: defect sites of the ring and rotor models (``ball``: ball 1 carries it; issue 16, item 2)
+_RING_FAULTS = ("none", "outer", "inner", "ball")
 
 
 def _family_of(model: Any) -> type[Scenario]:
@@ -584,10 +583,13 @@ class RotorScenario(Scenario):
     ``de_bearing``, ``fe_bearing``      6205-cwru,      drive-end / fan-end catalogue ids (CWRU
                                         6203-cwru       motor)
     ``de_fault``, ``fe_fault``          ``"none"``      defect of each bearing: none | outer | inner
+                                                        | ball
     ``defect_width_m``                  1.778e-4        defect width b [m] (CWRU 0.007 in)
     ``defect_depth_m``                  2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
     ``de_defect_angle_deg``,            180.0           defect **centre** azimuth at t = 0 [deg]
-    ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``)
+    ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``; ball:
+                                                        the slot's spin angle, 0 = facing the
+                                                        outer race)
     ``rpm``                             1750.0          shaft speed [r/min]
     ``duration_s``, ``fs_hz``           1.0, 48000.0    simulated time [s], output sample rate [Hz]
     ``seed``, ``noise_rms_m_per_s2``    0, 0.0          white measurement noise on the accelerations
@@ -691,7 +693,7 @@ class RotorScenario(Scenario):
     def _validate(self) -> None:
         s = object.__setattr__
         for name in ("de_fault", "fe_fault"):
-            _choice(name, getattr(self, name), _FAULTS)
+            _choice(name, getattr(self, name), _RING_FAULTS)
         for name in ("de_bearing", "fe_bearing"):
             if not isinstance(getattr(self, name), str) or not getattr(self, name):
                 raise ConfigError(

@@ -511,7 +511,7 @@ def check_speed_limit(bearing: Bearing, rpm: float, name: str = "rpm", lo: str =
 class Race(enum.Enum):
     """A raceway: the ring of a contact, or what carries a local defect. The outer ring is
     fixed; the inner ring turns with the shaft. ``BALL`` is a defect site only (one rolling
-    element carries the defect; the ring models, issue 16 item 2): contact functions refuse it
+    element carries the defect; ring and rotor models, issue 16 item 2): contact functions refuse it
     (:func:`contact_race`)."""
 
     INNER = "inner"
@@ -573,7 +573,7 @@ class Defect:
     Parameters
     ----------
     race : Race or {"inner", "outer", "ball"}
-        Raceway carrying the defect, or ``"ball"``: one ball carries it (ring models only; its
+        Raceway carrying the defect, or ``"ball"``: one ball carries it (ring and rotor models; its
         ``angle`` is then the ball's spin angle of the defect centre at ``t = 0``, 0 = facing
         the outer race).
     width : float

@@ -62,7 +62,7 @@ def _opt(f):
             type=click.Choice(_FAULTS),
             default=None,
             show_default=_d("fault"),
-            help="Defect location (ball: one ball carries it; vsm, dem, tvsm).",
+            help="Defect location (ball: ball 1 carries it).",
         ),
         click.option(
             "--defect-width-m",

@@ -51,7 +51,7 @@ def _positions_option(ctx, param, value):
 def rotor_simulate_options(f: Callable) -> Callable:
     """Options of ``simulate`` for ``--model rotor``; each sets the Scenario key of the same
     name (None = the scenario file's value or the default)."""
-    faults = click.Choice(["none", "outer", "inner"])
+    faults = click.Choice(["none", "outer", "inner", "ball"])
     opts = [
         click.option(
             "--de-bearing",

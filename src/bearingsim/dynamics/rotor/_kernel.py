@@ -80,21 +80,24 @@ B_KOUT = 5  # Hertz constant, outer contact [N/m^1.5]
 B_C = 6  # contact damping per contact [N s/m]
 B_RP = 7  # pitch radius D/2 [m]
 B_CH = 8  # half the diametral clearance [m]
-B_FAULT = 9  # 0 none, 1 outer race, 2 inner race
-B_FANG = 10  # defect centre azimuth at t = 0 [rad]
-B_FHALF = 11  # defect half angle on its raceway [rad]
+B_FAULT = 9  # 0 none, 1 outer race, 2 inner race, 3 ball 1
+B_FANG = 10  # defect centre azimuth at t = 0 [rad] (ball: its spin angle, 0 = outer race)
+B_FHALF = 11  # defect half angle on its raceway [rad] (ball: on the ball)
 B_DEPTH = 12  # defect depth h_d [m]
 B_HALFW = 13  # defect half width b/2 [m]
 B_RBALL = 14  # ball radius [m]
-B_RRACE = 15  # radius of the faulty raceway [m]
+B_RRACE = 15  # radius of the faulty raceway [m] (ball: of the outer raceway)
 B_RSIGN = 16  # -1 outer (concave) race, +1 inner (convex) race (seed VSM eq. 2)
 B_PROFILE = 17  # 0 geometric ball path, 1 rectangular (constant h_min)
-B_HMAX = 18  # h_min = min(h_d, h_s) [m]
+B_HMAX = 18  # h_min = min(h_d, h_s) [m] (ball: at the outer race)
 B_FOMEGA = 19  # angular speed of the defect [rad/s] (0 outer, Omega inner)
 B_SLIP = 20  # offset in p of the bearing's ball-pass instants (random slip); 0 = no slip
 B_SLIPN = 21  # entries of that table
 B_SLIPDT = 22  # nominal ball-pass period [s]
-BRG_LEN = 23
+B_SPIN = 23  # ball defect: ball spin angle per cage angle, BSF / FTF [-]
+B_RRACE_I = 24  # ball defect: inner raceway radius [m]
+B_HMAX_I = 25  # ball defect: h_min at the inner race [m]
+BRG_LEN = 26
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -115,18 +118,25 @@ def _wrap(a):
 def defect_drop(p, o, dpsi):
     """Extra clearance ``h`` [m] and ``dh/d(dpsi)`` [m/rad] under a ball at angular distance
     ``dpsi`` [rad] from the defect centre (bearing block at offset ``o``)."""
+    rr = p[o + B_RRACE]
+    return defect_drop_on(p, o, dpsi, rr, rr, p[o + B_RSIGN], p[o + B_HMAX])
+
+
+@njit(cache=True)
+def defect_drop_on(p, o, dpsi, rpath, rr, sg, hmax):
+    """:func:`defect_drop` for a defect whose centre is ``dpsi`` [rad] away along a circle of
+    radius ``rpath`` [m] (the faulty raceway's, or the ball's for a ball defect), meeting a
+    surface of radius ``rr`` [m] and sign ``sg`` (-1 concave outer race, +1 convex inner race;
+    seed VSM eq. (2)), at most ``hmax`` [m] (rectangular profile)."""
     half = p[o + B_FHALF]
     if abs(dpsi) >= half:
         return 0.0, 0.0
-    hmax = p[o + B_HMAX]
     if p[o + B_PROFILE] > 0.5:  # rectangular: the seed VSM h_min over the whole extent
         return hmax, 0.0
     # geometric: the ball rests on the nearer edge, at distance e from its centre line;
     # seed VSM eq. (2) with b/2 replaced by e: d(e) = [r - sqrt(r^2-e^2)] +/- [R - sqrt(R^2-e^2)]
-    rr = p[o + B_RRACE]
     rb = p[o + B_RBALL]
-    sg = p[o + B_RSIGN]
-    x = rr * abs(dpsi)
+    x = rpath * abs(dpsi)
     e = p[o + B_HALFW] - x
     if e <= 0.0:
         return 0.0, 0.0
@@ -137,7 +147,7 @@ def defect_drop(p, o, dpsi):
         return p[o + B_DEPTH], 0.0
     dd_de = e / sb + sg * e / sr
     sgn = 1.0 if dpsi > 0.0 else -1.0
-    return d, -dd_de * rr * sgn
+    return d, -dd_de * rpath * sgn
 
 
 @njit(cache=True, inline="always")
@@ -196,7 +206,18 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         hd_in = 0.0
         h_out = 0.0
         hd_out = 0.0
-        if fault != 0:
+        if fault == 3:
+            if j == 0:  # ball 1's slot: spin angle of its centre from the outer contact
+                spin = p[o + B_SPIN]
+                phi = _wrap(spin * (psi - p[o + B_PSI0]) - fang)
+                rb = p[o + B_RBALL]
+                h_out, dh = defect_drop_on(p, o, phi, rb, p[o + B_RRACE], -1.0, p[o + B_HMAX])
+                hd_out = dh * spin * wc
+                h_in, dh = defect_drop_on(
+                    p, o, _wrap(phi - math.pi), rb, p[o + B_RRACE_I], 1.0, p[o + B_HMAX_I]
+                )
+                hd_in = dh * spin * wc
+        elif fault != 0:
             dpsi = _wrap(psi + j * step - fang)
             h, dh = defect_drop(p, o, dpsi)
             if fault == 1:

@@ -32,7 +32,6 @@ from ...geometry import (
     BallBearing,
     Defect,
     KinematicFrequencies,
-    Race,
     characteristic_frequencies,
     check_defect_depth,
     parse_enum,
@@ -127,11 +126,6 @@ class BearingSupport:
         check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad")
         if self.ball_density is not None:
             check_positive("ball_density_kg_m3", self.ball_density, "kg/m^3")
-        if self.fault is not None and self.fault.race is Race.BALL:
-            raise ConfigError(
-                "fault race = 'ball' is not modelled in the rotor model (yet); valid: inner, "
-                "outer (ball defects: the ring models vsm, dem, tvsm)"
-            )
         if self.fault is not None and self.fault.width >= self.bearing.element_diameter:
             raise ConfigError(
                 f"defect_width_m = {self.fault.width:.6g} m is out of range; valid range "

@@ -389,7 +389,7 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
     f = sup.fault
     if f is not None:
         g = defect_geometry(b, f)
-        blk[rk.B_FAULT] = 1 if f.race is Race.OUTER else 2
+        blk[rk.B_FAULT] = {Race.OUTER: 1, Race.INNER: 2, Race.BALL: 3}[f.race]
         blk[rk.B_FANG] = f.angle
         blk[rk.B_FHALF] = 0.5 * g.delta_beta
         blk[rk.B_DEPTH] = f.depth
@@ -399,7 +399,14 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
         blk[rk.B_RSIGN] = -1.0 if f.race is Race.OUTER else 1.0
         blk[rk.B_PROFILE] = 0.0 if f.profile is DefectProfile.GEOMETRIC else 1.0
         blk[rk.B_HMAX] = g.h_min
-        blk[rk.B_FOMEGA] = 0.0 if f.race is Race.OUTER else config.omega
+        blk[rk.B_FOMEGA] = config.omega if f.race is Race.INNER else 0.0
+        if f.race is Race.BALL:  # the slot meets the outer race (B_RRACE) and the inner race
+            k = characteristic_frequencies(b, config.shaft_hz)
+            blk[rk.B_SPIN] = k.bsf_hz / k.ftf_hz
+            blk[rk.B_RRACE] = b.outer_raceway_radius
+            blk[rk.B_RSIGN] = -1.0
+            blk[rk.B_RRACE_I] = b.inner_raceway_radius
+            blk[rk.B_HMAX_I] = g.h_min_inner
     return blk
 
 
