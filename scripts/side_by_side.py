@@ -7,8 +7,8 @@ these records). Prints a Markdown table and the share of records within issue 16
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
-fan end: 0.014 in only) gets no rig and is listed as such. Ball records are listed, not
-simulated (no ball-defect model yet).
+fan end: 0.014 in only) gets no rig and is listed as such. Ball records are simulated with the
+ring models' ball defect (fault line 2×BSF).
 """
 
 from __future__ import annotations
@@ -48,9 +48,6 @@ def main() -> int:
             "fs_hz": float(r["fs_hz"]),
             "grade": r.get("smith_randall_grade", ""),
         }
-        if fault == "ball":
-            out.append(base | {"status": "not simulated: no ball-defect model yet"})
-            continue
         if key not in rigs:
             others = [
                 f

@@ -65,6 +65,16 @@ def test_record_132_side_by_side():
 
 
 @needs_data
-def test_ball_records_are_refused_in_one_line():
-    with pytest.raises(ConfigError, match="no ball-defect model yet"):
-        side_by_side(CWRU / "12k_Drive_End_B007_2_120.mat", "cwru-de-12k", duration_s=0.2)
+def test_ball_record_side_by_side():
+    """A ball record is simulated with the ball defect; its fault line is 2×BSF (CWRU table:
+    4.7135 orders)."""
+    s = side_by_side(CWRU / "12k_Drive_End_B007_2_120.mat", "cwru-de-12k", duration_s=0.5)
+    assert s["fault"] == "ball" and s["scenario"]["fault"] == "ball"
+    assert s["fault_hz"] == pytest.approx(4.7135 * s["rpm"] / 60.0, rel=1e-3)
+    assert np.isfinite(s["ratio"]["line"])
+
+
+@needs_data
+def test_normal_record_is_refused_in_one_line():
+    with pytest.raises(ConfigError, match="cannot be simulated"):
+        side_by_side(CWRU / "normal_0_97.mat", "cwru-de-48k", duration_s=0.2)

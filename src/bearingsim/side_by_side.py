@@ -9,8 +9,8 @@ amplitude and prominence in the envelope spectrum, and the ringing band (fast ku
 
 Line prominence (issue 16's definition): the envelope-spectrum line at the fault frequency over
 the median level of the envelope spectrum in 20-600 Hz [dB]. Each signal's envelope is taken in
-its own fast-kurtogram band, as an analyst would. Ball faults are not simulated (no ball-defect
-model yet): :func:`side_by_side` refuses them.
+its own fast-kurtogram band, as an analyst would. The fault line is BPFO (outer), BPFI (inner)
+or 2×BSF (ball: the ring models' ball defect, issue 16 item 2).
 
 What is compared with what: every number is ours (model + rig) against a measurement (the CWRU
 record). A rig identified from records of the same mounting as the record judged is system
@@ -128,10 +128,10 @@ def side_by_side(
         raise ConfigError(f"record {p.name!r} is not in {p.parent / 'manifest.csv'}")
     row = rows[p.name]
     fault = row["fault"].split()[0]
-    if fault not in ("outer", "inner"):
+    if fault not in ("outer", "inner", "ball"):
         raise ConfigError(
-            f"record {p.name}: fault {row['fault']!r} cannot be simulated (outer and inner race "
-            "faults only; no ball-defect model yet)"
+            f"record {p.name}: fault {row['fault']!r} cannot be simulated; valid: a record of "
+            "an outer-race, inner-race or ball fault"
         )
     end = row["end"]
     meas = read_signal(p, channel=end)
@@ -152,7 +152,7 @@ def side_by_side(
     )
     res = apply_rig(simulate(sc), rig, seed=seed)
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)
-    fault_hz = kin.bpfo_hz if fault == "outer" else kin.bpfi_hz
+    fault_hz = {"outer": kin.bpfo_hz, "inner": kin.bpfi_hz, "ball": 2.0 * kin.bsf_hz}[fault]
     n = int(round(duration_s * fs))
     m_meas = signal_metrics(meas.x[:n], fs, fault_hz)
     m_sim = signal_metrics(res["acc_sensor"], fs, fault_hz)
