@@ -19,9 +19,7 @@ from pathlib import Path
 
 from bearingsim.errors import ConfigError
 from bearingsim.io.atomic import write_json
-from bearingsim.io.signal import read_signal
-from bearingsim.rig_identify import identify_rig
-from bearingsim.side_by_side import BOUNDS, manifest, side_by_side, within_bounds
+from bearingsim.side_by_side import BOUNDS, lomo_rig, manifest, side_by_side, within_bounds
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 
@@ -49,24 +47,7 @@ def main() -> int:
             "grade": r.get("smith_randall_grade", ""),
         }
         if key not in rigs:
-            others = [
-                f
-                for f, q in rows.items()
-                if q["end"] == r["end"]
-                and q["fs_hz"] == r["fs_hz"]
-                and q["fault_diameter_in"]
-                and q["fault_diameter_in"] != r["fault_diameter_in"]
-            ]
-            if not others:
-                rigs[key] = None
-            else:
-                recs = [read_signal(a.data / f, channel=r["end"]) for f in sorted(others)]
-                rigs[key] = identify_rig(
-                    recs,
-                    name=f"lomo-{r['end']}-{r['fs_hz']}-without-{r['fault_diameter_in']}",
-                    provenance="scripts/side_by_side.py: identified from "
-                    + ", ".join(sorted(others)),
-                ).rig
+            rigs[key] = lomo_rig(a.data, name)
         rig = rigs[key]
         if rig is None:
             out.append(base | {"status": "no rig: no other fault size of this mounting here"})

@@ -78,3 +78,23 @@ def test_ball_record_side_by_side():
 def test_normal_record_is_refused_in_one_line():
     with pytest.raises(ConfigError, match="cannot be simulated"):
         side_by_side(CWRU / "normal_0_97.mat", "cwru-de-48k", duration_s=0.2)
+
+
+@needs_data
+def test_report_section_signals(tmp_path):
+    """The report section (issue 16, item 5): four rows per judged record, all against a
+    measurement, each row's status the bound it meets, the info row counting the records
+    within all bounds, and the side-by-side figure."""
+    from bearingsim.report import run_report
+
+    (sec,) = run_report(tmp_path, quick=True, sections=["signals"], progress=False)
+    judged = [r for r in sec.rows if r.status != "info"]
+    assert judged and len(judged) % 4 == 0
+    assert all(r.reference_kind == "measured" for r in judged)
+    assert {r.status for r in judged} <= {"match", "mismatch"}
+    n_rec = len(judged) // 4
+    ok_all = sum(all(r.status == "match" for r in judged[4 * i : 4 * i + 4]) for i in range(n_rec))
+    (summary,) = [r for r in sec.rows if r.status == "info"]
+    assert summary.ours == f"{ok_all} of {n_rec}"
+    assert (tmp_path / "signals_side_by_side.png").is_file()
+    assert (tmp_path / "report.html").is_file()

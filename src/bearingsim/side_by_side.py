@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 
 from .errors import ConfigError
 
-__all__ = ["SignalMetrics", "side_by_side", "signal_metrics"]
+__all__ = ["SignalMetrics", "lomo_rig", "side_by_side", "signal_metrics", "simulate_record"]
 
 #: CWRU EDM fault depth [m] (0.011 in, the Case Western Reserve University Bearing Data Center)
 CWRU_DEPTH_M = 0.011 * 0.0254
@@ -85,7 +85,7 @@ def manifest(data_dir: Path) -> dict[str, dict[str, str]]:
         return {row["file"]: row for row in csv.DictReader(fh)}
 
 
-def side_by_side(
+def simulate_record(
     record: str | Path,
     rig,
     *,
@@ -93,28 +93,15 @@ def side_by_side(
     duration_s: float = 2.0,
     seed: int = 0,
 ) -> dict:
-    """Simulate the condition of a CWRU fault record, pass it through ``rig`` and set the
-    numbers of both side by side.
-
-    Parameters
-    ----------
-    record : path
-        A CWRU ``.mat`` file in a folder with its ``manifest.csv``.
-    rig : Rig, str or path
-        The measurement chain (a :class:`~bearingsim.rig.Rig`, a profile name or a file).
-    model : {"vsm", "dem", "tvsm"}
-        The ring model.
-    duration_s : float
-        Simulated time [s] (the record's first ``duration_s`` are used too).
-    seed : int
-        Seed of the rig's random parts.
+    """Simulate the condition of a CWRU fault record through ``rig``: the two signals and the
+    condition (see :func:`side_by_side` for the parameters).
 
     Returns
     -------
     dict
-        ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``, ``fault_hz``, the
-        ``measured`` and ``simulated`` :class:`SignalMetrics` (as dicts) and their ``ratio``
-        (simulated / measured; prominence as the difference in dB).
+        ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``, ``fault_hz``,
+        ``grade``, ``scenario``, ``measured`` and ``simulated`` (the signals [m/s^2], the
+        record's first ``duration_s``).
     """
     from . import simulate
     from .catalog import get_bearing
@@ -154,15 +141,6 @@ def side_by_side(
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)
     fault_hz = {"outer": kin.bpfo_hz, "inner": kin.bpfi_hz, "ball": 2.0 * kin.bsf_hz}[fault]
     n = int(round(duration_s * fs))
-    m_meas = signal_metrics(meas.x[:n], fs, fault_hz)
-    m_sim = signal_metrics(res["acc_sensor"], fs, fault_hz)
-    ratio = {
-        "rms": m_sim.rms / m_meas.rms,
-        "kurtosis": m_sim.kurtosis / m_meas.kurtosis,
-        "crest": m_sim.crest / m_meas.crest,
-        "line": m_sim.line / m_meas.line,
-        "prominence_db": m_sim.prominence_db - m_meas.prominence_db,
-    }
     return {
         "record": p.name,
         "fault": fault,
@@ -173,10 +151,93 @@ def side_by_side(
         "fault_hz": fault_hz,
         "grade": row.get("smith_randall_grade", ""),
         "scenario": sc,
+        "measured": np.asarray(meas.x[:n], dtype=float),
+        "simulated": np.asarray(res["acc_sensor"], dtype=float),
+    }
+
+
+def side_by_side(
+    record: str | Path,
+    rig,
+    *,
+    model: str = "vsm",
+    duration_s: float = 2.0,
+    seed: int = 0,
+) -> dict:
+    """Simulate the condition of a CWRU fault record, pass it through ``rig`` and set the
+    numbers of both side by side.
+
+    Parameters
+    ----------
+    record : path
+        A CWRU ``.mat`` file in a folder with its ``manifest.csv``.
+    rig : Rig, str or path
+        The measurement chain (a :class:`~bearingsim.rig.Rig`, a profile name or a file).
+    model : {"vsm", "dem", "tvsm"}
+        The ring model.
+    duration_s : float
+        Simulated time [s] (the record's first ``duration_s`` are used too).
+    seed : int
+        Seed of the rig's random parts.
+
+    Returns
+    -------
+    dict
+        ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``, ``fault_hz``, the
+        ``measured`` and ``simulated`` :class:`SignalMetrics` (as dicts) and their ``ratio``
+        (simulated / measured; prominence as the difference in dB).
+    """
+    c = simulate_record(record, rig, model=model, duration_s=duration_s, seed=seed)
+    m_meas = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
+    m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
+    ratio = {
+        "rms": m_sim.rms / m_meas.rms,
+        "kurtosis": m_sim.kurtosis / m_meas.kurtosis,
+        "crest": m_sim.crest / m_meas.crest,
+        "line": m_sim.line / m_meas.line,
+        "prominence_db": m_sim.prominence_db - m_meas.prominence_db,
+    }
+    return {
+        **{k: v for k, v in c.items() if k not in ("measured", "simulated")},
         "measured": asdict(m_meas),
         "simulated": asdict(m_sim),
         "ratio": ratio,
     }
+
+
+def lomo_rig(data_dir: Path, record: str):
+    """The rig of ``record``'s mounting identified WITHOUT its fault size (leave-one-mounting-
+    out, ``bearingsim.rig_identify`` on the records of the same end and sample rate with another
+    fault size), or None when the folder holds no other size of that end and rate.
+
+    Parameters
+    ----------
+    data_dir : Path
+        A CWRU folder with its ``manifest.csv``.
+    record : str
+        The record's file name.
+    """
+    from .io.signal import read_signal
+    from .rig_identify import identify_rig
+
+    rows = manifest(data_dir)
+    r = rows[record]
+    others = sorted(
+        f
+        for f, q in rows.items()
+        if q["end"] == r["end"]
+        and q["fs_hz"] == r["fs_hz"]
+        and q["fault_diameter_in"]
+        and q["fault_diameter_in"] != r["fault_diameter_in"]
+    )
+    if not others:
+        return None
+    recs = [read_signal(data_dir / f, channel=r["end"]) for f in others]
+    return identify_rig(
+        recs,
+        name=f"lomo-{r['end']}-{r['fs_hz']}-without-{r['fault_diameter_in']}",
+        provenance="bearingsim.side_by_side.lomo_rig: identified from " + ", ".join(others),
+    ).rig
 
 
 #: issue 16's bounds: RMS and line within x2, kurtosis within x1.5, prominence within 6 dB
