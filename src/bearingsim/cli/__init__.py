@@ -38,7 +38,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Quasi-static VSM stiffness, contact force and deformation vs cage angle.",
     ),
     "analyze": (
-        "dynamics",
+        "analyze",
         "Envelope analysis and diagnosis of a measured (CWRU .mat), simulated (.nc) or CSV signal.",
     ),
     "rotor-modes": (

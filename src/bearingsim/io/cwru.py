@@ -14,7 +14,9 @@ from ..errors import ConfigError, exception_text
 from ._mat5 import mat5_problem
 
 __all__ = [
+    "CWRU_NOMINAL_RPM",
     "cwru_data_dir",
+    "cwru_nominal_rpm",
     "CwruRecord",
     "read_cwru_mat",
     "SHARED_ENV",
@@ -56,6 +58,29 @@ class CwruRecord:
 
 
 _KEY = re.compile(r"^X(\d+)_(DE|FE|BA)_time$")
+
+#: CWRU nominal motor speed [r/min] at each motor load [hp] (CWRU Bearing Data Center,
+#: drive-end and fan-end data pages; ../shared/data/cwru/manifest.csv, column nominal_rpm)
+CWRU_NOMINAL_RPM = {0: 1797.0, 1: 1772.0, 2: 1750.0, 3: 1730.0}
+#: the CWRU file-name convention ``..._<load hp>_<record number>.<ext>`` (``normal_0_97.mat``,
+#: ``12k_Drive_End_IR014_2_171.mat``)
+_CWRU_NAME = re.compile(r"(?:^|_)([0-3])_\d+$")
+
+
+def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:
+    """``(load [hp], nominal speed [r/min])`` that a CWRU file name (``..._<load>_<number>.mat``,
+    load 0-3 hp) gives, or None when the name does not follow that convention.
+
+    Parameters
+    ----------
+    name : str or Path
+        File name or path.
+    """
+    m = _CWRU_NAME.search(Path(name).stem)
+    if m is None:
+        return None
+    load = int(m.group(1))
+    return load, CWRU_NOMINAL_RPM[load]
 
 
 def read_cwru_mat(path: str | Path) -> CwruRecord:

@@ -294,8 +294,9 @@ class FusedDiagnosis:
 
     @property
     def peaks(self):
-        """Lines of :attr:`best_view`."""
-        return self.best_view.diagnosis.peaks
+        """Lines of :attr:`best_view`, without the shaft-harmonic cursors above 3 f_r (those
+        only decide which family a line belongs to; :attr:`views` keeps them)."""
+        return [p for p in self.best_view.diagnosis.peaks if not _cursor(p.label)]
 
     @property
     def spectrum(self) -> Spectrum:
@@ -491,6 +492,12 @@ def diagnose_fused(
         f"leading family {top} (margin {margin:.3f}) has calibrated probability {p:.2f} < 0.5"
     )
     return _res("uncertain", 0.0, top, p, margin)
+
+
+def _cursor(label: str) -> bool:
+    """A shaft-harmonic cursor line ``kxfr`` with k > 3 (:attr:`DiagnosisRule.shaft_cursors`)."""
+    head, _, rest = label.partition("x")
+    return rest == "fr" and head.isdigit() and int(head) > 3
 
 
 def _series(label: str) -> bool:

@@ -1,0 +1,337 @@
+"""Diagnosis of signal files: ``analyze FILE...`` (issue 17; docs/cli.md, "Diagnosis of signal
+files")."""
+
+from __future__ import annotations
+
+import csv
+import functools
+import io
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import click
+
+from ..errors import ConfigError, check_range
+from ..io.cwru import cwru_nominal_rpm
+from .common import (
+    Number,
+    available_cores,
+    check_outputs,
+    cli,
+    deprecated,
+    emit_json,
+    map_in_processes,
+)
+
+__all__ = ["analyze_cmd"]
+
+#: modules an analysis imports; loaded before the worker processes are forked
+_ANALYZE_MODULES = (
+    *("numpy", "scipy.constants", "scipy.fft", "scipy.io", "scipy.signal"),
+    *("bearingsim.catalog", "bearingsim.io", "bearingsim.signal"),
+)
+#: columns of ``analyze --csv``
+_CSV_COLUMNS = (
+    *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
+    *("band_lo_hz", "band_hi_hz", "error"),
+)
+
+
+@dataclass(frozen=True)
+class _Request:
+    """What ``analyze`` does with each file (the options, checked)."""
+
+    channel: str | None
+    fs_hz: float | None
+    rpm: float | None
+    band: tuple[float, float] | str
+    bearing: Any  # Bearing or None (the file's, else the CWRU bearing of the channel)
+    plot: str | None = None
+
+
+@cli.command("analyze", context_settings={"ignore_unknown_options": False})
+@click.argument("inputs", nargs=-1, required=True, metavar="FILE...")
+@click.option(
+    "--bearing",
+    "bearing_id",
+    default=None,
+    show_default="6205-cwru for .mat, 6203-cwru for its channel FE; the result's for .nc",
+    help="Catalogue bearing id.",
+)
+@click.option(
+    "--bearing-file", default=None, type=click.Path(dir_okay=False), help="User bearing TOML file."
+)
+@click.option(
+    "--rpm",
+    type=Number(0.0, lo_open=True, unit="r/min"),
+    default=None,
+    show_default="from the file, else the CWRU nominal speed of the load in the file name",
+    help="Shaft speed [r/min].",
+)
+@click.option(
+    "--fs-hz",
+    "fs_hz",
+    type=Number(0.0, lo_open=True, unit="Hz"),
+    default=None,
+    show_default="from the file; CWRU: 12k/48k in the name, else 48000",
+    help="Sample rate of the signal [Hz].",
+)
+@deprecated("--fs", "--fs-hz")
+@click.option(
+    "--channel",
+    default=None,
+    show_default="DE for .mat, y for results",
+    help="DE|FE|BA (CWRU .mat; auto: FE when the file name contains Fan_End, else DE), "
+    "x|y (result; rotor results also x_fe|y_fe), or a CSV column.",
+)
+@click.option(
+    "--band-hz",
+    "band",
+    default="auto",
+    help="Envelope band: 'auto' (fast kurtogram), LO,HI or LO HI [Hz].",
+)
+@deprecated("--band", "--band-hz")
+@click.option(
+    "--plot",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="PNG with the envelope spectrum and the matched lines (one FILE only).",
+)
+@click.option(
+    "--jobs",
+    type=Number(1, integer=True),
+    default=None,
+    show_default="the available cores",
+    help="Files analysed at once, one process each; 1: one after the other in this process [-].",
+)
+@click.option("--csv", "as_csv", is_flag=True, help="Print a CSV table, one row per FILE.")
+@click.option(
+    "--json",
+    "as_json",
+    is_flag=True,
+    help="Print one JSON object (SI) per FILE, one per line (JSON Lines), on stdout.",
+)
+def analyze_cmd(
+    inputs: tuple[str, ...],
+    bearing_id: str | None,
+    bearing_file: str | None,
+    rpm: float | None,
+    fs_hz: float | None,
+    channel: str | None,
+    band: str,
+    plot: str | None,
+    jobs: int | None,
+    as_csv: bool,
+    as_json: bool,
+) -> None:
+    """Envelope analysis and diagnosis of a measured (CWRU .mat), simulated (.nc) or CSV signal.
+
+    Prints {"diagnosis": outer|inner|ball|none|uncertain, "confidence", "band_hz", "shaft_hz"
+    (shaft frequency), "fs_hz" (sample rate), "rpm", "rpm_source", "channel", "bearing",
+    "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous. Several FILEs are
+    analysed in parallel (--jobs) and reported in their order, one line (--json: one object, --csv:
+    one row) each; a FILE that cannot be analysed gets its own error line (--json: {"file",
+    "error"}) and the others go on; the exit code is then 2.
+    """
+    check_outputs(("--plot", plot))
+    if as_json and as_csv:
+        raise ConfigError("--json and --csv given together; give one")
+    files, band_v = _parse_band(inputs, band)
+    if plot is not None and len(files) > 1:
+        raise ConfigError(
+            f"--plot writes the figure of one FILE; {len(files)} FILEs given: give one FILE"
+        )
+    if rpm is not None:
+        check_range("rpm", rpm, 0.0, lo_open=True, unit="r/min")
+    if fs_hz is not None:
+        check_range("fs_hz", fs_hz, 0.0, lo_open=True, unit="Hz")
+    if jobs is not None:
+        check_range("jobs", jobs, 1.0)
+    if channel is not None and channel.strip().lower() == "auto":
+        channel = "auto"
+    bearing = None
+    if bearing_id is not None or bearing_file is not None:  # an empty id is an error too
+        from ..catalog import resolve_bearing
+
+        bearing = resolve_bearing(bearing_id, bearing_file)
+    req = _Request(channel, fs_hz, rpm, band_v, bearing, plot)
+    if len(files) == 1 and not (as_json or as_csv):  # today's output; an error is the one line
+        _echo_text(_analyze_file(files[0], req), detail=True)
+        return
+    if as_csv:
+        click.echo(_csv_line(_CSV_COLUMNS))
+    failed = 0
+    work = functools.partial(_analyze_or_error, req=req)
+    n_jobs = available_cores() if jobs is None else jobs
+    for out in map_in_processes(work, files, n_jobs, preload=_ANALYZE_MODULES):
+        if "error" in out:
+            failed += 1
+            where = "" if len(files) == 1 else f"{out['file']}: "
+            click.echo(f"{where}error: {out['error']}", err=True)
+        if as_json:
+            emit_json(out)
+        elif as_csv:
+            click.echo(_csv_line(_csv_row(out)))
+        elif "error" not in out:
+            _echo_text(out, detail=False)
+    if failed:
+        sys.exit(2)
+
+
+def _analyze_or_error(path: str, req: _Request) -> dict[str, Any]:
+    """:func:`_analyze_file`, or ``{"file", "error"}`` (the one-line message) when the file
+    cannot be analysed."""
+    from ..errors import BearingsimError
+
+    try:
+        return _analyze_file(path, req)
+    except BearingsimError as exc:
+        return {"file": path, "error": " ".join(str(exc).split())}
+
+
+def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
+    """Load, check and diagnose one file: the JSON object of ``analyze --json``."""
+    from ..catalog import resolve_bearing
+    from ..io.jsonable import to_jsonable
+    from ..signal import analyze_record
+    from ..signal.diagnosis import check_resolvable, check_samples
+
+    rec, rpm_source = _load_record(path, req)
+    check_samples(rec)
+    check_resolvable(rec)
+    cwru = Path(rec.source).suffix.lower() == ".mat"
+    bearing = (
+        req.bearing
+        or rec.bearing
+        or resolve_bearing("6203-cwru" if cwru and rec.channel == "FE" else "6205-cwru")
+    )
+    d = analyze_record(rec, bearing, band=req.band)
+    if req.plot:
+        from ..report.figures import save_figure
+
+        # CWRU channels and result accelerations are in m/s^2; a text column's unit is unknown
+        acc = not rec.columns and (
+            rec.channel.upper() in ("DE", "FE", "BA") or rec.channel.startswith("acc")
+        )
+        save_figure(
+            d.plot(
+                title=f"{Path(path).name} [{rec.channel}]: {d.diagnosis} ({d.confidence:.2f})",
+                unit="m/s^2" if acc else None,
+            ),
+            req.plot,
+        )
+    out = {
+        "file": str(path),
+        **d.as_dict(),
+        "channel": rec.channel,
+        "fs_hz": rec.fs,
+        "bearing": bearing.id,
+        "rpm": rec.rpm,
+        **rec.info,
+        "rpm_source": rpm_source,
+    }
+    return to_jsonable(out)
+
+
+def _load_record(path: str, req: _Request) -> tuple[Any, str]:
+    """The record (``load_signal``) and where its speed came from: the option, the file, or the
+    CWRU nominal speed of the load in the file name when the file gives none."""
+    from ..signal import load_signal
+
+    ch = req.channel
+    if ch == "auto":  # CWRU: the fan-end records' fault is at the fan end
+        mat = Path(path).suffix.lower() == ".mat"
+        ch = ("FE" if "fan_end" in Path(path).name.lower() else "DE") if mat else None
+    if req.rpm is not None:
+        return load_signal(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm), "option"
+    try:
+        return load_signal(path, channel=ch, fs_hz=req.fs_hz), "file"
+    except ConfigError:
+        nominal = cwru_nominal_rpm(path)
+        if nominal is None:
+            raise
+    # the file gives no (usable) speed: read it again at the name's; a failure that was not
+    # the speed's fails again, the same way
+    load, r = nominal
+    rec = load_signal(path, channel=ch, fs_hz=req.fs_hz, rpm=r)
+    return rec, f"name (CWRU nominal speed at load {load} hp)"
+
+
+def _echo_text(out: dict[str, Any], detail: bool) -> None:
+    """The human line of one analysed file (``detail``: the file's name and its detected
+    lines, as for a single FILE; else the path as given)."""
+    name = Path(out["file"]).name if detail else out["file"]
+    lo, hi = out["band_hz"]
+    speed = ""
+    if out["rpm_source"].startswith("name"):  # say when the speed is not the record's
+        speed = f", rpm {out['rpm']:g} from the file {out['rpm_source']}"
+    click.echo(
+        f"{name} [{out['channel']}]: {out['diagnosis']} (confidence "
+        f"{out['confidence']:.2f}), band {lo:.0f}-{hi:.0f}"
+        + (f" ({out['method']})" if "method" in out else "")
+        + speed
+    )
+    if not detail:
+        return
+    for p in out["peaks"]:
+        if p["detected"]:
+            click.echo(
+                f"  {p['label']:<12} {p['freq_hz']:9.2f} Hz  order {p['order']:7.3f}  "
+                f"SNR {p['snr_db']:5.1f} dB"
+            )
+
+
+def _csv_row(out: dict[str, Any]) -> list[Any]:
+    """The ``--csv`` row of one file; the band is empty for an order-tracked record (its band
+    is in orders: ``--json``)."""
+    row = {k: out.get(k) for k in _CSV_COLUMNS}
+    if "error" not in out and out.get("domain") != "order":
+        row["band_lo_hz"], row["band_hi_hz"] = out["band_hz"]
+    return [row[k] for k in _CSV_COLUMNS]
+
+
+def _csv_line(values: Any) -> str:
+    """One CSV line (RFC 4180 quoting; None as an empty field)."""
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="").writerow(["" if v is None else v for v in values])
+    return buf.getvalue()
+
+
+def _parse_band(inputs: tuple[str, ...], band: str) -> tuple[list[str], tuple[float, float] | str]:
+    """The FILEs and the band of ``--band-hz auto``, ``--band-hz LO,HI`` or ``--band-hz LO HI``.
+
+    In the last form click hands HI over as a positional argument beside the FILEs: HI is then
+    the one positional argument that is a number and not an existing path; with ``auto`` or two
+    values every positional argument is a FILE."""
+    items = list(inputs)
+    b = band.strip().lower()
+    if b == "auto":
+        return items, "auto"
+    parts = [v for v in b.replace(",", " ").split() if v]
+    if len(parts) == 1 and _is_float(parts[0]):
+        nums = [v for v in items if _is_float(v) and not Path(v).exists()]
+        if len(nums) != 1:
+            found = f"{len(nums)} numbers among the FILEs" if nums else "no HI"
+            raise ConfigError(
+                f"band = {band!r} is invalid ({found}); valid: --band-hz auto or --band-hz LO,HI "
+                "(two numbers in Hz)"
+            )
+        parts.append(nums[0])
+        items.remove(nums[0])
+    if len(parts) != 2 or not all(_is_float(v) for v in parts):
+        raise ConfigError(
+            f"band = {band!r} is invalid; valid: --band-hz auto or --band-hz LO,HI [Hz]"
+        )
+    if not items:
+        raise ConfigError("analyze: no FILE given")
+    return items, (float(parts[0]), float(parts[1]))
+
+
+def _is_float(v: str) -> bool:
+    try:
+        float(v)
+        return True
+    except ValueError:
+        return False
