@@ -181,7 +181,13 @@ class Diagnosis:
             "notes": self.notes,
         }
 
-    def plot(self, title: str = "", f_max: float | None = None, unit: str | None = None):
+    def plot(
+        self,
+        title: str = "",
+        f_max: float | None = None,
+        unit: str | None = None,
+        quantity: str = "envelope amplitude",
+    ):
         """Envelope spectrum with the detected lines marked, one colour and legend entry per
         family; the fundamentals and harmonics are labelled where the labels do not overlap
         (sidebands are marked, not labelled). Returns the Figure.
@@ -194,6 +200,8 @@ class Diagnosis:
             Largest frequency shown [Hz or -] (default 1.15 x the highest line examined).
         unit : str, optional
             Unit of the analysed signal (e.g. ``"m/s^2"``); ``"signal unit"`` when not given.
+        quantity : str
+            What the spectrum's amplitude is (the y label).
         """
         from ..plotting import FULL_WIDTH, label_points, legend_outside, new_figure
 
@@ -204,7 +212,7 @@ class Diagnosis:
             f_max=fmax,
             ax=ax,
             unit=unit,
-            quantity="envelope amplitude",
+            quantity=quantity,
             title=title
             or (
                 f"envelope spectrum, band {self.band_hz[0]:.0f}-{self.band_hz[1]:.0f} {dom}: "

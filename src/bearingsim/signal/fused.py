@@ -330,9 +330,12 @@ class FusedDiagnosis:
     def plot(self, title: str = "", f_max: float | None = None, unit: str | None = None):
         """Squared envelope spectrum of :attr:`best_view` with its lines marked (see
         :meth:`.diagnosis.Diagnosis.plot`); returns the Figure."""
+        from dataclasses import replace
+
         v = self.best_view
         u = f"({unit})^2" if unit else None
-        return v.diagnosis.plot(
+        shown = replace(v.diagnosis, peaks=self.peaks)  # without the shaft cursors
+        return shown.plot(
             title=title
             or (
                 f"{v.name}: squared envelope spectrum, band {v.band[0]:.0f}-{v.band[1]:.0f}: "
@@ -340,6 +343,7 @@ class FusedDiagnosis:
             ),
             f_max=f_max,
             unit=u,
+            quantity="squared-envelope amplitude",
         )
 
 
