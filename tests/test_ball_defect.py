@@ -101,7 +101,7 @@ def test_contacts_refuse_a_ball_race():
     """Contacts are between a ball and a raceway: 'ball' is a defect site, not a raceway."""
     from bearingsim.contact.hertz import ball_contact
 
-    with pytest.raises(ConfigError, match="race = 'ball' is invalid here"):
+    with pytest.raises(ConfigError, match="race = 'ball' is invalid; valid: inner, outer"):
         ball_contact(B, 1000.0, "ball")
 
 

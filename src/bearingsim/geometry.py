@@ -524,7 +524,7 @@ def contact_race(race: Race | str, name: str = "race") -> Race:
     any other value is a one-line :class:`ConfigError` naming ``name``."""
     r = parse_enum(Race, race, name)
     if r is Race.BALL:
-        raise ConfigError(f"{name} = 'ball' is invalid here; valid: inner, outer (a raceway)")
+        raise ConfigError(f"{name} = 'ball' is invalid; valid: inner, outer (a raceway)")
     return r
 
 

@@ -16,14 +16,6 @@ from __future__ import annotations
 import numpy as np
 
 from ...io.cwru import cwru_data_dir
-from ...side_by_side import (
-    BOUNDS,
-    lomo_rig,
-    manifest,
-    signal_metrics,
-    simulate_record,
-    within_bounds,
-)
 from ...signal import amplitude_spectrum
 from ...signal.benchmark import squared_envelope_spectrum
 from .. import Context, Section, info, judge
@@ -94,6 +86,17 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
 
 
 def run(ctx: Context) -> Section:
+    # side_by_side sits above the report layer (it runs the rig and the simulations): loaded
+    # here, when the section runs, not at import time (tests/test_layers.py)
+    from ...side_by_side import (
+        BOUNDS,
+        lomo_rig,
+        manifest,
+        signal_metrics,
+        simulate_record,
+        within_bounds,
+    )
+
     sec = Section("signals", TITLE)
     data = cwru_data_dir()
     if not (data / "manifest.csv").is_file():
