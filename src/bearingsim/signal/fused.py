@@ -60,6 +60,9 @@ detected in most views ("looseness or shaft modulation"), and lines at the harmo
   ``scripts/calibrate_diagnosis.py`` on the CWRU development set; the leave-one-mounting-out
   evaluation is in ``docs/validation.md``). ``p >= 0.5`` → the leading family with confidence
   ``p``; below → ``uncertain`` (confidence 0), the leading family and ``p`` kept in the result.
+  Without an intercept ``p`` falls below 0.5 only when the margin is negative (a family that
+  is no candidate outscores the leading one); "uncertain" otherwise comes from the rule (no
+  candidate in two views), not from the calibration.
 
 The rule never looks at the file name or the expected answer.
 """
