@@ -30,6 +30,11 @@ def main() -> int:
     ap.add_argument("--duration-s", type=float, default=2.0)
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
+    ap.add_argument(
+        "--model-gain",
+        action="store_true",
+        help="scale each rig's path so that the model's RMS matches the identification records",
+    )
     a = ap.parse_args()
     rows = manifest(a.data)
     faults = {f: r for f, r in rows.items() if r["fault_diameter_in"]}
@@ -47,7 +52,7 @@ def main() -> int:
             "grade": r.get("smith_randall_grade", ""),
         }
         if key not in rigs:
-            rigs[key] = lomo_rig(a.data, name)
+            rigs[key] = lomo_rig(a.data, name, model_gain=a.model if a.model_gain else None)
         rig = rigs[key]
         if rig is None:
             out.append(base | {"status": "no rig: no other fault size of this mounting here"})

@@ -98,3 +98,24 @@ def test_report_section_signals(tmp_path):
     assert summary.ours == f"{ok_all} of {n_rec}"
     assert (tmp_path / "signals_side_by_side.png").is_file()
     assert (tmp_path / "report.html").is_file()
+
+
+@needs_data
+def test_model_path_scale_matches_the_identification_rms():
+    """The model-based path scale (issue 16, item 4): fitted on one record, the scaled rig
+    gives that record's RMS (within 15 %: the rig's background and tones are not scaled), and
+    the scale is below 1 (the VSM is louder than the record, docs/validation.md)."""
+    from bearingsim.rig import load_rig
+    from bearingsim.side_by_side import model_path_scale, simulate_record
+
+    rec = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
+    rig = load_rig("cwru-de-12k")
+    scaled, k = model_path_scale(rig, [rec], duration_s=0.5)
+    assert 0.0 < k < 1.0
+    assert scaled.gain == pytest.approx(rig.gain * k)
+    assert [m.gain for m in scaled.modes] == pytest.approx([m.gain * k for m in rig.modes])
+    c = simulate_record(rec, scaled, duration_s=0.5)
+    rms = [float(np.std(c[w])) for w in ("measured", "simulated")]
+    assert rms[1] / rms[0] == pytest.approx(1.0, rel=0.15)
+    with pytest.raises(ConfigError, match="records is empty"):
+        model_path_scale(rig, [])

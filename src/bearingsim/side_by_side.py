@@ -31,7 +31,14 @@ from numpy.typing import NDArray
 
 from .errors import ConfigError
 
-__all__ = ["SignalMetrics", "lomo_rig", "side_by_side", "signal_metrics", "simulate_record"]
+__all__ = [
+    "SignalMetrics",
+    "lomo_rig",
+    "model_path_scale",
+    "side_by_side",
+    "signal_metrics",
+    "simulate_record",
+]
 
 #: CWRU EDM fault depth [m] (0.011 in, the Case Western Reserve University Bearing Data Center)
 CWRU_DEPTH_M = 0.011 * 0.0254
@@ -205,7 +212,53 @@ def side_by_side(
     }
 
 
-def lomo_rig(data_dir: Path, record: str):
+def model_path_scale(rig, records: list[Path], *, model: str = "vsm", duration_s: float = 1.0):
+    """The rig with its path (direct gain and every mode's gain) scaled so that the model's
+    simulated RMS through it matches the measured RMS of ``records`` — a model-based gain, the
+    part an output-only identification cannot give (issue 16, item 4). The scale is the
+    geometric mean over the records of measured / simulated RMS [-]; the background, tones and
+    sensor noise are kept (they are measured levels already).
+
+    Parameters
+    ----------
+    rig : Rig
+        The output-only rig (:func:`bearingsim.rig_identify.identify_rig`).
+    records : list of Path
+        CWRU fault records of the same mounting (end and sample rate) used to fit the scale.
+    model : {"vsm", "dem", "tvsm"}
+        The ring model.
+    duration_s : float
+        Simulated time per record [s].
+
+    Returns
+    -------
+    (Rig, float)
+        The scaled rig and the scale [-].
+    """
+    from dataclasses import replace
+
+    if not records:
+        raise ConfigError("records is empty; valid: at least one CWRU fault record")
+    logs = []
+    for rec in records:
+        c = simulate_record(rec, rig, model=model, duration_s=duration_s)
+        m = c["measured"] - c["measured"].mean()
+        x = c["simulated"] - c["simulated"].mean()
+        logs.append(math.log(math.sqrt(np.mean(m * m)) / math.sqrt(np.mean(x * x))))
+    k = float(math.exp(np.mean(logs)))
+    names = ", ".join(Path(r).name for r in records)
+    scaled = replace(
+        rig,
+        gain=rig.gain * k,
+        gain_provenance=f"{rig.gain_provenance}; x {k:.4g} model-based ({model} RMS vs {names})",
+        modes=tuple(replace(md, gain=md.gain * k) for md in rig.modes),
+        provenance=rig.provenance + f"; path scaled x {k:.4g} so that {model} matches the RMS "
+        f"of {names}",
+    )
+    return scaled, k
+
+
+def lomo_rig(data_dir: Path, record: str, *, model_gain: str | None = None):
     """The rig of ``record``'s mounting identified WITHOUT its fault size (leave-one-mounting-
     out, ``bearingsim.rig_identify`` on the records of the same end and sample rate with another
     fault size), or None when the folder holds no other size of that end and rate.
@@ -216,6 +269,9 @@ def lomo_rig(data_dir: Path, record: str):
         A CWRU folder with its ``manifest.csv``.
     record : str
         The record's file name.
+    model_gain : {"vsm", "dem", "tvsm"}, optional
+        Also scale the path so that this model's RMS matches those other records
+        (:func:`model_path_scale`; the same leave-one-mounting-out split).
     """
     from .io.signal import read_signal
     from .rig_identify import identify_rig
@@ -233,11 +289,14 @@ def lomo_rig(data_dir: Path, record: str):
     if not others:
         return None
     recs = [read_signal(data_dir / f, channel=r["end"]) for f in others]
-    return identify_rig(
+    rig = identify_rig(
         recs,
         name=f"lomo-{r['end']}-{r['fs_hz']}-without-{r['fault_diameter_in']}",
         provenance="bearingsim.side_by_side.lomo_rig: identified from " + ", ".join(others),
     ).rig
+    if model_gain:
+        rig, _k = model_path_scale(rig, [data_dir / f for f in others], model=model_gain)
+    return rig
 
 
 #: issue 16's bounds: RMS and line within x2, kurtosis within x1.5, prominence within 6 dB
