@@ -30,6 +30,19 @@ WIDTH = 0.014 * 0.0254
 DEPTH = 0.011 * 0.0254
 
 
+def _ball_lines_db(x, fs, fr, bearing) -> dict[str, float]:
+    """SNR [dB] of FTF, 2×BSF and its ±FTF sidebands in the squared envelope (2-20 kHz)."""
+    k = characteristic_frequencies(bearing, fr)
+    es = squared_envelope_spectrum(x, fs, (2000.0, 20000.0))
+    targets = [
+        ("FTF", k.ftf_hz),
+        ("2xBSF", 2 * k.bsf_hz),
+        ("2xBSF-FTF", 2 * k.bsf_hz - k.ftf_hz),
+        ("2xBSF+FTF", 2 * k.bsf_hz + k.ftf_hz),
+    ]
+    return {p.label: p.snr_db for p in match_peaks(es, targets, fr)}
+
+
 def test_ball_defect_geometry_is_the_chord_rule_with_roles_swapped():
     """Seed VSM eq. (2): h_s = [r - sqrt(r^2 - b^2/4)] -/+ [r_race - sqrt(r_race^2 - b^2/4)];
     at the outer race (concave) the raceway enters the slot less, at the inner race (convex)
@@ -77,21 +90,7 @@ def test_ball_fault_signature_and_diagnosis(model):
         )
     )  # fmt: skip
     x, fs, fr = s["acc_y"], s.fs_hz, s.shaft_hz
-    k = characteristic_frequencies(B, fr)
-    es = squared_envelope_spectrum(x, fs, (2000.0, 20000.0))
-    got = {
-        p.label: p.snr_db
-        for p in match_peaks(
-            es,
-            [
-                ("FTF", k.ftf_hz),
-                ("2xBSF", 2 * k.bsf_hz),
-                ("2xBSF-FTF", 2 * k.bsf_hz - k.ftf_hz),
-                ("2xBSF+FTF", 2 * k.bsf_hz + k.ftf_hz),
-            ],
-            fr,
-        )
-    }
+    got = _ball_lines_db(x, fs, fr, B)
     for lab in ("FTF", "2xBSF", "2xBSF-FTF", "2xBSF+FTF"):
         assert got[lab] >= 12.0, (lab, got)
     assert diagnose(x, fs, B, fr).diagnosis == "ball"
@@ -119,21 +118,7 @@ def test_rotor_ball_fault_signature():
     )  # fmt: skip
     x, fs, fr = s["acc_y"], s.fs_hz, s.shaft_hz
     b = get_bearing("6205-cwru")
-    k = characteristic_frequencies(b, fr)
-    es = squared_envelope_spectrum(x, fs, (2000.0, 20000.0))
-    got = {
-        p.label: p.snr_db
-        for p in match_peaks(
-            es,
-            [
-                ("FTF", k.ftf_hz),
-                ("2xBSF", 2 * k.bsf_hz),
-                ("2xBSF-FTF", 2 * k.bsf_hz - k.ftf_hz),
-                ("2xBSF+FTF", 2 * k.bsf_hz + k.ftf_hz),
-            ],
-            fr,
-        )
-    }
+    got = _ball_lines_db(x, fs, fr, b)
     for lab, v in got.items():
         assert v >= 12.0, (lab, got)
     assert diagnose_fused(x, fs, b, fr).diagnosis == "ball"

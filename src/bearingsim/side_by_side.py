@@ -35,6 +35,7 @@ __all__ = [
     "SignalMetrics",
     "lomo_rig",
     "model_path_scale",
+    "ratios",
     "side_by_side",
     "signal_metrics",
     "simulate_record",
@@ -163,6 +164,18 @@ def simulate_record(
     }
 
 
+def ratios(measured: SignalMetrics, simulated: SignalMetrics) -> dict[str, float]:
+    """Simulated over measured for RMS, kurtosis, crest factor and line [-]; the prominence as
+    the difference [dB]."""
+    return {
+        "rms": simulated.rms / measured.rms,
+        "kurtosis": simulated.kurtosis / measured.kurtosis,
+        "crest": simulated.crest / measured.crest,
+        "line": simulated.line / measured.line,
+        "prominence_db": simulated.prominence_db - measured.prominence_db,
+    }
+
+
 def side_by_side(
     record: str | Path,
     rig,
@@ -197,13 +210,7 @@ def side_by_side(
     c = simulate_record(record, rig, model=model, duration_s=duration_s, seed=seed)
     m_meas = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
     m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
-    ratio = {
-        "rms": m_sim.rms / m_meas.rms,
-        "kurtosis": m_sim.kurtosis / m_meas.kurtosis,
-        "crest": m_sim.crest / m_meas.crest,
-        "line": m_sim.line / m_meas.line,
-        "prominence_db": m_sim.prominence_db - m_meas.prominence_db,
-    }
+    ratio = ratios(m_meas, m_sim)
     return {
         **{k: v for k, v in c.items() if k not in ("measured", "simulated")},
         "measured": asdict(m_meas),

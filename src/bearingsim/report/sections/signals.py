@@ -92,6 +92,7 @@ def run(ctx: Context) -> Section:
         BOUNDS,
         lomo_rig,
         manifest,
+        ratios,
         signal_metrics,
         simulate_record,
         within_bounds,
@@ -119,12 +120,7 @@ def run(ctx: Context) -> Section:
         c = simulate_record(data / name, rigs[key], duration_s=duration)
         m = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
         s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
-        ratio = {
-            "rms": s.rms / m.rms,
-            "line": s.line / m.line,
-            "kurtosis": s.kurtosis / m.kurtosis,
-            "prominence_db": s.prominence_db - m.prominence_db,
-        }
+        ratio = ratios(m, s)
         ok = within_bounds(ratio)
         n_judged += 1
         n_within += all(ok.values())
