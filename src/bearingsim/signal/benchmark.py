@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConfigError, check_positive
-from .envelope import EnvelopeKind, envelope_spectrum
+from .envelope import BandEnvelopes
 from .spectrum import Domain, Spectrum, as_signal
 
 __all__ = [
@@ -164,7 +164,8 @@ def squared_envelope_spectrum(
     *,
     domain: Domain | str = Domain.HZ,
 ) -> Spectrum:
-    """Squared envelope spectrum of ``x`` in ``band`` (whole band ``(0, fs/2)`` when ``None``).
+    """Squared envelope spectrum of ``x`` in ``band`` (whole band ``(0, fs/2)`` when ``None``):
+    :class:`.envelope.BandEnvelopes`, the same computation as the views of :mod:`.fused`.
 
     Parameters
     ----------
@@ -183,7 +184,4 @@ def squared_envelope_spectrum(
         Amplitude of the SES (unit of ``x`` squared).
     """
     fs = check_positive("fs_hz", fs, "Hz")
-    return envelope_spectrum(
-        x, fs, (0.0, 0.5 * fs) if band is None else band, kind=EnvelopeKind.SQUARED,
-        domain=domain,
-    )  # fmt: skip
+    return BandEnvelopes(x, fs, domain).squared_spectrum((0.0, 0.5 * fs) if band is None else band)

@@ -80,10 +80,10 @@ from ..errors import ConfigError, check_positive
 from ..geometry import Bearing
 from .benchmark import cepstral_prewhitening, discrete_random_separation
 from .diagnosis import FAMILIES, Diagnosis, DiagnosisRule, diagnose_spectrum, min_band_width
-from .envelope import _tapered, check_band
+from .envelope import BandEnvelopes, check_band
 from .kurtogram import Infogram, Kurtogram, band_maps
 from .peaks import match_peaks
-from .spectrum import Domain, Spectrum, amplitude_spectrum, as_signal
+from .spectrum import Domain, Spectrum, as_signal
 
 __all__ = [
     "CALIBRATION",
@@ -350,33 +350,6 @@ class FusedDiagnosis:
         )
 
 
-class _SES:
-    """Squared envelope spectra of one signal in several bands from one FFT (the convention of
-    :func:`.envelope.envelope_spectrum` with ``kind=SQUARED``: record tapered, ideal band
-    filter, amplitude spectrum of ``|analytic|^2``)."""
-
-    def __init__(self, x, fs: float, domain: Domain) -> None:
-        from scipy import fft as sfft
-
-        self.n = x.size
-        self.nf = sfft.next_fast_len(self.n)
-        self.X = sfft.fft(_tapered(x), self.nf)
-        self.f = np.arange(self.nf) * (fs / self.nf)
-        self.fs = fs
-        self.domain = domain
-
-    def __call__(self, band: tuple[float, float]) -> Spectrum:
-        from scipy import fft as sfft
-
-        lo, hi = np.searchsorted(self.f[: self.nf // 2 + 1], band)
-        lo = max(int(lo), 1)
-        Z = np.zeros(self.nf, dtype=complex)
-        Z[lo:hi] = 2.0 * self.X[lo:hi]
-        z = sfft.ifft(Z)[: self.n]
-        # zero padded to the fast FFT length (lines a hair closer than fs/n; same resolution)
-        return amplitude_spectrum(z.real**2 + z.imag**2, self.fs, domain=self.domain, n_fft=self.nf)
-
-
 def diagnose_fused(
     x: ArrayLike,
     fs: float,
@@ -423,22 +396,22 @@ def diagnose_fused(
         band = check_band(tuple(band), fs)
     whole = band or (0.0, 0.5 * fs)
     rnd, _det = discrete_random_separation(a)
+    ses_rnd = BandEnvelopes(rnd, fs, domain)
     kg = ig = None
     if band is None:
-        kg, ig = band_maps(rnd, fs, min_bandwidth_hz=min_bw, alpha_max_hz=min_bw)
+        kg, ig = band_maps(rnd, fs, min_bandwidth_hz=min_bw, alpha_max_hz=min_bw, spectrum=ses_rnd)
         b_sk, b_info = kg.band, ig.band
     else:
         b_sk = b_info = band
-    ses_raw = _SES(a, fs, domain)
-    ses_cpw = _SES(cepstral_prewhitening(a), fs, domain)
-    ses_rnd = _SES(rnd, fs, domain)
+    ses_raw = BandEnvelopes(a, fs, domain)
+    ses_cpw = BandEnvelopes(cepstral_prewhitening(a), fs, domain)
     spectra = {
-        "raw": (whole, ses_raw(whole)),
-        "cpw": (whole, ses_cpw(whole)),
-        "drs_sk": (b_sk, ses_rnd(b_sk)),
+        "raw": (whole, ses_raw.squared_spectrum(whole)),
+        "cpw": (whole, ses_cpw.squared_spectrum(whole)),
+        "drs_sk": (b_sk, ses_rnd.squared_spectrum(b_sk)),
     }
     if band is None:
-        spectra["drs_info"] = (b_info, ses_rnd(b_info))
+        spectra["drs_info"] = (b_info, ses_rnd.squared_spectrum(b_info))
     views: list[View] = []
     cage_views = 0
     for name, (b, es) in spectra.items():

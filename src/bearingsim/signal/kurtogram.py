@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConfigError, check_positive
-from .envelope import EDGE_TAPER, _tapered
+from .envelope import EDGE_TAPER, BandEnvelopes
 from .spectrum import as_signal
 
 __all__ = [
@@ -198,6 +198,7 @@ def band_maps(
     min_bins: int = 64,
     infogram: bool = True,
     alpha_max_hz: float | None = None,
+    spectrum: BandEnvelopes | None = None,
 ) -> tuple[Kurtogram, Infogram | None]:
     """The fast kurtogram (:func:`fast_kurtogram`) and, with ``infogram=True``, the infogram
     (:class:`Infogram`) from one pass over the band filters.
@@ -221,6 +222,9 @@ def band_maps(
         ``min_bandwidth_hz``, or each band's width when that is 0). The same range in every
         band keeps the bands comparable: over more cyclic-frequency lines the negentropy of a
         spectrum with the same few lines is larger (about ``ln(lines / peaks)``).
+    spectrum : BandEnvelopes, optional
+        ``BandEnvelopes(x, fs)`` when the caller has it already: its FFT is the one read here
+        (computed here otherwise).
     """
     from scipy import fft as sfft
 
@@ -238,8 +242,14 @@ def band_maps(
             max_level += 1
     if max_level < 0:
         raise ConfigError(f"max_level = {max_level} is invalid; valid range [0, 12]")
-    nf = sfft.next_fast_len(n)  # zero padded: a prime-length FFT is slow
-    X = sfft.fft(_tapered(a), nf)
+    if spectrum is None:
+        spectrum = BandEnvelopes(a, fs)
+    elif spectrum.n != n or spectrum.fs != fs:
+        raise ConfigError(
+            f"spectrum is of {spectrum.n} samples at {spectrum.fs:.6g} Hz; valid: the FFT of "
+            f"this signal ({n} samples at {fs:.6g} Hz)"
+        )
+    nf, X = spectrum.nf, spectrum.X  # the tapered record, zero padded to a fast FFT length
     npos = nf // 2 + 1
     Xp = 2.0 * X[:npos]
     fpos = np.arange(npos) * (fs / nf)
