@@ -446,19 +446,16 @@ def diagnose_fused(
                               non_bearing, notes, domain, kg, ig)  # fmt: skip
 
     if not supported:
-        fault_snr = [
-            p.snr_db
-            for v in views
-            for p in v.diagnosis.peaks
-            if p.label.rstrip("0123456789x").split("x")[-1] in ("BPFO", "BPFI", "2xBSF", "BSF")
-            and "-" not in p.label
-            and "+" not in p.label
-            and np.isfinite(p.snr_db)
-        ]
         n_det = sum(any(p.detected and _series(p.label) for p in v.diagnosis.peaks) for v in views)
         if n_det >= min(MIN_VIEWS, nv):
             notes.append(f"isolated fault lines without a harmonic series in {n_det} views")
             return _res("uncertain", 0.0)
+        fault_snr = [
+            p.snr_db
+            for v in views
+            for p in v.diagnosis.peaks
+            if _series(p.label) and np.isfinite(p.snr_db)
+        ]
         best = max(fault_snr, default=-math.inf)
         return _res("none", float(min(max((rule.threshold_db - best) / 10.0, 0.0), 1.0)))
     top = max(supported, key=lambda f: fused[f])
