@@ -229,10 +229,11 @@ def predict(clf, files):
 
 
 def evaluate(clf, data: Path):
-    import csv
     import subprocess
 
-    rows = list(csv.DictReader(open(data / "manifest.csv", encoding="utf-8")))
+    from bearingsim.io.cwru import cwru_manifest
+
+    rows = list(cwru_manifest(data).values())
     truth = {
         r["file"]: ("none" if r["fault"].startswith("none") else r["fault"].split()[0])
         for r in rows

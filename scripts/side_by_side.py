@@ -19,7 +19,8 @@ from pathlib import Path
 
 from bearingsim.errors import ConfigError
 from bearingsim.io.atomic import write_json
-from bearingsim.side_by_side import BOUNDS, lomo_rig, manifest, side_by_side, within_bounds
+from bearingsim.io.cwru import cwru_manifest
+from bearingsim.side_by_side import BOUNDS, lomo_rig, side_by_side, within_bounds
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 
@@ -36,7 +37,7 @@ def main() -> int:
         help="scale each rig's path so that the model's RMS matches the identification records",
     )
     a = ap.parse_args()
-    rows = manifest(a.data)
+    rows = cwru_manifest(a.data)
     faults = {f: r for f, r in rows.items() if r["fault_diameter_in"]}
     rigs: dict[tuple, object] = {}
     out = []

@@ -21,7 +21,6 @@ identification on the judged data; :func:`side_by_side` takes the rig as given, 
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -30,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .errors import ConfigError
+from .io.cwru import cwru_manifest
 
 __all__ = [
     "SignalMetrics",
@@ -87,12 +87,6 @@ def signal_metrics(x: NDArray[np.float64], fs: float, fault_hz: float) -> Signal
     )
 
 
-def manifest(data_dir: Path) -> dict[str, dict[str, str]]:
-    """The CWRU folder's ``manifest.csv`` rows by file name."""
-    with open(data_dir / "manifest.csv", encoding="utf-8", newline="") as fh:
-        return {row["file"]: row for row in csv.DictReader(fh)}
-
-
 def simulate_record(
     record: str | Path,
     rig,
@@ -118,7 +112,7 @@ def simulate_record(
     from .rig import apply_rig
 
     p = Path(record)
-    rows = manifest(p.parent)
+    rows = cwru_manifest(p.parent)
     if p.name not in rows:
         raise ConfigError(f"record {p.name!r} is not in {p.parent / 'manifest.csv'}")
     row = rows[p.name]
@@ -283,7 +277,7 @@ def lomo_rig(data_dir: Path, record: str, *, model_gain: str | None = None):
     from .io.signal import read_signal
     from .rig_identify import identify_rig
 
-    rows = manifest(data_dir)
+    rows = cwru_manifest(data_dir)
     r = rows[record]
     others = sorted(
         f

@@ -16,6 +16,7 @@ from ._mat5 import mat5_problem
 __all__ = [
     "CWRU_NOMINAL_RPM",
     "cwru_data_dir",
+    "cwru_manifest",
     "cwru_nominal_rpm",
     "CwruRecord",
     "read_cwru_mat",
@@ -65,6 +66,20 @@ CWRU_NOMINAL_RPM = {0: 1797.0, 1: 1772.0, 2: 1750.0, 3: 1730.0}
 #: the CWRU file-name convention ``..._<load hp>_<record number>.<ext>`` (``normal_0_97.mat``,
 #: ``12k_Drive_End_IR014_2_171.mat``)
 _CWRU_NAME = re.compile(r"(?:^|_)([0-3])_\d+$")
+
+
+def cwru_manifest(data_dir: str | Path) -> dict[str, dict[str, str]]:
+    """The rows of a CWRU folder's ``manifest.csv`` by file name, in the file's order.
+
+    Parameters
+    ----------
+    data_dir : str or Path
+        The folder (``../shared/data/cwru``).
+    """
+    import csv
+
+    with open(Path(data_dir) / "manifest.csv", encoding="utf-8", newline="") as fh:
+        return {row["file"]: row for row in csv.DictReader(fh)}
 
 
 def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:

@@ -17,7 +17,6 @@ Used by ``scripts/calibrate_diagnosis.py`` and the tests.
 
 from __future__ import annotations
 
-import csv
 import sys
 from pathlib import Path
 from typing import Any
@@ -25,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..catalog import resolve_bearing
+from ..io.cwru import cwru_manifest
 from .diagnosis import load_signal
 from .fused import VIEWS, Calibration, diagnose_fused, fit_calibration
 
@@ -74,8 +74,7 @@ def _evidence(d) -> str:
 
 def evidence(data: Path, *, verbose: bool = False) -> list[dict[str, Any]]:
     """Fused evidence (uncalibrated) of every record of ``manifest.csv``."""
-    with open(data / "manifest.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
+    rows = list(cwru_manifest(data).values())
     out = []
     for row in rows:
         end = row["end"]
@@ -112,17 +111,19 @@ def evaluate(recs: list[dict[str, Any]]) -> tuple[Calibration, list[dict[str, An
         [r["leading"] == r["truth"] for r in dev],
         fitted_on=f"{len(dev)} CWRU 0.014 in records with a leading family (development set)",
     )
+    lomo = {}  # one map per development mounting, fitted without it
+    for m in {r["mounting"] for r in dev}:
+        train = [q for q in dev if q["mounting"] != m]
+        lomo[m] = fit_calibration(
+            [q["margin"] for q in train], [q["leading"] == q["truth"] for q in train]
+        )
     for r in recs:
         if not r["leading"]:
             r["p"] = None
             r["how"] = "-"
             continue
         if r["dev"]:
-            train = [q for q in dev if q["mounting"] != r["mounting"]]
-            c = fit_calibration(
-                [q["margin"] for q in train], [q["leading"] == q["truth"] for q in train]
-            )
-            r["p"] = c(r["margin"])
+            r["p"] = lomo[r["mounting"]](r["margin"])
             r["how"] = "LOMO"
         else:
             r["p"] = cal(r["margin"])

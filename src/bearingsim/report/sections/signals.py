@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...io.cwru import cwru_data_dir
+from ...io.cwru import cwru_data_dir, cwru_manifest
 from ...signal import amplitude_spectrum
 from ...signal.benchmark import squared_envelope_spectrum
 from .. import Context, Section, info, judge
@@ -91,7 +91,6 @@ def run(ctx: Context) -> Section:
     from ...side_by_side import (
         BOUNDS,
         lomo_rig,
-        manifest,
         ratios,
         signal_metrics,
         simulate_record,
@@ -103,7 +102,7 @@ def run(ctx: Context) -> Section:
     if not (data / "manifest.csv").is_file():
         sec.rows.append(info("side by side", "CWRU records", "missing", f"no {data}"))
         return sec
-    rows = manifest(data)
+    rows = cwru_manifest(data)
     duration = 1.0 if ctx.quick else 2.0
     rigs: dict[tuple, object] = {}
     cases = []
