@@ -266,6 +266,8 @@ class FusedDiagnosis:
         Abscissa of the spectra.
     kurtogram, infogram : Kurtogram, Infogram or None
         The band maps of the DRS random part (None when the band was given).
+    calibration : Calibration or None
+        The margin-to-probability map that was used (None: uncalibrated).
     """
 
     diagnosis: str
@@ -281,6 +283,7 @@ class FusedDiagnosis:
     domain: Domain = Domain.HZ
     kurtogram: Kurtogram | None = None
     infogram: Infogram | None = None
+    calibration: Calibration | None = None
 
     @property
     def best_view(self) -> View:
@@ -321,10 +324,12 @@ class FusedDiagnosis:
             "peaks": [p.as_dict() for p in self.peaks],
             "evidence": [v.as_dict() for v in self.views],
             "non_bearing": self.non_bearing,
-            "calibration": {
-                "intercept": CALIBRATION.intercept,
-                "slope": CALIBRATION.slope,
-                "fitted_on": CALIBRATION.fitted_on,
+            "calibration": None
+            if self.calibration is None
+            else {
+                "intercept": self.calibration.intercept,
+                "slope": self.calibration.slope,
+                "fitted_on": self.calibration.fitted_on,
             },
             "domain": self.domain.value,
             "notes": self.notes,
@@ -443,7 +448,7 @@ def diagnose_fused(
 
     def _res(diag, conf, leading=None, prob=None, margin=0.0):
         return FusedDiagnosis(diag, conf, leading, prob, margin, fused, views, shaft_hz,
-                              non_bearing, notes, domain, kg, ig)  # fmt: skip
+                              non_bearing, notes, domain, kg, ig, calibration)  # fmt: skip
 
     if not supported:
         n_det = sum(any(p.detected and _series(p.label) for p in v.diagnosis.peaks) for v in views)
