@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
 from numpy.testing import assert_allclose
 from scipy.sparse.linalg import spsolve
 
@@ -96,6 +97,85 @@ def test_pcg_refactorizes_on_a_large_change(core):
     n = bs.n_factorizations
     bs.solve(g)  # the next solve starts from a new factorization
     assert bs.n_factorizations == n + 1
+
+
+def test_smooth_damage_history_is_followed_from_the_extrapolated_start(core):
+    """Along a smooth damage history most solves are accepted at the quadratic extrapolation
+    of the anchors without a triangular solve, and every solve, accepted or iterated, meets
+    the residual tolerance."""
+    rtol = 1e-5
+    bs = core.block_solver(rtol=rtol)
+    rate = core.symmetrize(np.random.default_rng(7).random(core.n_elements))
+    F = core.half_loads
+    for k in range(40):
+        f = 1.0 - 1e-3 * k * (1.0 + k / 20) * rate  # as a damage block: 0.001 and growing
+        U = bs.solve(f)
+        K = core.stiffness(f)
+        res = np.linalg.norm(F - K @ U, axis=0) / np.linalg.norm(F, axis=0)
+        assert res.max() <= rtol, (k, res.max())
+    assert bs.n_solves == 40
+    assert bs.n_accepted >= 15, bs.n_accepted  # measured 21 of 40
+    assert bs.n_preconditioner < 30  # measured 18
+
+
+def test_block_solver_rejects_a_bad_inner_tolerance_and_anchor_count(core):
+    with pytest.raises(ValueError, match="inner = 0.0 is invalid; valid range"):
+        core.block_solver(inner=0.0)
+    with pytest.raises(ValueError, match="n_anchors = 4 is invalid; valid values 1, 2, 3"):
+        core.block_solver(n_anchors=4)
+
+
+def test_refactorization_with_the_reused_ordering_is_exact(core):
+    """Later factorizations reuse the first one's fill-reducing ordering (P K P^T assembled
+    through a fixed map): the L D L^T solve equals SuperLU's own solve to round-off."""
+    bs = core.block_solver()
+    bs.solve(np.ones(core.n_elements))
+    g = core.symmetrize(1.0 - 0.9 * np.random.default_rng(8).random(core.n_elements))
+    data = bs._P @ g + bs._s
+    U = bs._direct(data)
+    assert bs.n_factorizations == 2
+    ref = spsolve(core.stiffness(g).tocsc(), core.half_loads)
+    assert_allclose(U, ref, rtol=0, atol=1e-10 * np.abs(ref).max())
+
+
+def test_dense_block_product_equals_the_sparse_product(core):
+    """The condensed outer region is a dense block multiplied through BLAS: the product
+    equals the plain CSR product of the whole stiffness."""
+    from bearingsim.life.block_solver import _csr_matmat
+
+    bs = core.block_solver()
+    ptr, idx, S, g = bs._el
+    assert S.shape == (core.n_interface, core.n_interface)  # the dense path is taken
+    f = _symmetric_factor(core, np.random.default_rng(9))
+    X = np.ascontiguousarray(np.random.default_rng(10).standard_normal(core.half_loads.shape))
+    out, G = np.empty_like(X), np.empty_like(X)
+    cols = np.arange(X.shape[1])
+    _csr_matmat(ptr, idx, bs._P_el @ f + bs._s_el, S, g, X, out, cols, G)
+    want = core.stiffness(f) @ X
+    assert_allclose(out, want, rtol=0, atol=1e-12 * np.abs(want).max())
+
+
+def test_a_sparse_constant_part_stays_in_the_sparse_product(core):
+    """Without a dense block (here: a diagonal constant part) the solver keeps all of K in
+    CSR form and still solves exactly."""
+    from bearingsim.life.block_solver import BlockSolver
+
+    diag = np.zeros(core._s_data.size)
+    rows = np.repeat(np.arange(core.n_dofs), np.diff(core._indptr))
+    on = rows == core._indices
+    kd = core._P @ np.ones(core.n_elements)
+    diag[on] = kd[on]  # a positive diagonal: SPD without the outer region
+    bs = BlockSolver(core._P, diag, core._indptr, core._indices, core.half_loads, rtol=1e-9)
+    assert bs._el[2].shape == (0, 0)
+    K = sp.csc_matrix((kd + diag, core._indices, core._indptr), shape=(core.n_dofs,) * 2)
+    f = np.ones(core.n_elements)
+    for scale in (1.0, 0.999, 0.998):
+        U = bs.solve(scale * f)
+        Ks = sp.csc_matrix(
+            (core._P @ (scale * f) + diag, core._indices, core._indptr), shape=K.shape
+        )
+        res = np.linalg.norm(core.half_loads - Ks @ U, axis=0)
+        assert res.max() <= 1e-9 * np.linalg.norm(core.half_loads, axis=0).max()
 
 
 def test_block_solver_rejects_a_bad_tolerance(core):

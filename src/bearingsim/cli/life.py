@@ -69,7 +69,7 @@ __all__ = [
 @click.option(
     "--delta-d-spall",
     type=Number(0.0, 0.1, lo_open=True),
-    default=0.01,
+    default=0.1,
     help="Damage block after initiation, growth of the failed zone to the surface [-].",
 )
 @click.option(

@@ -221,7 +221,7 @@ def run(ctx: Context) -> Section:
         "τ_xz peaks; their centroids at ±0.85 b) against the McEwen line-contact field there"
     )
     # ---------------------------------------------------------------- damage life
-    dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.01)
+    dd, dds = (0.01, 0.05) if ctx.quick else (0.001, 0.1)
     res = contact_fatigue_life(
         b6206, 5000.0, mesh="default", delta_d=dd, delta_d_spall=dds, law=law
     )
