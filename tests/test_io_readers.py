@@ -422,9 +422,13 @@ def test_damaged_result_files_read_or_refuse_in_one_line(tmp_path, unraisable):
         except ConfigError as exc:
             refused += 1
             assert "\n" not in str(exc) and str(exc).startswith(f"file = '{p}'"), (i, str(exc))
-        gc.collect()
+        # the young generations hold what this file's reading left in reference cycles (a
+        # full collection per file took 30 s of the suite); a full one at the end for the rest
+        gc.collect(1)
         assert not unraisable, (i, unraisable[0].exc_value)
-    assert refused > 30
+    gc.collect()
+    assert not unraisable, unraisable[0].exc_value
+    assert refused > 30  # measured 71 of 90
 
 
 def test_result_files_of_other_kinds_are_one_line(tmp_path):

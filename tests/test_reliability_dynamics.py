@@ -313,7 +313,16 @@ def test_ctrl_c_leaves_nothing(tmp_path):
     cmd = [sys.executable, "-m", "bearingsim", "simulate", "--model", "dem", "--fs-hz", "500",
            "--duration-s", "2000", "-o", str(out)]  # fmt: skip
     with open(err, "wb") as fe:
-        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=fe, env=env, cwd=tmp_path)
+        p = subprocess.Popen(
+            cmd,
+            stdout=subprocess.DEVNULL,
+            stderr=fe,
+            env=env,
+            cwd=tmp_path,
+            # a terminal's Ctrl-C always reaches the program; a test run started as a
+            # background job inherits SIGINT ignored, which Python would keep
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+        )
         try:
             t_end = time.monotonic() + 120
             while "simulate dem" not in err.read_text(errors="replace"):  # the progress bar

@@ -71,6 +71,9 @@ def start(args: list[str], log: Path) -> subprocess.Popen:
             stdout=fh,
             stderr=subprocess.STDOUT,
             start_new_session=True,  # its own process group: killpg cleans up every child
+            # a terminal's Ctrl-C always reaches the client; a test run started as a
+            # background job inherits SIGINT ignored, which Python would keep
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
         )
 
 
