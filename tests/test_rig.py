@@ -224,3 +224,45 @@ def test_rig_as_a_scenario_key(rig_file, tmp_path):
     assert "acc_sensor" in rot.channels
     with pytest.raises(ConfigError, match="at or above the Nyquist"):
         simulate(dict(model="vsm", duration_s=0.05, fs_hz=6000.0, rig=str(rig_file)))
+
+
+def _analyze_json(files, *extra) -> list[dict]:
+    import json
+
+    r = _cli("analyze", *map(str, files), "--json", "--jobs", "1", *extra, cwd=files[0].parent)
+    assert r.returncode == 0, r.stderr
+    return [json.loads(line) for line in r.stdout.splitlines()]
+
+
+def test_through_the_shipped_rig_analyze_reads_the_sensor(tmp_path):
+    """Issue 16: a healthy simulation through the rig is diagnosed "none", a ball defect
+    "ball" (ring models, 2 s at 12 kHz through cwru-de-12k, the profile identified from the
+    CWRU drive-end records). `analyze` reads what the sensor records (acc_sensor) by default;
+    the bare model output of the healthy bearing (`--channel y`: perfectly periodic ball
+    passes, no background) is what it used to read, and that one is not "none"."""
+    files, want = [], []
+    for model in ("vsm", "dem", "tvsm"):
+        for fault in ("none", "ball"):
+            sc = dict(model=model, fault=fault, duration_s=2.0, fs_hz=12000.0, seed=0)
+            out = tmp_path / f"{model}_{fault}.nc"
+            simulate({**sc, "rig": "cwru-de-12k"}).save(out)
+            files.append(out)
+            want.append(fault)
+    got = _analyze_json(files)
+    assert [d["channel"] for d in got] == ["sensor"] * len(files)
+    assert [d["diagnosis"] for d in got] == want, [(d["file"], d["diagnosis"]) for d in got]
+    bare = _analyze_json([files[0]], "--channel", "y")[0]
+    assert bare["channel"] == "y" and bare["diagnosis"] != "none"
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 16 mismatch: the rotor model's output (0.05 m/s^2 RMS with a ball defect) is "
+    "~20x below the rig's identified background (1.1 m/s^2), the rotor amplitude miss of "
+    "docs/validation.md: 'none'",
+)
+def test_rotor_ball_defect_through_the_rig_is_ball(tmp_path):
+    out = tmp_path / "rotor_ball.nc"
+    sc = dict(model="rotor", de_fault="ball", duration_s=1.0, fs_hz=12000.0, seed=0)
+    simulate({**sc, "rig": "cwru-de-12k"}).save(out)
+    assert _analyze_json([out])[0]["diagnosis"] == "ball"

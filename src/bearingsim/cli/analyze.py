@@ -82,9 +82,9 @@ class _Request:
 @click.option(
     "--channel",
     default=None,
-    show_default="DE for .mat, y for results",
+    show_default="DE for .mat; for results sensor if simulated through a rig, else y",
     help="DE|FE|BA (CWRU .mat; auto: FE when the file name contains Fan_End, else DE), "
-    "x|y (result; rotor results also x_fe|y_fe), or a CSV column.",
+    "x|y (result; rotor results also x_fe|y_fe; sensor: the rig's output), or a CSV column.",
 )
 @click.option(
     "--band-hz",

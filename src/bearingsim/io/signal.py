@@ -87,8 +87,9 @@ def read_signal(
       acceleration in [m/s^2]; rpm from ``X###RPM`` unless ``rpm`` is given; fs from ``fs_hz``,
       else from ``12k``/``48k`` in the file name, else 48 kHz.
     * ``.nc``/``.h5`` (bearingsim simulation result): channel ``x`` or ``y`` (default ``y``;
-      rotor results also ``x_fe``, ``y_fe``, the fan-end housing); fs, rpm and bearing from the
-      file (``fs_hz``, ``rpm`` override).
+      rotor results also ``x_fe``, ``y_fe``, the fan-end housing; a result simulated through a
+      rig also ``sensor``, the rig's output ``acc_sensor``, and that is then the default); fs,
+      rpm and bearing from the file (``fs_hz``, ``rpm`` override).
     * ``.csv``/``.txt`` (:func:`.read_table`): a time column (named ``time_s``, ``time`` or
       ``t``, or the one at index ``time_column``) gives the sample times and fs (from the median
       step, unless ``fs_hz`` is given); a ``speed_hz`` or ``rpm`` column gives a per-sample
@@ -167,9 +168,13 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
     from ..results import SimulationResult
 
     res = SimulationResult.load(p)
-    ch = ("y" if channel is None else channel).lower()
+    # a result simulated through a rig carries what the sensor records (acc_sensor): that is
+    # the signal a diagnosis reads by default, as it would an accelerometer's
+    sensor = "acc_sensor" in res.channels
+    ch = (("sensor" if sensor else "y") if channel is None else channel).lower()
     # rotor results also carry the fan-end housing (acc_x_fe, acc_y_fe) and its bearing
     valid = ("x", "y", "x_fe", "y_fe") if "acc_y_fe" in res.channels else ("x", "y")
+    valid += ("sensor",) if sensor else ()
     if ch not in valid:
         raise ConfigError(
             f"channel = {channel!r} is invalid for this simulation result; valid: "
