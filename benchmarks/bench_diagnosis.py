@@ -24,6 +24,8 @@ from pathlib import Path
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+from _timing import best  # noqa: E402
+
 from bearingsim.catalog import resolve_bearing  # noqa: E402
 from bearingsim.signal import load_signal  # noqa: E402
 from bearingsim.signal.benchmark import (  # noqa: E402
@@ -35,16 +37,6 @@ from bearingsim.signal.kurtogram import band_maps  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT.parent / "shared" / "data" / "cwru"
-
-
-def best(fn, repeats: int) -> float:
-    fn()  # warm-up
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def main() -> int:

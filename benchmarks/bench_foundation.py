@@ -6,30 +6,22 @@ Run: ``python benchmarks/bench_foundation.py``
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
+from _timing import best
 
 from bearingsim import get_bearing
 from bearingsim.contact.hertz import ball_contact, ellipticity
 from bearingsim.load_distribution import radial_load_distribution
 
 
-def best(f, n=5):
-    ts = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return min(ts)
-
-
 def main() -> None:
     b = get_bearing("6205")
     cage = np.linspace(0.0, 2 * np.pi, 3600, endpoint=False)
     radial_load_distribution(b, 10.0, 50.0, cage[:2])  # warm (compile / load cache)
-    t_free = best(lambda: radial_load_distribution(b, 10.0, 50.0, cage))
-    t_line = best(lambda: radial_load_distribution(b, 10.0, 50.0, cage, motion="load_line"))
+    t_free = best(lambda: radial_load_distribution(b, 10.0, 50.0, cage), warm=False)
+    t_line = best(
+        lambda: radial_load_distribution(b, 10.0, 50.0, cage, motion="load_line"), warm=False
+    )
     loads = np.linspace(1.0, 5000.0, 10_000)
     ball_contact(b, loads[:2], "inner")
 
@@ -37,7 +29,7 @@ def main() -> None:
         ellipticity.cache_clear()  # include the exact ellipticity solve in the timing
         ball_contact(b, loads, "inner")
 
-    t_hertz = best(hertz_cold_geometry)
+    t_hertz = best(hertz_cold_geometry, warm=False)
     print(
         f"load distribution, 6205, 3600 cage angles, free ring : {t_free * 1e3:8.2f} ms "
         f"(target <= 200 ms)"

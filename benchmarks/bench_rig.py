@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+from _timing import best  # noqa: E402
 
 from bearingsim import simulate  # noqa: E402
 from bearingsim.rig import Background, Mode, Rig, Tone, apply_rig  # noqa: E402
@@ -38,16 +39,6 @@ RIG = Rig(
     noise_rms_m_per_s2=0.01,
     noise_provenance="timing",
 )
-
-
-def best(fn, repeats: int) -> float:
-    fn()  # warm-up (compiled kernels, imports)
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def main() -> None:

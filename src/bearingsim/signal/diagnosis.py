@@ -501,9 +501,8 @@ def diagnose(
     notes: list[str] = []
     kg = None
     kurt = None
-    if isinstance(band, str | BandSelection):
-        if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
-            raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
+    band_v = _band_value(band)
+    if band_v is None:
         min_bw = min_band_width(bearing, shaft_hz, fs, rule)
         kg = fast_kurtogram(x, fs, min_bandwidth_hz=min_bw)
         band_t = kg.band
@@ -513,9 +512,20 @@ def diagnose(
             f"level {kg.level:.2f}"
         )
     else:
-        band_t = check_band(tuple(band), fs)
+        band_t = check_band(band_v, fs)
     es = envelope_spectrum(x, fs, band_t, domain=domain)
     return diagnose_spectrum(es, bearing, shaft_hz, band_t, rule=rule, kurtogram=kg, notes=notes)
+
+
+def _band_value(band) -> tuple | None:
+    """``None`` for the kurtogram's choice (``"auto"`` / :attr:`BandSelection.KURTOGRAM`), else
+    the band as a tuple (checked by :func:`.envelope.check_band` where it is used); any other
+    string is refused in one line."""
+    if isinstance(band, str | BandSelection):
+        if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
+            raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
+        return None
+    return tuple(band)
 
 
 def diagnose_spectrum(
@@ -770,12 +780,7 @@ def analyze_record(
     """
     from .fused import diagnose_fused
 
-    if isinstance(band, str | BandSelection):
-        if band not in (BandSelection.KURTOGRAM, BandSelection.KURTOGRAM.value):
-            raise ConfigError(f"band = {band!r} is invalid; valid: 'auto' or two numbers LO HI")
-        band_v = None
-    else:
-        band_v = (float(band[0]), float(band[1]))
+    band_v = _band_value(band)
     rule = rule or DiagnosisRule(shaft_cursors=True)
     if rec.speed_hz is not None and rec.rpm is None:
         sp = np.asarray(rec.speed_hz, dtype=float)
