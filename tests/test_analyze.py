@@ -233,3 +233,18 @@ def test_bad_band_and_options(capsys):
     assert "rpm = -3 r/min is out of range" in _run_bad(capsys, [f, "--rpm", "-3"])
     msg = _run_bad(capsys, [f, "--fs-hz", "1000"])
     assert "fs_hz = 1000 Hz is too low for an envelope band" in msg
+
+
+@pytest.mark.parametrize("band", [(500.0, 1000.0, 2000.0), "kurtogram-ish"])
+def test_analyze_record_refuses_a_bad_band_in_one_line(band):
+    """The fused analysis checks a band as the single-view diagnosis does: three numbers were
+    cut to the first two before (``diagnosis._band_value``)."""
+    from bearingsim.errors import ConfigError
+    from bearingsim.io.signal import SignalRecord
+    from bearingsim.signal.diagnosis import analyze_record
+
+    x = np.random.default_rng(0).standard_normal(12000)
+    rec = SignalRecord(x, 12000.0, 1797.0, "noise", "x")
+    with pytest.raises(ConfigError, match="band") as exc:
+        analyze_record(rec, get_bearing("6205-cwru"), band=band)
+    assert "\n" not in str(exc.value)
