@@ -59,7 +59,7 @@ def target(bearing, direct: bool) -> None:
         print(
             f"     factorizations {m['n_factorizations']}, triangular solves "
             f"{m['n_preconditioner']}, PCG iterations {m['n_iterations']}, blocks accepted "
-            f"at the extrapolated start {m.get('n_accepted', 0)}"
+            f"at the extrapolated start {m['n_accepted']}"
         )
         print(f"     setup {m['setup_s']:.2f} s, damage loop {m['wall_s']:.2f} s "
               f"({1e3 * m['time_per_step_s']:.1f} ms per block)")  # fmt: skip

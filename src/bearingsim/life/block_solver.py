@@ -87,9 +87,9 @@ def _csr_matmat(indptr, indices, data, S, g, X, out, cols, G):  # pragma: no cov
 @njit(cache=True)
 def _ldl_solve(l_ptr, l_idx, l_val, d, perm, B, X, W, cols):  # pragma: no cover
     """``X[:, cols] = A^-1 B[:, cols]`` with the factors ``P A P^T = L D L^T`` of a symmetric
-    ``A`` (``L`` strictly lower part, CSC, sorted; ``D`` diagonal ``d``; ``perm[i]`` the row of
-    ``P A`` that row ``i`` of ``A`` becomes) for row-major ``B`` (n, m); ``W`` (n, m) work space
-    (the columns gathered, so the inner loops are contiguous)."""
+    ``A`` (``L`` strictly lower part, CSC, any order within a column; ``D`` diagonal ``d``;
+    ``perm[i]`` the row of ``P A`` that row ``i`` of ``A`` becomes) for row-major ``B`` (n, m);
+    ``W`` (n, m) work space (the columns gathered, so the inner loops are contiguous)."""
     n = B.shape[0]
     nc = cols.size
     for i in range(n):
@@ -163,9 +163,9 @@ def _pcg(
             s += R[i, k] * R[i, k]
         act[k] = np.sqrt(s) > tol[k]
         good = good and np.sqrt(s) <= accept[k]
-    cols = np.flatnonzero(act)
-    if good or cols.size == 0:
+    if good:  # also when no column is above tol (tol <= accept)
         return 0, 0, True
+    cols = np.flatnonzero(act)
     _ldl_solve(l_ptr, l_idx, l_val, d, perm, R, Z, W, cols)
     n_tri = 1
     for kk in range(cols.size):
@@ -330,12 +330,13 @@ class BlockSolver:
     converged to ``inner * rtol``), evaluated at the solve's index: quadratic extrapolation
     along the damage history. That start is accepted without a single iteration when every
     load column's residual is within ``rtol``; otherwise preconditioned conjugate gradients on
-    all load columns at once (each column its own step lengths; preconditioner: the LU factors
-    of ``K`` at an earlier block) take the columns to ``inner * rtol``, and the result becomes
-    an anchor. Converging the anchors ``1 / inner`` times further than asked keeps their
-    round-off from spoiling the extrapolation, so several blocks in a row need no triangular
-    solve. Refactorized when a solve needed more than ``refactor_after`` iterations; a solve
-    that does not converge in ``max_iter`` refactorizes and solves directly.
+    all load columns at once (each column its own step lengths; preconditioner: the
+    ``L D L^T`` factors of ``K`` at an earlier block) take the columns to ``inner * rtol``,
+    and the result becomes an anchor. Converging the anchors ``1 / inner`` times further than
+    asked keeps their round-off from spoiling the extrapolation, so several blocks in a row
+    need no triangular solve. Refactorized when a solve needed more than ``refactor_after``
+    iterations; a solve that does not converge in ``max_iter`` refactorizes and solves
+    directly.
 
     Every returned solution meets the same criterion, whichever way it was reached.
 
@@ -427,7 +428,7 @@ class BlockSolver:
             loc[g] = np.arange(g.size)
             S = np.zeros((g.size, g.size))
             S[loc[row[sv]], loc[self._indices[sv]]] = self._s[sv]
-            self._s_el = np.zeros(int(el.sum()))
+            self._s_el = None  # all of the constant part is in S
         else:
             el = np.ones(row.size, dtype=bool)
             g, S = np.zeros(0, dtype=np.int64), np.zeros((0, 0))
@@ -436,6 +437,12 @@ class BlockSolver:
         np.cumsum(np.bincount(row[el], minlength=n), out=ptr[1:])
         self._P_el = self._P[np.flatnonzero(el)]
         self._el = (ptr, self._indices[el], np.ascontiguousarray(S), g.astype(np.int64))
+
+    def _sparse_data(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Stored entries of the sparse part of ``K`` (:meth:`_split`) for element factors
+        ``f`` [N/m]."""
+        data = self._P_el @ f
+        return data if self._s_el is None else data + self._s_el
 
     def _direct(self, data: NDArray[np.float64]) -> NDArray[np.float64]:
         """Factorize ``K`` (the next preconditioner) and solve with it (exact to round-off).
@@ -497,7 +504,7 @@ class BlockSolver:
         it, n_tri, ok = _pcg(
             ptr,
             idx,
-            self._P_el @ f + self._s_el,
+            self._sparse_data(f),
             S,
             g,
             *self._factor.args(),
