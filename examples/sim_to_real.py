@@ -7,7 +7,9 @@
 1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): VSM simulations of
    every condition of a grid -- healthy, inner and outer race and ball faults x shaft speeds
    (the CWRU loads' 1730-1797 r/min) x defect widths (0.007, 0.014, 0.021 in) x random slip
-   (1-2 %, three seeds) x the shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``,
+   (1-2 %, three seeds) x ball diameter spread (0 and ISO 3290-1 grades G10, G20, G40: 0.5,
+   1, 2 um; unequal ball loads modulate a race fault's impacts at the cage frequency) x the
+   shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``,
    ``cwru-de-48k``; the drive end's 6205, the fan end's 6203) -- each passed through its rig
    (``acc_sensor``).
 2. **Features** (the same function on simulated and measured signals): the squared-envelope
@@ -45,6 +47,10 @@ LABELS = ("none", "inner", "outer", "ball")
 RPMS = (1730.0, 1750.0, 1772.0, 1797.0)
 SIZES_IN = (0.007, 0.014, 0.021)
 SLIPS = (1.0, 1.5, 2.0)
+#: ball diameter spreads [m]: ISO 3290-1 lot diameter variation of grades G10, G20 and G40 and
+#: identical balls; the ball grade of the CWRU bearings is not published, so the grid covers the
+#: grades deep-groove ball bearings are made with. One per run, cycled over speed and slip seed.
+SPREADS_M = (0.0, 0.5e-6, 1.0e-6, 2.0e-6)
 PROFILES = {
     "cwru-de-12k": ("6205-cwru", 12000.0),
     "cwru-fe-12k": ("6203-cwru", 12000.0),
@@ -101,8 +107,9 @@ def features(x: np.ndarray, fs: float, rpm: float, bearing: str) -> np.ndarray:
 
 def _grid():
     for rig, (bearing, fs) in PROFILES.items():
-        for rpm in RPMS:
+        for i_rpm, rpm in enumerate(RPMS):
             for seed, slip in enumerate(SLIPS):
+                spread = SPREADS_M[(i_rpm + seed) % len(SPREADS_M)]
                 yield dict(
                     rig=rig,
                     bearing=bearing,
@@ -112,6 +119,7 @@ def _grid():
                     size=0.0,
                     slip=slip,
                     seed=seed,
+                    spread=spread,
                 )
                 for fault in ("inner", "outer", "ball"):
                     for size in SIZES_IN:
@@ -124,6 +132,7 @@ def _grid():
                             size=size,
                             slip=slip,
                             seed=seed,
+                            spread=spread,
                         )
 
 
@@ -136,7 +145,7 @@ def build_dataset(cache: Path, progress: bool = True):
     from bearingsim.rig import apply_rig, load_rig
 
     path = cache / "sim_to_real.zarr"
-    key = json.dumps([RPMS, SIZES_IN, SLIPS, PROFILES, DURATION_S, FEATURES])
+    key = json.dumps([RPMS, SIZES_IN, SLIPS, SPREADS_M, PROFILES, DURATION_S, FEATURES])
     if path.exists():
         g = zarr.open_group(str(path), mode="r")
         if g.attrs.get("grid") == key:
@@ -156,6 +165,7 @@ def build_dataset(cache: Path, progress: bool = True):
             fs_hz=c["fs"],
             seed=c["seed"],
             slip_percent=c["slip"],
+            ball_diameter_spread_m=c["spread"],
         )
         if c["fault"] != "none":
             sc["defect_width_m"] = c["size"] * 0.0254

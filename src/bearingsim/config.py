@@ -72,6 +72,8 @@ SEED_VSM_DAMPING_N_S_M = 300.0
 SEED_VSM_FX_N = 10.0
 #: seed VSM table 1: radial force on the inner ring along y [N]
 SEED_VSM_FY_N = 50.0
+#: largest ball diameter spread accepted [m] (ISO 3290-1 grade G200's lot variation, 10 µm)
+MAX_BALL_SPREAD_M = 10e-6
 #: seed VSM table 1: shaft speed [r/min]
 SEED_VSM_RPM = 1750.0
 #: seed VSM table 1: the defect's left edge at t = 0, beta_0 [deg]
@@ -403,6 +405,11 @@ class RingScenario(Scenario):
                                                     ball-pass interval [% of its mean], 1–2 in
                                                     real bearings (Randall & Antoni 2011); 0 =
                                                     kinematic; needs ``solver = "rk4"``
+    ``ball_diameter_spread_m``      0.0             largest minus smallest ball diameter [m]
+                                                    (ISO 3290-1 lot variation V_DwL: G10 0.5e-6,
+                                                    G20 1e-6, G40 2e-6); unequal ball loads,
+                                                    hence FTF lines with a race fault; 0 =
+                                                    identical balls; at most 1e-5
     ``mass_kg``                     by fault        vibrating mass m [kg]; seed table 1: 0.063
                                                     (outer ring, also ``none``), 0.045 (inner)
     ``damping_n_s_per_m``           300.0           c_eq [N s/m] (seed table 1)
@@ -446,6 +453,7 @@ class RingScenario(Scenario):
         "seed",
         "noise_rms_m_per_s2",
         "slip_percent",
+        "ball_diameter_spread_m",
         "mass_kg",
         "damping_n_s_per_m",
         "stiffness_n_per_m1_5",
@@ -478,6 +486,7 @@ class RingScenario(Scenario):
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
     slip_percent: float = 0.0
+    ball_diameter_spread_m: float = 0.0
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
     stiffness_n_per_m1_5: float | None = None
@@ -515,6 +524,17 @@ class RingScenario(Scenario):
                 f"solver has no slip); valid: slip_percent = 0 with solver = "
                 f"'{self.solver.value}'"
             )
+        s(
+            self,
+            "ball_diameter_spread_m",
+            check_range(
+                "ball_diameter_spread_m",
+                self.ball_diameter_spread_m,
+                0.0,
+                MAX_BALL_SPREAD_M,
+                unit="m",
+            ),
+        )
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
         s(

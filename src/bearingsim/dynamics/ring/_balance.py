@@ -98,7 +98,8 @@ P_SLIPN = 36  #: entries of the slip table [-]
 P_SLIPDT = 37  #: nominal ball-pass period 2 pi / (Z w_cage) [s]
 P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min_inner) [m]
 P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
-HEADER = 40  #: first table entry
+P_BDEV = 40  #: offset in ``p`` of the Z ball-diameter deviations Delta D_j (0 = none) [-]
+HEADER = 41  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -313,6 +314,16 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
 
 
 @njit(cache=True, inline="always")
+def ball_clearance(p, j, clr):
+    """Half clearance ``P_d/2`` less ball ``j``'s diameter deviation ``Delta D_j`` [m]: a ball
+    larger than nominal by ``Delta D_j`` closes the gap between the raceways along its line by
+    its whole ``Delta D_j`` (it touches both races), so its nominal deflection is
+    ``u.e_j - P_d/2 + Delta D_j``. ``clr`` itself without deviations (``p[P_BDEV] == 0``)."""
+    off = int(p[P_BDEV])
+    return clr if off == 0 else clr - p[off + j]
+
+
+@njit(cache=True, inline="always")
 def advance(r, step):
     """``r + step`` wrapped into [0, 2 pi) (``0 <= r < 2 pi``, ``0 < step < 2 pi``)."""
     r += step
@@ -361,6 +372,9 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     fr = np.empty(Z)
     zf = np.empty(Z)
     dof = np.empty(Z)
+    clj = np.empty(Z)
+    for j in range(Z):
+        clj[j] = ball_clearance(p, j, p[P_CLR])
     wc = p[P_WCAGE]
     a0 = p[P_ALPHA0]
     fault = p[P_FAULT]
@@ -448,7 +462,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
                 for j in range(Z):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load(ue, fr[j], zf[j], clr, dof[j], dfac, K, n)
+                    q, kk, _e = ball_load(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n)
                     if q > 0.0:
                         a = sn[j]
                         b = cs[j]
@@ -569,7 +583,8 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
-        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, clr, dof, dfac, K, n)
+        cl = ball_clearance(p, j, clr)
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
         if q > 0.0:
             n_loaded += 1
         if fill:

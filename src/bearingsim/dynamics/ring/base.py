@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
+from ...config import MAX_BALL_SPREAD_M, SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
@@ -98,7 +98,12 @@ class ModelInputs:
         MSSP 25). See :meth:`slip_table`.
     slip_seed : int
         Seed of the slip process (``numpy.random.SeedSequence([slip_seed, 1])``: a stream of
-        its own, apart from the measurement noise's ``default_rng(seed)``).
+        its own, apart from the measurement noise's ``default_rng(seed)``) and of the ball
+        diameters (``SeedSequence([slip_seed, 2])``).
+    ball_diameter_spread : float
+        Largest minus smallest ball diameter of the set [m] (0: identical balls). ISO 3290-1
+        calls it the lot diameter variation V_DwL and bounds it by grade: G5 0.25, G10 0.5,
+        G16 0.8, G20 1.0, G28 1.4, G40 2.0 µm. See :meth:`ball_deviations`.
     """
 
     bearing: Bearing
@@ -116,6 +121,7 @@ class ModelInputs:
     tol: float = 1e-12
     slip: float = 0.0
     slip_seed: int = 0
+    ball_diameter_spread: float = 0.0
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -176,6 +182,17 @@ class ModelInputs:
                 raise ConfigError(f"defect = {self.defect!r} is not a Defect or None")
             defect_geometry(b, self.defect)  # validates the width against the ball
         object.__setattr__(self, "tol", check_range("tol", self.tol, 0.0, 1e-6, lo_open=True))
+        object.__setattr__(
+            self,
+            "ball_diameter_spread",
+            check_range(
+                "ball_diameter_spread_m",
+                self.ball_diameter_spread,
+                0.0,
+                MAX_BALL_SPREAD_M,
+                unit="m",
+            ),
+        )
 
     @property
     def diametral_clearance(self) -> float:
@@ -208,6 +225,48 @@ class ModelInputs:
         return ball_pass_instants(
             self.bearing.n_elements, self.cage_hz, self.slip, duration, (int(self.slip_seed), 1)
         )
+
+    def ball_deviations(self) -> NDArray[np.float64]:
+        """Diameter deviation of each ball from the nominal, ``Delta D_j`` [m] (ball 1 first;
+        empty without a spread).
+
+        Ball-to-ball diameter differences make the balls carry unequal loads, so the impacts of
+        successive balls on a race defect differ and the pattern repeats every cage turn: lines
+        at the FTF and its harmonics in the envelope spectrum of an outer- or inner-race fault
+        (with slip, of its mean). Draws ``u_j`` uniform in [0, 1) from
+        ``SeedSequence([slip_seed, 2])``, maps them affinely so that the largest minus the
+        smallest deviation is ``ball_diameter_spread`` exactly, and centres them on zero mean
+        (the mean ball keeps the nominal diameter, so the mean clearance is unchanged).
+        """
+        Z = self.bearing.n_elements
+        if self.ball_diameter_spread == 0.0 or Z < 2:
+            return np.zeros(0)
+        rng = np.random.default_rng(np.random.SeedSequence([int(self.slip_seed), 2]))
+        u = rng.uniform(size=Z)
+        u = (u - u.min()) / (u.max() - u.min())
+        return self.ball_diameter_spread * (u - u.mean())
+
+    def pack(
+        self, q: NDArray[np.float64], slip: NDArray[np.float64] | None = None
+    ) -> NDArray[np.float64]:
+        """The parameter vector ``q`` (header and any table) with the tail tables the kernels
+        read by offset appended: the slip instants (``P_SLIP``) and the ball diameter deviations
+        (``P_BDEV``); ``q`` itself (a copy) when there are none."""
+        dev = self.ball_deviations()
+        parts = [q]
+        size = q.size
+        out_off = {}
+        if slip is not None and slip.size:
+            out_off[bl.P_SLIP] = size
+            parts.append(slip)
+            size += slip.size
+        if dev.size:
+            out_off[bl.P_BDEV] = size
+            parts.append(dev)
+        out = np.concatenate(parts) if len(parts) > 1 else q.copy()
+        for k, v in out_off.items():
+            out[k] = v
+        return out
 
     def header(self, per_ball: bool = False) -> NDArray[np.float64]:
         """The parameter vector header (layout :mod:`._balance`), without a table."""
@@ -254,7 +313,7 @@ class ModelInputs:
 
 def static_path(inputs: ModelInputs, times: NDArray[np.float64]):
     """Quasi-static solution at ``times`` [s]: ``(table (m, NCOL), residual (m,))``."""
-    p = inputs.header()
+    p = inputs.pack(inputs.header())
     t = np.ascontiguousarray(times, dtype=float)
     table = np.empty((t.size, bl.NCOL))
     res = np.empty(t.size)
@@ -374,13 +433,6 @@ def integrate_model(
         header[bl.P_SLIPN] = slip.size
         header[bl.P_SLIPDT] = sdt
 
-    def with_slip(q: NDArray[np.float64]) -> NDArray[np.float64]:
-        if slip.size == 0:
-            return q
-        out = np.concatenate([q, slip])
-        out[bl.P_SLIP] = q.size
-        return out
-
     t_all = np.empty(n_out)
     y_all = np.empty((n_out, 4))
     a_all = np.empty((n_out, na))
@@ -400,15 +452,15 @@ def integrate_model(
             table = np.empty((n_tab, bl.NCOL))
             res = np.empty(n_tab)
             ux, uy = call_compiled(
-                bl.quasi_static_path, times, with_slip(header), table, res, ux, uy
+                bl.quasi_static_path, times, inputs.pack(header, slip), table, res, ux, uy
             )
             res_max = max(res_max, float(res.max()))
-            p = with_slip(np.concatenate([header, table.ravel()]))
+            p = inputs.pack(np.concatenate([header, table.ravel()]), slip)
             p[bl.P_T0] = t_start
             p[bl.P_HTAB] = h
             p[bl.P_NTAB] = n_tab
         else:
-            p = with_slip(header.copy())
+            p = inputs.pack(header, slip)
         tr = run_fixed(
             kernel.rhs,
             kernel.aux,
@@ -448,7 +500,7 @@ def integrate_model_adaptive(
 ) -> RawRun:
     """Dormand–Prince 5(4) integration with the exact (on-the-fly static solve) right-hand
     side, output at ``k / fs`` [s]; for checking the fixed-step results."""
-    p = inputs.header(per_ball)
+    p = inputs.pack(inputs.header(per_ball))
     na = n_aux(inputs, per_ball)
     t_eval = np.arange(n_out) / fs
     tr = run_adaptive(

@@ -99,6 +99,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         ),
         slip=scenario.slip_percent / 100.0,
         slip_seed=scenario.seed,
+        ball_diameter_spread=scenario.ball_diameter_spread_m,
     )
 
 
@@ -312,6 +313,13 @@ def run_ring(
             "seed": scenario.seed,
             "model": "cage speed w_cage (1 + s_k) over each ball-pass period, s_k ~ "
             "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]) (ModelInputs.slip_table)",
+        },
+        "ball_diameters": {
+            "spread_m": scenario.ball_diameter_spread_m,
+            "deviation_m": [float(v) for v in inputs.ball_deviations()],
+            "seed": scenario.seed,
+            "model": "uniform from numpy.random.SeedSequence([seed, 2]), scaled to span the "
+            "spread, zero mean (ModelInputs.ball_deviations)",
         },
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,

@@ -383,7 +383,8 @@ def stiffness_trace(
     sn, cs = np.sin(psi), np.cos(psi)
     ux, uy = table[:, bl.C_UX : bl.C_UX + 1], table[:, bl.C_UY : bl.C_UY + 1]
     ue = ux * sn + uy * cs
-    nominal = ue - p[bl.P_CLR]
+    dev = inputs.ball_deviations()  # a larger ball closes its gap by its whole excess
+    nominal = ue - p[bl.P_CLR] + (dev[None, :] if dev.size else 0.0)
     defect = inputs.defect
     shaft = times * 2 * math.pi * inputs.shaft_hz
     beta0 = 0.0
