@@ -4,14 +4,17 @@
     python examples/sim_to_real.py --predict FILE... [--json] [--cache DIR]
     python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru]
 
-1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): VSM simulations of
+1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): DEM simulations of
    every condition of a grid -- healthy, inner and outer race and ball faults x shaft speeds
    (the CWRU loads' 1730-1797 r/min) x defect widths (0.007, 0.014, 0.021 in) x random slip
-   (1-2 %, three seeds) x ball diameter spread (0 and ISO 3290-1 grades G10, G20, G40: 0.5,
-   1, 2 um; unequal ball loads modulate a race fault's impacts at the cage frequency) x the
-   shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``,
+   (1-2 %, three seeds) x the shipped rig profiles (``cwru-de-12k``, ``cwru-fe-12k``,
    ``cwru-de-48k``; the drive end's 6205, the fan end's 6203) -- each passed through its rig
-   (``acc_sensor``).
+   (``acc_sensor``). Each run draws the machine facts CWRU does not publish: the ball diameter
+   spread (0 and ISO 3290-1 grades G10, G20, G40: unequal ball loads modulate a race fault's
+   impacts at the cage frequency), the rotor unbalance (0-50 % of the static load, turning
+   with the shaft: modulation at the shaft frequency) and the operating clearance (the
+   catalogue's 6 um, 0, and preloads of 5 and 10 um: every ball loaded, so an inner-race
+   defect strikes at every pass).
 2. **Features** (the same function on simulated and measured signals): the squared-envelope
    spectrum in the fast-kurtogram band, its levels at the characteristic frequencies of the
    bearing at the record's speed (BPFO, BPFI and their 2nd harmonics, BPFI +/- shaft, 2 x BSF and
@@ -47,16 +50,27 @@ LABELS = ("none", "inner", "outer", "ball")
 RPMS = (1730.0, 1750.0, 1772.0, 1797.0)
 SIZES_IN = (0.007, 0.014, 0.021)
 SLIPS = (1.0, 1.5, 2.0)
-#: ball diameter spreads [m]: ISO 3290-1 lot diameter variation of grades G10, G20 and G40 and
-#: identical balls; the ball grade of the CWRU bearings is not published, so the grid covers the
-#: grades deep-groove ball bearings are made with. One per run, cycled over speed and slip seed.
+#: the model simulated: the DEM (its Hertz contact takes a preload; the VSM's secant does not)
+MODEL = "dem"
+#: Machine facts the CWRU data do not publish, drawn per run (uniformly from these sets):
+#: ball diameter spread [m]: identical balls and the ISO 3290-1 lot diameter variation of
+#: grades G10, G20, G40 (the grades deep-groove ball bearings are made with);
 SPREADS_M = (0.0, 0.5e-6, 1.0e-6, 2.0e-6)
+#: rotor unbalance [share of the static load]: a ~6 kg motor rotor balanced to ISO 21940-11
+#: G2.5-G16 at 1800 r/min gives 3-18 N against ~30 N per bearing (half its weight);
+UNBALANCE = (0.0, 0.1, 0.25, 0.5)
+#: operating diametral clearance [m]: the catalogue's 6 um, none, and preloads of 5 and 10 um
+#: (a motor's wave spring: ~150 N axially loads every ball of a 6205 by ~100 N, about 5 um
+#: of contact deflection; a 2-D ring model takes it as a negative clearance).
+CLEARANCES_M = (6e-6, 0.0, -5e-6, -10e-6)
 PROFILES = {
     "cwru-de-12k": ("6205-cwru", 12000.0),
     "cwru-fe-12k": ("6203-cwru", 12000.0),
     "cwru-de-48k": ("6205-cwru", 48000.0),
 }
 DURATION_S = 1.0
+#: the ring models' default radial load (seed VSM table 1) [N]
+SEED_FX_N, SEED_FY_N = 10.0, 50.0
 FEATURES = (
     *("bpfo", "2bpfo", "bpfi", "2bpfi", "bpfi-fs", "bpfi+fs", "2bsf", "2bsf-ftf", "2bsf+ftf"),
     *("ftf", "2ftf", "fs", "2fs", "logkurt"),
@@ -106,34 +120,28 @@ def features(x: np.ndarray, fs: float, rpm: float, bearing: str) -> np.ndarray:
 
 
 def _grid():
-    for rig, (bearing, fs) in PROFILES.items():
+    faults = (("none", 0.0), *((f, d) for f in ("inner", "outer", "ball") for d in SIZES_IN))
+    for i_rig, (rig, (bearing, fs)) in enumerate(PROFILES.items()):
         for i_rpm, rpm in enumerate(RPMS):
             for seed, slip in enumerate(SLIPS):
-                spread = SPREADS_M[(i_rpm + seed) % len(SPREADS_M)]
-                yield dict(
-                    rig=rig,
-                    bearing=bearing,
-                    fs=fs,
-                    rpm=rpm,
-                    fault="none",
-                    size=0.0,
-                    slip=slip,
-                    seed=seed,
-                    spread=spread,
-                )
-                for fault in ("inner", "outer", "ball"):
-                    for size in SIZES_IN:
-                        yield dict(
-                            rig=rig,
-                            bearing=bearing,
-                            fs=fs,
-                            rpm=rpm,
-                            fault=fault,
-                            size=size,
-                            slip=slip,
-                            seed=seed,
-                            spread=spread,
-                        )
+                for fault, size in faults:
+                    # the unpublished machine facts, drawn per run (a stream of its own)
+                    rng = np.random.default_rng(
+                        [i_rig, i_rpm, seed, LABELS.index(fault), round(size * 1e4)]
+                    )
+                    yield dict(
+                        rig=rig,
+                        bearing=bearing,
+                        fs=fs,
+                        rpm=rpm,
+                        fault=fault,
+                        size=size,
+                        slip=slip,
+                        seed=seed,
+                        spread=SPREADS_M[rng.integers(len(SPREADS_M))],
+                        unbalance=UNBALANCE[rng.integers(len(UNBALANCE))],
+                        clearance=CLEARANCES_M[rng.integers(len(CLEARANCES_M))],
+                    )
 
 
 def build_dataset(cache: Path, progress: bool = True):
@@ -145,7 +153,9 @@ def build_dataset(cache: Path, progress: bool = True):
     from bearingsim.rig import apply_rig, load_rig
 
     path = cache / "sim_to_real.zarr"
-    key = json.dumps([RPMS, SIZES_IN, SLIPS, SPREADS_M, PROFILES, DURATION_S, FEATURES])
+    grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, PROFILES]
+    grid += [DURATION_S, FEATURES]
+    key = json.dumps(grid)
     if path.exists():
         g = zarr.open_group(str(path), mode="r")
         if g.attrs.get("grid") == key:
@@ -157,7 +167,7 @@ def build_dataset(cache: Path, progress: bool = True):
     y = np.empty(len(runs), dtype=np.int64)
     for i, c in enumerate(tqdm(runs, desc="simulate", disable=not progress, file=sys.stderr)):
         sc = dict(
-            model="vsm",
+            model=MODEL,
             bearing=c["bearing"],
             fault=c["fault"],
             rpm=c["rpm"],
@@ -167,6 +177,8 @@ def build_dataset(cache: Path, progress: bool = True):
             slip_percent=c["slip"],
             ball_diameter_spread_m=c["spread"],
         )
+        sc["unbalance_n"] = c["unbalance"] * math.hypot(SEED_FX_N, SEED_FY_N)
+        sc["clearance_m"] = c["clearance"]
         if c["fault"] != "none":
             sc["defect_width_m"] = c["size"] * 0.0254
         r = apply_rig(simulate(sc), rigs[c["rig"]], seed=c["seed"])

@@ -79,3 +79,18 @@ def test_cli_without_a_task_is_a_usage_error():
     r = subprocess.run([sys.executable, str(ROOT / "examples" / "sim_to_real.py")],
                        capture_output=True, text=True)  # fmt: skip
     assert r.returncode == 2 and "give --predict FILE... or --evaluate" in r.stderr
+
+
+def test_grid_draws_every_machine_fact_and_is_reproducible():
+    """Each run draws the unpublished machine facts (ball spread, unbalance, clearance) from
+    their sets; over the grid every value occurs for every fault, and the draw is the same on
+    every call (the cache key does not change under a user)."""
+    m = _module()
+    runs = list(m._grid())
+    assert runs == list(m._grid())
+    assert len(runs) == len(m.PROFILES) * len(m.RPMS) * len(m.SLIPS) * (1 + 3 * len(m.SIZES_IN))
+    for fault in m.LABELS:
+        sub = [r for r in runs if r["fault"] == fault]
+        assert {r["spread"] for r in sub} == set(m.SPREADS_M)
+        assert {r["unbalance"] for r in sub} == set(m.UNBALANCE)
+        assert {r["clearance"] for r in sub} == set(m.CLEARANCES_M)

@@ -410,11 +410,17 @@ class RingScenario(Scenario):
                                                     G20 1e-6, G40 2e-6); unequal ball loads,
                                                     hence FTF lines with a race fault; 0 =
                                                     identical balls; at most 1e-5
+    ``unbalance_n``                 0.0             amplitude of a radial force turning with the
+                                                    shaft [N] (rotor unbalance m e w^2; ISO
+                                                    21940-11 grades); less than the load
+                                                    ``hypot(fx_n, fy_n)``
     ``mass_kg``                     by fault        vibrating mass m [kg]; seed table 1: 0.063
                                                     (outer ring, also ``none``), 0.045 (inner)
     ``damping_n_s_per_m``           300.0           c_eq [N s/m] (seed table 1)
     ``stiffness_n_per_m1_5``        Hertz           ball constant K [N/m^1.5] override (eq. (10))
-    ``clearance_m``                 bearing         diametral clearance P_d [m] override (>= 0)
+    ``clearance_m``                 bearing         diametral clearance P_d [m] override;
+                                                    negative = preload (dem, tvsm; the vsm
+                                                    needs >= 0), within +/- ISO 5753-1 group 5
     ``retention_factor``            eq. (11)        prescribed constant gamma in [0, 1] for a ball
                                                     over the defect (seed figs. 6–7)
     ``load_zone_half_angle_deg``    contact         fixed load-zone half angle psi_L (seed eq. (14)
@@ -454,6 +460,7 @@ class RingScenario(Scenario):
         "noise_rms_m_per_s2",
         "slip_percent",
         "ball_diameter_spread_m",
+        "unbalance_n",
         "mass_kg",
         "damping_n_s_per_m",
         "stiffness_n_per_m1_5",
@@ -487,6 +494,7 @@ class RingScenario(Scenario):
     noise_rms_m_per_s2: float = 0.0
     slip_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
+    unbalance_n: float = 0.0
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
     stiffness_n_per_m1_5: float | None = None
@@ -535,6 +543,18 @@ class RingScenario(Scenario):
                 unit="m",
             ),
         )
+        s(
+            self,
+            "unbalance_n",
+            check_range(
+                "unbalance_n",
+                self.unbalance_n,
+                0.0,
+                math.hypot(self.fx_n, self.fy_n),
+                hi_open=True,
+                unit="N",
+            ),
+        )
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
         s(
@@ -549,7 +569,8 @@ class RingScenario(Scenario):
                 check_positive("stiffness_n_per_m1_5", self.stiffness_n_per_m1_5, "N/m^1.5"),
             )
         if self.clearance_m is not None:
-            s(self, "clearance_m", check_range("clearance_m", self.clearance_m, 0.0, unit="m"))
+            # negative = preload, bounded by the bearing (dynamics.ring.base.ModelInputs)
+            s(self, "clearance_m", check_range("clearance_m", self.clearance_m, unit="m"))
         if self.retention_factor is not None:
             s(
                 self,

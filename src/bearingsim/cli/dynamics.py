@@ -115,10 +115,10 @@ def _opt(f):
         deprecated("--stiffness", "--stiffness-n-per-m1.5"),
         click.option(
             "--clearance-m",
-            type=Number(0.0, unit="m"),
+            type=Number(unit="m"),
             default=None,
             show_default="the bearing's",
-            help="Diametral clearance P_d [m].",
+            help="Diametral clearance P_d [m]; negative = preload (dem, tvsm).",
         ),
         click.option(
             "--retention-factor",

@@ -99,7 +99,8 @@ P_SLIPDT = 37  #: nominal ball-pass period 2 pi / (Z w_cage) [s]
 P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min_inner) [m]
 P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
 P_BDEV = 40  #: offset in ``p`` of the Z ball-diameter deviations Delta D_j (0 = none) [-]
-HEADER = 41  #: first table entry
+P_FU = 41  #: amplitude of a force rotating with the shaft (unbalance) F_u [N]
+HEADER = 42  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -314,12 +315,24 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
 
 
 @njit(cache=True, inline="always")
-def ball_clearance(p, j, clr):
+def applied_force(t, p):
+    """Force on the inner ring at ``t`` [N]: the constant ``(F_x, F_y)`` plus, with an
+    unbalance, ``F_u (sin w_s t, cos w_s t)`` turning with the shaft (azimuth from +y towards
+    +x, the sense of the balls' eq. (12))."""
+    fu = p[P_FU]
+    if fu == 0.0:
+        return p[P_FX], p[P_FY]
+    ph = p[P_WSHAFT] * t
+    return p[P_FX] + fu * math.sin(ph), p[P_FY] + fu * math.cos(ph)
+
+
+@njit(cache=True, inline="always")
+def ball_clearance(p, off, j, clr):
     """Half clearance ``P_d/2`` less ball ``j``'s diameter deviation ``Delta D_j`` [m]: a ball
     larger than nominal by ``Delta D_j`` closes the gap between the raceways along its line by
     its whole ``Delta D_j`` (it touches both races), so its nominal deflection is
-    ``u.e_j - P_d/2 + Delta D_j``. ``clr`` itself without deviations (``p[P_BDEV] == 0``)."""
-    off = int(p[P_BDEV])
+    ``u.e_j - P_d/2 + Delta D_j``. ``off = int(p[P_BDEV])`` (read once by the caller); ``clr``
+    itself without deviations (``off == 0``)."""
     return clr if off == 0 else clr - p[off + j]
 
 
@@ -373,8 +386,9 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     zf = np.empty(Z)
     dof = np.empty(Z)
     clj = np.empty(Z)
+    boff = int(p[P_BDEV])
     for j in range(Z):
-        clj[j] = ball_clearance(p, j, p[P_CLR])
+        clj[j] = ball_clearance(p, boff, j, p[P_CLR])
     wc = p[P_WCAGE]
     a0 = p[P_ALPHA0]
     fault = p[P_FAULT]
@@ -406,6 +420,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     py = math.nan
     for i in range(times.size):
         t = times[i]
+        fx, fy = applied_force(t, p)
         # ---- ball positions and defect/zone indicators (eqs. 12-15)
         th = wc * t + a0
         if p[P_SLIP] > 0.0:
@@ -471,7 +486,10 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                         kxx += kk * a * a
                         kxy += kk * a * b
                         kyy += kk * b * b
-                        sk = q / ue  # secant from the concentric position
+                        # secant from the concentric position (P_d >= 0: ue > 0 when loaded;
+                        # a preloaded ball at ue <= 0 has none: only the VSM uses it, and
+                        # the VSM refuses P_d < 0)
+                        sk = q / ue if ue > 0.0 else 0.0
                         lxx += sk * a * a
                         lxy += sk * a * b
                         lyy += sk * b * b
@@ -580,10 +598,11 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     dbeta = p[P_DBETA]
     clr, doff, dfac, K, n = constants(p)
     doffi = p[P_DOFFI]
+    boff = int(p[P_BDEV])
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
-        cl = ball_clearance(p, j, clr)
+        cl = ball_clearance(p, boff, j, clr)
         q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
         if q > 0.0:
             n_loaded += 1

@@ -32,6 +32,7 @@ from ...geometry import (
     Defect,
     Race,
     characteristic_frequencies,
+    check_clearance,
     defect_geometry,
 )
 from ..integrate import call_compiled, run_adaptive, run_fixed
@@ -82,7 +83,9 @@ class ModelInputs:
     stiffness : float or None
         Ball load–deflection constant K [N/m^1.5] overriding the Hertz value (seed eq. (10)).
     clearance : float or None
-        Diametral clearance P_d [m] overriding the bearing's.
+        Diametral clearance P_d [m] overriding the bearing's; negative = a preloaded bearing
+        (every ball loaded), within the ISO 5753-1 group 5 limit of the bore. The VSM (secant
+        stiffness) needs ``P_d >= 0``: :meth:`require_clearance`.
     retention_factor : float or None
         Prescribed constant ``gamma`` for a ball over the defect (seed figs. 6–7); ``None``
         evaluates eq. (11) implicitly from the geometric drop ``h_min``.
@@ -104,6 +107,10 @@ class ModelInputs:
         Largest minus smallest ball diameter of the set [m] (0: identical balls). ISO 3290-1
         calls it the lot diameter variation V_DwL and bounds it by grade: G5 0.25, G10 0.5,
         G16 0.8, G20 1.0, G28 1.4, G40 2.0 µm. See :meth:`ball_deviations`.
+    unbalance : float
+        Amplitude F_u of a radial force turning with the shaft [N] (rotor unbalance
+        ``m e w_s^2``), added to ``(fx, fy)`` as ``F_u (sin w_s t, cos w_s t)``; less than
+        ``|(fx, fy)|`` so that the load never vanishes. 0: a constant load (the seed's).
     """
 
     bearing: Bearing
@@ -122,6 +129,7 @@ class ModelInputs:
     slip: float = 0.0
     slip_seed: int = 0
     ball_diameter_spread: float = 0.0
+    unbalance: float = 0.0
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -154,7 +162,9 @@ class ModelInputs:
                 self, "stiffness", check_positive("stiffness_n_per_m1_5", self.stiffness, "N/m^1.5")
             )
         pd = b.diametral_clearance if self.clearance is None else self.clearance
-        pd = check_range("clearance_m", pd, 0.0, 0.5 * b.element_diameter, unit="m")
+        # negative = preload (negative operating clearance after fits and heat; Harris &
+        # Kotzalas 2007, ch. 7: every ball loaded); the VSM refuses it (require_clearance)
+        pd = check_clearance(b, pd, name="clearance_m", hi=0.5 * b.element_diameter)
         if self.clearance is not None:
             object.__setattr__(self, "clearance", pd)
         if self.retention_factor is not None:
@@ -184,6 +194,13 @@ class ModelInputs:
         object.__setattr__(self, "tol", check_range("tol", self.tol, 0.0, 1e-6, lo_open=True))
         object.__setattr__(
             self,
+            "unbalance",
+            check_range(
+                "unbalance_n", self.unbalance, 0.0, math.hypot(fx, fy), hi_open=True, unit="N"
+            ),
+        )
+        object.__setattr__(
+            self,
             "ball_diameter_spread",
             check_range(
                 "ball_diameter_spread_m",
@@ -193,6 +210,18 @@ class ModelInputs:
                 unit="m",
             ),
         )
+
+    def require_clearance(self, who: str) -> None:
+        """Refuse a negative clearance for ``who`` (the VSM and its static trace): their
+        secant stiffness ``Q_j / (u.e_j)`` is measured from the concentric position, where a
+        preloaded ball already carries load (seed VSM eqs. (17)-(18))."""
+        pd = self.diametral_clearance
+        if pd < 0.0:
+            raise ConfigError(
+                f"clearance_m = {pd:.6g} m (a preload) is out of range for {who}: its secant "
+                "stiffness needs P_d >= 0; valid range [0, inf) m, or model dem/tvsm for a "
+                "preloaded bearing"
+            )
 
     @property
     def diametral_clearance(self) -> float:
@@ -275,6 +304,7 @@ class ModelInputs:
         p[bl.P_DAMP] = self.damping
         p[bl.P_FX] = self.fx
         p[bl.P_FY] = self.fy
+        p[bl.P_FU] = self.unbalance
         p[bl.P_Z] = self.bearing.n_elements
         p[bl.P_K] = self.k_ball
         p[bl.P_N] = 1.5

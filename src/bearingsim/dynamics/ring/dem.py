@@ -45,6 +45,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     K = p[bl.P_K]
     n = p[bl.P_N]
     step = bl.TWO_PI / Z
+    boff = int(p[bl.P_BDEV])
     gx = 0.0
     gy = 0.0
     jxx = 0.0
@@ -53,7 +54,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     for j in range(Z):
         # a ball over the defect loses the geometric drop h_min from its deflection
         fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
-        cl = bl.ball_clearance(p, j, clr)  # a ball's diameter deviation, if any
+        cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
         q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
         if q > 0.0:
             gx += q * s0
@@ -126,8 +127,9 @@ def _dem_rhs(t, y, p, dydt):
     c = p[bl.P_DAMP]
     dydt[0] = y[2]
     dydt[1] = y[3]
-    dydt[2] = (p[bl.P_FX] - gx - c * y[2]) / m  # DEM equation of motion
-    dydt[3] = (p[bl.P_FY] - gy - c * y[3]) / m
+    f0x, f0y = bl.applied_force(t, p)
+    dydt[2] = (f0x - gx - c * y[2]) / m  # DEM equation of motion
+    dydt[3] = (f0y - gy - c * y[3]) / m
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -136,8 +138,9 @@ def _dem_aux(t, y, p, out):
     gx, gy, jxx, jxy, jyy = _dem_force(t, y[0], y[1], p, True)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
-    ax = (p[bl.P_FX] - gx - c * y[2]) / m
-    ay = (p[bl.P_FY] - gy - c * y[3]) / m
+    f0x, f0y = bl.applied_force(t, p)
+    ax = (f0x - gx - c * y[2]) / m
+    ay = (f0y - gy - c * y[3]) / m
     bl.fill_aux_common(t, p, y[0], y[1], jxx, jxy, jyy, ax, ay, out)
 
 

@@ -100,6 +100,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         slip=scenario.slip_percent / 100.0,
         slip_seed=scenario.seed,
         ball_diameter_spread=scenario.ball_diameter_spread_m,
+        unbalance=scenario.unbalance_n,
     )
 
 
@@ -169,6 +170,8 @@ def plan_ring(
     (:mod:`..budget`). Bad values raise a one-line :class:`~bearingsim.errors.ConfigError`.
     """
     inputs = model_inputs(scenario)
+    if KERNELS[scenario.model].stiffness == "secant":
+        inputs.require_clearance(f"model {scenario.model.value}")
     check_load(
         inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name="|(fx_n, fy_n)|"
     )
@@ -313,6 +316,10 @@ def run_ring(
             "seed": scenario.seed,
             "model": "cage speed w_cage (1 + s_k) over each ball-pass period, s_k ~ "
             "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]) (ModelInputs.slip_table)",
+        },
+        "unbalance": {
+            "force_n": scenario.unbalance_n,
+            "model": "F_u (sin w_s t, cos w_s t) added to (fx_n, fy_n), turning with the shaft",
         },
         "ball_diameters": {
             "spread_m": scenario.ball_diameter_spread_m,

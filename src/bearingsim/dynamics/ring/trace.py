@@ -367,6 +367,7 @@ def stiffness_trace(
         ``2 C_0``); ``True`` runs an overload anyway, ``None`` skips the check.
     """
     check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name=_RADIAL)
+    inputs.require_clearance("the VSM stiffness trace")
     if cage_angle is None:
         if not (isinstance(n_points, int) and n_points >= 2):
             raise ConfigError(f"n_points = {n_points!r} is invalid; valid range [2, inf) integer")

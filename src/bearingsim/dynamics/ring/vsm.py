@@ -39,12 +39,13 @@ __all__ = ["KERNEL"]
 
 
 @njit(cache=True)
-def _acc(y, p, row, r):
+def _acc(t, y, p, row, r):
     """Seed VSM eq. (19) with the secant matrix ``S`` at ``row[r:]``: acceleration [m/s^2]."""
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
-    fx = p[bl.P_FX] - row[r + bl.C_SXX] * y[0] - row[r + bl.C_SXY] * y[1]
-    fy = p[bl.P_FY] - row[r + bl.C_SXY] * y[0] - row[r + bl.C_SYY] * y[1]
+    f0x, f0y = bl.applied_force(t, p)
+    fx = f0x - row[r + bl.C_SXX] * y[0] - row[r + bl.C_SXY] * y[1]
+    fy = f0y - row[r + bl.C_SXY] * y[0] - row[r + bl.C_SYY] * y[1]
     return (fx - c * y[2]) / m, (fy - c * y[3]) / m
 
 
@@ -57,8 +58,9 @@ def _vsm_rhs(t, y, p, dydt):
     r = bl.HEADER + bl.NCOL * j
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
-    fx = p[bl.P_FX] - p[r + bl.C_SXX] * y[0] - p[r + bl.C_SXY] * y[1]
-    fy = p[bl.P_FY] - p[r + bl.C_SXY] * y[0] - p[r + bl.C_SYY] * y[1]
+    f0x, f0y = bl.applied_force(t, p)
+    fx = f0x - p[r + bl.C_SXX] * y[0] - p[r + bl.C_SXY] * y[1]
+    fy = f0y - p[r + bl.C_SXY] * y[0] - p[r + bl.C_SYY] * y[1]
     dydt[0] = y[2]
     dydt[1] = y[3]
     dydt[2] = (fx - c * y[2]) / m  # seed VSM eq. (19), x
@@ -70,7 +72,7 @@ def _vsm_aux(t, y, p, out):
     """VSM auxiliary outputs (see :mod:`.common`); point values at the sample instant."""
     buf = np.empty(bl.NCOL)
     src, r = bl.output_row(t, p, buf)
-    ax, ay = _acc(y, p, src, r)
+    ax, ay = _acc(t, y, p, src, r)
     bl.fill_aux_row(t, p, src, r, bl.C_SXX, ax, ay, out)
 
 
@@ -79,7 +81,7 @@ def _vsm_rhs_exact(t, y, p, dydt):
     """VSM right-hand side solving the static balance at ``t`` (any time)."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
-    ax, ay = _acc(y, p, row, 0)
+    ax, ay = _acc(t, y, p, row, 0)
     dydt[0] = y[2]
     dydt[1] = y[3]
     dydt[2] = ax
@@ -91,7 +93,7 @@ def _vsm_aux_exact(t, y, p, out):
     """VSM auxiliary outputs with the on-the-fly static solve."""
     row = np.empty(bl.NCOL)
     bl.static_on_the_fly(t, p, row, False)
-    ax, ay = _acc(y, p, row, 0)
+    ax, ay = _acc(t, y, p, row, 0)
     bl.fill_aux_row(t, p, row, 0, bl.C_SXX, ax, ay, out)
 
 
