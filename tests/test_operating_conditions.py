@@ -138,3 +138,16 @@ def re_escape(s: str) -> str:
 def test_unbalance_is_recorded_in_the_result():
     r = simulate(dict(model="dem", duration_s=0.05, fs_hz=12000.0, unbalance_n=5.0))
     assert r.meta["unbalance"]["force_n"] == 5.0
+
+
+def test_machine_facts_survive_save_and_load(tmp_path):
+    from bearingsim.results import SimulationResult
+
+    sc = dict(model="dem", duration_s=0.05, fs_hz=12000.0, clearance_m=-4e-6, unbalance_n=5.0)
+    r = simulate(sc | {"ball_diameter_spread_m": 1e-6})
+    r.save(tmp_path / "r.nc")
+    back = SimulationResult.load(tmp_path / "r.nc")
+    assert back.meta["ball_diameters"] == r.meta["ball_diameters"]
+    assert back.meta["unbalance"] == r.meta["unbalance"]
+    assert back.scenario["clearance_m"] == -4e-6
+    np.testing.assert_array_equal(back["acc_y"], r["acc_y"])
