@@ -219,8 +219,8 @@ class ModelInputs:
         if pd < 0.0:
             raise ConfigError(
                 f"clearance_m = {pd:.6g} m (a preload) is out of range for {who}: its secant "
-                "stiffness needs P_d >= 0; valid range [0, inf) m, or model dem/tvsm for a "
-                "preloaded bearing"
+                "stiffness needs P_d >= 0; valid range [0, inf) m (simulate a preloaded bearing "
+                "with model dem or tvsm)"
             )
 
     @property
