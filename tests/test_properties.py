@@ -204,6 +204,7 @@ RING_KEYS = {
     "retention_factor": numbers(0.0, 1.0),
     "ball_diameter_spread_m": numbers(-1e-6, 2e-5),
     "unbalance_n": numbers(-1.0, 100.0),
+    "pocket_jitter_percent": numbers(-1.0, 12.0),
     "noise_rms_m_per_s2": numbers(0.0, 10.0),
     "seed": numbers(0, 100),
     "fault": st.sampled_from(["none", "outer", "inner", "ball", 3, None]),

@@ -100,3 +100,47 @@ def test_rotor_slip_is_seeded_and_zero_slip_unchanged():
     assert_array_equal(a["acc_y"], b["acc_y"])
     assert not np.array_equal(a["acc_y"], k["acc_y"])
     assert np.std(a["acc_y"]) == pytest.approx(np.std(k["acc_y"]), rel=0.2)
+
+
+def test_pocket_jitter_keeps_the_phase_locked_while_slip_lets_it_wander():
+    """Both jitter each ball-pass interval by the given share of the period; the cage-speed
+    process (renewal) lets the pass instants drift from k T like a random walk, the pocket
+    jitter keeps them within a fixed spread of k T."""
+    from bearingsim.dynamics.slip import ball_pass_instants
+
+    z, f_cage, dur = 9, 12.0, 200.0
+    t_s, dt = ball_pass_instants(z, f_cage, 0.015, dur, (5, 1))
+    t_j, _ = ball_pass_instants(z, f_cage, 0.0, dur, (5, 1), jitter=0.015)
+    k = np.arange(t_s.size)
+    for t in (t_s, t_j):
+        iv = np.diff(t) / dt
+        assert np.std(iv) == pytest.approx(0.015, rel=0.05)
+        assert np.mean(iv) == pytest.approx(1.0, abs=2e-3)
+    dev_s = (t_s - k * dt) / dt
+    dev_j = (t_j - k * dt) / dt
+    late = slice(t_s.size // 2, None)
+    assert np.std(dev_j[late]) == pytest.approx(0.015 / math.sqrt(2), rel=0.05)  # bounded
+    assert np.std(dev_s[late]) > 20 * np.std(dev_j[late])  # drifted ~sqrt(k) x 1.5 %
+    # without jitter the instants are the cage-speed process's, bit for bit
+    t_0, _ = ball_pass_instants(z, f_cage, 0.015, dur, (5, 1), jitter=0.0)
+    assert_array_equal(t_0, t_s)
+
+
+def test_pocket_jitter_reaches_the_kernels_and_is_checked():
+    b = get_bearing("6205")
+    inp = ModelInputs(bearing=b, fx=10.0, fy=50.0, shaft_hz=29.2, jitter=0.02, slip_seed=3)
+    iv = _pass_intervals(inp, 25.0)  # on the compiled phase
+    assert np.std(iv) / np.mean(iv) == pytest.approx(0.02, rel=0.1)
+    a = simulate(SC | {"pocket_jitter_percent": 1.5, "seed": 2})
+    assert_array_equal(
+        a["acc_y"], simulate(SC | {"pocket_jitter_percent": 1.5, "seed": 2})["acc_y"]
+    )
+    assert not np.array_equal(a["acc_y"], simulate(SC)["acc_y"])
+    assert a.meta["slip"]["pocket_jitter_percent"] == 1.5
+    with pytest.raises(ConfigError, match="pocket_jitter_percent = 1 % needs solver = 'rk4'"):
+        simulate(SC | {"pocket_jitter_percent": 1.0, "solver": "dopri5"})
+    with pytest.raises(ConfigError, match=r"pocket_jitter_percent = 11 % is out of range"):
+        simulate(SC | {"pocket_jitter_percent": 11.0})
+    r = simulate(dict(model="rotor", de_fault="outer", duration_s=0.05, fs_hz=12000.0,
+                      pocket_jitter_percent=1.5))  # fmt: skip
+    assert np.all(np.isfinite(r["acc_y"]))

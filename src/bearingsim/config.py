@@ -355,6 +355,18 @@ def _check_bearing(sc: Any, default: str) -> None:
         raise ConfigError(f"bearing = {sc.bearing!r} is invalid; valid: a catalogue id")
 
 
+def _jitter(sc: Scenario, needs_rk4: bool = True) -> None:
+    """Check ``pocket_jitter_percent`` (at most 10 %; the ring models' adaptive solver reads no
+    pass-instant table, so there it needs ``solver = "rk4"``)."""
+    v = check_range("pocket_jitter_percent", sc.pocket_jitter_percent, 0.0, 10.0, unit="%")
+    object.__setattr__(sc, "pocket_jitter_percent", v)
+    if needs_rk4 and v > 0.0 and sc.solver is not Solver.RK4:
+        raise ConfigError(
+            f"pocket_jitter_percent = {v:g} % needs solver = 'rk4' (the adaptive solver has no "
+            f"slip); valid: pocket_jitter_percent = 0 with solver = '{sc.solver.value}'"
+        )
+
+
 def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
     """A ``rig`` key: a loadable rig (one-line errors), its modes below the output's Nyquist
     frequency, its input one of the family's acceleration channels."""
@@ -405,6 +417,11 @@ class RingScenario(Scenario):
                                                     ball-pass interval [% of its mean], 1–2 in
                                                     real bearings (Randall & Antoni 2011); 0 =
                                                     kinematic; needs ``solver = "rk4"``
+    ``pocket_jitter_percent``       0.0             balls wandering in their pockets: standard
+                                                    deviation of each ball-pass interval [%]
+                                                    from independent moves of the pass instants
+                                                    (no phase drift, unlike ``slip_percent``);
+                                                    needs ``solver = "rk4"``
     ``ball_diameter_spread_m``      0.0             largest minus smallest ball diameter [m]
                                                     (ISO 3290-1 lot variation V_DwL: G10 0.5e-6,
                                                     G20 1e-6, G40 2e-6); unequal ball loads,
@@ -459,6 +476,7 @@ class RingScenario(Scenario):
         "seed",
         "noise_rms_m_per_s2",
         "slip_percent",
+        "pocket_jitter_percent",
         "ball_diameter_spread_m",
         "unbalance_n",
         "mass_kg",
@@ -493,6 +511,7 @@ class RingScenario(Scenario):
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
     slip_percent: float = 0.0
+    pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
     unbalance_n: float = 0.0
     mass_kg: float | None = None
@@ -532,6 +551,7 @@ class RingScenario(Scenario):
                 f"solver has no slip); valid: slip_percent = 0 with solver = "
                 f"'{self.solver.value}'"
             )
+        _jitter(self)
         s(
             self,
             "ball_diameter_spread_m",
@@ -655,6 +675,10 @@ class RotorScenario(Scenario):
                                                         a DAQ)
     ``slip_percent``                    0.0             random slip of each bearing's cage: standard
                                                         deviation of each ball-pass interval [%]
+    ``pocket_jitter_percent``           0.0             balls wandering in their pockets: standard
+                                                        deviation of each ball-pass interval [%]
+                                                        from independent moves of the pass
+                                                        instants (no phase drift)
     ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
     ``per_ball``                        false           also store per-ball contact forces
     ``rig``                             –               measurement chain applied to the output
@@ -685,6 +709,7 @@ class RotorScenario(Scenario):
         "seed",
         "noise_rms_m_per_s2",
         "slip_percent",
+        "pocket_jitter_percent",
         "disks",
         "disk_positions_mm",
         "distributed_rotor",
@@ -716,6 +741,7 @@ class RotorScenario(Scenario):
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
     slip_percent: float = 0.0
+    pocket_jitter_percent: float = 0.0
     disks: int = SEED_ROTOR_DISKS
     disk_positions_mm: tuple[float, ...] | None = None
     distributed_rotor: bool = False
@@ -783,6 +809,7 @@ class RotorScenario(Scenario):
         for name in ("distributed_rotor", "gravity", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
         s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
+        _jitter(self, needs_rk4=False)
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 
     @property

@@ -8,6 +8,13 @@ deviation ``slip``, so the ball-pass intervals are ``T / (1 + s_k)``: jittered b
 their period, the mean speed the FTF, the phase a random walk. Between two passes the cage turns
 uniformly. The compiled kernels read the tabulated pass instants ``t_k`` (the cage at
 ``k 2 pi / Z``, ``t_0 = 0``).
+
+Pocket jitter (the balls wander within their cage pockets): each pass instant moves by an
+independent ``e_k T`` around where the cage-speed process puts it, so the intervals jitter
+(standard deviation ``jitter`` of the period) but the phase does not drift: after many passes
+the pattern is still locked to the cage. The cage-speed process (a renewal process, Antoni &
+Randall 2003) lets the phase wander without bound, which spreads the envelope spectrum's lines
+into a raised floor; the pocket jitter smears the high harmonics only. Both may act together.
 """
 
 from __future__ import annotations
@@ -22,16 +29,32 @@ __all__ = ["ball_pass_instants", "cage_angle"]
 
 
 def ball_pass_instants(
-    n_balls: int, cage_hz: float, slip: float, duration: float, seed: tuple[int, ...]
+    n_balls: int,
+    cage_hz: float,
+    slip: float,
+    duration: float,
+    seed: tuple[int, ...],
+    jitter: float = 0.0,
 ) -> tuple[NDArray[np.float64], float]:
     """The ball-pass instants ``t_k`` [s] covering ``duration`` [s] and the nominal period
-    ``1 / (Z f_cage)`` [s] (see the module docstring); the jitter comes from
-    ``numpy.random.SeedSequence(seed)`` (a stream of its own, apart from any noise)."""
+    ``1 / (Z f_cage)`` [s] (see the module docstring): the cage-speed process ``slip`` from
+    ``numpy.random.SeedSequence(seed)`` and the pocket ``jitter`` from ``SeedSequence(seed +
+    (3,))`` (streams of their own, apart from any noise; without jitter the instants are those
+    of the cage-speed process alone, bit for bit)."""
     dt = 1.0 / (n_balls * cage_hz)
     n = int(math.ceil(1.1 * duration / dt)) + 4
     rng = np.random.default_rng(np.random.SeedSequence(list(seed)))
     s = np.clip(slip * rng.standard_normal(n - 1), -0.5, 0.5)
-    return np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))]), dt
+    t = np.concatenate([[0.0], np.cumsum(dt / (1.0 + s))])
+    if jitter > 0.0:
+        # each instant moves by e_k dt, e_k ~ N(0, jitter^2 / 2) independent, so an interval
+        # (t_k - t_{k-1}) has the standard deviation jitter dt; |e_k| <= 0.2 keeps the instants
+        # ordered (intervals >= dt / 1.5 - 0.4 dt > 0)
+        rj = np.random.default_rng(np.random.SeedSequence([*seed, 3]))
+        e = np.clip(jitter / math.sqrt(2.0) * rj.standard_normal(n), -0.2, 0.2)
+        e[0] = 0.0  # the cage starts where the scenario puts it
+        t = t + dt * e
+    return t, dt
 
 
 @njit(cache=True, inline="always")

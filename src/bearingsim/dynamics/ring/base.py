@@ -99,6 +99,10 @@ class ModelInputs:
         Random slip: standard deviation of each ball-pass interval relative to its mean [-]
         (0: the cage turns at the FTF exactly). Literature: 0.01–0.02 (Randall & Antoni 2011,
         MSSP 25). See :meth:`slip_table`.
+    jitter : float
+        Pocket jitter: standard deviation of each ball-pass interval from independent moves of
+        the pass instants around the cage-speed process, relative to the period [-] (the balls
+        wander within their pockets; no phase drift). See :mod:`bearingsim.dynamics.slip`.
     slip_seed : int
         Seed of the slip process (``numpy.random.SeedSequence([slip_seed, 1])``: a stream of
         its own, apart from the measurement noise's ``default_rng(seed)``) and of the ball
@@ -128,6 +132,7 @@ class ModelInputs:
     tol: float = 1e-12
     slip: float = 0.0
     slip_seed: int = 0
+    jitter: float = 0.0
     ball_diameter_spread: float = 0.0
     unbalance: float = 0.0
 
@@ -193,6 +198,9 @@ class ModelInputs:
             defect_geometry(b, self.defect)  # validates the width against the ball
         object.__setattr__(self, "tol", check_range("tol", self.tol, 0.0, 1e-6, lo_open=True))
         object.__setattr__(
+            self, "jitter", check_range("pocket_jitter", self.jitter, 0.0, 0.1, unit="")
+        )
+        object.__setattr__(
             self,
             "unbalance",
             check_range(
@@ -252,7 +260,12 @@ class ModelInputs:
         from ..slip import ball_pass_instants
 
         return ball_pass_instants(
-            self.bearing.n_elements, self.cage_hz, self.slip, duration, (int(self.slip_seed), 1)
+            self.bearing.n_elements,
+            self.cage_hz,
+            self.slip,
+            duration,
+            (int(self.slip_seed), 1),
+            self.jitter,
         )
 
     def ball_deviations(self) -> NDArray[np.float64]:
@@ -458,7 +471,7 @@ def integrate_model(
     header[bl.P_CELL] = 1.0 if cell_average else 0.0
     header[bl.P_HTAB] = h
     slip = np.zeros(0)
-    if inputs.slip > 0.0:  # the slip table goes at the end of every parameter vector
+    if inputs.slip > 0.0 or inputs.jitter > 0.0:  # the slip table goes at the end of p
         slip, sdt = inputs.slip_table(n_out / fs)
         header[bl.P_SLIPN] = slip.size
         header[bl.P_SLIPDT] = sdt

@@ -99,6 +99,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         ),
         slip=scenario.slip_percent / 100.0,
         slip_seed=scenario.seed,
+        jitter=scenario.pocket_jitter_percent / 100.0,
         ball_diameter_spread=scenario.ball_diameter_spread_m,
         unbalance=scenario.unbalance_n,
     )
@@ -313,9 +314,12 @@ def run_ring(
         },
         "slip": {
             "interval_sd_percent": scenario.slip_percent,
+            "pocket_jitter_percent": scenario.pocket_jitter_percent,
             "seed": scenario.seed,
             "model": "cage speed w_cage (1 + s_k) over each ball-pass period, s_k ~ "
-            "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]) (ModelInputs.slip_table)",
+            "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]); pocket jitter: each pass "
+            "instant moved by e_k T, e_k ~ N(0, jitter^2/2) from SeedSequence([seed, 1, 3]) "
+            "(ModelInputs.slip_table, dynamics.slip)",
         },
         "unbalance": {
             "force_n": scenario.unbalance_n,

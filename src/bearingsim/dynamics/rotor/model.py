@@ -476,7 +476,12 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
 
 
 def _with_slip(
-    model: PackedModel, config: RotorConfig, slip: float, seed: int, duration: float
+    model: PackedModel,
+    config: RotorConfig,
+    slip: float,
+    seed: int,
+    duration: float,
+    jitter: float = 0.0,
 ) -> PackedModel:
     """``model`` with each bearing's ball-pass instants (random slip) appended to ``p``."""
     from ..slip import ball_pass_instants
@@ -487,7 +492,7 @@ def _with_slip(
     for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
         b = sup.bearing
         ftf = characteristic_frequencies(b, config.shaft_hz).ftf_hz
-        t_k, dt = ball_pass_instants(b.n_elements, ftf, slip, duration, (int(seed), 1, e))
+        t_k, dt = ball_pass_instants(b.n_elements, ftf, slip, duration, (int(seed), 1, e), jitter)
         o = int(p[key])
         p[o + rk.B_SLIP] = off
         p[o + rk.B_SLIPN] = t_k.size
@@ -767,6 +772,7 @@ def simulate_rotor(
     budget: Budget | None = None,
     slip: float = 0.0,
     slip_seed: int = 0,
+    jitter: float = 0.0,
 ) -> RotorResponse:
     """Simulate the bearing–rotor–housing system from static equilibrium.
 
@@ -802,6 +808,9 @@ def simulate_rotor(
         (:mod:`bearingsim.dynamics.slip`), each bearing's cage its own process; 0 = kinematic.
     slip_seed : int
         Seed of the slip processes (``SeedSequence([slip_seed, 1, end])``, end 0 DE, 1 FE).
+    jitter : float
+        Pocket jitter: standard deviation of each ball-pass interval from independent moves of
+        the pass instants (no phase drift) [-] (:mod:`bearingsim.dynamics.slip`).
 
     Returns
     -------
@@ -814,8 +823,8 @@ def simulate_rotor(
     model, y0, fs, q, decim = plan.model, plan.y0, plan.fs, plan.q, plan.decim
     method, cutoff = plan.method, plan.cutoff
     duration = check_positive("duration_s", duration, "s")
-    if slip > 0.0:
-        model = _with_slip(model, config, slip, slip_seed, duration)
+    if slip > 0.0 or jitter > 0.0:
+        model = _with_slip(model, config, slip, slip_seed, duration, jitter)
     fs_int = q * fs
     na = n_aux(model, ball_forces)
     if method == "rk4":

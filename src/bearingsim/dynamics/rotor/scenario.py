@@ -134,6 +134,7 @@ def run_rotor(
         budget=budget,
         slip=scenario.slip_percent / 100.0,
         slip_seed=scenario.seed,
+        jitter=scenario.pocket_jitter_percent / 100.0,
     )
     ch: dict[str, np.ndarray] = {}
     units: dict[str, str] = {}
