@@ -26,7 +26,9 @@
    bearingsim[ml]``), trained on the simulated set only. Labels ``none``, ``inner``, ``outer``,
    ``ball`` (the ring models' ball defect, issue 16 item 2).
 
-``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities"}``.
+``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities"}``; a
+record longer than the simulations is cut into pieces of their length (``DURATION_S``) and the
+pieces' class probabilities are averaged (:func:`segments`).
 ``--evaluate`` labels every record of the CWRU folder, prints the accuracy per class and
 overall beside ``bearingsim analyze``'s verdicts on the same records.
 """
@@ -234,12 +236,27 @@ def _record(path: Path):
     return r.x, r.fs, float(r.rpm or 1797.0), "6203-cwru" if end == "FE" else "6205-cwru"
 
 
+def segments(x, fs: float) -> list[np.ndarray]:
+    """The record cut into consecutive pieces of the simulations' length ``DURATION_S`` (the
+    remainder dropped; a shorter record is one piece). Features are levels over the envelope
+    spectrum's floor, and the floor of a line spectrum falls with the record's length (a
+    10 s record's lines stand ~10 dB higher than a 1 s record's): the classifier must see
+    measured features on the same length as the simulated ones it learned."""
+    n = int(round(DURATION_S * fs))
+    x = np.asarray(x, dtype=float)
+    if x.size < 2 * n:
+        return [x[:n] if x.size >= n else x]
+    return [x[i : i + n] for i in range(0, x.size - n + 1, n)]
+
+
 def predict(clf, files):
     for f in files:
         p = Path(f)
         try:
             x, fs, rpm, bearing = _record(p)
-            prob = clf.predict_proba(features(x, fs, rpm, bearing)[None, :])[0]
+            segs = segments(x, fs)
+            feats = np.array([features(seg, fs, rpm, bearing) for seg in segs])
+            prob = clf.predict_proba(feats).mean(axis=0)
         except Exception as exc:  # one bad file is its own line
             err = " ".join(str(exc).split())
             yield {"file": str(p), "predicted": None, "probabilities": None, "error": err}

@@ -94,3 +94,24 @@ def test_grid_draws_every_machine_fact_and_is_reproducible():
         assert {r["spread"] for r in sub} == set(m.SPREADS_M)
         assert {r["unbalance"] for r in sub} == set(m.UNBALANCE)
         assert {r["clearance"] for r in sub} == set(m.CLEARANCES_M)
+
+
+def test_a_long_record_is_judged_on_pieces_of_the_training_length(small):
+    """A measured record longer than the simulations is cut into pieces of their length: the
+    features are levels over the envelope floor, which falls with the record's length."""
+    fs = 12000.0
+    n = int(small.DURATION_S * fs)
+    x = np.arange(int(3.7 * n), dtype=float)
+    pieces = small.segments(x, fs)
+    assert [p.size for p in pieces] == [n, n, n]
+    assert np.array_equal(np.concatenate(pieces), x[: 3 * n])
+    assert [p.size for p in small.segments(x[: n + 10], fs)] == [n]
+    assert [p.size for p in small.segments(x[: n // 2], fs)] == [n // 2]
+    # the reason: the same impulse train's BPFO level over the floor grows with the length
+    from bearingsim import simulate
+
+    r = simulate(dict(model="vsm", fault="outer", duration_s=2.0, fs_hz=fs, slip_percent=1.0))
+    y = r["acc_y"]
+    f_short = small.features(y[: y.size // 2], fs, 1750.0, "6205")[0]
+    f_long = small.features(y, fs, 1750.0, "6205")[0]
+    assert f_long > f_short + 1.5  # 2.7 dB measured (2 s against 1 s)
