@@ -355,6 +355,12 @@ def _check_bearing(sc: Any, default: str) -> None:
         raise ConfigError(f"bearing = {sc.bearing!r} is invalid; valid: a catalogue id")
 
 
+def check_ball_spread(value: object) -> float:
+    """``ball_diameter_spread_m`` [m] within [0, :data:`MAX_BALL_SPREAD_M`], else a one-line
+    :class:`~bearingsim.errors.ConfigError` (ring and rotor scenarios and models)."""
+    return check_range("ball_diameter_spread_m", value, 0.0, MAX_BALL_SPREAD_M, unit="m")
+
+
 def _jitter(sc: Scenario, needs_rk4: bool = True) -> None:
     """Check ``pocket_jitter_percent`` (at most 10 %; the ring models' adaptive solver reads no
     pass-instant table, so there it needs ``solver = "rk4"``)."""
@@ -552,17 +558,7 @@ class RingScenario(Scenario):
                 f"'{self.solver.value}'"
             )
         _jitter(self)
-        s(
-            self,
-            "ball_diameter_spread_m",
-            check_range(
-                "ball_diameter_spread_m",
-                self.ball_diameter_spread_m,
-                0.0,
-                MAX_BALL_SPREAD_M,
-                unit="m",
-            ),
-        )
+        s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         s(
             self,
             "unbalance_n",
@@ -679,6 +675,9 @@ class RotorScenario(Scenario):
                                                         deviation of each ball-pass interval [%]
                                                         from independent moves of the pass
                                                         instants (no phase drift)
+    ``ball_diameter_spread_m``          0.0             largest minus smallest ball diameter in
+                                                        each bearing [m] (ISO 3290-1 lot
+                                                        variation; seeded per bearing)
     ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
     ``per_ball``                        false           also store per-ball contact forces
     ``rig``                             –               measurement chain applied to the output
@@ -710,6 +709,7 @@ class RotorScenario(Scenario):
         "noise_rms_m_per_s2",
         "slip_percent",
         "pocket_jitter_percent",
+        "ball_diameter_spread_m",
         "disks",
         "disk_positions_mm",
         "distributed_rotor",
@@ -742,6 +742,7 @@ class RotorScenario(Scenario):
     noise_rms_m_per_s2: float = 0.0
     slip_percent: float = 0.0
     pocket_jitter_percent: float = 0.0
+    ball_diameter_spread_m: float = 0.0
     disks: int = SEED_ROTOR_DISKS
     disk_positions_mm: tuple[float, ...] | None = None
     distributed_rotor: bool = False
@@ -810,6 +811,7 @@ class RotorScenario(Scenario):
             _bool(name, getattr(self, name))
         s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
         _jitter(self, needs_rk4=False)
+        s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 
     @property

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ...config import MAX_BALL_SPREAD_M, SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG
+from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG, check_ball_spread
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
@@ -208,15 +208,7 @@ class ModelInputs:
             ),
         )
         object.__setattr__(
-            self,
-            "ball_diameter_spread",
-            check_range(
-                "ball_diameter_spread_m",
-                self.ball_diameter_spread,
-                0.0,
-                MAX_BALL_SPREAD_M,
-                unit="m",
-            ),
+            self, "ball_diameter_spread", check_ball_spread(self.ball_diameter_spread)
         )
 
     def require_clearance(self, who: str) -> None:
@@ -280,13 +272,11 @@ class ModelInputs:
         smallest deviation is ``ball_diameter_spread`` exactly, and centres them on zero mean
         (the mean ball keeps the nominal diameter, so the mean clearance is unchanged).
         """
-        Z = self.bearing.n_elements
-        if self.ball_diameter_spread == 0.0 or Z < 2:
-            return np.zeros(0)
-        rng = np.random.default_rng(np.random.SeedSequence([int(self.slip_seed), 2]))
-        u = rng.uniform(size=Z)
-        u = (u - u.min()) / (u.max() - u.min())
-        return self.ball_diameter_spread * (u - u.mean())
+        from ..ballset import ball_deviations
+
+        return ball_deviations(
+            self.bearing.n_elements, self.ball_diameter_spread, (int(self.slip_seed), 2)
+        )
 
     def pack(
         self, q: NDArray[np.float64], slip: NDArray[np.float64] | None = None

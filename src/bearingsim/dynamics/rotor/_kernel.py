@@ -18,11 +18,12 @@ unit vector ``e_j = (sin psi_j, cos psi_j)``.
 Contact deflections (positive = compression), with the diametral clearance ``P_d`` put on the
 outer contact and the raceway groove bottoms at ``D/2 -/+ d/2``::
 
-    delta_in  = D/2 - s_j + u_s . e_j - h_in(psi_j, t)
-    delta_out = s_j - u_h . e_j - D/2 - P_d/2 - h_out(psi_j)
+    delta_in  = D/2 - s_j + u_s . e_j - h_in(psi_j, t) + Delta D_j / 2
+    delta_out = s_j - u_h . e_j - D/2 - P_d/2 - h_out(psi_j) + Delta D_j / 2
 
 (``u_s`` shaft displacement at the bearing node, ``u_h`` housing displacement, ``h`` the extra
-clearance a local defect opens under the ball). Contact force (seed ROTOR eqs. 10–11: Hertz
+clearance a local defect opens under the ball, ``Delta D_j`` ball ``j``'s diameter deviation,
+:mod:`bearingsim.dynamics.ballset`). Contact force (seed ROTOR eqs. 10–11: Hertz
 potential ``2/5 k delta^2.5`` plus linear damping along the compression)::
 
     Q = max(0, k delta^1.5 + c d(delta)/dt)  for delta > 0,   0 otherwise
@@ -97,7 +98,8 @@ B_SLIPDT = 22  # nominal ball-pass period [s]
 B_SPIN = 23  # ball defect: ball spin angle per cage angle, BSF / FTF [-]
 B_RRACE_I = 24  # ball defect: inner raceway radius [m]
 B_HMAX_I = 25  # ball defect: h_min at the inner race [m]
-BRG_LEN = 26
+B_BDEV = 26  # offset in p of the bearing's ball diameter deviations Delta D_j; 0 = none
+BRG_LEN = 27
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -194,6 +196,7 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         rel_speed = wc - p[o + B_FOMEGA]
     sp = math.sin(psi)
     cp = math.cos(psi)
+    boff = int(p[o + B_BDEV])
     fsx = 0.0
     fsy = 0.0
     fhx = 0.0
@@ -229,6 +232,9 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         # e = (sp, cp); de/dt = wc (cp, -sp)
         d_in = rp - s + xs * sp + ys * cp - h_in
         d_out = s - xh * sp - yh * cp - rp - ch - h_out
+        if boff > 0:  # a ball larger by Delta D_j: each contact closes by half of it
+            d_in += 0.5 * p[boff + j]
+            d_out += 0.5 * p[boff + j]
         q_in = 0.0
         if d_in > 0.0:
             dd = -sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in

@@ -25,6 +25,7 @@ from ...config import (
     HOUSING_DAMPING_N_S_M,
     HOUSING_MASS_KG,
     HOUSING_STIFFNESS_N_M,
+    check_ball_spread,
     check_mount,
 )
 from ...errors import ConfigError, check_positive, check_range
@@ -326,6 +327,12 @@ class RotorConfig:
         Stiffness-proportional rotor damping: ratio of the first fixed-interface mode [-].
     disk_damping : float
         Absolute damping on each disk's x and y (seed ROTOR eq. 3 ``C_disk``) [N s/m].
+    ball_diameter_spread : float
+        Largest minus smallest ball diameter in each bearing [m] (ISO 3290-1 lot variation;
+        0 = identical balls), drawn per bearing from ``SeedSequence([ball_seed, 2, end])``
+        (end 0 DE, 1 FE; :mod:`bearingsim.dynamics.ballset`).
+    ball_seed : int
+        Seed of the ball diameters.
     """
 
     de: BearingSupport
@@ -343,9 +350,12 @@ class RotorConfig:
     mode_cutoff_hz: float | None = None
     shaft_damping_ratio: float = 0.02
     disk_damping: float = 0.0
+    ball_diameter_spread: float = 0.0
+    ball_seed: int = 0
 
     def __post_init__(self) -> None:
         check_positive("speed_rpm", self.speed_rpm, "r/min")
+        check_ball_spread(self.ball_diameter_spread)
         check_range("unbalance_kg_m", self.unbalance, 0.0, unit="kg m")
         check_range("unbalance_phase_rad", self.unbalance_phase, unit="rad")
         check_range("shaft_damping_ratio", self.shaft_damping_ratio, 0.0, 1.0)

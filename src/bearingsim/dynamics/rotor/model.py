@@ -471,6 +471,19 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
     hdr[rk.H_HOUS] = off + 2 * rk.BRG_LEN
     hdr[rk.H_BALL_OUT] = 1.0 if ball_forces else 0.0
     p = np.concatenate([hdr, *blocks, *brg, hs])
+    if config.ball_diameter_spread > 0.0:  # each bearing's ball diameters after the blocks
+        from ..ballset import ball_deviations
+
+        tails = []
+        for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
+            dev = ball_deviations(
+                sup.bearing.n_elements,
+                config.ball_diameter_spread,
+                (int(config.ball_seed), 2, e),
+            )
+            p[int(hdr[key]) + rk.B_BDEV] = p.size + sum(t.size for t in tails)
+            tails.append(dev)
+        p = np.concatenate([p, *tails])
     nb = z_de + z_fe
     return PackedModel(p, rot, nr, nb, nr + 4 + nb, z_de, z_fe)
 

@@ -79,6 +79,8 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
         gravity=sc.gravity,
         unbalance=sc.unbalance_kg_m,
         n_elements=sc.n_elements,
+        ball_diameter_spread=sc.ball_diameter_spread_m,
+        ball_seed=sc.seed,
     )
 
 
