@@ -14,6 +14,7 @@ import click
 from ..config import Model, Solver
 from ..errors import ConfigError, check_range
 from .common import (
+    CLEARANCE,
     Number,
     allow_overload_option,
     check_outputs,
@@ -115,7 +116,7 @@ def _opt(f):
         deprecated("--stiffness", "--stiffness-n-per-m1.5"),
         click.option(
             "--clearance-m",
-            type=Number(unit="m"),
+            type=CLEARANCE,
             default=None,
             show_default="the bearing's",
             help="Diametral clearance P_d [m]; negative = preload (dem, tvsm).",
