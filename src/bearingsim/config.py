@@ -639,6 +639,9 @@ class RotorScenario(Scenario):
     ``model``                           ``"rotor"``
     ``de_bearing``, ``fe_bearing``      6205-cwru,      drive-end / fan-end catalogue ids (CWRU
                                         6203-cwru       motor)
+    ``de_clearance_m``,                 catalogue       diametral clearance of each bearing [m];
+    ``fe_clearance_m``                                  negative = preload (every ball loaded),
+                                                        within +/- ISO 5753-1 group 5
     ``de_fault``, ``fe_fault``          ``"none"``      defect of each bearing: none | outer | inner
                                                         | ball
     ``defect_width_m``                  1.778e-4        defect width b [m] (CWRU 0.007 in)
@@ -696,6 +699,8 @@ class RotorScenario(Scenario):
         "model",
         "de_bearing",
         "fe_bearing",
+        "de_clearance_m",
+        "fe_clearance_m",
         "de_fault",
         "fe_fault",
         "defect_width_m",
@@ -731,6 +736,8 @@ class RotorScenario(Scenario):
     model: Model = Model.ROTOR
     de_bearing: str = "6205-cwru"
     fe_bearing: str = "6203-cwru"
+    de_clearance_m: float | None = None
+    fe_clearance_m: float | None = None
     de_fault: str = "none"
     fe_fault: str = "none"
     defect_width_m: float = CWRU_DEFECT_WIDTH_M
@@ -772,6 +779,9 @@ class RotorScenario(Scenario):
         for name in ("de_defect_angle_deg", "fe_defect_angle_deg"):
             s(self, name, _angle(name, getattr(self, name)))
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
+        for name in ("de_clearance_m", "fe_clearance_m"):  # bounded by the bearing (rotor)
+            if getattr(self, name) is not None:
+                s(self, name, check_range(name, getattr(self, name), unit="m"))
         _int("seed", self.seed, 0)
         s(
             self,

@@ -25,7 +25,7 @@ from ..._version import __version__
 from ...catalog import get_bearing
 from ...config import RotorScenario
 from ...errors import ConfigError
-from ...geometry import Defect, check_unused_defect
+from ...geometry import Defect, check_clearance, check_unused_defect
 from ...results import SimulationResult
 from ..budget import Budget, Estimate
 from ..checks import check_speed
@@ -39,11 +39,18 @@ __all__ = [
 ]
 
 
-def _support(bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario) -> BearingSupport:
+def _support(
+    bearing_id: str, fault: str, angle_deg: float, sc: RotorScenario, end: str
+) -> BearingSupport:
     f = None
     if fault != "none":
         f = Defect(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
-    return BearingSupport(get_bearing(bearing_id), f, contact_damping=sc.contact_damping_n_s_per_m)
+    b = get_bearing(bearing_id)
+    clearance = getattr(sc, f"{end}_clearance_m")
+    if clearance is not None:  # negative = preload; bounded like a bearing file's
+        pd = check_clearance(b, clearance, name=f"{end}_clearance_m")
+        b = dataclasses.replace(b, diametral_clearance=pd)
+    return BearingSupport(b, f, contact_damping=sc.contact_damping_n_s_per_m)
 
 
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
@@ -69,8 +76,8 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
         sc.housing_mass_kg, sc.housing_stiffness_n_per_m, sc.housing_damping_n_s_per_m
     )
     return RotorConfig(
-        de=_support(sc.de_bearing, sc.de_fault, sc.de_defect_angle_deg, sc),
-        fe=_support(sc.fe_bearing, sc.fe_fault, sc.fe_defect_angle_deg, sc),
+        de=_support(sc.de_bearing, sc.de_fault, sc.de_defect_angle_deg, sc, "de"),
+        fe=_support(sc.fe_bearing, sc.fe_fault, sc.fe_defect_angle_deg, sc, "fe"),
         housing_de=housing,
         housing_fe=housing,
         shaft=Shaft(mass_model=sc.shaft_mass_model),
