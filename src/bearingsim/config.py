@@ -361,16 +361,17 @@ def check_ball_spread(value: object) -> float:
     return check_range("ball_diameter_spread_m", value, 0.0, MAX_BALL_SPREAD_M, unit="m")
 
 
-def _jitter(sc: Scenario, needs_rk4: bool = True) -> None:
-    """Check ``pocket_jitter_percent`` (at most 10 %; the ring models' adaptive solver reads no
-    pass-instant table, so there it needs ``solver = "rk4"``)."""
-    v = check_range("pocket_jitter_percent", sc.pocket_jitter_percent, 0.0, 10.0, unit="%")
-    object.__setattr__(sc, "pocket_jitter_percent", v)
-    if needs_rk4 and v > 0.0 and sc.solver is not Solver.RK4:
-        raise ConfigError(
-            f"pocket_jitter_percent = {v:g} % needs solver = 'rk4' (the adaptive solver has no "
-            f"slip); valid: pocket_jitter_percent = 0 with solver = '{sc.solver.value}'"
-        )
+def _pass_jitter(sc: Scenario, needs_rk4: bool = True) -> None:
+    """Check ``slip_percent`` and ``pocket_jitter_percent`` (each at most 10 %; the ring models'
+    adaptive solver reads no pass-instant table, so there either needs ``solver = "rk4"``)."""
+    for name in ("slip_percent", "pocket_jitter_percent"):
+        v = check_range(name, getattr(sc, name), 0.0, 10.0, unit="%")
+        object.__setattr__(sc, name, v)
+        if needs_rk4 and v > 0.0 and sc.solver is not Solver.RK4:
+            raise ConfigError(
+                f"{name} = {v:g} % needs solver = 'rk4' (the adaptive solver has no slip); "
+                f"valid: {name} = 0 with solver = '{sc.solver.value}'"
+            )
 
 
 def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
@@ -550,14 +551,7 @@ class RingScenario(Scenario):
             "noise_rms_m_per_s2",
             check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
-        s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
-        if self.slip_percent > 0.0 and self.solver is not Solver.RK4:
-            raise ConfigError(
-                f"slip_percent = {self.slip_percent:g} % needs solver = 'rk4' (the adaptive "
-                f"solver has no slip); valid: slip_percent = 0 with solver = "
-                f"'{self.solver.value}'"
-            )
-        _jitter(self)
+        _pass_jitter(self)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         s(
             self,
@@ -819,8 +813,7 @@ class RotorScenario(Scenario):
         )
         for name in ("distributed_rotor", "gravity", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
-        s(self, "slip_percent", check_range("slip_percent", self.slip_percent, 0.0, 10.0, unit="%"))
-        _jitter(self, needs_rk4=False)
+        _pass_jitter(self, needs_rk4=False)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 

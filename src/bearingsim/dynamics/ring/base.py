@@ -262,15 +262,12 @@ class ModelInputs:
 
     def ball_deviations(self) -> NDArray[np.float64]:
         """Diameter deviation of each ball from the nominal, ``Delta D_j`` [m] (ball 1 first;
-        empty without a spread).
+        empty without a spread): :func:`bearingsim.dynamics.ballset.ball_deviations` seeded
+        with ``(slip_seed, 2)``.
 
         Ball-to-ball diameter differences make the balls carry unequal loads, so the impacts of
         successive balls on a race defect differ and the pattern repeats every cage turn: lines
-        at the FTF and its harmonics in the envelope spectrum of an outer- or inner-race fault
-        (with slip, of its mean). Draws ``u_j`` uniform in [0, 1) from
-        ``SeedSequence([slip_seed, 2])``, maps them affinely so that the largest minus the
-        smallest deviation is ``ball_diameter_spread`` exactly, and centres them on zero mean
-        (the mean ball keeps the nominal diameter, so the mean clearance is unchanged).
+        at the FTF and its harmonics in the envelope spectrum of an outer- or inner-race fault.
         """
         from ..ballset import ball_deviations
 

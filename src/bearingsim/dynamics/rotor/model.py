@@ -475,14 +475,16 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
         from ..ballset import ball_deviations
 
         tails = []
+        off = p.size
         for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
             dev = ball_deviations(
                 sup.bearing.n_elements,
                 config.ball_diameter_spread,
                 (int(config.ball_seed), 2, e),
             )
-            p[int(hdr[key]) + rk.B_BDEV] = p.size + sum(t.size for t in tails)
+            p[int(hdr[key]) + rk.B_BDEV] = off
             tails.append(dev)
+            off += dev.size
         p = np.concatenate([p, *tails])
     nb = z_de + z_fe
     return PackedModel(p, rot, nr, nb, nr + 4 + nb, z_de, z_fe)
