@@ -453,6 +453,12 @@ class RingScenario(Scenario):
                                                     auto: omega_max dt <= 0.35
     ``solver``                      ``"rk4"``       ``rk4`` | ``dopri5`` (adaptive check)
     ``per_ball``                    false           also store per-ball loads and deformations
+    ``antialias``                   with ``rig``    integrate at 4x ``fs_hz`` (2x above 24 kHz)
+                                                    and FIR-decimate the accelerations, as a
+                                                    data-acquisition chain does; default: on
+                                                    when ``rig`` is set, else off (a boxcar mean
+                                                    over 1/fs_hz, the seed comparisons' sampling;
+                                                    ``docs/models.md``, "Sampling")
     ``rig``                         –               measurement chain applied to the output: a
                                                     shipped profile name or a rig TOML file
                                                     (:mod:`bearingsim.rig`; channel
@@ -495,6 +501,7 @@ class RingScenario(Scenario):
         "dt_s",
         "solver",
         "per_ball",
+        "antialias",
         "rig",
     )
     RENAMED: ClassVar[dict[str, str]] = {
@@ -528,6 +535,7 @@ class RingScenario(Scenario):
     retention_factor: float | None = None
     load_zone_half_angle_deg: float | None = None
     per_ball: bool = False
+    antialias: bool | None = None
     rig: str | None = None
 
     def _validate(self) -> None:
@@ -602,7 +610,18 @@ class RingScenario(Scenario):
                 ),
             )
         _bool("per_ball", self.per_ball)
+        if self.antialias is not None:
+            _bool("antialias", self.antialias)
         _check_rig(self, ("acc_x", "acc_y"))
+
+    @property
+    def oversampling(self) -> int:
+        """Internal samples per output sample [-]: 4 (2 above 24 kHz) with ``antialias`` (on by
+        default when ``rig`` is set), else 1."""
+        from .dynamics.sampling import oversampling_for
+
+        on = self.rig is not None if self.antialias is None else self.antialias
+        return oversampling_for(self.fs_hz) if on else 1
 
     @property
     def shaft_hz(self) -> float:

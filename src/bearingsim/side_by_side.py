@@ -138,6 +138,7 @@ def simulate_record(
         duration_s=duration_s,
         fs_hz=fs,
         seed=seed,
+        antialias=True,  # through a measurement chain: its anti-aliasing filter
     )
     res = apply_rig(simulate(sc), rig, seed=seed)
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)

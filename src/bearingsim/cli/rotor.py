@@ -176,7 +176,8 @@ def rotor_simulate_options(f: Callable) -> Callable:
             "--antialias/--no-antialias",
             default=None,
             show_default=_d("antialias"),
-            help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations.",
+            help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations "
+            "(rotor: on; vsm/dem/tvsm: on with --rig, else off).",
         ),
     ]
     for o in reversed(opts):

@@ -27,6 +27,7 @@ from ...geometry import (
 from ...results import SimulationResult
 from ..budget import F8, Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
+from ..sampling import PASS, STOP_DB, decimate_antialias
 from . import _balance as bl
 from . import dem, tvsm, vsm
 from .base import (
@@ -106,13 +107,15 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
 
 
 def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, float, float]:
-    """RK4 steps per output sample, step [s] and the largest natural frequency [rad/s].
+    """RK4 steps per internal sample (``oversampling`` of them per output sample), step [s] and
+    the largest natural frequency [rad/s].
 
     Automatic: the smallest integer ``decim`` with ``omega_max dt <= 0.35``: RK4's phase error
     ``(omega dt)^5/120`` (4e-5 rad) and amplitude error ``(omega dt)^6/144`` (1.3e-5) per step
     are then far below the physical damping per step of these models (``zeta omega dt``, about
     0.04 for c_eq = 300 N s/m); ``omega_max`` from the stiffness the model uses over one cage
-    revolution. With ``dt_s`` given: ``decim = max(1, round(1/(fs dt_s)))``.
+    revolution. With ``dt_s`` given: ``decim = max(1, round(1/(fs dt_s)))``, ``fs`` the
+    internal rate ``oversampling * fs_hz``.
     """
     use = "secant" if KERNELS[scenario.model].stiffness == "secant" else "tangent"
     w = max_frequency(inputs, use)
@@ -122,7 +125,7 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
             f"{inputs.fy:.6g} N has no finite natural frequency (omega_max = {w:.6g} rad/s); "
             "check the load, clearance and stiffness"
         )
-    fs = scenario.fs_hz
+    fs = scenario.fs_hz * scenario.oversampling
     if scenario.dt_s is None:
         decim = max(1, math.ceil(min(w / (OMEGA_DT * fs), MAX_DECIM)))
     else:
@@ -144,18 +147,21 @@ class RingPlan:
 
 
 def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: int) -> Estimate:
-    """Memory [B] and RK4 steps of a run: the raw trajectory, the channels and their copy in
-    the result's dataset, and the largest chunk's table of the quasi-static solution."""
-    n = scenario.n_samples
+    """Memory [B] and RK4 steps of a run: the raw trajectory (at the internal rate), the
+    channels and their copy in the result's dataset, and the largest chunk's table of the
+    quasi-static solution."""
+    n_out = scenario.n_samples
+    n = n_out * scenario.oversampling
     na = n_aux(inputs, scenario.per_ball)
     n_ch = 6 + len(AUX_NAMES) + (2 * inputs.bearing.n_elements if scenario.per_ball else 0)
     raw = (n + 1) * (1 + 4 + na) * F8
-    channels = 2 * n * n_ch * F8
+    channels = 2 * n_out * n_ch * F8
     table = 0.0
     if KERNELS[scenario.model].needs_table:
         n_tab = 2.0 * min(chunk, n) * decim + 1
         table = n_tab * (2 * bl.NCOL + 3) * F8  # the table, its copy in p, times, residuals
-    what = f"{scenario.model.value}: {n + 1} samples x {decim} RK4 steps"
+    over = f" ({scenario.oversampling}x oversampled)" if scenario.oversampling > 1 else ""
+    what = f"{scenario.model.value}: {n + 1} samples{over} x {decim} RK4 steps"
     return Estimate(what, raw + channels + table, float(n) * decim)
 
 
@@ -204,31 +210,37 @@ def run_ring(
     kernel = KERNELS[scenario.model]
     n = scenario.n_samples
     fs = scenario.fs_hz
+    q = scenario.oversampling
+    fs_int = q * fs  # the internal rate (antialias: q > 1)
     table0, res0 = static_path(inputs, np.zeros(1))
     y0 = np.array([table0[0, 0], table0[0, 1], 0.0, 0.0])
     decim, dt, w = plan.decim, plan.dt, plan.omega_max
     if scenario.solver is Solver.RK4:
         try:
             raw = integrate_model(
-                kernel, inputs, y0, fs, n + 1, decim, per_ball=scenario.per_ball,
-                chunk=plan.chunk, progress=progress,
+                kernel, inputs, y0, fs_int, q * n + 1, decim, per_ball=scenario.per_ball,
+                chunk=plan.chunk, progress=None if progress is None else lambda i: progress(i // q),
             )  # fmt: skip
         except SolverError as exc:
-            auto = 1.0 / (fs * max(1, math.ceil(w / (OMEGA_DT * fs))))
+            auto = 1.0 / (fs_int * max(1, math.ceil(w / (OMEGA_DT * fs_int))))
             raise SolverError(
                 f"dt_s = {dt:.6g} s is too large: {exc}; RK4 is stable only for "
                 f"omega_max dt < 2.83 (omega_max = {w:.6g} rad/s): valid range "
                 f"(0, {RK4_STABILITY / w:.3g}) s (automatic step {auto:.3g} s)"
             ) from None
     else:
-        raw = integrate_model_adaptive(kernel, inputs, y0, fs, n + 1, per_ball=scenario.per_ball)
+        raw = integrate_model_adaptive(
+            kernel, inputs, y0, fs_int, q * n + 1, per_ball=scenario.per_ball
+        )
         dt = math.nan
     Z = inputs.bearing.n_elements
-    ys, aux = raw.y[:n], raw.aux[:n]
+    ys, aux = raw.y[: q * n : q], raw.aux[: q * n : q]
     # sensor-like acceleration: mean over [t_k, t_k + 1/fs] = (v_{k+1} - v_k) fs, i.e. the
     # instantaneous model acceleration through a boxcar anti-aliasing filter (the model's
-    # acceleration jumps when a ball meets a defect edge; point samples of a jump alias)
-    acc_mean = np.diff(raw.y[:, 2:4], axis=0) * fs
+    # acceleration jumps when a ball meets a defect edge; point samples of a jump alias).
+    # antialias: the same at the internal rate, then the anti-aliasing filter of a
+    # data-acquisition chain and every q-th sample (..sampling.decimate_antialias)
+    acc_mean = decimate_antialias(np.diff(raw.y[:, 2:4], axis=0) * fs_int, q)
     ch: dict[str, np.ndarray] = {
         "disp_x": ys[:, 0].copy(),
         "disp_y": ys[:, 1].copy(),
@@ -276,8 +288,14 @@ def run_ring(
         }
     meta = {
         "channels": {
-            "acc_x, acc_y": "mean acceleration over [t, t + 1/fs] (boxcar anti-aliasing) plus "
-            "the optional measurement noise",
+            "acc_x, acc_y": (
+                f"mean acceleration over [t, t + 1/({q} fs)], low-passed (Kaiser FIR, pass "
+                f"band to {PASS:g} x Nyquist, {STOP_DB:g} dB from Nyquist) and decimated by {q} "
+                "(dynamics.sampling), plus the optional measurement noise"
+                if q > 1
+                else "mean acceleration over [t, t + 1/fs] (boxcar anti-aliasing) plus the "
+                "optional measurement noise"
+            ),
             "acc_inst_x, acc_inst_y": "instantaneous model acceleration at t",
             "k_xx, k_xy, k_yy, k_load": f"{kernel.stiffness} stiffness at t (k_load along the "
             "load direction)",
@@ -300,8 +318,9 @@ def run_ring(
             "initial_displacement_m": [float(y0[0]), float(y0[1])],
         },
         "solver": raw.solver,
+        "oversampling": q,
         "dt_s": dt,
-        "steps_per_sample": decim if raw.solver == "rk4" else None,
+        "steps_per_sample": q * decim if raw.solver == "rk4" else None,
         "n_steps": raw.n_steps,
         "omega_max_rad_s": w,
         "static_residual_max": (
@@ -335,7 +354,7 @@ def run_ring(
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
-    res = SimulationResult(raw.t[:n].copy(), ch, units, scenario.to_dict(), meta)
+    res = SimulationResult(raw.t[: q * n : q].copy(), ch, units, scenario.to_dict(), meta)
     if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
         from ...rig import apply_rig
 
