@@ -3,7 +3,8 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 (leave-one-mounting-out: Smith & Randall 2015 found the mounting, not the fault size, dominates
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
-    python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--json OUT.json]
+    python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--slip-percent 1.5]
+        [--model-gain] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -20,7 +21,13 @@ from pathlib import Path
 from bearingsim.errors import ConfigError
 from bearingsim.io.atomic import write_json
 from bearingsim.io.cwru import cwru_manifest
-from bearingsim.side_by_side import BOUNDS, lomo_rig, side_by_side, within_bounds
+from bearingsim.side_by_side import (
+    BOUNDS,
+    SLIP_PERCENT,
+    lomo_rig,
+    side_by_side,
+    within_bounds,
+)
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 
@@ -29,6 +36,7 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm"])
     ap.add_argument("--duration-s", type=float, default=2.0)
+    ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
     ap.add_argument(
@@ -59,7 +67,13 @@ def main() -> int:
             out.append(base | {"status": "no rig: no other fault size of this mounting here"})
             continue
         try:
-            s = side_by_side(a.data / name, rig, model=a.model, duration_s=a.duration_s)
+            s = side_by_side(
+                a.data / name,
+                rig,
+                model=a.model,
+                duration_s=a.duration_s,
+                slip_percent=a.slip_percent,
+            )
         except ConfigError as exc:
             out.append(base | {"status": f"error: {exc}"})
             continue

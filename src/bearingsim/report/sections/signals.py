@@ -2,7 +2,9 @@
 
 Each fault record of ``../shared/data/cwru`` whose mounting has records of another fault size
 is simulated (VSM, the record's bearing, speed and sample rate, the CWRU fault diameter as the
-defect width, EDM depth 0.011 in; ball records with the ball defect) and passed through a rig
+defect width, EDM depth 0.011 in, the random slip of real bearings
+(:data:`bearingsim.side_by_side.SLIP_PERCENT`), anti-aliased sampling; ball records with the ball
+defect) and passed through a rig
 identified **without** the record's fault size (leave-one-mounting-out:
 :func:`bearingsim.side_by_side.lomo_rig`). The same code computes RMS, fault-line amplitude,
 kurtosis and line prominence on both signals (:func:`bearingsim.side_by_side.signal_metrics`);
@@ -90,6 +92,7 @@ def run(ctx: Context) -> Section:
     # here, when the section runs, not at import time (tests/test_layers.py)
     from ...side_by_side import (
         BOUNDS,
+        SLIP_PERCENT,
         lomo_rig,
         ratios,
         signal_metrics,
@@ -156,7 +159,8 @@ def run(ctx: Context) -> Section:
         _figure(ctx, sec, cases)
     sec.text = (
         f"Simulated time {duration:g} s per record (the record's first {duration:g} s "
-        "measured). Rigs identified leave-one-mounting-out; the fan end has one fault size "
+        f"measured), {SLIP_PERCENT:g} % random slip, anti-aliased. Rigs identified "
+        "leave-one-mounting-out; the fan end has one fault size "
         "here and gets no rig, so its records are not judged."
     )
     return sec
