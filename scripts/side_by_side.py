@@ -4,7 +4,7 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
     python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--slip-percent 1.5]
-        [--model-gain] [--json OUT.json]
+        [--defect-profile geometric] [--model-gain] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -23,6 +23,7 @@ from bearingsim.io.atomic import write_json
 from bearingsim.io.cwru import cwru_manifest
 from bearingsim.side_by_side import (
     BOUNDS,
+    DEFECT_PROFILE,
     SLIP_PERCENT,
     lomo_rig,
     side_by_side,
@@ -37,6 +38,9 @@ def main() -> int:
     ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm"])
     ap.add_argument("--duration-s", type=float, default=2.0)
     ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
+    ap.add_argument(
+        "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular"]
+    )
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
     ap.add_argument(
@@ -61,7 +65,13 @@ def main() -> int:
             "grade": r.get("smith_randall_grade", ""),
         }
         if key not in rigs:
-            rigs[key] = lomo_rig(a.data, name, model_gain=a.model if a.model_gain else None)
+            rigs[key] = lomo_rig(
+                a.data,
+                name,
+                model_gain=a.model if a.model_gain else None,
+                slip_percent=a.slip_percent,
+                defect_profile=a.defect_profile,
+            )
         rig = rigs[key]
         if rig is None:
             out.append(base | {"status": "no rig: no other fault size of this mounting here"})
@@ -73,6 +83,7 @@ def main() -> int:
                 model=a.model,
                 duration_s=a.duration_s,
                 slip_percent=a.slip_percent,
+                defect_profile=a.defect_profile,
             )
         except ConfigError as exc:
             out.append(base | {"status": f"error: {exc}"})

@@ -65,15 +65,16 @@ def test_only_ball_one_carries_the_defect_and_it_meets_both_races():
     """The compiled indicator: ball 0 over the slot facing the outer race (drop h_o) at spin
     angle in [0, dpsi), facing the inner race (drop h_i) half a turn later; other balls never."""
     dpsi, ho, hi = 0.2, 1e-6, 2e-6
-    f, d = bl.defect_fraction(0, 0.1, 0.0, 3, dpsi, ho, hi)
+    p = np.zeros(bl.HEADER)  # P_PROFILE 0: the rectangular drop
+    f, d = bl.defect_fraction(0, 0.1, 0.0, 3, dpsi, ho, hi, p)
     assert (f, d) == (1.0, ho)
-    f, d = bl.defect_fraction(0, math.pi + 0.1, 0.0, 3, dpsi, ho, hi)
+    f, d = bl.defect_fraction(0, math.pi + 0.1, 0.0, 3, dpsi, ho, hi, p)
     assert (f, d) == (1.0, hi)
-    assert bl.defect_fraction(0, 0.5 * math.pi, 0.0, 3, dpsi, ho, hi)[0] == 0.0
+    assert bl.defect_fraction(0, 0.5 * math.pi, 0.0, 3, dpsi, ho, hi, p)[0] == 0.0
     for j in range(1, 9):
-        assert bl.defect_fraction(j, 0.1, 0.0, 3, dpsi, ho, hi)[0] == 0.0
+        assert bl.defect_fraction(j, 0.1, 0.0, 3, dpsi, ho, hi, p)[0] == 0.0
     # a raceway defect: every ball, one drop
-    assert bl.defect_fraction(5, 0.1, 0.0, 1, dpsi, ho, hi) == (1.0, ho)
+    assert bl.defect_fraction(5, 0.1, 0.0, 1, dpsi, ho, hi, p) == (1.0, ho)
 
 
 @pytest.mark.parametrize("model", ["vsm", "dem", "tvsm"])

@@ -408,6 +408,12 @@ class RingScenario(Scenario):
     ``defect_width_m``              1.778e-4        defect width b along the raceway (or across
                                                     the ball) [m] (CWRU 0.007 in)
     ``defect_depth_m``              2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``defect_profile``              rectangular     drop of a ball across the defect:
+                                                    ``rectangular`` (seed VSM eqs. (1)–(3): h_min
+                                                    over the whole extent) or ``geometric`` (the
+                                                    ball rests on the nearer edge: 0 at the
+                                                    edges, h_min at the centre; the rotor
+                                                    model's; not with ``retention_factor``)
     ``defect_edge_angle_deg``       10.0            the defect's **left edge** at t = 0, seed VSM
                                                     beta_0 [deg] (table 1); its centre is half the
                                                     defect's extent further on (ball: the edge's
@@ -479,6 +485,7 @@ class RingScenario(Scenario):
         "fault",
         "defect_width_m",
         "defect_depth_m",
+        "defect_profile",
         "defect_edge_angle_deg",
         "first_ball_angle_deg",
         "rpm",
@@ -517,6 +524,7 @@ class RingScenario(Scenario):
     fault: str = "none"
     defect_width_m: float = CWRU_DEFECT_WIDTH_M
     defect_depth_m: float = CWRU_DEFECT_DEPTH_M
+    defect_profile: str = "rectangular"
     defect_edge_angle_deg: float = SEED_VSM_DEFECT_EDGE_DEG
     first_ball_angle_deg: float = 0.0
     rpm: float = DEFAULT_RPM
@@ -544,6 +552,7 @@ class RingScenario(Scenario):
         _choice("fault", self.fault, _RING_FAULTS)
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
         s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
+        _choice("defect_profile", self.defect_profile, ("rectangular", "geometric"))
         s(
             self,
             "defect_edge_angle_deg",

@@ -2,8 +2,9 @@
 first version).
 
 For a CWRU fault record: simulate its condition (the record's bearing, shaft speed and sample
-rate; the CWRU fault diameter as the defect width, the EDM depth 0.011 in; the random slip real
-bearings show, :data:`SLIP_PERCENT`; sampled through an anti-aliasing filter) with a ring model,
+rate; the CWRU fault diameter as the defect width, the EDM depth 0.011 in, the ball resting on
+the slot's nearer edge, :data:`DEFECT_PROFILE`; the random slip real bearings show,
+:data:`SLIP_PERCENT`; sampled through an anti-aliasing filter) with a ring model,
 pass the result through a rig (:mod:`bearingsim.rig`), and compute the same numbers on both
 signals with the same code (:func:`signal_metrics`): RMS, kurtosis, crest factor, fault-line
 amplitude and prominence in the envelope spectrum, and the ringing band (fast kurtogram).
@@ -33,6 +34,7 @@ from .errors import ConfigError
 from .io.cwru import cwru_manifest
 
 __all__ = [
+    "DEFECT_PROFILE",
     "SLIP_PERCENT",
     "SignalMetrics",
     "lomo_rig",
@@ -48,6 +50,11 @@ CWRU_DEPTH_M = 0.011 * 0.0254
 #: random slip of the simulations [%]: the middle of the 1-2 % real bearings show (Randall &
 #: Antoni 2011, MSSP 25, 485-520, §2.1); the CWRU rig's own is not published
 SLIP_PERCENT = 1.5
+#: drop of a ball across the slot: the ball rests on the nearer edge (``"geometric"``: 0 at the
+#: edges, h_min at the centre; the rotor model's default, the ball path of Sawalhi & Randall
+#: 2008), not the seed VSM's rectangle (h_min over the whole extent, a step at each edge), which
+#: the seed comparisons keep
+DEFECT_PROFILE = "geometric"
 
 
 @dataclass(frozen=True)
@@ -100,6 +107,7 @@ def simulate_record(
     duration_s: float = 2.0,
     seed: int = 0,
     slip_percent: float = SLIP_PERCENT,
+    defect_profile: str = DEFECT_PROFILE,
 ) -> dict:
     """Simulate the condition of a CWRU fault record through ``rig``: the two signals and the
     condition (see :func:`side_by_side` for the parameters).
@@ -145,6 +153,7 @@ def simulate_record(
         fs_hz=fs,
         seed=seed,
         slip_percent=slip_percent,
+        defect_profile=defect_profile,
         antialias=True,  # through a measurement chain: its anti-aliasing filter
     )
     res = apply_rig(simulate(sc), rig, seed=seed)
@@ -186,6 +195,7 @@ def side_by_side(
     duration_s: float = 2.0,
     seed: int = 0,
     slip_percent: float = SLIP_PERCENT,
+    defect_profile: str = DEFECT_PROFILE,
 ) -> dict:
     """Simulate the condition of a CWRU fault record, pass it through ``rig`` and set the
     numbers of both side by side.
@@ -205,6 +215,9 @@ def side_by_side(
     slip_percent : float
         Random slip of the simulation [%] (scenario key ``slip_percent``; default
         :data:`SLIP_PERCENT`).
+    defect_profile : {"geometric", "rectangular"}
+        Drop of a ball across the slot (scenario key ``defect_profile``; default
+        :data:`DEFECT_PROFILE`).
 
     Returns
     -------
@@ -214,7 +227,13 @@ def side_by_side(
         (simulated / measured; prominence as the difference in dB).
     """
     c = simulate_record(
-        record, rig, model=model, duration_s=duration_s, seed=seed, slip_percent=slip_percent
+        record,
+        rig,
+        model=model,
+        duration_s=duration_s,
+        seed=seed,
+        slip_percent=slip_percent,
+        defect_profile=defect_profile,
     )
     m_meas = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
     m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
@@ -234,6 +253,7 @@ def model_path_scale(
     model: str = "vsm",
     duration_s: float = 1.0,
     slip_percent: float = SLIP_PERCENT,
+    defect_profile: str = DEFECT_PROFILE,
 ):
     """The rig with its path (direct gain and every mode's gain) scaled so that the model's
     simulated RMS through it matches the measured RMS of ``records`` — a model-based gain, the
@@ -253,6 +273,8 @@ def model_path_scale(
         Simulated time per record [s].
     slip_percent : float
         Random slip of the simulations [%].
+    defect_profile : {"geometric", "rectangular"}
+        Drop of a ball across the slot.
 
     Returns
     -------
@@ -265,7 +287,14 @@ def model_path_scale(
         raise ConfigError("records is empty; valid: at least one CWRU fault record")
     logs = []
     for rec in records:
-        c = simulate_record(rec, rig, model=model, duration_s=duration_s, slip_percent=slip_percent)
+        c = simulate_record(
+            rec,
+            rig,
+            model=model,
+            duration_s=duration_s,
+            slip_percent=slip_percent,
+            defect_profile=defect_profile,
+        )
         m = c["measured"] - c["measured"].mean()
         x = c["simulated"] - c["simulated"].mean()
         logs.append(math.log(math.sqrt(np.mean(m * m)) / math.sqrt(np.mean(x * x))))
@@ -282,7 +311,14 @@ def model_path_scale(
     return scaled, k
 
 
-def lomo_rig(data_dir: Path, record: str, *, model_gain: str | None = None):
+def lomo_rig(
+    data_dir: Path,
+    record: str,
+    *,
+    model_gain: str | None = None,
+    slip_percent: float = SLIP_PERCENT,
+    defect_profile: str = DEFECT_PROFILE,
+):
     """The rig of ``record``'s mounting identified WITHOUT its fault size (leave-one-mounting-
     out, ``bearingsim.rig_identify`` on the records of the same end and sample rate with another
     fault size), or None when the folder holds no other size of that end and rate.
@@ -296,6 +332,8 @@ def lomo_rig(data_dir: Path, record: str, *, model_gain: str | None = None):
     model_gain : {"vsm", "dem", "tvsm"}, optional
         Also scale the path so that this model's RMS matches those other records
         (:func:`model_path_scale`; the same leave-one-mounting-out split).
+    slip_percent, defect_profile
+        The simulations' slip [%] and drop profile for ``model_gain``.
     """
     from .io.signal import read_signal
     from .rig_identify import identify_rig
@@ -319,7 +357,13 @@ def lomo_rig(data_dir: Path, record: str, *, model_gain: str | None = None):
         provenance="bearingsim.side_by_side.lomo_rig: identified from " + ", ".join(others),
     ).rig
     if model_gain:
-        rig, _k = model_path_scale(rig, [data_dir / f for f in others], model=model_gain)
+        rig, _k = model_path_scale(
+            rig,
+            [data_dir / f for f in others],
+            model=model_gain,
+            slip_percent=slip_percent,
+            defect_profile=defect_profile,
+        )
     return rig
 
 

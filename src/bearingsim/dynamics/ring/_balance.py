@@ -100,7 +100,13 @@ P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min
 P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
 P_BDEV = 40  #: offset in ``p`` of the Z ball-diameter deviations Delta D_j (0 = none) [-]
 P_FU = 41  #: amplitude of a force rotating with the shaft (unbalance) F_u [N]
-HEADER = 42  #: first table entry
+P_PROFILE = 42  #: drop profile across the defect: 0 rectangular (seed VSM), 1 geometric [-]
+P_RBALL = 43  #: ball radius r [m] (geometric profile)
+P_HALFW = 44  #: half the defect width b/2 [m] (geometric profile)
+P_DEPTH = 45  #: defect depth h_d [m] (geometric profile)
+P_RRACE = 46  #: radius of the faulty raceway [m] (ball defect: the outer raceway's)
+P_RRACEI = 47  #: ball defect: the inner raceway's radius [m] (geometric profile)
+HEADER = 48  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -258,29 +264,64 @@ def cell_fraction(r, half, width):
 
 
 @njit(cache=True, inline="always")
-def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi):
+def geometric_drop(r, dbeta, rpath, rb, rr, sg, halfw, depth):
+    """Drop [m] of a ball whose angle past the defect's left edge is ``r`` [rad] (extent
+    ``dbeta``, measured along a circle of radius ``rpath`` [m]): it rests on the nearer edge, at
+    ``e = b/2 - |x|`` from its centre line, ``x`` the arc distance from the defect centre, and
+    drops ``[r_b - sqrt(r_b^2 - e^2)] + sg [R - sqrt(R^2 - e^2)]`` (seed VSM eq. (2) with
+    ``b/2`` replaced by ``e``; ``sg`` -1 for the concave outer race of radius ``R``, +1 for the
+    convex inner race), at most ``depth`` (the rotor model's ``DefectProfile.GEOMETRIC``).
+    Continuous: 0 at the edges, ``h_min`` at the centre."""
+    if r >= dbeta:
+        return 0.0
+    e = halfw - rpath * abs(r - 0.5 * dbeta)
+    if e <= 0.0:
+        return 0.0
+    d = (rb - math.sqrt(rb * rb - e * e)) + sg * (rr - math.sqrt(rr * rr - e * e))
+    return d if d < depth else depth
+
+
+@njit(cache=True, inline="always")
+def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     """Defect fraction ``f_d`` of ball ``j`` (0-based; eq. (15): 1 = over the defect, averaged
     over the quadrature cell) and its drop [m]. A raceway defect: ``rd`` is the ball's angle
     past the defect edge. A ball defect (``fault == 3``): only ball 0 carries it, ``rd`` is its
     spin angle past the defect edge, and the defect meets the outer race (drop ``doff``) at
-    ``rd`` in ``[0, dbeta)`` and the inner race (drop ``doffi``) half a turn later."""
+    ``rd`` in ``[0, dbeta)`` and the inner race (drop ``doffi``) half a turn later. The drop
+    is the constant ``doff`` / ``doffi`` (rectangular profile, seed VSM) or, with
+    ``p[P_PROFILE] == 1``, :func:`geometric_drop` at ``rd`` (the cell's centre; it is 0 at the
+    edges, where the cell average of the indicator matters)."""
     if fault == 0:
         return 0.0, doff
+    geo = p[P_PROFILE] > 0.5
     if fault != 3:
-        return cell_fraction(rd, hd, dbeta), doff
+        fr = cell_fraction(rd, hd, dbeta)
+        if geo and fr > 0.0:
+            rr = p[P_RRACE]
+            sg = -1.0 if fault == 1 else 1.0
+            return fr, geometric_drop(rd, dbeta, rr, p[P_RBALL], rr, sg, p[P_HALFW], p[P_DEPTH])
+        return fr, doff
     if j != 0:
         return 0.0, doff
     fo = cell_fraction(rd, hd, dbeta)
-    fi = cell_fraction(advance(rd, math.pi), hd, dbeta)
+    ri = advance(rd, math.pi)
+    fi = cell_fraction(ri, hd, dbeta)
+    if geo:
+        rb = p[P_RBALL]
+        if fo >= fi:
+            return fo + fi, geometric_drop(
+                rd, dbeta, rb, rb, p[P_RRACE], -1.0, p[P_HALFW], p[P_DEPTH]
+            )
+        return fo + fi, geometric_drop(ri, dbeta, rb, rb, p[P_RRACEI], 1.0, p[P_HALFW], p[P_DEPTH])
     return fo + fi, (doff if fo >= fi else doffi)
 
 
 @njit(cache=True, inline="always")
-def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi):
+def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p):
     """Defect fraction ``f_d`` and drop (:func:`defect_fraction`) and zone factor ``f_z``
     (eq. (14) fixed window: 1 = inside) of ball ``j`` from its angle past the defect edge
     ``rd`` and past the window edge ``rw``, averaged over the quadrature cell [-]."""
-    fr, dof = defect_fraction(j, rd, hd, fault, dbeta, doff, doffi)
+    fr, dof = defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p)
     zf = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
     return fr, zf, dof
 
@@ -439,7 +480,9 @@ def static_kernel(times, point, p, table, residual, ux, uy):
         for j in range(Z):
             sn[j] = s0
             cs[j] = c0
-            fr[j], zf[j], dof[j] = ball_flags(j, rd, rw, hd, hw, ifault, psil2, dbeta, doff, doffi)
+            fr[j], zf[j], dof[j] = ball_flags(
+                j, rd, rw, hd, hw, ifault, psil2, dbeta, doff, doffi, p
+            )
             rd = advance(rd, step)
             rw = advance(rw, step)
             s1 = s0 * cc + c0 * ss
@@ -601,7 +644,7 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     boff = int(p[P_BDEV])
     n_loaded = 0
     for j in range(Z):
-        fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
+        fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = ball_clearance(p, boff, j, clr)
         q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
         if q > 0.0:
@@ -629,7 +672,7 @@ def has_partial(t, p):
     fault = int(p[P_FAULT])
     psil2 = 2.0 * p[P_PSIL]
     for j in range(Z):
-        fr, zf, _dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, p[P_DBETA], 0.0, 0.0)
+        fr, zf, _dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, p[P_DBETA], 0.0, 0.0, p)
         if 0.0 < fr < 1.0 or 0.0 < zf < 1.0:
             return True
         rd = advance(rd, step)

@@ -30,10 +30,12 @@ from ...geometry import (
     BallBearing,
     Bearing,
     Defect,
+    DefectProfile,
     Race,
     characteristic_frequencies,
     check_clearance,
     defect_geometry,
+    parse_enum,
 )
 from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
@@ -115,6 +117,12 @@ class ModelInputs:
         Amplitude F_u of a radial force turning with the shaft [N] (rotor unbalance
         ``m e w_s^2``), added to ``(fx, fy)`` as ``F_u (sin w_s t, cos w_s t)``; less than
         ``|(fx, fy)|`` so that the load never vanishes. 0: a constant load (the seed's).
+    profile : DefectProfile or str
+        Drop of a ball across the defect: ``"rectangular"`` (default; seed VSM eqs. (1)–(3):
+        the constant ``h_min`` over the extent) or ``"geometric"`` (the ball rests on the
+        nearer edge, seed VSM eq. (2) along the path: 0 at the edges, ``h_min`` at the centre;
+        the rotor model's default). The geometric profile needs the implicit eq. (11)
+        (``retention_factor`` unset). This field, not ``defect.profile``, sets it.
     """
 
     bearing: Bearing
@@ -135,6 +143,7 @@ class ModelInputs:
     jitter: float = 0.0
     ball_diameter_spread: float = 0.0
     unbalance: float = 0.0
+    profile: DefectProfile | str = DefectProfile.RECTANGULAR
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -210,6 +219,14 @@ class ModelInputs:
         object.__setattr__(
             self, "ball_diameter_spread", check_ball_spread(self.ball_diameter_spread)
         )
+        prof = parse_enum(DefectProfile, self.profile, "defect_profile")
+        object.__setattr__(self, "profile", prof)
+        if prof is DefectProfile.GEOMETRIC and self.retention_factor is not None:
+            raise ConfigError(
+                f"defect_profile = 'geometric' with retention_factor = {self.retention_factor:g}"
+                ": a prescribed gamma replaces the drop the profile describes; valid: "
+                "defect_profile = 'rectangular' with a retention_factor, or no retention_factor"
+            )
 
     def require_clearance(self, who: str) -> None:
         """Refuse a negative clearance for ``who`` (the VSM and its static trace): their
@@ -327,6 +344,15 @@ class ModelInputs:
             if self.defect.race is Race.BALL:
                 k = characteristic_frequencies(self.bearing, self.shaft_hz)
                 p[bl.P_SPIN] = k.bsf_hz / k.ftf_hz  # spin angle per cage angle
+            if self.profile is DefectProfile.GEOMETRIC:
+                b = self.bearing
+                r_i, r_o = b.inner_raceway_radius, b.outer_raceway_radius
+                p[bl.P_PROFILE] = 1.0
+                p[bl.P_RBALL] = 0.5 * b.element_diameter
+                p[bl.P_HALFW] = 0.5 * self.defect.width
+                p[bl.P_DEPTH] = self.defect.depth
+                p[bl.P_RRACE] = r_i if self.defect.race is Race.INNER else r_o
+                p[bl.P_RRACEI] = r_i
         p[bl.P_NTAB] = 0
         p[bl.P_PERBALL] = 1.0 if per_ball else 0.0
         p[bl.P_WARMX] = math.nan

@@ -53,7 +53,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
     jyy = 0.0
     for j in range(Z):
         # a ball over the defect loses the geometric drop h_min from its deflection
-        fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi)
+        fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
         q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
         if q > 0.0:

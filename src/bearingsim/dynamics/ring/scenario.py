@@ -103,6 +103,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         jitter=scenario.pocket_jitter_percent / 100.0,
         ball_diameter_spread=scenario.ball_diameter_spread_m,
         unbalance=scenario.unbalance_n,
+        profile=scenario.defect_profile,
     )
 
 

@@ -479,6 +479,7 @@ def _inputs_dict(inputs: ModelInputs) -> dict[str, Any]:
     """The inputs as plain JSON types (bearing and defect spelled out, enums by value)."""
     d: dict[str, Any] = {f.name: getattr(inputs, f.name) for f in dataclasses.fields(inputs)}
     d["bearing"] = dataclasses.asdict(inputs.bearing)
+    d["profile"] = inputs.profile.value
     dfc = inputs.defect
     if dfc is not None:
         d["defect"] = {
