@@ -156,7 +156,7 @@ def build_dataset(cache: Path, progress: bool = True):
 
     path = cache / "sim_to_real.zarr"
     grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, PROFILES]
-    grid += [DURATION_S, FEATURES, "antialias"]
+    grid += [DURATION_S, FEATURES, "antialias", "geometric"]
     key = json.dumps(grid)
     if path.exists():
         g = zarr.open_group(str(path), mode="r")
@@ -179,6 +179,7 @@ def build_dataset(cache: Path, progress: bool = True):
             slip_percent=c["slip"],
             ball_diameter_spread_m=c["spread"],
             antialias=True,  # through a measurement chain: its anti-aliasing filter
+            defect_profile="geometric",  # the ball rests on the slot's nearer edge
         )
         sc["unbalance_n"] = c["unbalance"] * math.hypot(SEED_FX_N, SEED_FY_N)
         sc["clearance_m"] = c["clearance"]

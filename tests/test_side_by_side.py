@@ -10,7 +10,13 @@ import pytest
 
 from bearingsim.errors import ConfigError
 from bearingsim.io.signal import read_signal
-from bearingsim.side_by_side import SLIP_PERCENT, side_by_side, signal_metrics, within_bounds
+from bearingsim.side_by_side import (
+    DEFECT_PROFILE,
+    SLIP_PERCENT,
+    side_by_side,
+    signal_metrics,
+    within_bounds,
+)
 
 CWRU = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 needs_data = pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
@@ -65,6 +71,7 @@ def test_record_132_side_by_side():
     # the slip of real bearings (Randall & Antoni 2011: 1-2 %), sampled like a recorder
     assert s["scenario"]["slip_percent"] == SLIP_PERCENT == 1.5
     assert s["scenario"]["antialias"] is True
+    assert s["scenario"]["defect_profile"] == DEFECT_PROFILE == "geometric"
     z = side_by_side(rec, "cwru-de-12k", duration_s=0.5, slip_percent=0.0)
     assert z["scenario"]["slip_percent"] == 0.0 and z["measured"] == s["measured"]
     assert z["simulated"]["prominence_db"] != s["simulated"]["prominence_db"]

@@ -2,7 +2,8 @@
 
 Each fault record of ``../shared/data/cwru`` whose mounting has records of another fault size
 is simulated (VSM, the record's bearing, speed and sample rate, the CWRU fault diameter as the
-defect width, EDM depth 0.011 in, the random slip of real bearings
+defect width, EDM depth 0.011 in, the ball resting on the slot's nearer edge
+(:data:`bearingsim.side_by_side.DEFECT_PROFILE`), the random slip of real bearings
 (:data:`bearingsim.side_by_side.SLIP_PERCENT`), anti-aliased sampling; ball records with the ball
 defect) and passed through a rig
 identified **without** the record's fault size (leave-one-mounting-out:
@@ -92,6 +93,7 @@ def run(ctx: Context) -> Section:
     # here, when the section runs, not at import time (tests/test_layers.py)
     from ...side_by_side import (
         BOUNDS,
+        DEFECT_PROFILE,
         SLIP_PERCENT,
         lomo_rig,
         ratios,
@@ -159,7 +161,8 @@ def run(ctx: Context) -> Section:
         _figure(ctx, sec, cases)
     sec.text = (
         f"Simulated time {duration:g} s per record (the record's first {duration:g} s "
-        f"measured), {SLIP_PERCENT:g} % random slip, anti-aliased. Rigs identified "
+        f"measured), {SLIP_PERCENT:g} % random slip, {DEFECT_PROFILE} drop profile, "
+        "anti-aliased. Rigs identified "
         "leave-one-mounting-out; the fan end has one fault size "
         "here and gets no rig, so its records are not judged."
     )
