@@ -111,3 +111,21 @@ def test_bad_profile_and_profile_with_gamma_one_line():
         simulate(dict(model="vsm", fault="outer", duration_s=0.01, retention_factor=0.4,
                       defect_profile="geometric"))  # fmt: skip
     assert math.isfinite(_run("geometric", duration_s=0.02).meta["static_residual_max"])
+
+
+def test_rotor_takes_the_key_too():
+    """The rotor model's defects are geometric by default (docs/models.md, ROTOR); the same key
+    chooses the rectangle, and a bad value is one line."""
+    from bearingsim.config import RotorScenario
+
+    assert RotorScenario().defect_profile == "geometric"
+    sc = dict(model="rotor", de_fault="outer", duration_s=0.05, fs_hz=12000.0)
+    geo = simulate(sc)
+    rect = simulate({**sc, "defect_profile": "rectangular"})
+    assert not np.array_equal(np.asarray(geo["acc_y"]), np.asarray(rect["acc_y"]))
+    np.testing.assert_array_equal(
+        np.asarray(geo["acc_y"]),
+        np.asarray(simulate({**sc, "defect_profile": "geometric"})["acc_y"]),
+    )
+    with pytest.raises(ConfigError, match=r"^defect_profile = 'flat' is invalid; valid: "):
+        RotorScenario(defect_profile="flat")

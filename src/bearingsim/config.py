@@ -668,6 +668,10 @@ class RotorScenario(Scenario):
                                                         | ball
     ``defect_width_m``                  1.778e-4        defect width b [m] (CWRU 0.007 in)
     ``defect_depth_m``                  2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
+    ``defect_profile``                  geometric       drop of a ball across the defect:
+                                                        ``geometric`` (it rests on the nearer
+                                                        edge) or ``rectangular`` (h_min over
+                                                        the extent, seed VSM)
     ``de_defect_angle_deg``,            180.0           defect **centre** azimuth at t = 0 [deg]
     ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``; ball:
                                                         the slot's spin angle, 0 = facing the
@@ -727,6 +731,7 @@ class RotorScenario(Scenario):
         "fe_fault",
         "defect_width_m",
         "defect_depth_m",
+        "defect_profile",
         "de_defect_angle_deg",
         "fe_defect_angle_deg",
         "rpm",
@@ -764,6 +769,7 @@ class RotorScenario(Scenario):
     fe_fault: str = "none"
     defect_width_m: float = CWRU_DEFECT_WIDTH_M
     defect_depth_m: float = CWRU_DEFECT_DEPTH_M
+    defect_profile: str = "geometric"
     de_defect_angle_deg: float = 180.0
     fe_defect_angle_deg: float = 180.0
     rpm: float = DEFAULT_RPM
@@ -798,6 +804,7 @@ class RotorScenario(Scenario):
                 )
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
         s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
+        _choice("defect_profile", self.defect_profile, ("geometric", "rectangular"))
         for name in ("de_defect_angle_deg", "fe_defect_angle_deg"):
             s(self, name, _angle(name, getattr(self, name)))
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))

@@ -73,6 +73,14 @@ def _opt(f):
             help="Defect depth h_d [m] (CWRU 0.011 in).",
         ),
         click.option(
+            "--defect-profile",
+            type=click.Choice(["rectangular", "geometric"]),
+            default=None,
+            show_default="rectangular; rotor: geometric",
+            help="Drop of a ball across the defect: the seed's rectangle, or resting on the "
+            "nearer edge.",
+        ),
+        click.option(
             "--defect-edge-angle-deg",
             type=Number(-360.0, 360.0, unit="deg"),
             default=None,

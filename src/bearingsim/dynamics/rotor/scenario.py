@@ -44,7 +44,10 @@ def _support(
 ) -> BearingSupport:
     f = None
     if fault != "none":
-        f = Defect(fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg))
+        f = Defect(
+            fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg),
+            sc.defect_profile,
+        )  # fmt: skip
     b = get_bearing(bearing_id)
     clearance = getattr(sc, f"{end}_clearance_m")
     if clearance is not None:  # negative = preload; bounded like a bearing file's
