@@ -4,7 +4,7 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
     python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--slip-percent 1.5]
-        [--defect-profile geometric] [--model-gain] [--json OUT.json]
+        [--defect-profile geometric] [--model-gain] [--direct-gain G] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from bearingsim.errors import ConfigError
@@ -40,6 +41,13 @@ def main() -> int:
     ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
     ap.add_argument(
         "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular"]
+    )
+    ap.add_argument(
+        "--direct-gain",
+        type=float,
+        default=None,
+        help="replace the identified rig's direct gain (1: output-only identification; 0: the "
+        "sensor sees the identified modes only)",
     )
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
@@ -73,6 +81,12 @@ def main() -> int:
                 defect_profile=a.defect_profile,
             )
         rig = rigs[key]
+        if rig is not None and a.direct_gain is not None:
+            rig = replace(
+                rig,
+                gain=a.direct_gain,
+                gain_provenance=f"{rig.gain_provenance}; set to {a.direct_gain:g} (--direct-gain)",
+            )
         if rig is None:
             out.append(base | {"status": "no rig: no other fault size of this mounting here"})
             continue
