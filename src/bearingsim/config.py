@@ -38,7 +38,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from .errors import ConfigError, DeprecatedKeyWarning, check_positive, check_range, read_toml
-from .geometry import CWRU_DEFECT_DEPTH_M, CWRU_DEFECT_WIDTH_M, parse_enum
+from .geometry import CWRU_DEFECT_DEPTH_M, CWRU_DEFECT_WIDTH_M, DefectProfile, parse_enum
 
 
 class Model(enum.Enum):
@@ -157,6 +157,8 @@ def _angle(name: str, value: Any) -> float:
 
 #: defect sites of the ring and rotor models (``ball``: ball 1 carries it; issue 16, item 2)
 _RING_FAULTS = ("none", "outer", "inner", "ball")
+#: values of ``defect_profile`` (ring and rotor models; :class:`~bearingsim.geometry.DefectProfile`)
+DEFECT_PROFILES = tuple(m.value for m in DefectProfile)
 
 
 def _family_of(model: Any) -> type[Scenario]:
@@ -552,7 +554,7 @@ class RingScenario(Scenario):
         _choice("fault", self.fault, _RING_FAULTS)
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
         s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
-        _choice("defect_profile", self.defect_profile, ("rectangular", "geometric"))
+        _choice("defect_profile", self.defect_profile, DEFECT_PROFILES)
         s(
             self,
             "defect_edge_angle_deg",
@@ -804,7 +806,7 @@ class RotorScenario(Scenario):
                 )
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
         s(self, "defect_depth_m", check_positive("defect_depth_m", self.defect_depth_m, "m"))
-        _choice("defect_profile", self.defect_profile, ("geometric", "rectangular"))
+        _choice("defect_profile", self.defect_profile, DEFECT_PROFILES)
         for name in ("de_defect_angle_deg", "fe_defect_angle_deg"):
             s(self, name, _angle(name, getattr(self, name)))
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))

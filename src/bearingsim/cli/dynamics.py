@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..config import Model, Solver
+from ..config import DEFECT_PROFILES, Model, Solver
 from ..errors import ConfigError, check_range
 from .common import (
     CLEARANCE,
@@ -74,7 +74,7 @@ def _opt(f):
         ),
         click.option(
             "--defect-profile",
-            type=click.Choice(["rectangular", "geometric"]),
+            type=click.Choice(DEFECT_PROFILES),
             default=None,
             show_default="rectangular; rotor: geometric",
             help="Drop of a ball across the defect: the seed's rectangle, or resting on the "

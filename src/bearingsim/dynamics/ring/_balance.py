@@ -53,6 +53,7 @@ import numpy as np
 from numba import njit
 
 from ...load_distribution import _solve_1d
+from ..defect_drop import edge_drop
 from ..slip import cage_angle
 
 __all__: list[str] = []  # private: compiled helpers of the ring models
@@ -266,19 +267,16 @@ def cell_fraction(r, half, width):
 @njit(cache=True, inline="always")
 def geometric_drop(r, dbeta, rpath, rb, rr, sg, halfw, depth):
     """Drop [m] of a ball whose angle past the defect's left edge is ``r`` [rad] (extent
-    ``dbeta``, measured along a circle of radius ``rpath`` [m]): it rests on the nearer edge, at
-    ``e = b/2 - |x|`` from its centre line, ``x`` the arc distance from the defect centre, and
-    drops ``[r_b - sqrt(r_b^2 - e^2)] + sg [R - sqrt(R^2 - e^2)]`` (seed VSM eq. (2) with
-    ``b/2`` replaced by ``e``; ``sg`` -1 for the concave outer race of radius ``R``, +1 for the
-    convex inner race), at most ``depth`` (the rotor model's ``DefectProfile.GEOMETRIC``).
-    Continuous: 0 at the edges, ``h_min`` at the centre."""
+    ``dbeta``, measured along a circle of radius ``rpath`` [m]): it rests on the nearer edge,
+    ``e = b/2 - |x|`` from its centre line (``x`` the arc distance from the defect centre), and
+    drops :func:`..defect_drop.edge_drop` (``sg`` -1 outer race, +1 inner race; at most
+    ``depth``): 0 at the edges, ``h_min`` at the centre."""
     if r >= dbeta:
         return 0.0
     e = halfw - rpath * abs(r - 0.5 * dbeta)
     if e <= 0.0:
         return 0.0
-    d = (rb - math.sqrt(rb * rb - e * e)) + sg * (rr - math.sqrt(rr * rr - e * e))
-    return d if d < depth else depth
+    return edge_drop(e, rb, rr, sg, depth)[0]
 
 
 @njit(cache=True, inline="always")

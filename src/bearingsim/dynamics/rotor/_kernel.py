@@ -49,6 +49,7 @@ import math
 import numpy as np
 from numba import cfunc, njit
 
+from ..defect_drop import edge_drop
 from ..integrate import RHS_SIG
 from ..slip import cage_angle
 
@@ -137,17 +138,11 @@ def defect_drop_on(p, o, dpsi, rpath, rr, sg, hmax):
         return hmax, 0.0
     # geometric: the ball rests on the nearer edge, at distance e from its centre line;
     # seed VSM eq. (2) with b/2 replaced by e: d(e) = [r - sqrt(r^2-e^2)] +/- [R - sqrt(R^2-e^2)]
-    rb = p[o + B_RBALL]
     x = rpath * abs(dpsi)
     e = p[o + B_HALFW] - x
     if e <= 0.0:
         return 0.0, 0.0
-    sb = math.sqrt(rb * rb - e * e)
-    sr = math.sqrt(rr * rr - e * e)
-    d = (rb - sb) + sg * (rr - sr)
-    if d >= p[o + B_DEPTH]:  # the ball touches the bottom of the defect
-        return p[o + B_DEPTH], 0.0
-    dd_de = e / sb + sg * e / sr
+    d, dd_de = edge_drop(e, p[o + B_RBALL], rr, sg, p[o + B_DEPTH])
     sgn = 1.0 if dpsi > 0.0 else -1.0
     return d, -dd_de * rpath * sgn
 
