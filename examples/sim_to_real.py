@@ -14,7 +14,9 @@
    impacts at the cage frequency), the rotor unbalance (0-50 % of the static load, turning
    with the shaft: modulation at the shaft frequency) and the operating clearance (the
    catalogue's 6 um, 0, and preloads of 5 and 10 um: every ball loaded, so an inner-race
-   defect strikes at every pass).
+   defect strikes at every pass) and the contacts' composite RMS roughness (0.05, 0.1, 0.2 um:
+   a ball entering the load zone takes up its load smoothly, without ringing the contact
+   resonance as Hertz's smooth onset does).
 2. **Features** (the same function on simulated and measured signals): the squared-envelope
    spectrum in the fast-kurtogram band, its levels at the characteristic frequencies of the
    bearing at the record's speed (BPFO, BPFI and their 2nd harmonics, BPFI +/- shaft, 2 x BSF and
@@ -65,6 +67,10 @@ UNBALANCE = (0.0, 0.1, 0.25, 0.5)
 #: (a motor's wave spring: ~150 N axially loads every ball of a 6205 by ~100 N, about 5 um
 #: of contact deflection; a 2-D ring model takes it as a negative clearance).
 CLEARANCES_M = (6e-6, 0.0, -5e-6, -10e-6)
+#: composite RMS roughness of the ball-raceway contacts [m] (``contact_roughness_m``): half,
+#: once and twice the 0.1 um of ground and honed raceways with grade <= G20 balls
+#: (bearingsim.side_by_side.CONTACT_ROUGHNESS_M)
+ROUGHNESS_M = (0.05e-6, 0.1e-6, 0.2e-6)
 PROFILES = {
     "cwru-de-12k": ("6205-cwru", 12000.0),
     "cwru-fe-12k": ("6203-cwru", 12000.0),
@@ -143,6 +149,7 @@ def _grid():
                         spread=SPREADS_M[rng.integers(len(SPREADS_M))],
                         unbalance=UNBALANCE[rng.integers(len(UNBALANCE))],
                         clearance=CLEARANCES_M[rng.integers(len(CLEARANCES_M))],
+                        roughness=ROUGHNESS_M[rng.integers(len(ROUGHNESS_M))],
                     )
 
 
@@ -155,7 +162,8 @@ def build_dataset(cache: Path, progress: bool = True):
     from bearingsim.rig import apply_rig, load_rig
 
     path = cache / "sim_to_real.zarr"
-    grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, PROFILES]
+    grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, ROUGHNESS_M]
+    grid += [PROFILES]
     grid += [DURATION_S, FEATURES, "antialias", "geometric"]
     key = json.dumps(grid)
     if path.exists():
@@ -180,6 +188,7 @@ def build_dataset(cache: Path, progress: bool = True):
             ball_diameter_spread_m=c["spread"],
             antialias=True,  # through a measurement chain: its anti-aliasing filter
             defect_profile="geometric",  # the ball rests on the slot's nearer edge
+            contact_roughness_m=c["roughness"],
         )
         sc["unbalance_n"] = c["unbalance"] * math.hypot(SEED_FX_N, SEED_FY_N)
         sc["clearance_m"] = c["clearance"]

@@ -4,7 +4,8 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
     python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--slip-percent 1.5]
-        [--defect-profile geometric] [--model-gain] [--direct-gain G] [--json OUT.json]
+        [--defect-profile geometric] [--contact-roughness-m 1e-7] [--model-gain]
+        [--direct-gain G] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -24,6 +25,7 @@ from bearingsim.io.atomic import write_json
 from bearingsim.io.cwru import cwru_manifest
 from bearingsim.side_by_side import (
     BOUNDS,
+    CONTACT_ROUGHNESS_M,
     DEFECT_PROFILE,
     SLIP_PERCENT,
     lomo_rig,
@@ -43,6 +45,12 @@ def main() -> int:
         "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular"]
     )
     ap.add_argument(
+        "--contact-roughness-m",
+        type=float,
+        default=CONTACT_ROUGHNESS_M,
+        help="composite RMS roughness of the contacts [m] (0: Hertz's smooth onset)",
+    )
+    ap.add_argument(
         "--direct-gain",
         type=float,
         default=None,
@@ -57,6 +65,11 @@ def main() -> int:
         help="scale each rig's path so that the model's RMS matches the identification records",
     )
     a = ap.parse_args()
+    realism = {
+        "slip_percent": a.slip_percent,
+        "defect_profile": a.defect_profile,
+        "contact_roughness_m": a.contact_roughness_m,
+    }
     rows = cwru_manifest(a.data)
     faults = {f: r for f, r in rows.items() if r["fault_diameter_in"]}
     rigs: dict[tuple, object] = {}
@@ -77,8 +90,7 @@ def main() -> int:
                 a.data,
                 name,
                 model_gain=a.model if a.model_gain else None,
-                slip_percent=a.slip_percent,
-                defect_profile=a.defect_profile,
+                realism=realism,
             )
         rig = rigs[key]
         if rig is not None and a.direct_gain is not None:
@@ -96,8 +108,7 @@ def main() -> int:
                 rig,
                 model=a.model,
                 duration_s=a.duration_s,
-                slip_percent=a.slip_percent,
-                defect_profile=a.defect_profile,
+                realism=realism,
             )
         except ConfigError as exc:
             out.append(base | {"status": f"error: {exc}"})

@@ -11,6 +11,7 @@ import pytest
 from bearingsim.errors import ConfigError
 from bearingsim.io.signal import read_signal
 from bearingsim.side_by_side import (
+    CONTACT_ROUGHNESS_M,
     DEFECT_PROFILE,
     SLIP_PERCENT,
     side_by_side,
@@ -72,7 +73,8 @@ def test_record_132_side_by_side():
     assert s["scenario"]["slip_percent"] == SLIP_PERCENT == 1.5
     assert s["scenario"]["antialias"] is True
     assert s["scenario"]["defect_profile"] == DEFECT_PROFILE == "geometric"
-    z = side_by_side(rec, "cwru-de-12k", duration_s=0.5, slip_percent=0.0)
+    assert s["scenario"]["contact_roughness_m"] == CONTACT_ROUGHNESS_M == 1e-7
+    z = side_by_side(rec, "cwru-de-12k", duration_s=0.5, realism={"slip_percent": 0.0})
     assert z["scenario"]["slip_percent"] == 0.0 and z["measured"] == s["measured"]
     assert z["simulated"]["prominence_db"] != s["simulated"]["prominence_db"]
 

@@ -74,6 +74,9 @@ SEED_VSM_FX_N = 10.0
 SEED_VSM_FY_N = 50.0
 #: largest ball diameter spread accepted [m] (ISO 3290-1 grade G200's lot variation, 10 µm)
 MAX_BALL_SPREAD_M = 10e-6
+#: largest composite RMS contact roughness accepted [m] (``contact_roughness_m``): ground bearing
+#: surfaces are an order of magnitude below it (bearingsim.contact.rough)
+MAX_ROUGHNESS_M = 1e-6
 #: seed VSM table 1: shaft speed [r/min]
 SEED_VSM_RPM = 1750.0
 #: seed VSM table 1: the defect's left edge at t = 0, beta_0 [deg]
@@ -357,6 +360,12 @@ def _check_bearing(sc: Any, default: str) -> None:
         raise ConfigError(f"bearing = {sc.bearing!r} is invalid; valid: a catalogue id")
 
 
+def check_roughness(value: object) -> float:
+    """``contact_roughness_m`` [m] within [0, :data:`MAX_ROUGHNESS_M`], else a one-line
+    :class:`~bearingsim.errors.ConfigError` (ring scenarios and models)."""
+    return check_range("contact_roughness_m", value, 0.0, MAX_ROUGHNESS_M, unit="m")
+
+
 def check_ball_spread(value: object) -> float:
     """``ball_diameter_spread_m`` [m] within [0, :data:`MAX_BALL_SPREAD_M`], else a one-line
     :class:`~bearingsim.errors.ConfigError` (ring and rotor scenarios and models)."""
@@ -446,6 +455,12 @@ class RingScenario(Scenario):
                                                     shaft [N] (rotor unbalance m e w^2; ISO
                                                     21940-11 grades); less than the load
                                                     ``hypot(fx_n, fy_n)``
+    ``contact_roughness_m``         0.0             composite RMS roughness sigma of the
+                                                    ball-raceway contacts [m] (0 to 1e-6): the
+                                                    load law is Hertz's averaged over it, a
+                                                    smooth onset where balls enter and leave
+                                                    the load zone (``docs/models.md``, "Rough
+                                                    contact onset"); 0 = Hertz (the seeds')
     ``mass_kg``                     by fault        vibrating mass m [kg]; seed table 1: 0.063
                                                     (outer ring, also ``none``), 0.045 (inner)
     ``damping_n_s_per_m``           300.0           c_eq [N s/m] (seed table 1)
@@ -501,6 +516,7 @@ class RingScenario(Scenario):
         "pocket_jitter_percent",
         "ball_diameter_spread_m",
         "unbalance_n",
+        "contact_roughness_m",
         "mass_kg",
         "damping_n_s_per_m",
         "stiffness_n_per_m1_5",
@@ -538,6 +554,7 @@ class RingScenario(Scenario):
     pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
     unbalance_n: float = 0.0
+    contact_roughness_m: float = 0.0
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
     stiffness_n_per_m1_5: float | None = None
@@ -584,6 +601,7 @@ class RingScenario(Scenario):
                 unit="N",
             ),
         )
+        s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
         s(

@@ -4,7 +4,8 @@ first version).
 For a CWRU fault record: simulate its condition (the record's bearing, shaft speed and sample
 rate; the CWRU fault diameter as the defect width, the EDM depth 0.011 in, the ball resting on
 the slot's nearer edge, :data:`DEFECT_PROFILE`; the random slip real bearings show,
-:data:`SLIP_PERCENT`; sampled through an anti-aliasing filter) with a ring model,
+:data:`SLIP_PERCENT`; rough contacts, :data:`CONTACT_ROUGHNESS_M`; together
+:data:`REALISM`; sampled through an anti-aliasing filter) with a ring model,
 pass the result through a rig (:mod:`bearingsim.rig`), and compute the same numbers on both
 signals with the same code (:func:`signal_metrics`): RMS, kurtosis, crest factor, fault-line
 amplitude and prominence in the envelope spectrum, and the ringing band (fast kurtogram).
@@ -34,7 +35,9 @@ from .errors import ConfigError
 from .io.cwru import cwru_manifest
 
 __all__ = [
+    "CONTACT_ROUGHNESS_M",
     "DEFECT_PROFILE",
+    "REALISM",
     "SLIP_PERCENT",
     "SignalMetrics",
     "lomo_rig",
@@ -55,6 +58,17 @@ SLIP_PERCENT = 1.5
 #: 2008), not the seed VSM's rectangle (h_min over the whole extent, a step at each edge), which
 #: the seed comparisons keep
 DEFECT_PROFILE = "geometric"
+#: composite RMS roughness of the ball-raceway contacts [m] (``contact_roughness_m``): the order
+#: of ground and honed raceways (R_a 0.05-0.1 um, R_q ~ 1.25 R_a) with grade <= G20 balls (R_a
+#: <= 0.02 um); the CWRU bearings' own is not published. docs/validation.md shows the healthy
+#: verdicts over 0.05-0.2 um
+CONTACT_ROUGHNESS_M = 1.0e-7
+#: the scenario keys of a realistic simulation beside a measurement (the defaults above)
+REALISM = {
+    "slip_percent": SLIP_PERCENT,
+    "defect_profile": DEFECT_PROFILE,
+    "contact_roughness_m": CONTACT_ROUGHNESS_M,
+}
 
 
 @dataclass(frozen=True)
@@ -106,8 +120,7 @@ def simulate_record(
     model: str = "vsm",
     duration_s: float = 2.0,
     seed: int = 0,
-    slip_percent: float = SLIP_PERCENT,
-    defect_profile: str = DEFECT_PROFILE,
+    realism: dict | None = None,
 ) -> dict:
     """Simulate the condition of a CWRU fault record through ``rig``: the two signals and the
     condition (see :func:`side_by_side` for the parameters).
@@ -152,8 +165,7 @@ def simulate_record(
         duration_s=duration_s,
         fs_hz=fs,
         seed=seed,
-        slip_percent=slip_percent,
-        defect_profile=defect_profile,
+        **{**REALISM, **(realism or {})},
         antialias=True,  # through a measurement chain: its anti-aliasing filter
     )
     res = apply_rig(simulate(sc), rig, seed=seed)
@@ -194,8 +206,7 @@ def side_by_side(
     model: str = "vsm",
     duration_s: float = 2.0,
     seed: int = 0,
-    slip_percent: float = SLIP_PERCENT,
-    defect_profile: str = DEFECT_PROFILE,
+    realism: dict | None = None,
 ) -> dict:
     """Simulate the condition of a CWRU fault record, pass it through ``rig`` and set the
     numbers of both side by side.
@@ -212,12 +223,9 @@ def side_by_side(
         Simulated time [s] (the record's first ``duration_s`` are used too).
     seed : int
         Seed of the rig's random parts and of the slip.
-    slip_percent : float
-        Random slip of the simulation [%] (scenario key ``slip_percent``; default
-        :data:`SLIP_PERCENT`).
-    defect_profile : {"geometric", "rectangular"}
-        Drop of a ball across the slot (scenario key ``defect_profile``; default
-        :data:`DEFECT_PROFILE`).
+    realism : dict, optional
+        Scenario keys replacing those of :data:`REALISM` (``slip_percent`` [%],
+        ``defect_profile``, ``contact_roughness_m`` [m]).
 
     Returns
     -------
@@ -232,8 +240,7 @@ def side_by_side(
         model=model,
         duration_s=duration_s,
         seed=seed,
-        slip_percent=slip_percent,
-        defect_profile=defect_profile,
+        realism=realism,
     )
     m_meas = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
     m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
@@ -252,8 +259,7 @@ def model_path_scale(
     *,
     model: str = "vsm",
     duration_s: float = 1.0,
-    slip_percent: float = SLIP_PERCENT,
-    defect_profile: str = DEFECT_PROFILE,
+    realism: dict | None = None,
 ):
     """The rig with its path (direct gain and every mode's gain) scaled so that the model's
     simulated RMS through it matches the measured RMS of ``records`` — a model-based gain, the
@@ -271,10 +277,8 @@ def model_path_scale(
         The ring model.
     duration_s : float
         Simulated time per record [s].
-    slip_percent : float
-        Random slip of the simulations [%].
-    defect_profile : {"geometric", "rectangular"}
-        Drop of a ball across the slot.
+    realism : dict, optional
+        Scenario keys replacing those of :data:`REALISM`.
 
     Returns
     -------
@@ -292,8 +296,7 @@ def model_path_scale(
             rig,
             model=model,
             duration_s=duration_s,
-            slip_percent=slip_percent,
-            defect_profile=defect_profile,
+            realism=realism,
         )
         m = c["measured"] - c["measured"].mean()
         x = c["simulated"] - c["simulated"].mean()
@@ -316,8 +319,7 @@ def lomo_rig(
     record: str,
     *,
     model_gain: str | None = None,
-    slip_percent: float = SLIP_PERCENT,
-    defect_profile: str = DEFECT_PROFILE,
+    realism: dict | None = None,
 ):
     """The rig of ``record``'s mounting identified WITHOUT its fault size (leave-one-mounting-
     out, ``bearingsim.rig_identify`` on the records of the same end and sample rate with another
@@ -332,8 +334,8 @@ def lomo_rig(
     model_gain : {"vsm", "dem", "tvsm"}, optional
         Also scale the path so that this model's RMS matches those other records
         (:func:`model_path_scale`; the same leave-one-mounting-out split).
-    slip_percent, defect_profile
-        The simulations' slip [%] and drop profile for ``model_gain``.
+    realism : dict, optional
+        Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
     """
     from .io.signal import read_signal
     from .rig_identify import identify_rig
@@ -361,8 +363,7 @@ def lomo_rig(
             rig,
             [data_dir / f for f in others],
             model=model_gain,
-            slip_percent=slip_percent,
-            defect_profile=defect_profile,
+            realism=realism,
         )
     return rig
 

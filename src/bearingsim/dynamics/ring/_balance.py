@@ -52,6 +52,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ...contact.rough import rough_hertz
 from ...load_distribution import _solve_1d
 from ..defect_drop import edge_drop
 from ..slip import cage_angle
@@ -107,7 +108,11 @@ P_HALFW = 44  #: half the defect width b/2 [m] (geometric profile)
 P_DEPTH = 45  #: defect depth h_d [m] (geometric profile)
 P_RRACE = 46  #: radius of the faulty raceway [m] (ball defect: the outer raceway's)
 P_RRACEI = 47  #: ball defect: the inner raceway's radius [m] (geometric profile)
-HEADER = 48  #: first table entry
+P_ROUGH = 48  #: composite RMS surface roughness sigma of the rough load law [m] (0 = Hertz)
+P_RTAB = 49  #: offset in ``p`` of the rough-law table (:func:`..contact.rough.rough_table`) [-]
+P_RINV = 50  #: 1 / sigma [1/m] (rough law)
+P_RSN1 = 51  #: sigma^(n-1) [m^(n-1)] (rough law)
+HEADER = 52  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -325,15 +330,35 @@ def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p):
 
 
 @njit(cache=True, inline="always")
-def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
+def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full=True):
     """Load Q [N], stiffness dQ/d(u.e) [N/m] and contact potential [J] of one ball whose ring
     approach is ``u.e`` [m]: the blend ``(1 - f_d) Q_intact + f_d Q_defect`` (times ``f_z``)
     with ``Q_intact = K (u.e - P_d/2)_+^n`` and ``Q_defect = gamma K (u.e - P_d/2 - h)_+^n``
-    (seed VSM eqs. (9), (11))."""
+    (seed VSM eqs. (9), (11)); with a roughness ``p[P_ROUGH] > 0`` each is the rough law
+    :func:`..contact.rough.rough_hertz` of the same deflection instead of the ``(.)_+^n``
+    (``full = False``: its load only; stiffness and potential 0)."""
     q = 0.0
     dq = 0.0
     pot = 0.0
+    sig = p[P_ROUGH]
     if zf > 0.0:
+        if sig > 0.0:
+            roff = int(p[P_RTAB])
+            inv = p[P_RINV]
+            sn1 = p[P_RSN1]
+            if fr < 1.0:
+                w = (1.0 - fr) * zf
+                qo, ko, eo = rough_hertz(ue - clr, K, sig, p, roff, full, inv, sn1)
+                q += w * qo
+                dq += w * ko
+                pot += w * eo
+            if fr > 0.0:
+                w = fr * zf * dfac
+                qi, ki, ei = rough_hertz(ue - clr - doff, K, sig, p, roff, full, inv, sn1)
+                q += w * qi
+                dq += w * ki
+                pot += w * ei
+            return q, dq, pot
         if fr < 1.0:
             d = ue - clr
             if d > 0.0:
@@ -351,6 +376,17 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n):
                 dq += w * ki
                 pot += w * qi * d / (n + 1.0)
     return q, dq, pot
+
+
+@njit(cache=True, inline="always")
+def loaded_threshold(p):
+    """Load above which a ball counts as loaded [N]: 0 for Hertz; with a roughness the load of
+    a ball at zero nominal deflection, ``K sigma^n g_n(0)`` (a ball counts as loaded when its
+    mean planes overlap, not when its asperities first touch)."""
+    sig = p[P_ROUGH]
+    if sig <= 0.0:
+        return 0.0
+    return rough_hertz(0.0, p[P_K], sig, p, int(p[P_RTAB]))[0]
 
 
 @njit(cache=True, inline="always")
@@ -518,7 +554,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
                 for j in range(Z):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n)
+                    q, kk, _e = ball_load(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p)
                     if q > 0.0:
                         a = sn[j]
                         b = cs[j]
@@ -640,12 +676,13 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     clr, doff, dfac, K, n = constants(p)
     doffi = p[P_DOFFI]
     boff = int(p[P_BDEV])
+    qthr = loaded_threshold(p)
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = ball_clearance(p, boff, j, clr)
-        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
-        if q > 0.0:
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p)
+        if q > qthr:
             n_loaded += 1
         if fill:
             out[k0 + j] = q

@@ -23,8 +23,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ...config import SEED_VSM_DAMPING_N_S_M, SEED_VSM_MASS_OUTER_KG, check_ball_spread
+from ...config import (
+    SEED_VSM_DAMPING_N_S_M,
+    SEED_VSM_MASS_OUTER_KG,
+    check_ball_spread,
+    check_roughness,
+)
 from ...contact.hertz import element_stiffness
+from ...contact.rough import rough_table
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
     BallBearing,
@@ -123,6 +129,13 @@ class ModelInputs:
         nearer edge, seed VSM eq. (2) along the path: 0 at the edges, ``h_min`` at the centre;
         the rotor model's default). The geometric profile needs the implicit eq. (11)
         (``retention_factor`` unset). This field, not ``defect.profile``, sets it.
+    roughness : float
+        Composite RMS surface roughness ``sigma = sqrt(R_q,ball^2 + R_q,race^2)`` of the
+        ball-raceway contacts [m], in [0, 1e-6]: the ball load law is Hertz's averaged over a
+        normal asperity-height offset of that standard deviation
+        (:mod:`bearingsim.contact.rough`), so a ball entering or leaving the load zone takes
+        up its load over a few ``sigma`` of approach instead of with the smooth contact's
+        singular onset. 0 (default): Hertz's law, the seeds'.
     """
 
     bearing: Bearing
@@ -144,6 +157,7 @@ class ModelInputs:
     ball_diameter_spread: float = 0.0
     unbalance: float = 0.0
     profile: DefectProfile | str = DefectProfile.RECTANGULAR
+    roughness: float = 0.0
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -219,6 +233,7 @@ class ModelInputs:
         object.__setattr__(
             self, "ball_diameter_spread", check_ball_spread(self.ball_diameter_spread)
         )
+        object.__setattr__(self, "roughness", check_roughness(self.roughness))
         prof = parse_enum(DefectProfile, self.profile, "defect_profile")
         object.__setattr__(self, "profile", prof)
         if prof is DefectProfile.GEOMETRIC and self.retention_factor is not None:
@@ -296,8 +311,9 @@ class ModelInputs:
         self, q: NDArray[np.float64], slip: NDArray[np.float64] | None = None
     ) -> NDArray[np.float64]:
         """The parameter vector ``q`` (header and any table) with the tail tables the kernels
-        read by offset appended: the slip instants (``P_SLIP``) and the ball diameter deviations
-        (``P_BDEV``); ``q`` itself (a copy) when there are none."""
+        read by offset appended: the slip instants (``P_SLIP``), the ball diameter deviations
+        (``P_BDEV``) and the rough load law's table (``P_RTAB``); ``q`` itself (a copy) when
+        there are none."""
         dev = self.ball_deviations()
         parts = [q]
         size = q.size
@@ -309,6 +325,11 @@ class ModelInputs:
         if dev.size:
             out_off[bl.P_BDEV] = size
             parts.append(dev)
+            size += dev.size
+        if self.roughness > 0.0:
+            tab = rough_table(float(q[bl.P_N]))
+            out_off[bl.P_RTAB] = size
+            parts.append(tab)
         out = np.concatenate(parts) if len(parts) > 1 else q.copy()
         for k, v in out_off.items():
             out[k] = v
@@ -364,6 +385,10 @@ class ModelInputs:
         p[bl.P_SSTEP] = math.sin(2.0 * math.pi / Z)
         p[bl.P_CSTEP] = math.cos(2.0 * math.pi / Z)
         p[bl.P_CT] = math.nan
+        p[bl.P_ROUGH] = self.roughness
+        if self.roughness > 0.0:
+            p[bl.P_RINV] = 1.0 / self.roughness
+            p[bl.P_RSN1] = self.roughness ** (p[bl.P_N] - 1.0)
         return p
 
 

@@ -26,12 +26,14 @@ __all__ = ["KERNEL"]
 
 
 @njit(cache=True, inline="always")
-def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
+def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full=True):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
     ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
     cell half-widths ``hd, hw`` (the ball frame of :func:`._balance.frame_cached`), with the
     model's parameters read once from the packed vector ``p`` (layout :mod:`._balance`). This is
-    the DEM's hot loop: inlined, scalars only inside the loop."""
+    the DEM's hot loop: inlined, scalars only inside the loop. ``full = False`` (the
+    right-hand side) needs the force only: with rough contacts the tangent entries are then
+    0."""
     Z = int(p[bl.P_Z])
     fault = int(p[bl.P_FAULT])
     psil2 = 2.0 * p[bl.P_PSIL]
@@ -55,7 +57,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p):
         # a ball over the defect loses the geometric drop h_min from its deflection
         fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
-        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n)
+        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, full)
         if q > 0.0:
             gx += q * s0
             gy += q * c0
@@ -122,7 +124,7 @@ def _dem_rhs(t, y, p, dydt):
         p[bl.P_CRW] = rw
         p[bl.P_CHD] = hd
         p[bl.P_CHW] = hw
-    gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p)
+    gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     dydt[0] = y[2]

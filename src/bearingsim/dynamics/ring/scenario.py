@@ -104,6 +104,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         ball_diameter_spread=scenario.ball_diameter_spread_m,
         unbalance=scenario.unbalance_n,
         profile=scenario.defect_profile,
+        roughness=scenario.contact_roughness_m,
     )
 
 
@@ -340,6 +341,11 @@ def run_ring(
             "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]); pocket jitter: each pass "
             "instant moved by e_k T, e_k ~ N(0, jitter^2/2) from SeedSequence([seed, 1, 3]) "
             "(ModelInputs.slip_table, dynamics.slip)",
+        },
+        "contact": {
+            "roughness_m": scenario.contact_roughness_m,
+            "model": "Hertz load law averaged over a normal asperity-height offset of standard "
+            "deviation roughness_m (bearingsim.contact.rough); 0 = Hertz",
         },
         "unbalance": {
             "force_n": scenario.unbalance_n,

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...contact.capacity import check_load
+from ...contact.rough import rough_mean_power
 from ...errors import ConfigError
 from ...geometry import Race, defect_geometry
 from ...io.atomic import atomic_open
@@ -417,7 +418,11 @@ def stiffness_trace(
         fac = np.where(margin >= 0, fac, 0.0)
     comp = nominal - off
     K = p[bl.P_K]
-    Q = np.where(comp > 0, fac * K * np.maximum(comp, 0.0) ** 1.5, 0.0)
+    if inputs.roughness > 0.0:  # the rough load law (contact.rough), as the kernels use it
+        sig = inputs.roughness
+        Q = fac * K * sig**1.5 * rough_mean_power(comp / sig, 1.5)
+    else:
+        Q = np.where(comp > 0, fac * K * np.maximum(comp, 0.0) ** 1.5, 0.0)
     s = np.where(Q > 0, Q / np.where(Q > 0, ue, 1.0), 0.0)
     ldh = radial_load_distribution(
         inputs.bearing,
