@@ -19,7 +19,7 @@ from numpy.testing import assert_array_equal
 from scipy.integrate import quad
 
 from bearingsim import simulate
-from bearingsim.contact.rough import rough_hertz, rough_mean_power, rough_table
+from bearingsim.contact.rough import rough_ball, rough_hertz, rough_mean_power, rough_table
 from bearingsim.errors import ConfigError
 
 K = 8.0e9  # a 6205 ball constant's order [N/m^1.5]
@@ -64,6 +64,19 @@ def test_compiled_law_matches_the_closed_form(u):
     assert abs(q - s * rough_mean_power(u, 1.5)) <= 1e-8 * s
     assert abs(dq - 1.5 * s / SIG * rough_mean_power(u, 0.5)) <= 1e-8 * s / SIG
     assert abs(pot - s * SIG * rough_mean_power(u, 2.5) / 2.5) <= 1e-8 * s * SIG
+
+
+def test_the_kernels_ball_law_is_the_same_law():
+    """rough_ball (scalar arguments, the n = 3/2 table frozen in; what the ring kernels call)
+    equals rough_hertz on a packed table, and full=False returns the same load only."""
+    p, off = _p()
+    for u in (-7.9, -1.0, 0.0, 0.3, 5.0, 11.99, 12.0, 40.0):
+        d = u * SIG
+        a = rough_hertz(d, K, SIG, p, off)
+        b = rough_ball(d, K, SIG, 1.0 / SIG, math.sqrt(SIG), True)
+        np.testing.assert_allclose(b, a, rtol=1e-14, atol=0.0)
+        q, dq, e = rough_ball(d, K, SIG, 1.0 / SIG, math.sqrt(SIG), False)
+        assert q == pytest.approx(a[0], rel=1e-14) and dq == 0.0 and e == 0.0
 
 
 def test_slope_and_potential_are_consistent():

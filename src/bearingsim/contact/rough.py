@@ -27,7 +27,7 @@ is not Greenwood & Williamson's (1966) asperity model (no asperity curvature or 
 EHL film) and it is only used for the onset: a ball loaded to ``delta >> sigma`` obeys Hertz.
 With ``sigma = 0`` it is Hertz's law exactly.
 
-**Compiled evaluation.** The kernels read a table (:func:`rough_table`) of ``g_nu`` for
+**Compiled evaluation.** :func:`rough_hertz` reads a table (:func:`rough_table`) of ``g_nu`` for
 ``nu = n+1, n, n-1, n-2`` at spacing :data:`TABLE_STEP` on ``[U_MIN, U_MAX]`` and interpolate
 with cubic Hermite polynomials whose slopes are the exact ``nu g_{nu-1}`` (error < 1e-8 of
 ``sigma^n``); above :data:`U_MAX` the asymptotic series ``g_nu(u) = u^nu sum_k binom(nu, 2k)
@@ -46,7 +46,7 @@ from scipy.special import gamma, pbdv
 
 from ..errors import ConfigError
 
-__all__ = ["rough_hertz", "rough_mean_power", "rough_table"]
+__all__ = ["BALL_TABLE", "rough_ball", "rough_hertz", "rough_mean_power", "rough_table"]
 #: table range in units of sigma [-]: below U_MIN the load is < 1e-13 K sigma^n (taken as 0)
 U_MIN = -8.0
 #: above U_MAX the asymptotic series is used [-]
@@ -151,9 +151,9 @@ def rough_hertz(d, K, sig, p, off, full=True, inv_sig=0.0, sig_n1=0.0):
     docstring); ``K`` [N/m^n], ``sig`` the composite RMS roughness [m] (> 0), the table
     (:func:`rough_table`) at ``p[off:]``. ``full = False`` returns the load only (slope and
     potential 0: a force-only right-hand side); ``inv_sig = 1/sig`` and ``sig_n1 =
-    sig^(n-1)`` precomputed by a caller in a hot loop (0: computed here). Inlined into the
-    kernels' ball loops (a call with an array argument costs reference-count updates
-    comparable to the arithmetic)."""
+    sig^(n-1)`` precomputed by a caller in a hot loop (0: computed here). Inlined into its
+    caller, which the ring kernels keep out of line (``_balance.ball_load_rough``: inlined
+    into the Hertz loops, its copies slowed every ring model's Hertz path by 15-45 %)."""
     n = p[off + 3]
     if inv_sig <= 0.0:
         inv_sig = 1.0 / sig
@@ -185,3 +185,17 @@ def rough_hertz(d, K, sig, p, off, full=True, inv_sig=0.0, sig_n1=0.0):
             g0 = _herm(t, h, p[a + 2], (n - 1.0) * p[a + 3], p[b + 2], (n - 1.0) * p[b + 3])
     kq = K * sig_n1 * sig
     return kq * g1, K * n * sig_n1 * g0, kq * sig * g2 / (n + 1.0)
+
+
+#: the table of the ball exponent n = 3/2 (every ring model), frozen into the compiled
+#: :func:`rough_ball` as a constant
+BALL_TABLE = rough_table(1.5)
+
+
+@njit(cache=True)
+def rough_ball(d, K, sig, inv_sig, sig_n1, full):
+    """:func:`rough_hertz` for balls (n = 3/2, :data:`BALL_TABLE`) with scalar arguments only:
+    the ring kernels call it out of line, so their Hertz loops stay as small (and as fast) as
+    without the rough law, and a call costs no reference counting (no array argument).
+    ``inv_sig = 1/sig``, ``sig_n1 = sig^(1/2)``."""
+    return rough_hertz(d, K, sig, BALL_TABLE, 0, full, inv_sig, sig_n1)

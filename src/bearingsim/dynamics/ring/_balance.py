@@ -52,7 +52,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ...contact.rough import rough_hertz
+from ...contact.rough import rough_ball
 from ...load_distribution import _solve_1d
 from ..defect_drop import edge_drop
 from ..slip import cage_angle
@@ -109,10 +109,9 @@ P_DEPTH = 45  #: defect depth h_d [m] (geometric profile)
 P_RRACE = 46  #: radius of the faulty raceway [m] (ball defect: the outer raceway's)
 P_RRACEI = 47  #: ball defect: the inner raceway's radius [m] (geometric profile)
 P_ROUGH = 48  #: composite RMS surface roughness sigma of the rough load law [m] (0 = Hertz)
-P_RTAB = 49  #: offset in ``p`` of the rough-law table (:func:`..contact.rough.rough_table`) [-]
-P_RINV = 50  #: 1 / sigma [1/m] (rough law)
-P_RSN1 = 51  #: sigma^(n-1) [m^(n-1)] (rough law)
-HEADER = 52  #: first table entry
+P_RINV = 49  #: 1 / sigma [1/m] (rough law)
+P_RSN1 = 50  #: sigma^(1/2) [m^(1/2)] (rough law, balls: n = 3/2)
+HEADER = 51  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -330,31 +329,37 @@ def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p):
 
 
 @njit(cache=True, inline="always")
-def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full=True):
+def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough):
     """Load Q [N], stiffness dQ/d(u.e) [N/m] and contact potential [J] of one ball whose ring
     approach is ``u.e`` [m]: the blend ``(1 - f_d) Q_intact + f_d Q_defect`` (times ``f_z``)
     with ``Q_intact = K (u.e - P_d/2)_+^n`` and ``Q_defect = gamma K (u.e - P_d/2 - h)_+^n``
-    (seed VSM eqs. (9), (11)); with a roughness ``p[P_ROUGH] > 0`` each is the rough law
-    :func:`..contact.rough.rough_hertz` of the same deflection instead of the ``(.)_+^n``
-    (``full = False``: its load only; stiffness and potential 0)."""
+    (seed VSM eqs. (9), (11)). With ``rough`` (a roughness ``p[P_ROUGH] > 0``) each is the
+    rough law (:func:`..contact.rough.rough_ball`, n = 3/2, called out of line) of the same
+    deflection instead of ``(.)_+^n``; ``full = False`` then gives the load only (stiffness
+    and potential 0).
+
+    The DEM's right-hand side (its hot loop, every RK4 stage) passes ``rough`` as a literal
+    constant chosen once per call, so its Hertz copy compiles without the rough branch: a
+    run-time test there slowed the DEM's Hertz path by ~45 %. The static solve
+    (:func:`static_kernel`) and the per-sample outputs test it at run time: no slower measured,
+    and a second compiled copy of the Newton loop doubled the VSM kernels' compile time."""
     q = 0.0
     dq = 0.0
     pot = 0.0
-    sig = p[P_ROUGH]
     if zf > 0.0:
-        if sig > 0.0:
-            roff = int(p[P_RTAB])
+        if rough:
+            sig = p[P_ROUGH]
             inv = p[P_RINV]
             sn1 = p[P_RSN1]
             if fr < 1.0:
                 w = (1.0 - fr) * zf
-                qo, ko, eo = rough_hertz(ue - clr, K, sig, p, roff, full, inv, sn1)
+                qo, ko, eo = rough_ball(ue - clr, K, sig, inv, sn1, full)
                 q += w * qo
                 dq += w * ko
                 pot += w * eo
             if fr > 0.0:
                 w = fr * zf * dfac
-                qi, ki, ei = rough_hertz(ue - clr - doff, K, sig, p, roff, full, inv, sn1)
+                qi, ki, ei = rough_ball(ue - clr - doff, K, sig, inv, sn1, full)
                 q += w * qi
                 dq += w * ki
                 pot += w * ei
@@ -386,7 +391,7 @@ def loaded_threshold(p):
     sig = p[P_ROUGH]
     if sig <= 0.0:
         return 0.0
-    return rough_hertz(0.0, p[P_K], sig, p, int(p[P_RTAB]))[0]
+    return rough_ball(0.0, p[P_K], sig, p[P_RINV], p[P_RSN1], False)[0]
 
 
 @njit(cache=True, inline="always")
@@ -488,6 +493,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
         scale = 1.0
     tol = p[P_TOL]
     cell = p[P_CELL] > 0.0 and not point
+    rough = p[P_ROUGH] > 0.0
     hh = p[P_HTAB]
     t0 = p[P_T0]
     w_rel = defect_rate(p)
@@ -554,7 +560,9 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
                 for j in range(Z):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p)
+                    q, kk, _e = ball_load(
+                        ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough
+                    )
                     if q > 0.0:
                         a = sn[j]
                         b = cs[j]
@@ -681,7 +689,11 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = ball_clearance(p, boff, j, clr)
-        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p)
+        ue = ux * s0 + uy * c0
+        if qthr > 0.0:
+            q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, True)
+        else:
+            q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, False)
         if q > qthr:
             n_loaded += 1
         if fill:

@@ -30,7 +30,6 @@ from ...config import (
     check_roughness,
 )
 from ...contact.hertz import element_stiffness
-from ...contact.rough import rough_table
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
     BallBearing,
@@ -311,9 +310,8 @@ class ModelInputs:
         self, q: NDArray[np.float64], slip: NDArray[np.float64] | None = None
     ) -> NDArray[np.float64]:
         """The parameter vector ``q`` (header and any table) with the tail tables the kernels
-        read by offset appended: the slip instants (``P_SLIP``), the ball diameter deviations
-        (``P_BDEV``) and the rough load law's table (``P_RTAB``); ``q`` itself (a copy) when
-        there are none."""
+        read by offset appended: the slip instants (``P_SLIP``) and the ball diameter deviations
+        (``P_BDEV``); ``q`` itself (a copy) when there are none."""
         dev = self.ball_deviations()
         parts = [q]
         size = q.size
@@ -325,11 +323,6 @@ class ModelInputs:
         if dev.size:
             out_off[bl.P_BDEV] = size
             parts.append(dev)
-            size += dev.size
-        if self.roughness > 0.0:
-            tab = rough_table(float(q[bl.P_N]))
-            out_off[bl.P_RTAB] = size
-            parts.append(tab)
         out = np.concatenate(parts) if len(parts) > 1 else q.copy()
         for k, v in out_off.items():
             out[k] = v
@@ -388,7 +381,7 @@ class ModelInputs:
         p[bl.P_ROUGH] = self.roughness
         if self.roughness > 0.0:
             p[bl.P_RINV] = 1.0 / self.roughness
-            p[bl.P_RSN1] = self.roughness ** (p[bl.P_N] - 1.0)
+            p[bl.P_RSN1] = math.sqrt(self.roughness)  # sigma^(n-1), balls: n = 3/2
         return p
 
 

@@ -26,12 +26,13 @@ __all__ = ["KERNEL"]
 
 
 @njit(cache=True, inline="always")
-def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full=True):
+def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
     ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
     cell half-widths ``hd, hw`` (the ball frame of :func:`._balance.frame_cached`), with the
     model's parameters read once from the packed vector ``p`` (layout :mod:`._balance`). This is
-    the DEM's hot loop: inlined, scalars only inside the loop. ``full = False`` (the
+    the DEM's hot loop: inlined, scalars only inside the loop. ``rough``: the rough load law,
+    a literal at the call site (:func:`._balance.ball_load`); ``full = False`` (the
     right-hand side) needs the force only: with rough contacts the tangent entries are then
     0."""
     Z = int(p[bl.P_Z])
@@ -57,7 +58,7 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full=True):
         # a ball over the defect loses the geometric drop h_min from its deflection
         fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
-        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, full)
+        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, full, rough)
         if q > 0.0:
             gx += q * s0
             gy += q * c0
@@ -81,7 +82,8 @@ def _dem_force(t, ux, uy, p, point):
     if point:
         hd = 0.0
         hw = 0.0
-    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p)
+    # once per output sample: a run-time choice of the law (one compiled copy) is cheap here
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, True, p[bl.P_ROUGH] > 0.0)
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -124,7 +126,10 @@ def _dem_rhs(t, y, p, dydt):
         p[bl.P_CRW] = rw
         p[bl.P_CHD] = hd
         p[bl.P_CHW] = hw
-    gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False)
+    if p[bl.P_ROUGH] > 0.0:
+        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, True)
+    else:
+        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, False)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     dydt[0] = y[2]
