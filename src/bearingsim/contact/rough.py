@@ -28,7 +28,7 @@ EHL film) and it is only used for the onset: a ball loaded to ``delta >> sigma``
 With ``sigma = 0`` it is Hertz's law exactly.
 
 **Compiled evaluation.** :func:`rough_hertz` reads a table (:func:`rough_table`) of ``g_nu`` for
-``nu = n+1, n, n-1, n-2`` at spacing :data:`TABLE_STEP` on ``[U_MIN, U_MAX]`` and interpolate
+``nu = n+1, n, n-1, n-2`` at spacing :data:`TABLE_STEP` on ``[U_MIN, U_MAX]`` and interpolates
 with cubic Hermite polynomials whose slopes are the exact ``nu g_{nu-1}`` (error < 1e-8 of
 ``sigma^n``); above :data:`U_MAX` the asymptotic series ``g_nu(u) = u^nu sum_k binom(nu, 2k)
 (2k-1)!! u^(-2k)`` (five terms, relative error < 1e-8); below :data:`U_MIN` the load is 0.
@@ -151,9 +151,9 @@ def rough_hertz(d, K, sig, p, off, full=True, inv_sig=0.0, sig_n1=0.0):
     docstring); ``K`` [N/m^n], ``sig`` the composite RMS roughness [m] (> 0), the table
     (:func:`rough_table`) at ``p[off:]``. ``full = False`` returns the load only (slope and
     potential 0: a force-only right-hand side); ``inv_sig = 1/sig`` and ``sig_n1 =
-    sig^(n-1)`` precomputed by a caller in a hot loop (0: computed here). Inlined into its
-    caller, which the ring kernels keep out of line (``_balance.ball_load_rough``: inlined
-    into the Hertz loops, its copies slowed every ring model's Hertz path by 15-45 %)."""
+    sig^(n-1)`` precomputed by a caller in a hot loop (0: computed here). Inlined into
+    :func:`rough_ball`, which the ring kernels call out of line (inlined into their Hertz
+    loops, its copies slowed every ring model's Hertz path by 15-45 %)."""
     n = p[off + 3]
     if inv_sig <= 0.0:
         inv_sig = 1.0 / sig

@@ -685,15 +685,12 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     doffi = p[P_DOFFI]
     boff = int(p[P_BDEV])
     qthr = loaded_threshold(p)
+    rough = qthr > 0.0  # once per output sample: the law chosen at run time (one copy)
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = ball_clearance(p, boff, j, clr)
-        ue = ux * s0 + uy * c0
-        if qthr > 0.0:
-            q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, True)
-        else:
-            q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, False)
+        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, False, rough)
         if q > qthr:
             n_loaded += 1
         if fill:
