@@ -32,7 +32,16 @@
 record longer than the simulations is cut into pieces of their length (``DURATION_S``) and the
 pieces' class probabilities are averaged (:func:`segments`).
 ``--evaluate`` labels every record of the CWRU folder, prints the accuracy per class and
-overall beside ``bearingsim analyze``'s verdicts on the same records.
+overall beside ``bearingsim analyze``'s verdicts on the same records, twice:
+
+* with the **shipped** rigs, which were identified from every record of their mounting -- the
+  judged records included (system identification on the judged data);
+* **held out**: each record judged by a classifier trained on simulations through rigs
+  identified from the records of the *other* fault size (:data:`HELD_OUT`,
+  ``bearingsim.side_by_side.rig_without_size``; the leave-one-mounting-out split of the
+  side-by-side comparison). A mounting with no record of another size (the fan end here) has
+  no held-out rig: its runs leave that training set and its records are not judged. The
+  healthy record, which no held-out rig uses, is judged by both held-out classifiers.
 """
 
 from __future__ import annotations
@@ -77,6 +86,9 @@ PROFILES = {
     "cwru-de-48k": ("6205-cwru", 48000.0),
 }
 DURATION_S = 1.0
+#: the rig sets a dataset can be built through: the shipped profiles, and the same mountings
+#: identified without one CWRU fault size (the held-out evaluation; manifest spelling)
+HELD_OUT = ("0.007", "0.014")
 #: the ring models' default radial load (seed VSM table 1) [N]
 SEED_FX_N, SEED_FY_N = 10.0, 50.0
 FEATURES = (
@@ -153,27 +165,83 @@ def _grid():
                     )
 
 
+def _end(bearing: str) -> str:
+    """The CWRU bearing's end: the fan end carries the 6203."""
+    return "FE" if bearing.startswith("6203") else "DE"
+
+
+def rig_set(name: str, data: Path | None = None) -> dict:
+    """The rigs of one set by profile name: ``"shipped"`` (:func:`bearingsim.rig.load_rig`) or
+    ``"without-<size>"`` (each profile's mounting identified from the records of ``data``
+    without that fault size; None where it has none)."""
+    from bearingsim.rig import load_rig
+    from bearingsim.side_by_side import rig_without_size
+
+    if name == "shipped":
+        return {p: load_rig(p) for p in PROFILES}
+    size = name.removeprefix("without-")
+    if size == name or size not in HELD_OUT:
+        valid = ", ".join(["shipped", *(f"without-{s}" for s in HELD_OUT)])
+        raise ValueError(f"rig set {name!r} is unknown; valid: {valid}")
+    if data is None or not (Path(data) / "manifest.csv").is_file():
+        raise FileNotFoundError(f"rig set {name!r} needs the CWRU folder (--data): {data}")
+    return {
+        p: rig_without_size(Path(data), _end(bearing), fs, size)
+        for p, (bearing, fs) in PROFILES.items()
+    }
+
+
+def _set_key(grid_key: str, rigs: dict) -> str:
+    """Cache key of one set: the grid and every rig's full table (a changed profile or record
+    rebuilds it)."""
+    import hashlib
+
+    tables = {p: (None if r is None else r.to_dict()) for p, r in rigs.items()}
+    blob = grid_key + json.dumps(tables, sort_keys=True, default=str)
+    return hashlib.sha256(blob.encode()).hexdigest()
+
+
 def build_dataset(cache: Path, progress: bool = True):
-    """Simulate the grid, compute the features and cache them (Zarr); returns ``(X, y, meta)``."""
+    """Simulate the grid, compute the features through the shipped rigs and cache them (Zarr);
+    returns ``(X, y, meta)``."""
+    sets, meta = build_datasets(cache, ("shipped",), progress=progress)
+    X, y = sets["shipped"]
+    return X, y, meta
+
+
+def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, progress=True):
+    """The features of the grid through each rig set of ``names`` (:func:`rig_set`): each run
+    is simulated once and passed through every set's rig of its profile. Cached (Zarr, one
+    array per set, keyed by the grid and the rigs' tables); a set without a rig for a profile
+    drops that profile's runs. Returns ``({name: (X, y)}, meta)``; ``meta["rigs"]`` holds the
+    sets' rigs."""
     import zarr
     from tqdm import tqdm
 
     from bearingsim import simulate
-    from bearingsim.rig import apply_rig, load_rig
+    from bearingsim.rig import apply_rig
 
     path = cache / "sim_to_real.zarr"
     grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, ROUGHNESS_M]
     grid += [PROFILES]
     grid += [DURATION_S, FEATURES, "antialias", "geometric"]
-    key = json.dumps(grid)
+    grid_key = json.dumps(grid)
+    names = list(dict.fromkeys(["shipped", *names]))
+    rigs = {n: rig_set(n, data) for n in names}
+    keys = {n: _set_key(grid_key, rigs[n]) for n in names}
+    runs = list(_grid())
     if path.exists():
         g = zarr.open_group(str(path), mode="r")
-        if g.attrs.get("grid") == key:
-            return np.asarray(g["X"]), np.asarray(g["y"]), dict(g.attrs)
+        stored = g.attrs.get("keys", {})
+        if all(stored.get(n) == keys[n] for n in names):
+            out = {}
+            for n in names:
+                keep = np.asarray(g[f"mask_{n}"])
+                out[n] = (np.asarray(g[f"X_{n}"])[keep], np.asarray(g["y"])[keep])
+            return out, dict(g.attrs) | {"rigs": rigs}
     t0 = time.perf_counter()
-    rigs = {name: load_rig(name) for name in PROFILES}
-    runs = list(_grid())
-    X = np.empty((len(runs), len(FEATURES)))
+    X = {n: np.full((len(runs), len(FEATURES)), np.nan) for n in names}
+    mask = {n: np.zeros(len(runs), dtype=bool) for n in names}
     y = np.empty(len(runs), dtype=np.int64)
     for i, c in enumerate(tqdm(runs, desc="simulate", disable=not progress, file=sys.stderr)):
         sc = dict(
@@ -194,19 +262,29 @@ def build_dataset(cache: Path, progress: bool = True):
         sc["clearance_m"] = c["clearance"]
         if c["fault"] != "none":
             sc["defect_width_m"] = c["size"] * 0.0254
-        r = apply_rig(simulate(sc), rigs[c["rig"]], seed=c["seed"])
-        X[i] = features(r["acc_sensor"], c["fs"], c["rpm"], c["bearing"])
+        bare = simulate(sc)
         y[i] = LABELS.index(c["fault"])
+        for n in names:
+            rig = rigs[n][c["rig"]]
+            if rig is None:
+                continue
+            r = apply_rig(bare, rig, seed=c["seed"])
+            X[n][i] = features(r["acc_sensor"], c["fs"], c["rpm"], c["bearing"])
+            mask[n][i] = True
     gen_s = time.perf_counter() - t0
     cache.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(dir=cache, prefix=".sim_to_real."))
     try:
         g = zarr.open_group(str(tmp / "g.zarr"), mode="w")
-        g.create_array("X", data=X)
         g.create_array("y", data=y)
+        for n in names:
+            g.create_array(f"X_{n}", data=X[n])
+            g.create_array(f"mask_{n}", data=mask[n])
         g.attrs.update(
             {
-                "grid": key,
+                "grid": grid_key,
+                "keys": keys,
+                "sets": names,
                 "features": list(FEATURES),
                 "labels": list(LABELS),
                 "n_runs": len(runs),
@@ -220,10 +298,13 @@ def build_dataset(cache: Path, progress: bool = True):
         shutil.rmtree(tmp, ignore_errors=True)
     size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
     print(
-        f"dataset: {len(runs)} simulations in {gen_s:.1f} s, {size / 1e3:.0f} kB at {path}",
+        f"dataset: {len(runs)} simulations through {len(names)} rig set(s) "
+        f"({', '.join(names)}) in {gen_s:.1f} s, {size / 1e3:.0f} kB at {path}",
         file=sys.stderr,
     )
-    return X, y, {"n_runs": len(runs), "generation_s": gen_s}
+    out = {n: (X[n][mask[n]], y[mask[n]]) for n in names}
+    meta = {"n_runs": len(runs), "generation_s": gen_s, "grid": grid_key, "keys": keys}
+    return out, meta | {"rigs": rigs}
 
 
 def train(X, y):
@@ -278,53 +359,88 @@ def predict(clf, files):
         yield {"file": str(p), "predicted": best, "probabilities": probs}
 
 
-def evaluate(clf, data: Path):
+def _profile(end: str, fs: float) -> str | None:
+    """The profile of a record's end and sample rate, or None."""
+    for p, (bearing, pfs) in PROFILES.items():
+        if _end(bearing) == end and float(pfs) == float(fs):
+            return p
+    return None
+
+
+def evaluate(clfs: dict, data: Path, rigs: dict):
+    """Label every record of ``data`` with the shipped-rig classifier and with the held-out one
+    of its fault size (``clfs`` and ``rigs`` by set name), beside ``bearingsim analyze``; print
+    the table and the accuracy per class; return the rows."""
     import subprocess
 
     from bearingsim.io.cwru import cwru_manifest
 
-    rows = list(cwru_manifest(data).values())
+    rows = cwru_manifest(data)
     truth = {
-        r["file"]: ("none" if r["fault"].startswith("none") else r["fault"].split()[0])
-        for r in rows
+        f: ("none" if r["fault"].startswith("none") else r["fault"].split()[0])
+        for f, r in rows.items()
     }
-    res = list(predict(clf, [data / f for f in truth]))
+    files = [data / f for f in truth]
+    shipped = {Path(o["file"]).name: o for o in predict(clfs["shipped"], files)}
+    held = {n: {} for n in clfs if n != "shipped"}
+    for n in held:
+        size = n.removeprefix("without-")
+        mine = [
+            data / f
+            for f, r in rows.items()
+            if (r["fault_diameter_in"] == size or not r["fault_diameter_in"])
+            and rigs[n].get(_profile(r["end"], float(r["fs_hz"]))) is not None
+        ]
+        held[n] = {Path(o["file"]).name: o for o in predict(clfs[n], mine)}
     out = []
-    for o in res:
-        name = Path(o["file"]).name
+    for f, r in rows.items():
+        name = f
         a = subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "bearingsim",
-                "analyze",
-                o["file"],
-                "--json",
-                "--channel",
-                "FE" if "Fan_End" in name else "DE",
-            ],
+            [sys.executable, "-m", "bearingsim", "analyze", str(data / f), "--json",
+             "--channel", r["end"]],
             capture_output=True,
             text=True,
-        )
+        )  # fmt: skip
         verdict = json.loads(a.stdout).get("diagnosis", "?") if a.returncode == 0 else "error"
+        if r["fault_diameter_in"]:
+            o = held.get(f"without-{r['fault_diameter_in']}", {}).get(name)
+            ho = (o.get("predicted") or "error") if o else "no held-out rig"
+        else:  # the healthy record: every held-out classifier (no held-out rig uses it)
+            got = [held[n][name].get("predicted") or "error" for n in held if name in held[n]]
+            ho = " / ".join(got) if got else "no held-out rig"
         out.append(
             {
                 "record": name,
                 "truth": truth[name],
-                "sim_to_real": o.get("predicted", "error"),
+                "grade": r.get("smith_randall_grade", ""),
+                "sim_to_real": shipped[name].get("predicted") or "error",
+                "held_out": ho,
                 "analyze": verdict,
             }
         )
-    print("| record | truth | sim-to-real | analyze |\n|---|---|---|---|")
+    print(
+        "| record | truth | S&R grade | sim-to-real, shipped rigs | sim-to-real, held out "
+        "| analyze |\n|---|---|---|---|---|---|"
+    )
     for o in out:
-        print(f"| {o['record']} | {o['truth']} | {o['sim_to_real']} | {o['analyze']} |")
-    for who in ("sim_to_real", "analyze"):
-        print(f"\n{who}:")
+        print(
+            f"| {o['record']} | {o['truth']} | {o['grade'] or '-'} | {o['sim_to_real']} "
+            f"| {o['held_out']} | {o['analyze']} |"
+        )
+
+    def right(o, who):
+        return all(v == o["truth"] for v in o[who].split(" / "))
+
+    for who in ("sim_to_real", "held_out", "analyze"):
+        judged = [o for o in out if o[who] != "no held-out rig"]
+        print(f"\n{who} ({len(judged)} records judged):")
         for lab in LABELS:
-            g = [o for o in out if o["truth"] == lab]
+            g = [o for o in judged if o["truth"] == lab]
             if g:
-                print(f"  {lab}: {sum(o[who] == lab for o in g)} of {len(g)}")
-        print(f"  overall: {sum(o[who] == o['truth'] for o in out)} of {len(out)}")
+                print(f"  {lab}: {sum(right(o, who) for o in g)} of {len(g)}")
+        print(f"  overall: {sum(right(o, who) for o in judged)} of {len(judged)}")
+        y = [o for o in judged if o["grade"].startswith("Y") and o["truth"] in ("inner", "outer")]
+        print(f"  Smith & Randall Y, inner/outer: {sum(right(o, who) for o in y)} of {len(y)}")
     return out
 
 
@@ -338,11 +454,12 @@ def main() -> int:
     a = ap.parse_args()
     if not a.predict and not a.evaluate:
         ap.error("give --predict FILE... or --evaluate")
-    X, y, meta = build_dataset(a.cache, progress=not a.json)
-    clf = train(X, y)
+    names = ["shipped", *(f"without-{s}" for s in HELD_OUT)] if a.evaluate else ["shipped"]
+    sets, meta = build_datasets(a.cache, names, data=a.data, progress=not a.json)
+    clfs = {n: train(*sets[n]) for n in names}
     bad = 0
     if a.predict:
-        for o in predict(clf, a.predict):
+        for o in predict(clfs["shipped"], a.predict):
             bad += "error" in o
             if a.json:
                 print(json.dumps(o))
@@ -352,7 +469,7 @@ def main() -> int:
                 p = ", ".join(f"{k} {v:.2f}" for k, v in o["probabilities"].items())
                 print(f"{o['file']}: {o['predicted']} ({p})")
     if a.evaluate:
-        evaluate(clf, a.data)
+        evaluate(clfs, a.data, meta["rigs"])
     return 1 if bad else 0
 
 

@@ -115,3 +115,42 @@ def test_a_long_record_is_judged_on_pieces_of_the_training_length(small):
     f_short = small.features(y[: y.size // 2], fs, 1750.0, "6205")[0]
     f_long = small.features(y, fs, 1750.0, "6205")[0]
     assert f_long > f_short + 1.5  # 2.7 dB measured (2 s against 1 s)
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_held_out_rig_sets_never_use_the_judged_size(small, tmp_path, monkeypatch):
+    """The held-out evaluation: each set's rigs are identified from the records of the other
+    fault size only (never the judged size, never the healthy record); a mounting with no
+    other size (the fan end has only 0.014 in records here) has no rig, so its runs leave that
+    training set. Each run is simulated once and passed through every set's rig; the sets
+    are cached under keys that hold the rigs' tables."""
+    monkeypatch.setattr(small, "RPMS", (1797.0,))
+    monkeypatch.setattr(
+        small,
+        "PROFILES",
+        {"cwru-de-12k": ("6205-cwru", 12000.0), "cwru-fe-12k": ("6203-cwru", 12000.0)},
+    )
+    held = small.rig_set("without-0.014", CWRU)
+    assert held["cwru-fe-12k"] is None
+    used = held["cwru-de-12k"].provenance
+    assert "014" not in used and "normal" not in used
+    assert "IR007_2_107" in used and "OR007@6_2_132" in used and "B007_2_120" in used
+    other = small.rig_set("without-0.007", CWRU)
+    assert "007" not in other["cwru-de-12k"].provenance
+    assert "007" not in other["cwru-fe-12k"].provenance
+    with pytest.raises(ValueError, match="without-0.021"):
+        small.rig_set("without-0.021", CWRU)
+
+    sets, meta = small.build_datasets(tmp_path, ["without-0.014"], data=CWRU, progress=False)
+    assert set(sets) == {"shipped", "without-0.014"}
+    (Xs, ys), (Xh, yh) = sets["shipped"], sets["without-0.014"]
+    assert np.array_equal(ys[:4], yh)  # the same runs, in the same order
+    assert Xs.shape == (8, len(small.FEATURES)) and Xh.shape == (4, len(small.FEATURES))
+    assert np.all(np.isfinite(Xh)) and sorted(set(yh)) == [0, 1, 2, 3]
+    assert not np.allclose(Xs[:4], Xh)  # the same runs through another rig
+    again, _ = small.build_datasets(tmp_path, ["without-0.014"], data=CWRU, progress=False)
+    assert np.array_equal(again["without-0.014"][0], Xh)
+    assert small._set_key("g", {"a": held["cwru-de-12k"]}) != small._set_key(
+        "g", {"a": other["cwru-de-12k"]}
+    )
+    assert small._profile("FE", 12000.0) == "cwru-fe-12k" and small._profile("DE", 48000) is None
