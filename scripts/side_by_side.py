@@ -3,14 +3,17 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 (leave-one-mounting-out: Smith & Randall 2015 found the mounting, not the fault size, dominates
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
-    python scripts/side_by_side.py [--model vsm] [--duration-s 2] [--slip-percent 1.5]
+    python scripts/side_by_side.py [--model vsm|dem|tvsm|rotor] [--duration-s 2]
+        [--slip-percent 1.5]
         [--defect-profile geometric] [--contact-roughness-m 1e-7] [--model-gain]
         [--direct-gain G] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
 fan end: 0.014 in only) gets no rig and is listed as such. Ball records are simulated with the
-ring models' ball defect (fault line 2×BSF).
+models' ball defect (fault line 2×BSF). ``--model rotor`` simulates the bearing-rotor-housing
+model of the CWRU motor with the fault in the record's bearing (no rough-contact law: the
+roughness option does not apply to it).
 """
 
 from __future__ import annotations
@@ -38,7 +41,7 @@ DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm"])
+    ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm", "rotor"])
     ap.add_argument("--duration-s", type=float, default=2.0)
     ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
     ap.add_argument(

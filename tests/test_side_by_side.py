@@ -134,3 +134,28 @@ def test_model_path_scale_matches_the_identification_rms():
     assert rms[1] / rms[0] == pytest.approx(1.0, rel=0.15)
     with pytest.raises(ConfigError, match="records is empty"):
         model_path_scale(rig, [])
+
+
+@needs_data
+def test_rotor_side_by_side_simulates_the_records_bearing():
+    """The rotor model beside a record (issue 16: "the rotor model with the CWRU profile ...
+    on record 132"): the fault goes into the record's bearing of the two-bearing motor, the
+    slip and the drop profile travel, the rough-contact key (which the rotor has no law for)
+    does not, and the rig reads the housing of the record's end."""
+    from bearingsim.side_by_side import simulate_record
+
+    c = simulate_record(
+        CWRU / "12k_Drive_End_OR007@6_2_132.mat", "cwru-de-12k", model="rotor", duration_s=0.2
+    )
+    sc = c["scenario"]
+    assert sc["model"] == "rotor" and sc["de_fault"] == "outer" and "fe_fault" not in sc
+    assert sc["slip_percent"] == SLIP_PERCENT and sc["defect_profile"] == DEFECT_PROFILE
+    assert "contact_roughness_m" not in sc
+    assert sc["defect_width_m"] == pytest.approx(0.007 * 0.0254)
+    assert c["simulated"].shape == c["measured"].shape == (2400,)
+    assert np.all(np.isfinite(c["simulated"]))
+    f = simulate_record(
+        CWRU / "12k_Fan_End_B014_0_286.mat", "cwru-fe-12k", model="rotor", duration_s=0.2
+    )
+    assert f["scenario"]["fe_fault"] == "ball" and "de_fault" not in f["scenario"]
+    assert f["fault_hz"] == pytest.approx(3.9874 * f["rpm"] / 60.0, rel=1e-3)  # 6203 2xBSF

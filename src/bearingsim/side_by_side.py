@@ -25,7 +25,7 @@ identification on the judged data; :func:`side_by_side` takes the rig as given, 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -137,7 +137,7 @@ def simulate_record(
     from .catalog import get_bearing
     from .geometry import characteristic_frequencies
     from .io.signal import read_signal
-    from .rig import apply_rig
+    from .rig import Rig, apply_rig, load_rig
 
     p = Path(record)
     rows = cwru_manifest(p.parent)
@@ -156,19 +156,33 @@ def simulate_record(
     rpm = float(meas.rpm or row["nominal_rpm"])
     bearing = "6205-cwru" if end == "DE" else "6203-cwru"
     size_in = float(row["fault_diameter_in"])
-    sc = dict(
-        model=model,
-        bearing=bearing,
-        fault=fault,
+    keys = {**REALISM, **(realism or {})}
+    common = dict(
         defect_width_m=size_in * 0.0254,
         defect_depth_m=CWRU_DEPTH_M,
         rpm=rpm,
         duration_s=duration_s,
         fs_hz=fs,
         seed=seed,
-        **{**REALISM, **(realism or {})},
         antialias=True,  # through a measurement chain: its anti-aliasing filter
     )
+    if model == "rotor":
+        # the CWRU motor with both bearings; the fault in the record's bearing, the sensor on
+        # its housing. The rotor has no rough-contact law: its realism is slip and the profile
+        from .config import RotorScenario
+
+        end_key = "de" if end == "DE" else "fe"
+        sc = dict(
+            model="rotor",
+            **{f"{end_key}_fault": fault},
+            **{k: v for k, v in keys.items() if k in RotorScenario.KEYS},
+            **common,
+        )
+        if end == "FE":
+            rig = replace(load_rig(rig) if not isinstance(rig, Rig) else rig,
+                          input_channel="acc_y_fe")  # fmt: skip
+    else:
+        sc = dict(model=model, bearing=bearing, fault=fault, **keys, **common)
     res = apply_rig(simulate(sc), rig, seed=seed)
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)
     fault_hz = {"outer": kin.bpfo_hz, "inner": kin.bpfi_hz, "ball": 2.0 * kin.bsf_hz}[fault]
@@ -218,8 +232,10 @@ def side_by_side(
         A CWRU ``.mat`` file in a folder with its ``manifest.csv``.
     rig : Rig, str or path
         The measurement chain (a :class:`~bearingsim.rig.Rig`, a profile name or a file).
-    model : {"vsm", "dem", "tvsm"}
-        The ring model.
+    model : {"vsm", "dem", "tvsm", "rotor"}
+        The ring model, or the bearing-rotor-housing model of the CWRU motor (the fault in the
+        record's bearing, the rig on that bearing's housing acceleration; it has no rough
+        contact law, so ``contact_roughness_m`` does not apply to it).
     duration_s : float
         Simulated time [s] (the record's first ``duration_s`` are used too).
     seed : int
@@ -286,8 +302,6 @@ def model_path_scale(
     (Rig, float)
         The scaled rig and the scale [-].
     """
-    from dataclasses import replace
-
     if not records:
         raise ConfigError("records is empty; valid: at least one CWRU fault record")
     logs = []
