@@ -328,3 +328,74 @@ def test_example_scenario_runs(run_cli, tmp_path):
     assert r.code == 0, r.err
     r2 = run_cli("analyze", out, "--json")
     assert r2.code == 0 and r2.json()["diagnosis"] == "outer", r2.err
+
+
+def test_a_run_compiles_only_its_own_ring_model():
+    """Each ring model's kernels are imported (and so compiled, once after installation) on
+    its first run only: checking a scenario compiles nothing, a VSM run does not build the DEM
+    and TVSM kernels (a cold start of ~1 min each). The facts a plan needs without compiling
+    (:data:`MODEL_FACTS`) are those of each model's kernel record."""
+    code = (
+        "import json, sys\n"
+        "from bearingsim.config import Scenario\n"
+        "from bearingsim.simulation import simulate, validate_scenario\n"
+        "validate_scenario(Scenario.from_dict({'model': 'dem', 'fault': 'outer'}))\n"
+        "checked = sorted(m for m in sys.modules if m.split('.')[-1] in ('vsm', 'dem', 'tvsm'))\n"
+        "simulate({'model': 'vsm', 'fault': 'outer', 'duration_s': 0.002})\n"
+        "ran = sorted(m for m in sys.modules if m.split('.')[-1] in ('vsm', 'dem', 'tvsm'))\n"
+        "print(json.dumps([checked, ran]))\n"
+    )
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr
+    checked, ran = json.loads(p.stdout.strip().splitlines()[-1])
+    assert checked == [] and ran == ["bearingsim.dynamics.ring.vsm"]
+    from bearingsim.config import Model
+    from bearingsim.dynamics.ring.base import MODEL_FACTS
+    from bearingsim.dynamics.ring.scenario import model_kernel
+
+    for m in (Model.VSM, Model.DEM, Model.TVSM):
+        k = model_kernel(m)
+        assert k.name == m.value and (k.needs_table, k.stiffness) == MODEL_FACTS[m.value]
+
+
+class _Tty:
+    def __init__(self):
+        self.text = ""
+
+    def isatty(self):
+        return True
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_compile_notice_only_on_a_terminal_and_only_when_slow(monkeypatch):
+    """A cold compile (a minute) says so in one line on a terminal; a cached start, or any
+    stream that is not a terminal (pipes, captured runs), stays silent."""
+    import time
+
+    from bearingsim.dynamics.notice import compile_notice
+
+    tty = _Tty()
+    monkeypatch.setattr(sys, "stderr", tty)
+    with compile_notice("the vsm kernels", after_s=0.05):
+        time.sleep(0.3)
+    assert tty.text.strip() == (
+        "bearingsim: compiling the vsm kernels (once after installation; about a minute) ..."
+    )
+    tty.text = ""
+    with compile_notice("the vsm kernels", after_s=0.5):
+        pass
+    time.sleep(0.6)
+    assert tty.text == ""
+    with pytest.raises(RuntimeError, match="inside"):  # the timer stops on an error too
+        with compile_notice("x", after_s=0.2):
+            raise RuntimeError("inside")
+    time.sleep(0.3)
+    assert tty.text == ""
+    monkeypatch.setattr(sys, "stderr", None)
+    with compile_notice("x", after_s=0.0):
+        time.sleep(0.05)

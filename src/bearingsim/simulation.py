@@ -43,7 +43,10 @@ def _entry(model: Model, which: int) -> Callable[..., Any]:
         mod, *names = _RUNNERS[model]
     except KeyError:
         raise ConfigError(f"model = {model.value!r} has no registered runner") from None
-    return getattr(importlib.import_module(mod), names[which])
+    from .dynamics.notice import compile_notice
+
+    with compile_notice(f"the {model.value} model"):
+        return getattr(importlib.import_module(mod), names[which])
 
 
 def as_scenario(scenario: Scenario | dict[str, Any] | str | Path) -> Scenario:

@@ -395,6 +395,16 @@ def static_path(inputs: ModelInputs, times: NDArray[np.float64]):
     return table, res
 
 
+#: what each ring model's kernels need, by model name: ``(needs_table, stiffness)`` (see
+#: :class:`ModelKernel`). Known without compiling anything, so a scenario is checked and planned
+#: before (or without) its model's kernels are compiled.
+MODEL_FACTS: dict[str, tuple[bool, str]] = {
+    "vsm": (True, "secant"),
+    "dem": (False, "state"),
+    "tvsm": (True, "tangent"),
+}
+
+
 @dataclass(frozen=True)
 class ModelKernel:
     """Compiled pieces of one model.

@@ -20,7 +20,7 @@ from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
 from . import _balance as bl
-from .base import ModelKernel
+from .base import MODEL_FACTS, ModelKernel
 
 __all__ = ["KERNEL"]
 
@@ -151,4 +151,4 @@ def _dem_aux(t, y, p, out):
     bl.fill_aux_common(t, p, y[0], y[1], jxx, jxy, jyy, ax, ay, out)
 
 
-KERNEL = ModelKernel("dem", _dem_rhs, _dem_aux, _dem_rhs, _dem_aux, False, "state")
+KERNEL = ModelKernel("dem", _dem_rhs, _dem_aux, _dem_rhs, _dem_aux, *MODEL_FACTS["dem"])

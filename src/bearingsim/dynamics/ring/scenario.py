@@ -29,9 +29,9 @@ from ..budget import F8, Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
 from ..sampling import PASS, STOP_DB, decimate_antialias
 from . import _balance as bl
-from . import dem, tvsm, vsm
 from .base import (
     AUX_NAMES,
+    MODEL_FACTS,
     ModelInputs,
     ModelKernel,
     integrate_model,
@@ -41,7 +41,15 @@ from .base import (
     static_path,
 )
 
-__all__ = ["RingPlan", "check_ring", "choose_steps", "model_inputs", "plan_ring", "run_ring"]
+__all__ = [
+    "RingPlan",
+    "check_ring",
+    "choose_steps",
+    "model_inputs",
+    "model_kernel",
+    "plan_ring",
+    "run_ring",
+]
 
 #: accuracy target of the automatic RK4 step: omega_max * dt <= this [-] (see choose_steps)
 OMEGA_DT = 0.35
@@ -59,12 +67,22 @@ MAX_CHUNK_STEPS = 1 << 22
 #: keeps the count an exact integer) [-]
 MAX_DECIM = float(2**62)
 
-#: compiled kernels of the ring models
-KERNELS: dict[Model, ModelKernel] = {
-    Model.VSM: vsm.KERNEL,
-    Model.DEM: dem.KERNEL,
-    Model.TVSM: tvsm.KERNEL,
-}
+
+def model_kernel(model: Model) -> ModelKernel:
+    """The compiled kernels of one ring model. Its module is imported on first use, so a run
+    compiles (once per installation: Numba's cache) only its own model's kernels and the shared
+    ones, not the other two models' (each model's cold compile is about a minute)."""
+    import importlib
+
+    from ..notice import compile_notice
+
+    with compile_notice(f"the {model.value} kernels"):
+        return importlib.import_module(f".{model.value}", __package__).KERNEL
+
+
+def _facts(model: Model) -> tuple[bool, str]:
+    """``(needs_table, stiffness)`` of a model (:data:`.base.MODEL_FACTS`), without compiling."""
+    return MODEL_FACTS[model.value]
 
 
 def model_inputs(scenario: RingScenario) -> ModelInputs:
@@ -119,7 +137,7 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
     revolution. With ``dt_s`` given: ``decim = max(1, round(1/(fs dt_s)))``, ``fs`` the
     internal rate ``oversampling * fs_hz``.
     """
-    use = "secant" if KERNELS[scenario.model].stiffness == "secant" else "tangent"
+    use = "secant" if _facts(scenario.model)[1] == "secant" else "tangent"
     w = max_frequency(inputs, use)
     if not math.isfinite(w) or w <= 0.0:
         raise SolverError(
@@ -159,7 +177,7 @@ def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: in
     raw = (n + 1) * (1 + 4 + na) * F8
     channels = 2 * n_out * n_ch * F8
     table = 0.0
-    if KERNELS[scenario.model].needs_table:
+    if _facts(scenario.model)[0]:
         n_tab = 2.0 * min(chunk, n) * decim + 1
         table = n_tab * (2 * bl.NCOL + 3) * F8  # the table, its copy in p, times, residuals
     over = f" ({scenario.oversampling}x oversampled)" if scenario.oversampling > 1 else ""
@@ -179,7 +197,7 @@ def plan_ring(
     (:mod:`..budget`). Bad values raise a one-line :class:`~bearingsim.errors.ConfigError`.
     """
     inputs = model_inputs(scenario)
-    if KERNELS[scenario.model].stiffness == "secant":
+    if _facts(scenario.model)[1] == "secant":
         inputs.require_clearance(f"model {scenario.model.value}")
     check_load(
         inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name="|(fx_n, fy_n)|"
@@ -209,7 +227,7 @@ def run_ring(
     t_wall = time.perf_counter()
     plan = plan_ring(scenario, budget, allow_overload)
     inputs = plan.inputs
-    kernel = KERNELS[scenario.model]
+    kernel = model_kernel(scenario.model)
     n = scenario.n_samples
     fs = scenario.fs_hz
     q = scenario.oversampling

@@ -26,7 +26,7 @@ from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
 from . import _balance as bl
-from .base import ModelKernel
+from .base import MODEL_FACTS, ModelKernel
 
 __all__ = ["KERNEL"]
 
@@ -97,5 +97,5 @@ def _tvsm_aux_exact(t, y, p, out):
 
 
 KERNEL = ModelKernel(
-    "tvsm", _tvsm_rhs, _tvsm_aux, _tvsm_rhs_exact, _tvsm_aux_exact, True, "tangent"
+    "tvsm", _tvsm_rhs, _tvsm_aux, _tvsm_rhs_exact, _tvsm_aux_exact, *MODEL_FACTS["tvsm"]
 )

@@ -33,7 +33,7 @@ from numba import cfunc, njit
 
 from ..integrate import RHS_SIG
 from . import _balance as bl
-from .base import ModelKernel
+from .base import MODEL_FACTS, ModelKernel
 
 __all__ = ["KERNEL"]
 
@@ -97,4 +97,4 @@ def _vsm_aux_exact(t, y, p, out):
     bl.fill_aux_row(t, p, row, 0, bl.C_SXX, ax, ay, out)
 
 
-KERNEL = ModelKernel("vsm", _vsm_rhs, _vsm_aux, _vsm_rhs_exact, _vsm_aux_exact, True, "secant")
+KERNEL = ModelKernel("vsm", _vsm_rhs, _vsm_aux, _vsm_rhs_exact, _vsm_aux_exact, *MODEL_FACTS["vsm"])
