@@ -12,8 +12,7 @@ The rig for a record is identified (bearingsim.rig_identify) from the records of
 end and sample rate with another fault size; a mounting with no other size in the folder (the
 fan end: 0.014 in only) gets no rig and is listed as such. Ball records are simulated with the
 models' ball defect (fault line 2×BSF). ``--model rotor`` simulates the bearing-rotor-housing
-model of the CWRU motor with the fault in the record's bearing (no rough-contact law: the
-roughness option does not apply to it).
+model of the CWRU motor with the fault in the record's bearing.
 """
 
 from __future__ import annotations

@@ -145,8 +145,8 @@ def test_model_path_scale_matches_the_identification_rms():
 def test_rotor_side_by_side_simulates_the_records_bearing():
     """The rotor model beside a record (issue 16: "the rotor model with the CWRU profile ...
     on record 132"): the fault goes into the record's bearing of the two-bearing motor, the
-    slip and the drop profile travel, the rough-contact key (which the rotor has no law for)
-    does not, and the rig reads the housing of the record's end."""
+    slip, the drop profile and the rough contacts travel, and the rig reads the housing of the
+    record's end."""
     from bearingsim.side_by_side import simulate_record
 
     c = simulate_record(
@@ -155,7 +155,7 @@ def test_rotor_side_by_side_simulates_the_records_bearing():
     sc = c["scenario"]
     assert sc["model"] == "rotor" and sc["de_fault"] == "outer" and "fe_fault" not in sc
     assert sc["slip_percent"] == SLIP_PERCENT and sc["defect_profile"] == DEFECT_PROFILE
-    assert "contact_roughness_m" not in sc
+    assert sc["contact_roughness_m"] == CONTACT_ROUGHNESS_M
     assert sc["defect_width_m"] == pytest.approx(0.007 * 0.0254)
     assert c["simulated"].shape == c["measured"].shape == (2400,)
     assert np.all(np.isfinite(c["simulated"]))

@@ -362,7 +362,7 @@ def _check_bearing(sc: Any, default: str) -> None:
 
 def check_roughness(value: object) -> float:
     """``contact_roughness_m`` [m] within [0, :data:`MAX_ROUGHNESS_M`], else a one-line
-    :class:`~bearingsim.errors.ConfigError` (ring scenarios and models)."""
+    :class:`~bearingsim.errors.ConfigError` (ring and rotor scenarios and models)."""
     return check_range("contact_roughness_m", value, 0.0, MAX_ROUGHNESS_M, unit="m")
 
 
@@ -713,6 +713,10 @@ class RotorScenario(Scenario):
     ``housing_stiffness_n_per_m``       1.51e7          housing mount stiffness, X and Y [N/m]
     ``housing_damping_n_s_per_m``       2210.7          housing mount damping, X and Y [N s/m]
     ``contact_damping_n_s_per_m``       50.0            damping of each ball–race contact [N s/m]
+    ``contact_roughness_m``             0.0             composite RMS roughness of the ball-race
+                                                        contacts [m]: Hertz's law averaged over it
+                                                        (0 = Hertz; as the ring models,
+                                                        ``docs/models.md`` "Rough contact onset")
     ``gravity``                         true            gravity (-y) on every mass
     ``unbalance_kg_m``                  0.0             static unbalance m e of the rotor [kg m]
     ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
@@ -771,6 +775,7 @@ class RotorScenario(Scenario):
         "housing_stiffness_n_per_m",
         "housing_damping_n_s_per_m",
         "contact_damping_n_s_per_m",
+        "contact_roughness_m",
         "gravity",
         "unbalance_kg_m",
         "antialias",
@@ -807,6 +812,7 @@ class RotorScenario(Scenario):
     housing_stiffness_n_per_m: float = HOUSING_STIFFNESS_N_M
     housing_damping_n_s_per_m: float = HOUSING_DAMPING_N_S_M
     contact_damping_n_s_per_m: float = CONTACT_DAMPING_N_S_M
+    contact_roughness_m: float = 0.0
     gravity: bool = True
     unbalance_kg_m: float = 0.0
     antialias: bool = True
@@ -870,6 +876,7 @@ class RotorScenario(Scenario):
             _bool(name, getattr(self, name))
         _pass_jitter(self, needs_rk4=False)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
+        s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
 
     @property

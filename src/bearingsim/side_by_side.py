@@ -168,7 +168,7 @@ def simulate_record(
     )
     if model == "rotor":
         # the CWRU motor with both bearings; the fault in the record's bearing, the sensor on
-        # its housing. The rotor has no rough-contact law: its realism is slip and the profile
+        # its housing; the same realism keys (slip, drop profile, rough contacts)
         from .config import RotorScenario
 
         end_key = "de" if end == "DE" else "fe"
@@ -234,8 +234,7 @@ def side_by_side(
         The measurement chain (a :class:`~bearingsim.rig.Rig`, a profile name or a file).
     model : {"vsm", "dem", "tvsm", "rotor"}
         The ring model, or the bearing-rotor-housing model of the CWRU motor (the fault in the
-        record's bearing, the rig on that bearing's housing acceleration; it has no rough
-        contact law, so ``contact_roughness_m`` does not apply to it).
+        record's bearing, the rig on that bearing's housing acceleration).
     duration_s : float
         Simulated time [s] (the record's first ``duration_s`` are used too).
     seed : int

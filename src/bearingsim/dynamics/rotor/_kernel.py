@@ -28,6 +28,10 @@ potential ``2/5 k delta^2.5`` plus linear damping along the compression)::
 
     Q = max(0, k delta^1.5 + c d(delta)/dt)  for delta > 0,   0 otherwise
 
+or, with a composite RMS roughness ``sigma > 0`` (``B_ROUGH``), Hertz's law averaged over it,
+``k sigma^1.5 g_1.5(delta / sigma)`` (:mod:`bearingsim.contact.rough`), which carries load from
+``delta = -8 sigma`` on (no damping before ``delta > 0``),
+
 with ``k`` the Hertz constant of that contact (inner and outer separately). Equations of motion::
 
     m_b (s_j'' - s_j omega_c^2) = Q_in - Q_out - m_b g cos(psi_j)
@@ -49,6 +53,7 @@ import math
 import numpy as np
 from numba import cfunc, njit
 
+from ...contact.rough import U_MIN, rough_ball
 from ..defect_drop import edge_drop
 from ..integrate import RHS_SIG
 from ..slip import cage_angle
@@ -100,7 +105,10 @@ B_SPIN = 23  # ball defect: ball spin angle per cage angle, BSF / FTF [-]
 B_RRACE_I = 24  # ball defect: inner raceway radius [m]
 B_HMAX_I = 25  # ball defect: h_min at the inner race [m]
 B_BDEV = 26  # offset in p of the bearing's ball diameter deviations Delta D_j; 0 = none
-BRG_LEN = 27
+B_ROUGH = 27  # composite RMS roughness sigma of the contacts [m]; 0 = Hertz
+B_RINV = 28  # 1 / sigma [1/m] (0 when sigma = 0)
+B_RSN1 = 29  # sigma^(1/2) [m^0.5]
+BRG_LEN = 30
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -192,6 +200,8 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     sp = math.sin(psi)
     cp = math.cos(psi)
     boff = int(p[o + B_BDEV])
+    sig = p[o + B_ROUGH]
+    onset = U_MIN * sig  # a rough contact carries load from a few sigma before touching
     fsx = 0.0
     fsy = 0.0
     fhx = 0.0
@@ -231,15 +241,27 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
             d_in += 0.5 * p[boff + j]
             d_out += 0.5 * p[boff + j]
         q_in = 0.0
-        if d_in > 0.0:
+        if sig > 0.0 and onset < d_in <= 0.0:  # rough onset: no damping before touching
+            q_in = rough_ball(d_in, kin, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
+        elif d_in > 0.0:
             dd = -sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in
-            q_in = kin * d_in * math.sqrt(d_in) + c * dd
+            if sig > 0.0:
+                q_in = rough_ball(d_in, kin, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
+                q_in = q_in + c * dd
+            else:
+                q_in = kin * d_in * math.sqrt(d_in) + c * dd
             if q_in < 0.0:
                 q_in = 0.0
         q_out = 0.0
-        if d_out > 0.0:
+        if sig > 0.0 and onset < d_out <= 0.0:
+            q_out = rough_ball(d_out, kout, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
+        elif d_out > 0.0:
             dd = sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out
-            q_out = kout * d_out * math.sqrt(d_out) + c * dd
+            if sig > 0.0:
+                q_out = rough_ball(d_out, kout, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
+                q_out = q_out + c * dd
+            else:
+                q_out = kout * d_out * math.sqrt(d_out) + c * dd
             if q_out < 0.0:
                 q_out = 0.0
         # seed ROTOR eq. (12) in the inertial radial coordinate: centrifugal and gravity terms

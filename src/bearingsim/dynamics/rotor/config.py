@@ -27,6 +27,7 @@ from ...config import (
     HOUSING_STIFFNESS_N_M,
     check_ball_spread,
     check_mount,
+    check_roughness,
 )
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
@@ -109,6 +110,10 @@ class BearingSupport:
         Azimuth of ball 1 at t = 0 [rad].
     ball_density : float or None
         Ball density [kg/m^3] (default: the bearing material's).
+    contact_roughness : float
+        Composite RMS roughness of the ball–race contacts [m]: the Hertz load is averaged over
+        it (:mod:`bearingsim.contact.rough`), so a ball takes up load over a few roughnesses
+        instead of with Hertz's singular onset; 0 = Hertz (seed ROTOR eq. 10).
     """
 
     bearing: BallBearing
@@ -116,6 +121,7 @@ class BearingSupport:
     contact_damping: float = CONTACT_DAMPING_N_S_M
     first_ball_angle: float = 0.0
     ball_density: float | None = None
+    contact_roughness: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.bearing, BallBearing):
@@ -124,6 +130,7 @@ class BearingSupport:
                 "bearing; the rotor model needs ball bearings"
             )
         check_range("contact_damping_n_s_per_m", self.contact_damping, 0.0, unit="N s/m")
+        check_roughness(self.contact_roughness)
         check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad")
         if self.ball_density is not None:
             check_positive("ball_density_kg_m3", self.ball_density, "kg/m^3")

@@ -386,6 +386,11 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
     blk[rk.B_C] = sup.contact_damping
     blk[rk.B_RP] = 0.5 * b.pitch_diameter
     blk[rk.B_CH] = 0.5 * b.diametral_clearance
+    sig = sup.contact_roughness
+    if sig > 0.0:  # 1/sigma and sigma^(1/2) cached for the hot loop (rough_ball)
+        blk[rk.B_ROUGH] = sig
+        blk[rk.B_RINV] = 1.0 / sig
+        blk[rk.B_RSN1] = math.sqrt(sig)
     f = sup.fault
     if f is not None:
         g = defect_geometry(b, f)

@@ -53,7 +53,12 @@ def _support(
     if clearance is not None:  # negative = preload; bounded like a bearing file's
         pd = check_clearance(b, clearance, name=f"{end}_clearance_m")
         b = dataclasses.replace(b, diametral_clearance=pd)
-    return BearingSupport(b, f, contact_damping=sc.contact_damping_n_s_per_m)
+    return BearingSupport(
+        b,
+        f,
+        contact_damping=sc.contact_damping_n_s_per_m,
+        contact_roughness=sc.contact_roughness_m,
+    )
 
 
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
