@@ -131,3 +131,27 @@ def test_fit_calibration_properties():
         fit_calibration([0.1, 0.2], [True])
     with pytest.raises(ConfigError, match="non-finite"):
         fit_calibration([0.1, np.nan], [True, False])
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_report_section_diagnosis(tmp_path):
+    """The report's section for issue 17: one row per CWRU record against its label (a
+    measurement), match exactly when the verdict is the label, the counts the benchmark
+    prints, and the reliability figure."""
+    from bearingsim.report import run_report
+    from bearingsim.signal.cwru_benchmark import evaluate, evidence
+
+    (sec,) = run_report(tmp_path, quick=True, sections=["diagnosis"], progress=False)
+    judged = [r for r in sec.rows if r.status != "info"]
+    _cal, recs = evaluate(evidence(CWRU))
+    assert len(judged) == len(recs) == 34
+    assert all(r.reference_kind == "measured" for r in judged)
+    for row, rec in zip(judged, recs, strict=True):
+        assert rec["file"].replace(".mat", "") in row.quantity
+        assert row.published == rec["truth"]
+        assert row.ours.startswith(rec["verdict"] + " (")
+        assert row.status == ("match" if rec["verdict"] == rec["truth"] else "mismatch")
+    right = sum(r.status == "match" for r in judged)
+    infos = {r.quantity: r.ours for r in sec.rows if r.status == "info"}
+    assert infos["records right"] == f"{right} of 34"
+    assert (tmp_path / "diagnosis_reliability.png").is_file()

@@ -45,7 +45,7 @@ STATUSES: tuple[str, ...] = ("mismatch", "deviates", "match", "info")
 REF_KINDS: tuple[str, ...] = ("measured", "paper", "standard", "none")
 
 #: preferred order of the report sections; any other module in ``report/sections`` follows
-_ORDER = ["foundation", "vsm", "qs5", "ias", "life", "rotor", "sweep"]
+_ORDER = ["foundation", "vsm", "qs5", "ias", "life", "rotor", "signals", "diagnosis", "sweep"]
 #: the sections present (modules in ``report/sections``), in report order
 SECTIONS = sorted(
     (m.name for m in pkgutil.iter_modules([str(Path(__file__).parent / "sections")])),
