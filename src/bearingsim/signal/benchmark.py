@@ -1,6 +1,7 @@
 """The signal-processing methods of the CWRU benchmark study (Smith & Randall 2015, "Rolling
 element bearing diagnostics using the Case Western Reserve University data: A benchmark study",
-MSSP 64–65, 100–131, §4), one function each, as building blocks of :mod:`.diagnosis`.
+MSSP 64–65, 100–131, §4), one function each, as building blocks of
+:mod:`bearingsim.signal.diagnosis`.
 
 1. **Envelope analysis of the raw signal**: the squared envelope spectrum (SES) of the whole
    band, :func:`squared_envelope_spectrum` with ``band=None``.

@@ -44,13 +44,16 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
         ok = float(np.mean([r["leading"] == r["truth"] for r in b]))
         a1.plot(mp, ok, "o", color="C0", ms=4 + 2 * np.sqrt(len(b)))
         a1.annotate(f"{len(b)}", (mp, ok), textcoords="offset points", xytext=(6, -10), fontsize=8)
-    low = [r for r in led if r["p"] < BINS[0][0]]
+    low = [r for r in led if r["p"] < BINS[0][0]]  # leading family, stated "uncertain"
     if low:
         mp = float(np.mean([r["p"] for r in low]))
         ok = float(np.mean([r["leading"] == r["truth"] for r in low]))
         a1.plot(mp, ok, "o", color="C0", ms=4 + 2 * np.sqrt(len(low)))
-    a1.plot([0.5, 1.0], [0.5, 1.0], "k--", lw=0.8, label="perfectly calibrated")
-    a1.set_xlim(0.45, 1.02)
+        a1.annotate(f"{len(low)}", (mp, ok), textcoords="offset points", xytext=(6, -10),
+                    fontsize=8)  # fmt: skip
+    x0 = min([0.5] + [r["p"] for r in led]) - 0.05
+    a1.plot([x0, 1.0], [x0, 1.0], "k--", lw=0.8, label="perfectly calibrated")
+    a1.set_xlim(x0, 1.02)
     a1.set_ylim(-0.02, 1.05)
     a1.set_xlabel("stated probability of the leading family (bin mean) [-]")
     a1.set_ylabel("share right [-]")
