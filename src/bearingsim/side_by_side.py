@@ -5,9 +5,10 @@ For a CWRU fault record: simulate its condition (the record's bearing, shaft spe
 rate; the CWRU fault diameter as the defect width, the EDM depth 0.011 in, the ball resting on
 the slot's nearer edge, :data:`DEFECT_PROFILE`; the random slip real bearings show,
 :data:`SLIP_PERCENT`; rough contacts, :data:`CONTACT_ROUGHNESS_M`; together
-:data:`REALISM`; sampled through an anti-aliasing filter) with a ring model,
-pass the result through a rig (:mod:`bearingsim.rig`), and compute the same numbers on both
-signals with the same code (:func:`signal_metrics`): RMS, kurtosis, crest factor, fault-line
+:data:`REALISM`; sampled through an anti-aliasing filter) with a ring model or the
+bearing-rotor-housing model (the fault in the record's bearing), pass the result through a rig
+(:mod:`bearingsim.rig`), and compute the same numbers on both signals with the same code
+(:func:`signal_metrics`): RMS, kurtosis, crest factor, fault-line
 amplitude and prominence in the envelope spectrum, and the ringing band (fast kurtogram).
 
 Line prominence (issue 16's definition): the envelope-spectrum line at the fault frequency over
