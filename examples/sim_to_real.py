@@ -374,12 +374,10 @@ def evaluate(clfs: dict, data: Path, rigs: dict):
     import subprocess
 
     from bearingsim.io.cwru import cwru_manifest
+    from bearingsim.signal.cwru_benchmark import truth_of
 
     rows = cwru_manifest(data)
-    truth = {
-        f: ("none" if r["fault"].startswith("none") else r["fault"].split()[0])
-        for f, r in rows.items()
-    }
+    truth = {f: truth_of(r) for f, r in rows.items()}
     files = [data / f for f in truth]
     shipped = {Path(o["file"]).name: o for o in predict(clfs["shipped"], files)}
     held = {n: {} for n in clfs if n != "shipped"}
@@ -393,10 +391,9 @@ def evaluate(clfs: dict, data: Path, rigs: dict):
         ]
         held[n] = {Path(o["file"]).name: o for o in predict(clfs[n], mine)}
     out = []
-    for f, r in rows.items():
-        name = f
+    for name, r in rows.items():
         a = subprocess.run(
-            [sys.executable, "-m", "bearingsim", "analyze", str(data / f), "--json",
+            [sys.executable, "-m", "bearingsim", "analyze", str(data / name), "--json",
              "--channel", r["end"]],
             capture_output=True,
             text=True,

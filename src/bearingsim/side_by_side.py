@@ -329,6 +329,19 @@ def model_path_scale(
     return scaled, k
 
 
+def _other_size_records(data_dir: Path, end: str, fs_hz: float, size_in: str) -> list[str]:
+    """File names of the CWRU fault records of ``end`` at ``fs_hz`` [Hz] with a fault size
+    other than ``size_in`` (the healthy record has none), sorted."""
+    return sorted(
+        f
+        for f, q in cwru_manifest(data_dir).items()
+        if q["end"] == end
+        and float(q["fs_hz"]) == float(fs_hz)
+        and q["fault_diameter_in"]
+        and q["fault_diameter_in"] != size_in
+    )
+
+
 def rig_without_size(data_dir: Path, end: str, fs_hz: float, size_in: str):
     """The rig of one mounting of the CWRU rig (the accelerometer of ``end`` at ``fs_hz``)
     identified from its fault records of every size **but** ``size_in`` (output-only,
@@ -352,15 +365,7 @@ def rig_without_size(data_dir: Path, end: str, fs_hz: float, size_in: str):
     from .rig_identify import identify_rig
 
     data_dir = Path(data_dir)
-    rows = cwru_manifest(data_dir)
-    others = sorted(
-        f
-        for f, q in rows.items()
-        if q["end"] == end
-        and float(q["fs_hz"]) == float(fs_hz)
-        and q["fault_diameter_in"]
-        and q["fault_diameter_in"] != size_in
-    )
+    others = _other_size_records(data_dir, end, fs_hz, size_in)
     if not others:
         return None
     recs = [read_signal(data_dir / f, channel=end) for f in others]
@@ -400,14 +405,7 @@ def lomo_rig(
     if rig is None:
         return None
     if model_gain:
-        others = sorted(
-            f
-            for f, q in rows.items()
-            if q["end"] == r["end"]
-            and q["fs_hz"] == r["fs_hz"]
-            and q["fault_diameter_in"]
-            and q["fault_diameter_in"] != r["fault_diameter_in"]
-        )
+        others = _other_size_records(data_dir, r["end"], float(r["fs_hz"]), r["fault_diameter_in"])
         rig, _k = model_path_scale(
             rig,
             [data_dir / f for f in others],

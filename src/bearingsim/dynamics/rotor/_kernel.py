@@ -165,6 +165,16 @@ def _slip(t, p, o, z, wc):
     return angle - wc * t, speed
 
 
+@njit(cache=True, inline="always")
+def _elastic(d, k, sig, p, o):
+    """Elastic load [N] of one contact at compression ``d`` [m]: Hertz ``k d^1.5`` (``sig`` =
+    0), or Hertz averaged over the roughness ``sig`` [m] (:func:`bearingsim.contact.rough.
+    rough_ball`; ``1/sig`` and ``sig^0.5`` cached in the bearing block at offset ``o``)."""
+    if sig > 0.0:
+        return rough_ball(d, k, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
+    return k * d * math.sqrt(d)
+
+
 @njit(cache=True)
 def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav):
     """Ball forces of one bearing; writes the ball accelerations and returns the forces on the
@@ -201,7 +211,7 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     cp = math.cos(psi)
     boff = int(p[o + B_BDEV])
     sig = p[o + B_ROUGH]
-    onset = U_MIN * sig  # a rough contact carries load from a few sigma before touching
+    onset = U_MIN * sig  # a rough contact carries load from a few sigma before touching (0: Hertz)
     fsx = 0.0
     fsy = 0.0
     fhx = 0.0
@@ -240,30 +250,21 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         if boff > 0:  # a ball larger by Delta D_j: each contact closes by half of it
             d_in += 0.5 * p[boff + j]
             d_out += 0.5 * p[boff + j]
+        # elastic load (rough from `onset` on, Hertz from 0), then the damping once touching
         q_in = 0.0
-        if sig > 0.0 and onset < d_in <= 0.0:  # rough onset: no damping before touching
-            q_in = rough_ball(d_in, kin, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
-        elif d_in > 0.0:
-            dd = -sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in
-            if sig > 0.0:
-                q_in = rough_ball(d_in, kin, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
-                q_in = q_in + c * dd
-            else:
-                q_in = kin * d_in * math.sqrt(d_in) + c * dd
-            if q_in < 0.0:
-                q_in = 0.0
+        if d_in > onset:
+            q_in = _elastic(d_in, kin, sig, p, o)
+            if d_in > 0.0:
+                q_in = q_in + c * (-sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in)
+                if q_in < 0.0:
+                    q_in = 0.0
         q_out = 0.0
-        if sig > 0.0 and onset < d_out <= 0.0:
-            q_out = rough_ball(d_out, kout, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
-        elif d_out > 0.0:
-            dd = sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out
-            if sig > 0.0:
-                q_out = rough_ball(d_out, kout, sig, p[o + B_RINV], p[o + B_RSN1], False)[0]
-                q_out = q_out + c * dd
-            else:
-                q_out = kout * d_out * math.sqrt(d_out) + c * dd
-            if q_out < 0.0:
-                q_out = 0.0
+        if d_out > onset:
+            q_out = _elastic(d_out, kout, sig, p, o)
+            if d_out > 0.0:
+                q_out = q_out + c * (sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out)
+                if q_out < 0.0:
+                    q_out = 0.0
         # seed ROTOR eq. (12) in the inertial radial coordinate: centrifugal and gravity terms
         dydt[k] = sd
         dydt[npos + k] = (q_in - q_out) / mb + s * wc * wc - grav * cp

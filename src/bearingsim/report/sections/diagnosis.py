@@ -36,7 +36,8 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
     fig, (a1, a2) = new_figure(1, 2, width=FULL_WIDTH, row_height=3.2)
     led = [r for r in recs if r["p"] is not None]
     # reliability: mean stated p against the share whose leading family is right, per bin
-    for lo, hi in BINS:
+    # below BINS: a leading family stated "uncertain"
+    for lo, hi in ((0.0, BINS[0][0]), *BINS):
         b = [r for r in led if lo <= r["p"] < hi]
         if not b:
             continue
@@ -44,13 +45,6 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
         ok = float(np.mean([r["leading"] == r["truth"] for r in b]))
         a1.plot(mp, ok, "o", color="C0", ms=4 + 2 * np.sqrt(len(b)))
         a1.annotate(f"{len(b)}", (mp, ok), textcoords="offset points", xytext=(6, -10), fontsize=8)
-    low = [r for r in led if r["p"] < BINS[0][0]]  # leading family, stated "uncertain"
-    if low:
-        mp = float(np.mean([r["p"] for r in low]))
-        ok = float(np.mean([r["leading"] == r["truth"] for r in low]))
-        a1.plot(mp, ok, "o", color="C0", ms=4 + 2 * np.sqrt(len(low)))
-        a1.annotate(f"{len(low)}", (mp, ok), textcoords="offset points", xytext=(6, -10),
-                    fontsize=8)  # fmt: skip
     x0 = min([0.5] + [r["p"] for r in led]) - 0.05
     a1.plot([x0, 1.0], [x0, 1.0], "k--", lw=0.8, label="perfectly calibrated")
     a1.set_xlim(x0, 1.02)

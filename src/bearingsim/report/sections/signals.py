@@ -93,19 +93,40 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
     )
 
 
+def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
+    """Append the four rows of one simulated record ``c`` (:func:`simulate_record`) against its
+    measurement, the simulation named ``what``; returns which bounds it meets."""
+    from ...side_by_side import BOUNDS, ratios, signal_metrics, within_bounds
+
+    m = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
+    s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
+    ratio = ratios(m, s)
+    ok = within_bounds(ratio)
+    num = c["record"].rsplit("_", 1)[-1].replace(".mat", "")
+    for k, label, unit in METRICS:
+        size = f"{ratio[k]:+.1f} dB" if k == "prominence_db" else f"{ratio[k]:.3g}×"
+        bound = f"±{BOUNDS[k]:g} dB" if k == "prominence_db" else f"×{BOUNDS[k]:g}"
+        sec.rows.append(
+            judge(
+                f"CWRU {num} ({c['fault']} {c['size_in']:.3f} in, {c['end']}, "
+                f"{c['fs_hz'] / 1e3:g} kHz): {label} [{unit}], {what} ({size}; bound "
+                f"{bound})",
+                f"CWRU {num} {c['end']} (measured)",
+                # numbers where their ratio is the size; a level in dB as text
+                f"{m.prominence_db:.3g}" if k == "prominence_db" else getattr(m, k),
+                f"{s.prominence_db:.3g}" if k == "prominence_db" else getattr(s, k),
+                ok[k],
+                "" if ok[k] else note,
+                kind="measured",
+            )
+        )
+    return ok
+
+
 def run(ctx: Context) -> Section:
     # side_by_side sits above the report layer (it runs the rig and the simulations): loaded
     # here, when the section runs, not at import time (tests/test_layers.py)
-    from ...side_by_side import (
-        BOUNDS,
-        DEFECT_PROFILE,
-        SLIP_PERCENT,
-        lomo_rig,
-        ratios,
-        signal_metrics,
-        simulate_record,
-        within_bounds,
-    )
+    from ...side_by_side import DEFECT_PROFILE, SLIP_PERCENT, lomo_rig, simulate_record
 
     sec = Section("signals", TITLE)
     data = cwru_data_dir()
@@ -127,30 +148,9 @@ def run(ctx: Context) -> Section:
         if rigs[key] is None:
             continue
         c = simulate_record(data / name, rigs[key], duration_s=duration)
-        m = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
-        s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
-        ratio = ratios(m, s)
-        ok = within_bounds(ratio)
+        ok = _judge_rows(sec, c, "VSM + rig", NOTE)
         n_judged += 1
         n_within += all(ok.values())
-        num = name.rsplit("_", 1)[-1].replace(".mat", "")
-        for k, label, unit in METRICS:
-            size = f"{ratio[k]:+.1f} dB" if k == "prominence_db" else f"{ratio[k]:.3g}×"
-            bound = f"±{BOUNDS[k]:g} dB" if k == "prominence_db" else f"×{BOUNDS[k]:g}"
-            sec.rows.append(
-                judge(
-                    f"CWRU {num} ({c['fault']} {c['size_in']:.3f} in, {c['end']}, "
-                    f"{c['fs_hz'] / 1e3:g} kHz): {label} [{unit}], VSM + rig ({size}; bound "
-                    f"{bound})",
-                    f"CWRU {num} {c['end']} (measured)",
-                    # numbers where their ratio is the size; a level in dB as text
-                    f"{m.prominence_db:.3g}" if k == "prominence_db" else getattr(m, k),
-                    f"{s.prominence_db:.3g}" if k == "prominence_db" else getattr(s, k),
-                    ok[k],
-                    "" if ok[k] else NOTE,
-                    kind="measured",
-                )
-            )
         if name in FIGURE_RECORDS:
             cases.append(c)
     sec.rows.append(
@@ -167,25 +167,7 @@ def run(ctx: Context) -> Section:
     key = (r["end"], r["fs_hz"], r["fault_diameter_in"]) if r else None
     if key in rigs and rigs[key] is not None:
         c = simulate_record(data / rec, rigs[key], model="rotor", duration_s=duration)
-        m = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
-        s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
-        ratio = ratios(m, s)
-        ok = within_bounds(ratio)
-        for k, label, unit in METRICS:
-            size = f"{ratio[k]:+.1f} dB" if k == "prominence_db" else f"{ratio[k]:.3g}×"
-            bound = f"±{BOUNDS[k]:g} dB" if k == "prominence_db" else f"×{BOUNDS[k]:g}"
-            sec.rows.append(
-                judge(
-                    f"CWRU 132 (outer 0.007 in, DE, 12 kHz): {label} [{unit}], rotor + rig "
-                    f"({size}; bound {bound})",
-                    "CWRU 132 DE (measured)",
-                    f"{m.prominence_db:.3g}" if k == "prominence_db" else getattr(m, k),
-                    f"{s.prominence_db:.3g}" if k == "prominence_db" else getattr(s, k),
-                    ok[k],
-                    "" if ok[k] else ROTOR_NOTE,
-                    kind="measured",
-                )
-            )
+        ok = _judge_rows(sec, c, "rotor + rig", ROTOR_NOTE)
         sec.rows.append(
             info(
                 "record 132 with the rotor model and the rig within all four bounds (issue 16)",
