@@ -32,13 +32,7 @@ KNOWN_MISS_Y = {
     "12k_Drive_End_OR014@6_0_197.mat": "BPFO series only in the 2.25-4.5 kHz band (found 0.7 % "
     "high, 3xBPFO on 2xBPFI); raw view alone supports it, no second view: verdict none",
 }
-KNOWN_CONFIDENT_WRONG = {
-    "12k_Drive_End_B007_2_120.mat": "S&R grade N1: a comb at BPFO/2 = 1.8 orders reads as BPFO "
-    "and BPFI series in three views; inner at p 0.76",
-    "12k_Drive_End_OR014@6_1_198.mat": "S&R grade P2: BPFI series with a sideband in three "
-    "views; the development set has no other mounting with a wrong leading family, so the "
-    "leave-one-mounting-out map cannot learn it: inner at p 0.85",
-}
+KNOWN_CONFIDENT_WRONG: dict[str, str] = {}
 
 
 @pytest.fixture(scope="module")
@@ -78,6 +72,36 @@ def test_no_confident_wrong_fault_type(bench, file):
     r = bench[1][file]
     wrong = r["verdict"] in ("inner", "outer", "ball") and r["verdict"] != r["truth"]
     assert not (wrong and r["confidence"] >= 0.5), r
+
+
+@pytest.mark.parametrize(
+    "file, leading, p_min",
+    # leading family and its leave-one-mounting-out p before the agreement gate (seventh
+    # session's benchmark table in docs/validation.md: 120 inner 0.76, 198 inner 0.85)
+    [
+        ("12k_Drive_End_B007_2_120.mat", "inner", 0.7),
+        ("12k_Drive_End_OR014@6_1_198.mat", "inner", 0.8),
+    ],
+)
+def test_agreement_gate_says_uncertain_when_no_method_reads_the_leading_family(
+    bench, file, leading, p_min
+):
+    """120 (ball, S&R N1) and 198 (outer, S&R P2): the fused score leads with a wrong family at a
+    calibrated p above 0.5, but none of the four methods' own readings is that family (120:
+    outer, outer, uncertain, none; 198: uncertain, none, uncertain, uncertain). The verdict is
+    "uncertain" with the leading family and p kept; the gate, not the calibration, stops it."""
+    r = bench[1][file]
+    assert r["leading"] == leading and r["p"] >= p_min and not r["named"], r
+    assert (r["verdict"], r["confidence"]) == ("uncertain", 0.0), r
+
+
+@pytest.mark.parametrize("file", [r["file"] for r in ROWS])
+def test_agreement_gate_keeps_every_right_answer(bench, file):
+    """Every record whose leading family is the truth at p >= 0.5 has a method that reads it
+    (the gate costs no right answer on the shared records)."""
+    r = bench[1][file]
+    if r["leading"] == r["truth"] and r["p"] is not None and r["p"] >= 0.5:
+        assert r["named"] and r["verdict"] == r["truth"], r
 
 
 @pytest.mark.parametrize(
@@ -155,3 +179,18 @@ def test_report_section_diagnosis(tmp_path):
     infos = {r.quantity: r.ours for r in sec.rows if r.status == "info"}
     assert infos["records right"] == f"{right} of 34"
     assert (tmp_path / "diagnosis_reliability.png").is_file()
+
+
+def test_diagnose_fused_applies_the_agreement_gate():
+    """The library function itself (not only the benchmark's evaluation) answers "uncertain" on
+    198 with the shipped calibration, keeps the leading family and its p, and says why."""
+    from bearingsim.catalog import resolve_bearing
+    from bearingsim.signal.diagnosis import load_signal
+    from bearingsim.signal.fused import diagnose_fused
+
+    rec = load_signal(CWRU / "12k_Drive_End_OR014@6_1_198.mat", channel="DE")
+    d = diagnose_fused(rec.x, rec.fs, resolve_bearing("6205-cwru"), rec.rpm / 60.0)
+    assert d.diagnosis == "uncertain" and d.confidence == 0.0
+    assert d.leading == "inner" and d.probability is not None and d.probability > 0.5
+    assert not any(v.names("inner") for v in d.views)
+    assert any("no method's own reading" in n for n in d.notes)

@@ -91,6 +91,8 @@ def evidence(data: Path, *, verbose: bool = False) -> list[dict[str, Any]]:
                 "dev": row["fault_diameter_in"] == "0.014",
                 "leading": d.leading,
                 "margin": d.margin,
+                # some method's own reading is the leading family (diagnose_fused's agreement)
+                "named": d.leading is not None and any(v.names(d.leading) for v in d.views),
                 "verdict0": d.diagnosis,  # none / uncertain when no family is supported
                 "none_conf": d.confidence,
                 "views": {k: _view_cell(views[k]) if k in views else "n/a" for k in VIEWS},
@@ -131,7 +133,7 @@ def evaluate(recs: list[dict[str, Any]]) -> tuple[Calibration, list[dict[str, An
     for r in recs:
         if r["p"] is None:
             r["verdict"], r["confidence"] = r["verdict0"], r["none_conf"]
-        elif r["p"] >= 0.5:
+        elif r["p"] >= 0.5 and r["named"]:
             r["verdict"], r["confidence"] = r["leading"], r["p"]
         else:
             r["verdict"], r["confidence"] = "uncertain", 0.0

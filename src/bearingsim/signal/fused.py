@@ -63,6 +63,14 @@ detected in most views ("looseness or shaft modulation"), and lines at the harmo
   Without an intercept ``p`` falls below 0.5 only when the margin is negative (a family that
   is no candidate outscores the leading one); "uncertain" otherwise comes from the rule (no
   candidate in two views), not from the calibration.
+* **agreement**: the leading family must be the reading of at least one method on its own (the
+  single-view rule of :func:`.diagnosis.diagnose_spectrum`, whose harmonic amplitudes must
+  dominate the other families' twice over; for ``ball`` also the cage pattern). Otherwise the
+  methods disagree — the fused score leads with a family that no method concludes, e.g. when
+  an outer-race series and its shaft-order modulation read as a BPFI series of comparable
+  strength in every view — and the verdict is ``uncertain`` (confidence 0), the leading family
+  and ``p`` kept. This mirrors Smith & Randall's grading, in which a record is diagnosable when
+  at least one of their methods diagnoses it.
 
 The rule never looks at the file name or the expected answer.
 """
@@ -163,6 +171,9 @@ class View:
         Family scores in this view (0 where not supported) [-].
     supported : list[str]
         Families supported in this view.
+    cage : bool
+        The cage-modulation pattern of a ball fault holds in this view (FTF detected, no family
+        supported).
     """
 
     name: str
@@ -170,6 +181,12 @@ class View:
     diagnosis: Diagnosis
     scores: dict[str, float]
     supported: list[str]
+    cage: bool = False
+
+    def names(self, family: str) -> bool:
+        """This method's own reading is ``family``: the single-view rule's verdict
+        (:func:`.diagnosis.diagnose_spectrum`), or for ``"ball"`` also the cage pattern."""
+        return self.diagnosis.diagnosis == family or (family == "ball" and self.cage)
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready summary: band, supported families, scores and the detected lines."""
@@ -423,7 +440,7 @@ def diagnose_fused(
         d = diagnose_spectrum(es, bearing, shaft_hz, b, rule=rule)
         sc, sup, cage = view_scores(d, rule)
         cage_views += cage
-        views.append(View(name, b, d, sc, sup))
+        views.append(View(name, b, d, sc, sup, cage))
     nv = len(views)
     fused = {}
     supported = []
@@ -468,6 +485,13 @@ def diagnose_fused(
     if calibration is None:
         return _res("uncertain", 0.0, top, None, margin)
     p = calibration(margin)
+    if not any(v.names(top) for v in views):
+        notes.append(
+            f"leading family {top} (margin {margin:.3f}, p {p:.2f}) is no method's own reading ("
+            + ", ".join(f"{v.name} {v.diagnosis.diagnosis}" for v in views)
+            + "): the methods disagree"
+        )
+        return _res("uncertain", 0.0, top, p, margin)
     if p >= 0.5:
         return _res(top, p, top, p, margin)
     notes.append(
