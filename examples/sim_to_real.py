@@ -319,13 +319,28 @@ def train(X, y):
     return clf.fit(X, y)
 
 
-def _record(path: Path):
-    """Signal, fs, rpm and bearing of a CWRU record (the fan end's records on its channel)."""
+def _record(path: Path, rpm: float | None = None):
+    """Signal, fs, shaft speed [r/min], where the speed came from, and bearing of a CWRU record
+    (the fan end's records on their channel). The speed: ``rpm`` if given, else the file's
+    ``X###RPM``, else the CWRU nominal speed of the load in the file name (the 0.028 in
+    records store none), as ``bearingsim analyze`` does; with none of these it is an error."""
+    from bearingsim.io.cwru import cwru_nominal_rpm
     from bearingsim.io.signal import read_signal
 
     end = "FE" if "Fan_End" in path.name else "DE"
     r = read_signal(path, channel=end)
-    return r.x, r.fs, float(r.rpm or 1797.0), "6203-cwru" if end == "FE" else "6205-cwru"
+    if rpm is not None:
+        source = "option"
+    elif r.rpm:
+        rpm, source = float(r.rpm), "file"
+    elif (nominal := cwru_nominal_rpm(path)) is not None:
+        rpm, source = nominal[1], f"name (CWRU load {nominal[0]} hp)"
+    else:
+        raise ValueError(
+            f"{path.name}: no shaft speed (no rpm in the file and no CWRU load in its name); "
+            "give --rpm"
+        )
+    return r.x, r.fs, float(rpm), source, "6203-cwru" if end == "FE" else "6205-cwru"
 
 
 def segments(x, fs: float) -> list[np.ndarray]:
@@ -341,13 +356,15 @@ def segments(x, fs: float) -> list[np.ndarray]:
     return [x[i : i + n] for i in range(0, x.size - n + 1, n)]
 
 
-def predict(clf, files):
+def predict(clf, files, rpm: float | None = None):
+    """One result per file: ``{"file", "predicted", "probabilities", "rpm", "rpm_source"}``,
+    or ``{"file", "predicted": None, "probabilities": None, "error"}``."""
     for f in files:
         p = Path(f)
         try:
-            x, fs, rpm, bearing = _record(p)
+            x, fs, rpm_used, source, bearing = _record(p, rpm)
             segs = segments(x, fs)
-            feats = np.array([features(seg, fs, rpm, bearing) for seg in segs])
+            feats = np.array([features(seg, fs, rpm_used, bearing) for seg in segs])
             prob = clf.predict_proba(feats).mean(axis=0)
         except Exception as exc:  # one bad file is its own line
             err = " ".join(str(exc).split())
@@ -356,7 +373,8 @@ def predict(clf, files):
         probs = dict.fromkeys(LABELS, 0.0)
         probs |= {LABELS[c]: float(v) for c, v in zip(clf.classes_, prob, strict=True)}
         best = max(probs, key=probs.get)
-        yield {"file": str(p), "predicted": best, "probabilities": probs}
+        yield {"file": str(p), "predicted": best, "probabilities": probs, "rpm": rpm_used,
+               "rpm_source": source}  # fmt: skip
 
 
 def _profile(end: str, fs: float) -> str | None:
@@ -448,15 +466,20 @@ def main() -> int:
     ap.add_argument("--json", action="store_true", help="one JSON object per line")
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--cache", type=Path, default=CACHE)
+    ap.add_argument("--rpm", type=float, default=None,
+                    help="shaft speed [r/min] for --predict (default: the file's, else the "
+                    "CWRU nominal speed of the load in its name)")  # fmt: skip
     a = ap.parse_args()
     if not a.predict and not a.evaluate:
         ap.error("give --predict FILE... or --evaluate")
+    if a.rpm is not None and not (math.isfinite(a.rpm) and 0.0 < a.rpm <= 1e6):
+        ap.error(f"--rpm = {a.rpm:g} r/min; valid range (0, 1e6] r/min")
     names = ["shipped", *(f"without-{s}" for s in HELD_OUT)] if a.evaluate else ["shipped"]
     sets, meta = build_datasets(a.cache, names, data=a.data, progress=not a.json)
     clfs = {n: train(*sets[n]) for n in names}
     bad = 0
     if a.predict:
-        for o in predict(clfs["shipped"], a.predict):
+        for o in predict(clfs["shipped"], a.predict, a.rpm):
             bad += "error" in o
             if a.json:
                 print(json.dumps(o))

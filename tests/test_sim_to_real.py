@@ -75,6 +75,30 @@ def test_dataset_is_cached_and_predictions_are_json_lines(small, tmp_path):
     json.dumps(out)
 
 
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_a_record_without_rpm_gets_the_nominal_speed_of_its_load(small, tmp_path):
+    """The CWRU 0.028 in records store no speed. --predict takes the CWRU nominal speed of the
+    load in the file name (load 2 hp: 1750 r/min; CWRU Bearing Data Center), as `analyze`
+    does, and says so; a name without a load is its own error line; --rpm overrides both.
+    (Before, a missing speed was taken as 1797 r/min whatever the load.)"""
+    from scipy.io import loadmat, savemat
+
+    m = loadmat(REC)
+    keep = {k: v for k, v in m.items() if not k.startswith("__") and not k.endswith("RPM")}
+    named = tmp_path / "12k_Drive_End_IR028_2_3003.mat"
+    savemat(named, keep)
+    anon = tmp_path / "record.mat"
+    savemat(anon, keep)
+    x, fs, rpm, source, bearing = small._record(named)
+    assert (rpm, source, bearing) == (1750.0, "name (CWRU load 2 hp)", "6205-cwru")
+    assert small._record(named, 1772.0)[2:4] == (1772.0, "option")
+    assert small._record(REC)[2:4] == (1750.0, "file")  # 132 stores 1750
+    X, y, _meta = small.build_dataset(tmp_path / "cache", progress=False)
+    ok, bad = small.predict(small.train(X, y), [named, anon])
+    assert ok["rpm"] == 1750.0 and ok["rpm_source"].startswith("name")
+    assert bad["predicted"] is None and "give --rpm" in bad["error"]
+
+
 def test_cli_without_a_task_is_a_usage_error():
     r = subprocess.run([sys.executable, str(ROOT / "examples" / "sim_to_real.py")],
                        capture_output=True, text=True)  # fmt: skip
