@@ -57,10 +57,19 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
     m = np.linspace(0.0, max([r["margin"] for r in led] + [1.5]), 200)
     a2.plot(m, [cal(v) for v in m], "k-", lw=0.8, label="map fitted on the development set")
     a2.axhline(0.5, color="0.6", lw=0.6, ls=":")
-    for right, mk, col, lab in ((True, "o", "C2", "right"), (False, "x", "C3", "wrong type")):
-        g = [r for r in led if (r["leading"] == r["truth"]) is right]
-        a2.plot([r["margin"] for r in g], [r["p"] for r in g], mk, color=col, ms=5, label=lab)
-        if not right:
+    groups = (
+        (lambda r: r["leading"] == r["truth"], "o", "C2", "right"),
+        (lambda r: r["leading"] != r["truth"] and r["named"], "x", "C3", "wrong type stated"),
+        (lambda r: r["leading"] != r["truth"] and not r["named"], "s", "C1",
+         "wrong leading family, no method reads it: 'uncertain'"),
+    )  # fmt: skip
+    for sel, mk, col, lab in groups:
+        g = [r for r in led if sel(r)]
+        if not g:
+            continue
+        a2.plot([r["margin"] for r in g], [r["p"] for r in g], mk, color=col, ms=5, label=lab,
+                mfc="none" if mk == "s" else col)  # fmt: skip
+        if lab != "right":
             for r in g:
                 a2.annotate(_num(r["file"]), (r["margin"], r["p"]), textcoords="offset points",
                             xytext=(4, 4), fontsize=8, color=col)  # fmt: skip
@@ -77,7 +86,9 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
             "probability against the share whose leading family is the seeded fault (the "
             "dashed diagonal is a perfectly calibrated map). Right: the calibration map "
             "(logistic in the fused margin) with every record on it; development (0.014 in) "
-            "records carry the probability of a map fitted without their mounting.",
+            "records carry the probability of a map fitted without their mounting. A leading "
+            "family that no method reads on its own is stated 'uncertain' whatever its "
+            "probability (the agreement rule).",
         )
     )
 
