@@ -310,12 +310,16 @@ def rhs_core(t, y, p, dydt, aux, want_aux):
     f1 = fde[1]
     f2 = ffe[0]
     f3 = ffe[1]
+    # views of the blocks: indices from range() are known non-negative, so the loop carries no
+    # negative-index wrap-around (the same arithmetic, in the same order, as flat indexing)
+    ak = p[oak : oak + nr * nr].reshape((nr, nr))
+    ac = p[oac : oac + nr * nr].reshape((nr, nr))
+    q = y[:nr]
+    v = y[npos : npos + nr]
     for i in range(nr):
         acc = p[of0 + i] + p[ouc + i] * cw + p[ous + i] * sw
-        rk = oak + i * nr
-        rc = oac + i * nr
         for j in range(nr):
-            acc -= p[rk + j] * y[j] + p[rc + j] * y[npos + j]
+            acc -= ak[i, j] * q[j] + ac[i, j] * v[j]
         rb = obb + 4 * i
         acc += p[rb] * f0 + p[rb + 1] * f1 + p[rb + 2] * f2 + p[rb + 3] * f3
         dydt[npos + i] = acc
