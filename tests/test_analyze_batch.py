@@ -27,6 +27,8 @@ CSV_COLUMNS = [
     "bearing",
     "diagnosis",
     "confidence",
+    "leading",
+    "probability",
     "band_lo_hz",
     "band_hi_hz",
     "error",
@@ -103,6 +105,8 @@ def test_csv_header_and_rows(run_cli, three):
             assert c[k] == d[k], k
         for k in ("fs_hz", "rpm", "confidence"):
             assert float(c[k]) == d[k], k  # written with every digit
+        assert c["leading"] == (d["leading"] or "")
+        assert (float(c["probability"]) if c["probability"] else None) == d["probability"]
         assert [float(c["band_lo_hz"]), float(c["band_hi_hz"])] == d["band_hz"]
         assert c["error"] == ""
 

@@ -35,7 +35,7 @@ _ANALYZE_MODULES = (
 #: columns of ``analyze --csv``
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
-    *("band_lo_hz", "band_hi_hz", "error"),
+    *("leading", "probability", "band_lo_hz", "band_hi_hz", "error"),
 )
 
 
@@ -267,10 +267,15 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     speed = ""
     if out["rpm_source"].startswith("name"):  # say when the speed is not the record's
         speed = f", rpm {out['rpm']:g} from the file {out['rpm_source']}"
+    lead = ""
+    if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
+        # an "uncertain" with a leading family: say which family led, at what probability
+        lead = f", leading family {out['leading']} at p {out['probability']:.2f}"
     click.echo(
         f"{name} [{out['channel']}]: {out['diagnosis']} (confidence "
         f"{out['confidence']:.2f}), band {lo:.0f}-{hi:.0f}"
         + (f" ({out['method']})" if "method" in out else "")
+        + lead
         + speed
     )
     if not detail:
