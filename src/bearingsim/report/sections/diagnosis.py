@@ -151,7 +151,8 @@ def run(ctx: Context) -> Section:
     _figure(ctx, sec, cal, recs)
     sec.text = (
         "Every record of the CWRU folder, diagnosed with one fixed rule (four views, a family "
-        "needs two). The confidence is the calibrated probability of the leading family; the "
+        "needs two, and at least one method must read it on its own: otherwise 'uncertain'). "
+        "The confidence is the calibrated probability of the leading family; the "
         "0.014 in records are the development set and each gets the map fitted without its "
         "mounting, the 0.007 in records and the healthy one the map fitted on all of it. "
         "'uncertain' and 'none' on a faulty record count as misses."
