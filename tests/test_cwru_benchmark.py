@@ -192,5 +192,6 @@ def test_diagnose_fused_applies_the_agreement_gate():
     d = diagnose_fused(rec.x, rec.fs, resolve_bearing("6205-cwru"), rec.rpm / 60.0)
     assert d.diagnosis == "uncertain" and d.confidence == 0.0
     assert d.leading == "inner" and d.probability is not None and d.probability > 0.5
-    assert not any(v.names("inner") for v in d.views)
+    assert not any(v.names("inner") for v in d.views) and not d.methods_agree
+    assert d.as_dict()["methods_agree"] is False
     assert any("no method's own reading" in n for n in d.notes)

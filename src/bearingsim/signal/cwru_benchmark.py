@@ -91,8 +91,7 @@ def evidence(data: Path, *, verbose: bool = False) -> list[dict[str, Any]]:
                 "dev": row["fault_diameter_in"] == "0.014",
                 "leading": d.leading,
                 "margin": d.margin,
-                # some method's own reading is the leading family (diagnose_fused's agreement)
-                "named": d.leading is not None and any(v.names(d.leading) for v in d.views),
+                "named": d.methods_agree,  # diagnose_fused's agreement rule
                 "verdict0": d.diagnosis,  # none / uncertain when no family is supported
                 "none_conf": d.confidence,
                 "views": {k: _view_cell(views[k]) if k in views else "n/a" for k in VIEWS},

@@ -303,6 +303,12 @@ class FusedDiagnosis:
     calibration: Calibration | None = None
 
     @property
+    def methods_agree(self) -> bool:
+        """At least one method reads :attr:`leading` on its own (:meth:`View.names`; module
+        docstring, "agreement"); False without a leading family."""
+        return self.leading is not None and _agree(self.views, self.leading)
+
+    @property
     def best_view(self) -> View:
         """The view with the largest score of the verdict's (or leading) family."""
         fam = self.diagnosis if self.diagnosis in FAMILIES else self.leading
@@ -334,6 +340,7 @@ class FusedDiagnosis:
             "leading": self.leading,
             "probability": self.probability,
             "margin": self.margin,
+            "methods_agree": self.methods_agree,
             "scores": self.scores,
             "band_hz": list(self.band_hz),
             "method": self.best_view.name,
@@ -485,7 +492,7 @@ def diagnose_fused(
     if calibration is None:
         return _res("uncertain", 0.0, top, None, margin)
     p = calibration(margin)
-    if not any(v.names(top) for v in views):
+    if not _agree(views, top):
         notes.append(
             f"leading family {top} (margin {margin:.3f}, p {p:.2f}) is no method's own reading ("
             + ", ".join(f"{v.name} {v.diagnosis.diagnosis}" for v in views)
@@ -498,6 +505,11 @@ def diagnose_fused(
         f"leading family {top} (margin {margin:.3f}) has calibrated probability {p:.2f} < 0.5"
     )
     return _res("uncertain", 0.0, top, p, margin)
+
+
+def _agree(views: list[View], family: str) -> bool:
+    """The agreement rule (module docstring): some method reads ``family`` on its own."""
+    return any(v.names(family) for v in views)
 
 
 def _cursor(label: str) -> bool:
