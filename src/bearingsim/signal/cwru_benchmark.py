@@ -25,10 +25,10 @@ import numpy as np
 
 from ..catalog import resolve_bearing
 from ..io.cwru import cwru_manifest
-from .diagnosis import load_signal
+from .diagnosis import FAMILIES, load_signal
 from .fused import VIEWS, Calibration, diagnose_fused, fit_calibration
 
-__all__ = ["evaluate", "evidence", "markdown", "mounting_of", "truth_of"]
+__all__ = ["evaluate", "evidence", "markdown", "mounting_of", "truth_of", "wrong_type"]
 
 TRUTH = {"inner race": "inner", "outer race": "outer", "ball": "ball"}
 
@@ -36,6 +36,16 @@ TRUTH = {"inner race": "inner", "outer race": "outer", "ball": "ball"}
 def truth_of(row: dict) -> str:
     """``inner``, ``outer``, ``ball`` or ``none`` from a manifest row."""
     return TRUTH.get(row["fault"], "none")
+
+
+def wrong_type(rec: dict, min_confidence: float = 0.0) -> bool:
+    """The evaluated record's verdict names a fault family other than its truth, with at least
+    ``min_confidence`` [-] (issue 17 counts those at 0.5)."""
+    return (
+        rec["verdict"] in FAMILIES
+        and rec["verdict"] != rec["truth"]
+        and rec["confidence"] >= min_confidence
+    )
 
 
 def mounting_of(row: dict) -> str:
@@ -151,11 +161,7 @@ def markdown(cal: Calibration, recs: list[dict[str, Any]]) -> str:
     ]
     for r in recs:
         p = "-" if r["p"] is None else f"{r['p']:.2f} ({r['how']})"
-        ok = (
-            "yes"
-            if r["verdict"] == r["truth"]
-            else ("WRONG" if r["verdict"] in ("inner", "outer", "ball") else "no")
-        )
+        ok = "yes" if r["verdict"] == r["truth"] else ("WRONG" if wrong_type(r) else "no")
         v = r["views"]
         lines.append(
             f"| `{r['file']}` | {r['truth']} | {r['grade']} | {v['raw']} | {v['cpw']} | "
@@ -176,15 +182,8 @@ def markdown(cal: Calibration, recs: list[dict[str, Any]]) -> str:
             lines.append(f"| {lo:.1f}–{min(hi, 1.0):.1f} | 0 | - | - |")
     n = len(recs)
     right = sum(r["verdict"] == r["truth"] for r in recs)
-    wrong = sum(
-        r["verdict"] in ("inner", "outer", "ball") and r["verdict"] != r["truth"] for r in recs
-    )
-    wrong_conf = sum(
-        r["verdict"] in ("inner", "outer", "ball")
-        and r["verdict"] != r["truth"]
-        and r["confidence"] >= 0.5
-        for r in recs
-    )
+    wrong = sum(wrong_type(r) for r in recs)
+    wrong_conf = sum(wrong_type(r, 0.5) for r in recs)
     y = [r for r in recs if r["grade"].startswith("Y")]
     lines += [
         "",

@@ -94,7 +94,7 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
 
 
 def run(ctx: Context) -> Section:
-    from ...signal.cwru_benchmark import evaluate, evidence
+    from ...signal.cwru_benchmark import evaluate, evidence, wrong_type
 
     sec = Section("diagnosis", TITLE)
     data = cwru_data_dir()
@@ -105,8 +105,7 @@ def run(ctx: Context) -> Section:
     for r in recs:
         ok = r["verdict"] == r["truth"]
         grade = f", S&R {r['grade']}" if r["grade"] != "-" else ""
-        wrong = r["verdict"] in ("inner", "outer", "ball") and not ok
-        why = "wrong fault type" if wrong else "missed"
+        why = "wrong fault type" if wrong_type(r) else "missed"
         sec.rows.append(
             judge(
                 f"CWRU {_num(r['file'])} ({r['file'].replace('.mat', '')}; {r['truth']}{grade}): "
@@ -121,13 +120,7 @@ def run(ctx: Context) -> Section:
         )
     n = len(recs)
     right = sum(r["verdict"] == r["truth"] for r in recs)
-    conf_wrong = [
-        _num(r["file"])
-        for r in recs
-        if r["verdict"] in ("inner", "outer", "ball")
-        and r["verdict"] != r["truth"]
-        and r["confidence"] >= 0.5
-    ]
+    conf_wrong = [_num(r["file"]) for r in recs if wrong_type(r, 0.5)]
     y = [r for r in recs if r["grade"].startswith("Y")]
     src = "scripts/calibrate_diagnosis.py; docs/validation.md"
     sec.rows += [
