@@ -104,15 +104,22 @@ def _table2():
 
 def test_record_132_fault_line_is_above_the_table_order():
     """CWRU record 132 (outer race, 0.007 in, stored speed 1750 r/min): over the whole 10 s
-    record (0.1 Hz bins) the envelope line near BPFO sits at order 3.599 of the stored speed,
-    0.3-0.5 % above the CWRU table's 3.5848: the rig ran faster than the stored speed (slip
-    would lower the order, not raise it)."""
+    record (0.1 Hz bins) the envelope line near BPFO sits at order 3.597 of the stored speed,
+    0.3-0.5 % above the CWRU table's 3.5848. Not a speed error: the record's own shaft
+    harmonics put its speed at the stored 1750 r/min (within 0.05 %). A contact angle of
+    8-11 deg puts BPFO there (an axial load on the deep-groove bearing); record 107 (inner race,
+    the same size and load) has its BPFI as far *below* the table order, which a contact angle
+    does and a speed error cannot (it would move both up)."""
+    from bearingsim.catalog import resolve_bearing
+    from bearingsim.geometry import contact_angle_from_order
     from bearingsim.io.cwru import cwru_data_dir
     from bearingsim.signal import envelope_spectrum, load_signal
+    from bearingsim.signal.contact_angle import estimate_contact_angle, measured_shaft_hz
 
     path = cwru_data_dir() / "12k_Drive_End_OR007@6_2_132.mat"
-    if not path.is_file():
-        pytest.skip("CWRU record 132 is not in shared/data")
+    inner = cwru_data_dir() / "12k_Drive_End_IR007_2_107.mat"
+    if not (path.is_file() and inner.is_file()):
+        pytest.skip("CWRU records 132 and 107 are not in shared/data")
     rec = load_signal(path)
     table = value("cwru.drive_end.bpfo_order")
     es = envelope_spectrum(rec.x, rec.fs, (2000.0, 5000.0))
@@ -121,6 +128,16 @@ def test_record_132_fault_line_is_above_the_table_order():
     f_line = float(es.freq[sel[np.argmax(es.amplitude[sel])]])
     order = f_line / (rec.rpm / 60)
     assert 0.003 < order / table - 1 < 0.005
+    shaft, n = measured_shaft_hz(rec.x, rec.fs, rec.rpm / 60)
+    assert n >= 4
+    assert abs(60 * shaft / rec.rpm - 1) < 5e-4  # the stored speed is right
+    b = resolve_bearing("6205-cwru")
+    alpha = math.degrees(contact_angle_from_order(b, "bpfo", f_line / shaft))
+    assert 8.0 < alpha < 11.0
+    r107 = load_signal(inner)
+    est = estimate_contact_angle(r107.x, r107.fs, b, "inner", r107.rpm / 60)
+    assert est.order < value("cwru.drive_end.bpfi_order") * (1 - 0.002)
+    assert 8.0 < est.contact_angle_deg < 11.0
 
 
 def test_seed_b_needs_177_times_the_stribeck_load():

@@ -17,6 +17,7 @@ from .materials import Material
 
 __all__ = [
     "angular_extent",
+    "ANGLE_LINES",
     "BallBearing",
     "Bearing",
     "characteristic_frequencies",
@@ -25,6 +26,7 @@ __all__ = [
     "check_speed_limit",
     "check_unused_defect",
     "clearance_range",
+    "contact_angle_from_order",
     "CONFORMITY_RANGE",
     "CONTACT_ANGLE_MAX",
     "CWRU_DEFECT_DEPTH_M",
@@ -467,6 +469,64 @@ def characteristic_frequencies(bearing: Bearing, shaft_hz: float) -> KinematicFr
         bpfi_hz=0.5 * Z * fs * (1.0 + g),
         bsf_hz=D / (2.0 * d) * fs * (1.0 - g * g),
     )
+
+
+#: the kinematic lines whose order fixes the contact angle (:func:`contact_angle_from_order`)
+ANGLE_LINES = ("bpfo", "bpfi", "ftf")
+
+
+def contact_angle_from_order(bearing: Bearing, line: str, order: float) -> float:
+    """Contact angle [rad] at which the kinematic ``line`` (``"bpfo"``, ``"bpfi"`` or ``"ftf"``)
+    falls at ``order`` [-] (per shaft revolution): the inverse of
+    :func:`characteristic_frequencies` for ``alpha``.
+
+    From ``g = d cos(alpha) / D``: ``g = 1 - 2 order / Z`` (BPFO), ``2 order / Z - 1`` (BPFI),
+    ``1 - 2 order`` (FTF). A contact angle moves BPFO and FTF up and BPFI down, and keeps
+    ``BPFO + BPFI = Z f_s``; a speed error moves all three the same way, and slip lowers BPFO,
+    FTF and BPFI alike. So a measured BPFO above its ``alpha = 0`` order with the shaft speed
+    measured from the same record (not taken from a file) is the signature of a contact
+    angle, i.e. of an axial load on a deep-groove bearing (Harris & Kotzalas 2007, ch. 2–3).
+
+    Parameters
+    ----------
+    bearing : BallBearing or RollerBearing
+        Geometry (its own ``contact_angle`` is not used).
+    line : str
+        ``"bpfo"``, ``"bpfi"`` or ``"ftf"``.
+    order : float
+        Measured order of the line's fundamental [-].
+
+    Returns
+    -------
+    float
+        ``alpha`` in [0, pi/2] [rad].
+
+    Raises
+    ------
+    ConfigError
+        ``order`` outside the orders a contact angle from 0 to 90° gives (a line below the
+        ``alpha = 0`` BPFO, for instance: slip or a wrong speed, not a contact angle).
+    """
+    name = str(line).lower()
+    if name not in ANGLE_LINES:
+        raise ConfigError(f"line = {line!r} is not one of {', '.join(ANGLE_LINES)}")
+    d, D, Z = bearing.element_diameter, bearing.pitch_diameter, bearing.n_elements
+    gamma = d / D
+    o = float(order)
+    if not math.isfinite(o):
+        raise ConfigError(f"order = {order!r} must be finite")
+    g = {"bpfo": 1.0 - 2.0 * o / Z, "bpfi": 2.0 * o / Z - 1.0, "ftf": 1.0 - 2.0 * o}[name]
+    if not 0.0 <= g <= gamma:
+        ends = {
+            "bpfo": (0.5 * Z * (1.0 - gamma), 0.5 * Z),
+            "bpfi": (0.5 * Z, 0.5 * Z * (1.0 + gamma)),
+            "ftf": (0.5 * (1.0 - gamma), 0.5),
+        }[name]
+        raise ConfigError(
+            f"order = {o:.6g} of {name.upper()} is outside the orders a contact angle of 0 to "
+            f"90 deg gives for {bearing.id}: valid range [{min(ends):.6g}, {max(ends):.6g}]"
+        )
+    return math.acos(min(1.0, g / gamma))
 
 
 #: largest speed factor ``n d_m`` [mm r/min] a shaft speed may have: a steel ring bursts there.

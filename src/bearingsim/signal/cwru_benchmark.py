@@ -53,8 +53,10 @@ def mounting_of(row: dict) -> str:
     t = truth_of(row)
     if t == "none":
         return "normal"
-    pos = row["or_position"].replace("centred ", "").strip()
-    return f"{row['end']}-{t}-{row['fault_diameter_in']}{('@' + pos) if pos else ''}"
+    pos = row["or_position"].replace("centred ", "").strip()  # "@6:00", "@3:00" or ""
+    if pos and not pos.startswith("@"):
+        pos = "@" + pos
+    return f"{row['end']}-{t}-{row['fault_diameter_in']}{pos}"
 
 
 def _view_cell(v) -> str:

@@ -1,0 +1,235 @@
+"""The contact angle a bearing runs at, read from a measured record's own lines.
+
+A contact angle ``alpha`` moves the outer-race line up and the inner-race line down
+(``BPFO = Z f_s/2 (1 - d cos(alpha)/D)``, ``BPFI = Z f_s/2 (1 + d cos(alpha)/D)``,
+:func:`bearingsim.geometry.characteristic_frequencies`); a deep-groove bearing under a pure
+radial load runs at ``alpha`` near 0, under an axial load (a wave spring, a fit, a thrust) at
+several degrees, and then *every* ball is loaded. The shaft speed stored with a record is
+rounded and may be off; so both are measured here from the record itself:
+
+1. the shaft speed ``f_s``: the median of ``f_k / k`` over the shaft harmonics ``k = 1..6``
+   of the amplitude spectrum (zero-padded 4×, parabolic refinement,
+   :func:`.peaks.refine_peak`) that stand at least ``min_shaft_snr_db`` over their
+   neighbourhood — an average over many lines, robust to one line of another source;
+2. the fault line: the strongest (by SNR) of the family's first three harmonics in the squared
+   envelope spectrum of the raw signal, searched between the orders of ``alpha = 0`` and
+   :data:`ALPHA_SEARCH_MAX` (only the direction a contact angle moves it) widened by
+   ``pad_rel``;
+3. ``alpha`` from that order (:func:`bearingsim.geometry.contact_angle_from_order`).
+
+Used for ``docs/validation.md`` ("Contact angle of the CWRU bearings", `python
+scripts/contact_angles.py`): what the fault-line offsets of the CWRU records mean.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.signal import hilbert
+
+from ..errors import ConfigError, check_positive
+from ..geometry import Bearing, contact_angle_from_order
+from .peaks import refine_peak
+from .spectrum import amplitude_spectrum
+
+__all__ = [
+    "ALPHA_SEARCH_MAX",
+    "ContactAngleEstimate",
+    "estimate_contact_angle",
+    "measured_shaft_hz",
+]
+
+#: largest contact angle the fault-line search reaches [rad] (25°: beyond it a deep-groove
+#: bearing's contact ellipse nears the groove shoulder, Harris & Kotzalas 2007)
+ALPHA_SEARCH_MAX = math.radians(25.0)
+_PAD = 4  #: zero padding of the spectra [-]
+
+
+def _line(f, A, lo: float, hi: float, df: float) -> tuple[float, float]:
+    """Refined frequency [Hz] and SNR [dB] of the largest line in ``[lo, hi]`` [Hz]; the floor
+    is the median amplitude within ±5 % of it outside the search window."""
+    i0 = int(np.searchsorted(f, lo, side="left"))
+    i1 = int(np.searchsorted(f, hi, side="right"))
+    if i1 <= i0 or i1 >= f.size:
+        return float("nan"), float("nan")
+    k = int(i0 + np.argmax(A[i0:i1]))
+    off, _h = refine_peak(A, k, log=True)
+    fc = 0.5 * (lo + hi)
+    j0 = int(np.searchsorted(f, 0.95 * fc - 0.5 * (hi - lo), side="left"))
+    j1 = int(np.searchsorted(f, 1.05 * fc + 0.5 * (hi - lo), side="right"))
+    floor = np.median(np.concatenate((A[max(j0, 1) : i0], A[i1:j1])))
+    snr = 20.0 * math.log10(A[k] / floor) if floor > 0 and A[k] > 0 else float("nan")
+    return float(f[k] + off * df), snr
+
+
+def measured_shaft_hz(
+    x: ArrayLike,
+    fs: float,
+    shaft_hz_hint: float,
+    *,
+    harmonics: int = 6,
+    rel_tol: float = 0.005,
+    min_snr_db: float = 20.0,
+) -> tuple[float, int]:
+    """Shaft speed measured from the shaft harmonics of a record (module docstring, step 1).
+
+    Parameters
+    ----------
+    x : array_like
+        Signal (any unit).
+    fs : float
+        Sample rate [Hz].
+    shaft_hz_hint : float
+        Expected shaft speed (e.g. the stored one) [Hz]; each harmonic ``k`` is searched within
+        ``k shaft_hz_hint (1 ± rel_tol)``.
+    harmonics : int
+        Highest harmonic used [-].
+    rel_tol : float
+        Relative half-width of the search windows [-].
+    min_snr_db : float
+        A harmonic counts when it stands this far over its neighbourhood [dB].
+
+    Returns
+    -------
+    shaft_hz : float
+        Median of ``f_k / k`` over the harmonics that count [Hz].
+    n_lines : int
+        How many counted.
+
+    Raises
+    ------
+    ConfigError
+        No shaft harmonic stands out (the speed cannot be measured from this record).
+    """
+    fs = check_positive("fs_hz", fs, "Hz")
+    hint = check_positive("shaft_hz_hint", shaft_hz_hint, "Hz")
+    xa = np.asarray(x, dtype=float)
+    spec = amplitude_spectrum(xa, fs, n_fft=_PAD * xa.size)
+    f, A, df = spec.freq, spec.amplitude, spec.bin_width
+    est = []
+    for k in range(1, harmonics + 1):
+        fk, snr = _line(f, A, k * hint * (1 - rel_tol), k * hint * (1 + rel_tol), df)
+        if math.isfinite(snr) and snr >= min_snr_db:
+            est.append(fk / k)
+    if not est:
+        raise ConfigError(
+            f"no shaft harmonic of {hint:.6g} Hz (k = 1..{harmonics}, within ±{rel_tol:.2%}) "
+            f"stands {min_snr_db:g} dB over its neighbourhood: the shaft speed cannot be "
+            "measured here"
+        )
+    return float(np.median(est)), len(est)
+
+
+@dataclass(frozen=True)
+class ContactAngleEstimate:
+    """What :func:`estimate_contact_angle` read from a record.
+
+    Attributes
+    ----------
+    family : str
+        ``"outer"`` (BPFO) or ``"inner"`` (BPFI).
+    shaft_hz : float
+        Shaft speed measured from the record [Hz].
+    shaft_lines : int
+        Shaft harmonics it rests on [-].
+    harmonic : int
+        Harmonic of the fault line used (1–3) [-].
+    order : float
+        Order of the fault line's fundamental against the measured speed [-].
+    order_alpha0 : float
+        Its order at ``alpha = 0`` [-].
+    snr_db : float
+        SNR of the line used in the squared envelope spectrum [dB].
+    contact_angle_rad : float
+        The contact angle that puts the line there [rad]; 0 for a line within the search
+        window's padding on the far side of the ``alpha = 0`` order.
+    """
+
+    family: str
+    shaft_hz: float
+    shaft_lines: int
+    harmonic: int
+    order: float
+    order_alpha0: float
+    snr_db: float
+    contact_angle_rad: float
+
+    @property
+    def contact_angle_deg(self) -> float:
+        """The contact angle [deg]."""
+        return math.degrees(self.contact_angle_rad)
+
+    def as_dict(self) -> dict[str, float | int | str]:
+        """JSON-ready dict (the fields and ``contact_angle_deg``)."""
+        return {
+            "family": self.family,
+            "shaft_hz": self.shaft_hz,
+            "shaft_lines": self.shaft_lines,
+            "harmonic": self.harmonic,
+            "order": self.order,
+            "order_alpha0": self.order_alpha0,
+            "snr_db": self.snr_db,
+            "contact_angle_rad": self.contact_angle_rad,
+            "contact_angle_deg": self.contact_angle_deg,
+        }
+
+
+def estimate_contact_angle(
+    x: ArrayLike,
+    fs: float,
+    bearing: Bearing,
+    family: str,
+    shaft_hz_hint: float,
+    *,
+    pad_rel: float = 0.003,
+) -> ContactAngleEstimate:
+    """Contact angle of a bearing with a race fault, from the record's own lines (module
+    docstring).
+
+    Parameters
+    ----------
+    x : array_like
+        Signal of a record with an outer- or inner-race fault (any unit).
+    fs : float
+        Sample rate [Hz].
+    bearing : BallBearing or RollerBearing
+        The faulty bearing's geometry.
+    family : str
+        ``"outer"`` or ``"inner"``: the fault whose line is read.
+    shaft_hz_hint : float
+        Expected shaft speed [Hz] (:func:`measured_shaft_hz`).
+    pad_rel : float
+        Relative widening of the fault-line search window on both sides [-].
+    """
+    fam = str(family).lower()
+    if fam not in ("outer", "inner"):
+        raise ConfigError(f"family = {family!r} is not one of outer, inner")
+    fs = check_positive("fs_hz", fs, "Hz")
+    xa = np.asarray(x, dtype=float)
+    shaft, n_lines = measured_shaft_hz(xa, fs, shaft_hz_hint)
+    g0 = bearing.element_diameter / bearing.pitch_diameter
+    z = bearing.n_elements
+    sign = -1.0 if fam == "outer" else 1.0
+    o0 = 0.5 * z * (1.0 + sign * g0)
+    o1 = 0.5 * z * (1.0 + sign * g0 * math.cos(ALPHA_SEARCH_MAX))
+    lo, hi = min(o0, o1) * (1.0 - pad_rel), max(o0, o1) * (1.0 + pad_rel)
+    xa = xa - xa.mean()
+    se = np.abs(hilbert(xa)) ** 2
+    spec = amplitude_spectrum(se, fs, n_fft=_PAD * xa.size)
+    f, A, df = spec.freq, spec.amplitude, spec.bin_width
+    best = (float("nan"), float("-inf"), 0)
+    for h in (1, 2, 3):
+        fh, snr = _line(f, A, h * lo * shaft, h * hi * shaft, df)
+        if math.isfinite(snr) and snr > best[1]:
+            best = (fh / (h * shaft), snr, h)
+    order, snr, h = best
+    if h == 0:
+        raise ConfigError(f"no {fam}-race line within the spectrum (fs_hz = {fs:g} Hz)")
+    # a line within the window's padding on the far side of the alpha = 0 order (measurement
+    # precision, a slightly low speed estimate) reads alpha = 0
+    order_c = min(max(order, min(o0, o1)), max(o0, o1))
+    alpha = contact_angle_from_order(bearing, "bpfo" if fam == "outer" else "bpfi", order_c)
+    return ContactAngleEstimate(fam, shaft, n_lines, h, order, o0, snr, alpha)

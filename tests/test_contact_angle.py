@@ -1,0 +1,120 @@
+"""The contact angle from a line's order (geometry.contact_angle_from_order) and from a record
+(signal.contact_angle): the inverse of the kinematic frequencies, a synthetic record whose
+angle is known, and bad input."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from bearingsim import ConfigError, characteristic_frequencies
+from bearingsim.catalog import resolve_bearing
+from bearingsim.geometry import contact_angle_from_order
+from bearingsim.signal.contact_angle import estimate_contact_angle, measured_shaft_hz
+
+B = resolve_bearing("6205-cwru")
+
+
+@settings(max_examples=60, deadline=None)
+@given(alpha_deg=st.floats(0.0, 45.0), line=st.sampled_from(["bpfo", "bpfi", "ftf"]))
+def test_inverse_of_the_kinematic_frequencies(alpha_deg, line):
+    """The angle that puts a line at the order characteristic_frequencies gives for a bearing
+    at alpha is alpha (0-45 deg, the range a ball bearing's contact angle may take; to
+    round-off in cos(alpha), ~1e-8 rad near 0 where acos is steep)."""
+    b = replace(B, contact_angle=math.radians(alpha_deg))
+    k = characteristic_frequencies(b, 1.0)
+    order = {"bpfo": k.bpfo_order, "bpfi": k.bpfi_order, "ftf": k.ftf_order}[line]
+    assert math.degrees(contact_angle_from_order(B, line, order)) == pytest.approx(
+        alpha_deg, abs=1e-4
+    )
+
+
+def test_the_cwru_table_orders_are_alpha_zero():
+    """The CWRU bearing table's drive-end orders (BPFO 3.5848, BPFI 5.4152) are those of a
+    contact angle of 0 (within the table's 4 decimals: under 0.6 deg, where acos is steep)."""
+    from bearingsim.report.published import value
+
+    assert (
+        math.degrees(contact_angle_from_order(B, "bpfo", value("cwru.drive_end.bpfo_order"))) < 0.6
+    )
+    assert (
+        math.degrees(contact_angle_from_order(B, "bpfi", value("cwru.drive_end.bpfi_order"))) < 0.6
+    )
+
+
+@pytest.mark.parametrize(
+    "line, order, match",
+    [
+        ("bpfo", 3.5, "valid range"),  # below the alpha = 0 BPFO: slip or speed, not an angle
+        ("bpfo", 4.6, "valid range"),  # above Z/2
+        ("bpfi", 5.5, "valid range"),  # above the alpha = 0 BPFI
+        ("ftf", 0.6, "valid range"),
+        ("bsf", 2.0, "not one of"),
+        ("bpfo", float("nan"), "finite"),
+    ],
+)
+def test_bad_orders_are_one_line_errors(line, order, match):
+    with pytest.raises(ConfigError, match=match) as e:
+        contact_angle_from_order(B, line, order)
+    assert "\n" not in str(e.value)
+
+
+def _record(alpha_deg: float, shaft_hz: float, fs: float = 12000.0, seconds: float = 8.0):
+    """Outer-race impacts (BPFO of a bearing at ``alpha_deg``) ringing at 3 kHz, shaft
+    harmonics 1-6 and white noise."""
+    rng = np.random.default_rng(3)
+    n = int(fs * seconds)
+    t = np.arange(n) / fs
+    bpfo = characteristic_frequencies(
+        replace(B, contact_angle=math.radians(alpha_deg)), shaft_hz
+    ).bpfo_hz
+    x = 0.05 * rng.standard_normal(n)
+    for k in range(1, 7):
+        x += 0.2 / k * np.sin(2 * np.pi * k * shaft_hz * t + k)
+    ring = np.exp(-600.0 * t[:200]) * np.sin(2 * np.pi * 3000.0 * t[:200])
+    for t0 in np.arange(0.0, seconds - 0.02, 1.0 / bpfo):
+        i = int(round(t0 * fs))
+        x[i : i + 200] += ring[: n - i]
+    return x, fs
+
+
+@pytest.mark.parametrize("alpha_deg", [0.0, 6.0, 12.0, 20.0])
+def test_estimate_recovers_a_known_angle_with_a_wrong_stored_speed(alpha_deg):
+    """A synthetic outer-race record of a bearing at a known contact angle, analysed with a
+    stored speed 0.3 % off: the shaft speed comes from the record (within 0.02 %) and the
+    angle within 1 deg (0 within 2.5 deg: near alpha = 0 the order moves with alpha^2)."""
+    x, fs = _record(alpha_deg, 29.2)
+    est = estimate_contact_angle(x, fs, B, "outer", 29.2 * 1.003)
+    assert est.shaft_hz == pytest.approx(29.2, rel=2e-4)
+    assert est.shaft_lines >= 4
+    assert est.contact_angle_deg == pytest.approx(alpha_deg, abs=2.5 if alpha_deg == 0 else 1.0)
+    assert est.as_dict()["contact_angle_deg"] == est.contact_angle_deg
+
+
+def test_no_shaft_line_is_a_one_line_error():
+    x = np.random.default_rng(0).standard_normal(48000)
+    with pytest.raises(ConfigError, match="shaft speed cannot be measured") as e:
+        measured_shaft_hz(x, 12000.0, 29.0)
+    assert "\n" not in str(e.value)
+    with pytest.raises(ConfigError, match="family"):
+        estimate_contact_angle(x, 12000.0, B, "ball", 29.0)
+
+
+def test_a_small_axial_load_loads_every_ball():
+    """Why an outer-race defect at 3 or 12 o'clock can be struck (docs/validation.md, "Contact
+    angle of the CWRU bearings"): with the catalogue clearance (6 um) and the seed's 50 N radial
+    load 3 of the 6205's 9 balls carry load; 10 N of axial load, which also gives the balls a
+    contact angle, loads all nine (Jones model, seed QS5)."""
+    from bearingsim.quasistatic.jones import run_quasi_static
+
+    q0 = np.asarray(run_quasi_static(B, 0.0, fy=50.0, fz=0.0).ball_loads)
+    sol = run_quasi_static(B, 0.0, fy=50.0, fz=10.0)
+    q10 = np.asarray(sol.ball_loads)
+    assert int((q0 > 1e-6).sum()) == 3
+    assert int((q10 > 1.0).sum()) == 9
+    assert np.degrees(np.asarray(sol.contact_angles)).max() > 8.0
