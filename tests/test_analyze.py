@@ -248,3 +248,56 @@ def test_analyze_record_refuses_a_bad_band_in_one_line(band):
     with pytest.raises(ConfigError, match="band") as exc:
         analyze_record(rec, get_bearing("6205-cwru"), band=band)
     assert "\n" not in str(exc.value)
+
+
+def test_cwru_site_names_get_their_rate_from_the_shaft_lines(tmp_path, run_cli, capsys):
+    """The CWRU site names its files by number (``132.mat``): no rate in the name. The rate is
+    read off the shaft lines (io.cwru.infer_cwru_fs) and said in the output; before, such a file
+    was taken at 48 kHz, and the 12 kHz record 132 (outer race, Smith & Randall Y1) came out
+    "uncertain". A record whose shaft lines do not tell (174: 1.3 s, none) is a one-line error
+    naming --fs-hz."""
+    import shutil
+
+    for num, fs, verdict in (("132", 12000.0, "outer"), ("135", 48000.0, "outer")):
+        f = tmp_path / f"{num}.mat"
+        shutil.copy(_cwru(num), f)
+        r = run_cli("analyze", str(f), "--json")
+        assert r.code == 0, r.err
+        d = r.json()
+        assert d["fs_hz"] == fs and d["diagnosis"] == verdict
+        assert d["fs_source"].startswith("inferred from the shaft lines")
+        r = run_cli("analyze", str(f))
+        assert f"fs {fs / 1000:g} kHz inferred from the shaft lines" in r.out.splitlines()[0]
+        r = run_cli("analyze", str(f), "--fs-hz", "12000", "--json")  # the option wins
+        assert r.json()["fs_hz"] == 12000.0 and r.json()["fs_source"] == "option"
+    f = tmp_path / "174.mat"
+    shutil.copy(_cwru("174"), f)
+    msg = _run_bad(capsys, [f])
+    assert "sample rate of this CWRU record cannot be told from its shaft lines" in msg
+    assert "pass --fs-hz (CWRU: 12000 or 48000)" in msg
+
+
+def test_rate_inference_on_every_shared_record():
+    """Every shared CWRU record, through the sensors of both ends: the rate read off its shaft
+    lines is the manifest's (CWRU site tables), except 174, which has no shaft line to read
+    and is refused. The counts it rests on: 0-3 of the nine quarter orders on a 12 kHz record,
+    8-9 on a 48 kHz one (io.cwru.infer_cwru_fs; the split is at 4/5)."""
+    from bearingsim.errors import ConfigError
+    from bearingsim.io.cwru import cwru_data_dir, cwru_manifest, infer_cwru_fs, read_cwru_mat
+
+    data = cwru_data_dir()
+    if not (data / "manifest.csv").is_file():
+        pytest.skip("shared CWRU data not available")
+    n = 0
+    for name, row in cwru_manifest(data).items():
+        rec = read_cwru_mat(data / name)
+        rpm = rec.rpm or float(row["nominal_rpm"])
+        for ch in ("DE", "FE"):
+            if row["cwru_number"] == "174":
+                with pytest.raises(ConfigError, match="cannot be told"):
+                    infer_cwru_fs(rec.acceleration(ch), rpm)
+                continue
+            fs, why = infer_cwru_fs(rec.acceleration(ch), rpm)
+            assert fs == float(row["fs_hz"]), (name, ch, why)
+            n += 1
+    assert n == 2 * (len(cwru_manifest(data)) - 1)

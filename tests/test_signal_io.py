@@ -133,11 +133,17 @@ def test_read_signal_cwru_mat(tmp_path):
     fe = read_signal(_cwru_file(tmp_path, "r.mat"), channel="fe", fs_hz=48000.0, rpm=1750.0)
     assert fe.channel == "FE" and fe.fs == 48000.0 and fe.rpm == 1750.0
     assert fe.info == {"rpm_source": "option", "fs_source": "option"}
-    assert read_signal(_cwru_file(tmp_path, "d.mat")).info["fs_source"].startswith("default")
-    norpm = _cwru_file(tmp_path, "norpm.mat", rpm=False)
+    # no rate in the name: read off the shaft lines (io.cwru.infer_cwru_fs); a ramp has none
+    with pytest.raises(ConfigError, match=r"cannot be told from its shaft lines.*--fs-hz"):
+        read_signal(_cwru_file(tmp_path, "d.mat"))
+    assert read_signal(_cwru_file(tmp_path, "d.mat"), fs_hz=48000.0).info["fs_source"] == "option"
+    norpm = _cwru_file(tmp_path, "norpm_12k.mat", rpm=False)
     assert read_signal(norpm).rpm is None
-    with pytest.raises(ConfigError, match=r"file = 'norpm.mat' has no X###RPM key and no --rpm"):
+    with pytest.raises(ConfigError, match=r"'norpm_12k.mat' has no X###RPM key and no --rpm"):
         load_signal(norpm)
+    # neither a speed nor a rate: one line naming both options
+    with pytest.raises(ConfigError, match=r"file = 'norpm.mat' has no X###RPM key.*--fs-hz F"):
+        read_signal(_cwru_file(tmp_path, "norpm.mat", rpm=False))
     with pytest.raises(ConfigError, match=r"channel = 'BA' not in r.mat"):
         read_signal(tmp_path / "r.mat", channel="BA")
 

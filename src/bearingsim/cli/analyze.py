@@ -267,6 +267,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     speed = ""
     if out["rpm_source"].startswith("name"):  # say when the speed is not the record's
         speed = f", rpm {out['rpm']:g} from the file {out['rpm_source']}"
+    if str(out.get("fs_source", "")).startswith("inferred"):  # nor the sample rate
+        speed += f", fs {out['fs_hz'] / 1000:g} kHz {out['fs_source']}"
     lead = ""
     if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
         # an "uncertain" with a leading family: say which family led, at what probability

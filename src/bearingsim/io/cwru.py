@@ -15,6 +15,8 @@ from ._mat5 import mat5_problem
 
 __all__ = [
     "CWRU_NOMINAL_RPM",
+    "CWRU_RATES",
+    "infer_cwru_fs",
     "cwru_data_dir",
     "cwru_manifest",
     "cwru_nominal_rpm",
@@ -96,6 +98,83 @@ def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:
         return None
     load = int(m.group(1))
     return load, CWRU_NOMINAL_RPM[load]
+
+
+#: the sample rates of the CWRU records [Hz] (CWRU Bearing Data Center: 12 kHz and 48 kHz)
+CWRU_RATES = (12000.0, 48000.0)
+#: a line counts in :func:`infer_cwru_fs` when it stands this far over its neighbourhood [dB]
+_RATE_SNR_DB = 15.0
+#: the positions (in shaft orders, read on the 12 kHz axis) that are shaft harmonics 1-11 when
+#: the record was sampled at 48 kHz and none when it was sampled at 12 kHz
+_QUARTERS = tuple(j / 4 for j in (1, 2, 3, 5, 6, 7, 9, 10, 11))
+
+
+def _lines_over_floor(X: np.ndarray, df: float, freqs: list[float]) -> int:
+    """How many of ``freqs`` [Hz] carry a line :data:`_RATE_SNR_DB` over the median of the
+    amplitude spectrum ``X`` (bin ``df`` [Hz]) within ±5 % around them (window ±0.5 %)."""
+    n = 0
+    for f0 in freqs:
+        tol = max(0.005 * f0, 2.0 * df)
+        i0, i1 = int((f0 - tol) / df), int((f0 + tol) / df) + 1
+        j0, j1 = max(int((0.95 * f0 - 5 * tol) / df), 1), int((1.05 * f0 + 5 * tol) / df) + 1
+        if i1 >= X.size or j1 >= X.size or i0 < 1:
+            continue
+        floor = np.median(np.concatenate((X[j0:i0], X[i1:j1])))
+        if floor > 0 and 20 * np.log10(X[i0:i1].max() / floor) >= _RATE_SNR_DB:
+            n += 1
+    return n
+
+
+def infer_cwru_fs(x: np.ndarray, rpm: float) -> tuple[float, str]:
+    """The sample rate of a CWRU record whose name does not say it (the CWRU site's own names,
+    ``105.mat``), from its shaft lines.
+
+    The rates are 12 or 48 kHz (:data:`CWRU_RATES`), a factor 4 apart. Read on the 12 kHz
+    axis, the shaft harmonics of a 12 kHz record lie at whole orders of the stored speed; those
+    of a 48 kHz record lie at every quarter order (its harmonic ``j`` at order ``j/4``). So the
+    nine positions ``j/4`` (``j`` = 1-11, not a multiple of 4) decide, split at the middle:
+    at most 4 carrying a line (another source may put one there) → 12 kHz, 5 or more → 48 kHz;
+    and the whole orders 1-6 must show at least 3 lines (a shaft to read), else it is not
+    decided. On the shared CWRU records (every channel, 96 signals): the 12 kHz ones show 0-3
+    of the nine, the 48 kHz ones 8-9; record 174 (1.3 s, no shaft line) is not decided.
+
+    Parameters
+    ----------
+    x : ndarray
+        The record's samples.
+    rpm : float
+        Its stored shaft speed [r/min].
+
+    Returns
+    -------
+    fs : float
+        12000 or 48000 [Hz].
+    why : str
+        The counts that decided, for the output.
+
+    Raises
+    ------
+    ConfigError
+        Not decided (fewer than 3 shaft lines at whole orders): pass ``fs_hz``.
+    """
+    xa = np.asarray(x, dtype=float)
+    n = xa.size
+    n_fft = 1 << int(np.ceil(np.log2(2 * n)))
+    X = np.abs(np.fft.rfft((xa - xa.mean()) * np.hanning(n), n_fft))
+    df = CWRU_RATES[0] / n_fft
+    fr = rpm / 60.0
+    whole = _lines_over_floor(X, df, [k * fr for k in range(1, 7)])
+    quarter = _lines_over_floor(X, df, [q * fr for q in _QUARTERS])
+    why = (
+        f"shaft lines at {whole} of the 6 whole orders and {quarter} of the 9 quarter orders "
+        "on the 12 kHz axis"
+    )
+    if whole >= 3:  # a shaft to read: the quarter orders split the nine at the middle
+        return (CWRU_RATES[0] if quarter <= 4 else CWRU_RATES[1]), why
+    raise ConfigError(
+        f"fs_hz: the sample rate of this CWRU record cannot be told from its shaft lines "
+        f"({why}); pass --fs-hz (CWRU: 12000 or 48000)"
+    )
 
 
 def read_cwru_mat(path: str | Path) -> CwruRecord:

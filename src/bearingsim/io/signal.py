@@ -20,8 +20,9 @@ if TYPE_CHECKING:
 
 __all__ = ["CWRU_DEFAULT_FS", "SignalRecord", "read_signal"]
 
-#: CWRU sample rate when neither ``fs_hz`` nor the file name ("12k"/"48k") says it: the 48 kHz
-#: normal baselines and 48k drive-end records (/work/shared/data/cwru/SOURCES.md) [Hz]
+#: the sample rate the CWRU normal baselines (``normal_0_97.mat``, no rate in the name) and 48k
+#: drive-end records have (/work/shared/data/cwru/SOURCES.md) [Hz]. No longer a default: a
+#: CWRU file whose name gives no rate has it read off its shaft lines (``io.cwru.infer_cwru_fs``)
 CWRU_DEFAULT_FS = 48000.0
 
 #: names of a time column [s] in a text file (lower case)
@@ -133,7 +134,7 @@ def read_signal(
 
 
 def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None) -> SignalRecord:
-    from .cwru import read_cwru_mat
+    from .cwru import infer_cwru_fs, read_cwru_mat
 
     rec = read_cwru_mat(p)
     ch = ("DE" if channel is None else channel).upper()
@@ -146,16 +147,26 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
     r = rpm if rpm is not None else rec.rpm
     if r is not None:
         info["rpm_source"] = "option" if rpm is not None else "file"
+        r = check_positive("rpm", r, "r/min")
     if fs is None:
-        fs_name = _cwru_fs_from_name(p.name)
-        fs = fs_name or CWRU_DEFAULT_FS
-        info["fs_source"] = "file name" if fs_name else "default (CWRU 48 kHz)"
+        fs = _cwru_fs_from_name(p.name)
+        info["fs_source"] = "file name"
     else:
         info["fs_source"] = "option"
+    x = rec.acceleration(ch)
+    if fs is None:  # the CWRU site's own names (105.mat) carry no rate: read it off the shaft
+        if r is None:
+            raise ConfigError(
+                f"file = {p.name!r} has no X###RPM key and no --rpm was given, and its name no "
+                "sample rate (12k/48k); valid: give --rpm R (> 0 r/min), and --fs-hz F (CWRU: "
+                "12000 or 48000) unless the rate can be read off the shaft lines"
+            )
+        fs, why = infer_cwru_fs(x, r)
+        info["fs_source"] = f"inferred from the shaft lines ({why})"
     return SignalRecord(
-        rec.acceleration(ch),
+        x,
         check_positive("fs_hz", fs, "Hz"),
-        None if r is None else check_positive("rpm", r, "r/min"),
+        r,
         str(p),
         ch,
         None,
