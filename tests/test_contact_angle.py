@@ -118,3 +118,26 @@ def test_a_small_axial_load_loads_every_ball():
     assert int((q0 > 1e-6).sum()) == 3
     assert int((q10 > 1.0).sum()) == 9
     assert np.degrees(np.asarray(sol.contact_angles)).max() > 8.0
+
+
+@pytest.mark.parametrize("alpha_deg", [0.0, 18.0])
+def test_the_line_search_follows_the_contact_angle(alpha_deg):
+    """The diagnosis searches BPFO from its alpha = 0 position up to its position at
+    DiagnosisRule.contact_angle_max_deg (20 deg) widened by 1 %: an outer-race series of a
+    bearing at 18 deg (BPFO 1.3 % above the alpha = 0 line, outside the former ±1 %) is found
+    at its true position; with the former symmetric window (contact_angle_max_deg = 0) the
+    fundamental is not found there. At alpha = 0 both find it."""
+    from bearingsim.signal import DiagnosisRule, diagnose
+
+    x, fs = _record(alpha_deg, 29.2)
+    true = characteristic_frequencies(replace(B, contact_angle=math.radians(alpha_deg)), 29.2)
+    for rule, found in (
+        (DiagnosisRule(), True),
+        (DiagnosisRule(contact_angle_max_deg=0.0), alpha_deg == 0.0),
+    ):
+        d = diagnose(x, fs, B, 29.2, band=(2000.0, 4500.0), rule=rule)
+        p = next(q for q in d.peaks if q.label == "BPFO")
+        at_true = abs(p.freq_hz - true.bpfo_hz) <= 2 * d.spectrum.bin_width
+        assert (p.detected and at_true) is found, (rule, p)
+        if found:
+            assert d.diagnosis == "outer"

@@ -10,14 +10,16 @@ One fixed rule (:class:`DiagnosisRule`), the same for every signal (measured or 
 3. **Lines** (:func:`find_lines`). The fundamentals of BPFO (outer), BPFI (inner), 2×BSF (ball),
    FTF (cage) and f_r (shaft) are searched within ``max(1 % of the target, 2 bins)`` (1 %:
    allowance for the speed uncertainty and the 1–2 % slip of rolling elements, Randall & Antoni
-   2011); harmonics 2 and 3 at exact multiples of the *found* fundamental within
-   ``max(2, h)`` bins; sidebands ±f_r of BPFO and BPFI and ±FTF of 2×BSF (first two
-   harmonics). Each line's SNR is taken against the median amplitude within ±10 % of the target
-   (at least five tolerances), without the tolerance band. A line is *detected* at
-   SNR >= 12 dB: for Gaussian noise the envelope-spectrum amplitudes are Rayleigh distributed
-   and the largest of ~30–200 bins in a tolerance window exceeds 12 dB above the median with
-   probability ~1e-3. A line claimed by targets of two families counts only for the nearer
-   target (e.g. 3×BPFO and 2×BPFI differ by 0.7 %).
+   2011), BPFO, FTF and BPFI of a ball bearing from their positions at its catalogue contact
+   angle to those at ``DiagnosisRule.contact_angle_max_deg`` (20°: an axial load moves BPFO and
+   FTF up and BPFI down), that range widened by the same 1 %; harmonics 2 and 3 at exact
+   multiples of the *found* fundamental within ``max(2, h)`` bins; sidebands ±f_r of BPFO and
+   BPFI and ±FTF of 2×BSF (first two harmonics). Each line's SNR is taken against the median
+   amplitude within ±10 % of the target (at least five tolerances), without the tolerance band.
+   A line is *detected* at SNR >= 12 dB: for Gaussian noise the envelope-spectrum amplitudes are
+   Rayleigh distributed and the largest of ~30–200 bins in a tolerance window exceeds 12 dB
+   above the median with probability ~1e-3. A line claimed by targets of two families counts
+   only for the nearer target (e.g. 3×BPFO and 2×BPFI differ by 0.7 %).
 4. **Decision** (:func:`diagnose`). A family (outer, inner, ball) is *supported* when its
    fundamental and at least one of its 2nd/3rd harmonics are detected; its *evidence* is the
    summed envelope amplitude of its detected harmonics, its *quality* the mean over the three
@@ -39,7 +41,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -47,7 +49,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ConfigError, check_positive
-from ..geometry import Bearing, characteristic_frequencies, parse_enum
+from ..geometry import BallBearing, Bearing, characteristic_frequencies, parse_enum
 from ..io.signal import SignalRecord, read_signal
 from .envelope import check_band, envelope_spectrum
 from .kurtogram import Kurtogram, fast_kurtogram
@@ -111,6 +113,16 @@ class DiagnosisRule:
         fault line nearer to a shaft harmonic than to its own target goes to the shaft (the
         6203's BSF is 1.994 f_r: its lines sit on the shaft harmonics until the harmonic
         cursors separate them).
+    contact_angle_max_deg : float
+        Largest contact angle the search of the fundamentals allows for [deg]: BPFO and FTF
+        are searched from their positions at the bearing's own angle up to those at this
+        angle (a contact angle moves them up), BPFI down to its position there, each widened
+        by ``tol_rel`` (ball bearings; 0, or an angle not above the bearing's, searches
+        ``±tol_rel`` about the kinematic position). 20°: the free contact angle of a 6205
+        with 40 µm diametral clearance, the top of ISO 5753-1 group 4 (an axial load on a
+        deep-groove bearing sets its angle near the free one); the CWRU records run at
+        2.5–14° (docs/validation.md, "Contact angle of the CWRU bearings"), at the edge of
+        what ``±1 %`` covers (BPFO up to 16°).
     """
 
     n_harmonics: int = 3
@@ -121,6 +133,7 @@ class DiagnosisRule:
     dominance: float = 2.0
     sideband_weight: float = 0.1
     shaft_cursors: bool = False
+    contact_angle_max_deg: float = 20.0
 
 
 @dataclass(frozen=True)
@@ -320,18 +333,20 @@ def find_lines(
     """Harmonic-series line search in an envelope spectrum.
 
     Stage 1: each family's fundamental (BPFO, BPFI, 2×BSF, FTF, f_r) within
-    ``max(tol_rel f, tol_min_bins df)``. Stage 2: harmonics ``h`` at exact multiples of the
-    *found* fundamental (when detected; else of the nominal one) within ``max(tol_min_bins, h)``
-    bins (the fundamental's position is known to half a bin), and the first two harmonics'
-    sidebands (±f_r for BPFO and BPFI, ±FTF for 2×BSF) at the found spacings. Finally a line
-    claimed by targets of two families goes to the nearer target.
+    ``max(tol_rel f, tol_min_bins df)``; BPFO, FTF and BPFI of a ball bearing over the range of
+    contact angles the rule allows, widened by ``tol_rel`` (:func:`_windows`). Stage 2:
+    harmonics ``h`` at exact multiples of the *found* fundamental (when detected; else of the
+    nominal one) within ``max(tol_min_bins, h)`` bins (the fundamental's position is known to
+    half a bin), and the first two harmonics' sidebands (±f_r for BPFO and BPFI, ±FTF for 2×BSF)
+    at the found spacings. Finally a line claimed by targets of two families goes to the nearer
+    target.
     """
     k = characteristic_frequencies(bearing, shaft_hz)
     first = [(name, mult * getattr(k, attr)) for name, attr, mult in _FUNDAMENTALS]
     first = [(n, f) for n, f in first if f < f_limit]
     peaks = match_peaks(
         es,
-        first,
+        _windows(first, bearing, shaft_hz, rule),
         shaft_hz,
         tol_rel=rule.tol_rel,
         tol_min_bins=rule.tol_min_bins,
@@ -392,6 +407,30 @@ def find_lines(
             threshold_db=rule.threshold_db,
         )
     return _attribute(peaks, nominal)
+
+
+#: the fundamentals a contact angle moves, and the attribute of their position
+_ANGLE_MOVES = {"BPFO": "bpfo_hz", "BPFI": "bpfi_hz", "FTF": "ftf_hz"}
+
+
+def _windows(first, bearing: Bearing, shaft_hz: float, rule: DiagnosisRule) -> list[tuple]:
+    """The stage-1 targets of :func:`find_lines`: ``(label, f)`` searched within ``±tol_rel``,
+    or, for the lines a contact angle moves (BPFO, FTF up; BPFI down) when
+    ``rule.contact_angle_max_deg`` is above the bearing's angle, ``(label, f, low, high)``:
+    from the kinematic position to the one at that angle, widened by ``tol_rel``."""
+    a_max = math.radians(rule.contact_angle_max_deg)
+    if not isinstance(bearing, BallBearing) or a_max <= bearing.contact_angle:
+        return list(first)
+    k_max = characteristic_frequencies(replace(bearing, contact_angle=a_max), shaft_hz)
+    out = []
+    for name, f in first:
+        if name not in _ANGLE_MOVES:
+            out.append((name, f))
+            continue
+        g = getattr(k_max, _ANGLE_MOVES[name])
+        lo, hi = min(f, g), max(f, g)
+        out.append((name, f, lo * (1.0 - rule.tol_rel), hi * (1.0 + rule.tol_rel)))
+    return out
 
 
 def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> list[Peak]:

@@ -241,7 +241,7 @@ class Peak:
 
 def match_peaks(
     spectrum: Spectrum,
-    targets: list[tuple[str, float]],
+    targets: list[tuple[str, float]] | list[tuple[str, float, float, float]],
     shaft_hz: float,
     *,
     tol_rel: float = 0.01,
@@ -255,8 +255,10 @@ def match_peaks(
     ----------
     spectrum : Spectrum
         Usually an envelope spectrum.
-    targets : list of (label, frequency [Hz])
-        What to look for.
+    targets : list of (label, frequency [Hz]) or (label, frequency, low, high [Hz])
+        What to look for; with ``low, high`` the line is searched in ``[low, high]`` (widened
+        to ``tol_min_bins`` bins about ``frequency`` at least) instead of about ``frequency``
+        (a window that follows the direction a line may move, e.g. with the contact angle).
     shaft_hz : float
         Shaft frequency for the ``order`` column [Hz].
     tol_rel : float
@@ -273,12 +275,18 @@ def match_peaks(
     A = spectrum.amplitude
     df = spectrum.bin_width
     out = []
-    for label, ft in targets:
+    for target in targets:
+        label, ft = target[0], target[1]
         tol = max(tol_rel * ft, tol_min_bins * df)
+        lo, hi = ft - tol, ft + tol
+        if len(target) == 4:  # an explicit window
+            lo = min(target[2], ft - tol_min_bins * df)
+            hi = max(target[3], ft + tol_min_bins * df)
+            tol = 0.5 * (hi - lo)
         # f is ascending: index ranges instead of masks over the whole spectrum
-        i0 = int(np.searchsorted(f, ft - tol, side="left"))
-        i1 = int(np.searchsorted(f, ft + tol, side="right"))
-        if ft + tol >= f[-1] or i1 <= i0:
+        i0 = int(np.searchsorted(f, lo, side="left"))
+        i1 = int(np.searchsorted(f, hi, side="right"))
+        if hi >= f[-1] or i1 <= i0:
             continue
         k = int(i0 + np.argmax(A[i0:i1]))
         hw = max(noise_rel * ft, 5.0 * tol)
