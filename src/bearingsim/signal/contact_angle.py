@@ -14,7 +14,8 @@ rounded and may be off; so both are measured here from the record itself:
 2. the fault line: the strongest (by SNR) of the family's first three harmonics in the squared
    envelope spectrum of the raw signal, searched between the orders of ``alpha = 0`` and
    :data:`ALPHA_SEARCH_MAX` (only the direction a contact angle moves it) widened by
-   ``pad_rel``;
+   ``pad_rel``; a harmonic whose window meets a window of the other race's first three
+   harmonics is not used (the 6205's 3×BPFO and 2×BPFI lie 0.7 % apart);
 3. ``alpha`` from that order (:func:`bearingsim.geometry.contact_angle_from_order`).
 
 Used for ``docs/validation.md`` ("Contact angle of the CWRU bearings", `python
@@ -213,15 +214,27 @@ def estimate_contact_angle(
     g0 = bearing.element_diameter / bearing.pitch_diameter
     z = bearing.n_elements
     sign = -1.0 if fam == "outer" else 1.0
-    o0 = 0.5 * z * (1.0 + sign * g0)
-    o1 = 0.5 * z * (1.0 + sign * g0 * math.cos(ALPHA_SEARCH_MAX))
-    lo, hi = min(o0, o1) * (1.0 - pad_rel), max(o0, o1) * (1.0 + pad_rel)
+
+    def window(sgn: float) -> tuple[float, float, float, float]:
+        """alpha = 0 order, order at ALPHA_SEARCH_MAX, and the padded search window [-]."""
+        a = 0.5 * z * (1.0 + sgn * g0)
+        b = 0.5 * z * (1.0 + sgn * g0 * math.cos(ALPHA_SEARCH_MAX))
+        return a, b, min(a, b) * (1.0 - pad_rel), max(a, b) * (1.0 + pad_rel)
+
+    o0, o1, lo, hi = window(sign)
+    _a, _b, lo_x, hi_x = window(-sign)  # the other race's line
+    # a harmonic whose window meets one of the other race's first three (the 6205's 3xBPFO
+    # and 2xBPFI, 0.7 % apart) could read the other fault's line: not used
+    usable = [
+        h for h in (1, 2, 3)
+        if not any(h * lo <= k * hi_x and k * lo_x <= h * hi for k in (1, 2, 3))
+    ]  # fmt: skip
     xa = xa - xa.mean()
     se = np.abs(hilbert(xa)) ** 2
     spec = amplitude_spectrum(se, fs, n_fft=_PAD * xa.size)
     f, A, df = spec.freq, spec.amplitude, spec.bin_width
     best = (float("nan"), float("-inf"), 0)
-    for h in (1, 2, 3):
+    for h in usable:
         fh, snr = _line(f, A, h * lo * shaft, h * hi * shaft, df)
         if math.isfinite(snr) and snr > best[1]:
             best = (fh / (h * shaft), snr, h)
