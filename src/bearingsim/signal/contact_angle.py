@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy.fft import next_fast_len
 from scipy.signal import hilbert
 
 from ..errors import ConfigError, check_positive
@@ -108,7 +109,7 @@ def measured_shaft_hz(
     fs = check_positive("fs_hz", fs, "Hz")
     hint = check_positive("shaft_hz_hint", shaft_hz_hint, "Hz")
     xa = np.asarray(x, dtype=float)
-    spec = amplitude_spectrum(xa, fs, n_fft=_PAD * xa.size)
+    spec = amplitude_spectrum(xa, fs, n_fft=next_fast_len(_PAD * xa.size))
     f, A, df = spec.freq, spec.amplitude, spec.bin_width
     est = []
     for k in range(1, harmonics + 1):
@@ -231,7 +232,7 @@ def estimate_contact_angle(
     ]  # fmt: skip
     xa = xa - xa.mean()
     se = np.abs(hilbert(xa)) ** 2
-    spec = amplitude_spectrum(se, fs, n_fft=_PAD * xa.size)
+    spec = amplitude_spectrum(se, fs, n_fft=next_fast_len(_PAD * xa.size))
     f, A, df = spec.freq, spec.amplitude, spec.bin_width
     best = (float("nan"), float("-inf"), 0)
     for h in usable:
