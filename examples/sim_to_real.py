@@ -323,24 +323,13 @@ def _record(path: Path, rpm: float | None = None):
     """Signal, fs, shaft speed [r/min], where the speed came from, and bearing of a CWRU record
     (the fan end's records on their channel). The speed: ``rpm`` if given, else the file's
     ``X###RPM``, else the CWRU nominal speed of the load in the file name (the 0.028 in
-    records store none), as ``bearingsim analyze`` does; with none of these it is an error."""
-    from bearingsim.io.cwru import cwru_nominal_rpm
-    from bearingsim.io.signal import read_signal
+    records store none): ``bearingsim.signal.diagnosis.load_signal_and_speed``, the rule of
+    ``bearingsim analyze``; with none of these it is an error naming --rpm."""
+    from bearingsim.signal.diagnosis import load_signal_and_speed
 
     end = "FE" if "Fan_End" in path.name else "DE"
-    r = read_signal(path, channel=end)
-    if rpm is not None:
-        source = "option"
-    elif r.rpm:
-        rpm, source = float(r.rpm), "file"
-    elif (nominal := cwru_nominal_rpm(path)) is not None:
-        rpm, source = nominal[1], f"name (CWRU load {nominal[0]} hp)"
-    else:
-        raise ValueError(
-            f"{path.name}: no shaft speed (no rpm in the file and no CWRU load in its name); "
-            "give --rpm"
-        )
-    return r.x, r.fs, float(rpm), source, "6203-cwru" if end == "FE" else "6205-cwru"
+    r, source = load_signal_and_speed(path, channel=end, rpm=rpm)
+    return r.x, r.fs, float(r.rpm), source, "6203-cwru" if end == "FE" else "6205-cwru"
 
 
 def segments(x, fs: float) -> list[np.ndarray]:

@@ -90,9 +90,12 @@ def test_a_record_without_rpm_gets_the_nominal_speed_of_its_load(small, tmp_path
     anon = tmp_path / "record.mat"
     savemat(anon, keep)
     x, fs, rpm, source, bearing = small._record(named)
-    assert (rpm, source, bearing) == (1750.0, "name (CWRU load 2 hp)", "6205-cwru")
+    assert (rpm, source, bearing) == (1750.0, "name (CWRU nominal speed at load 2 hp)", "6205-cwru")
     assert small._record(named, 1772.0)[2:4] == (1772.0, "option")
     assert small._record(REC)[2:4] == (1750.0, "file")  # 132 stores 1750
+    # no rate, no speed, no load in the name: with --rpm the rate is read off the shaft lines
+    # (before the ninth session the file was read, at 48 kHz, before --rpm was looked at)
+    assert small._record(anon, 1750.0)[1:4] == (12000.0, 1750.0, "option")
     X, y, _meta = small.build_dataset(tmp_path / "cache", progress=False)
     ok, bad = small.predict(small.train(X, y), [named, anon])
     assert ok["rpm"] == 1750.0 and ok["rpm_source"].startswith("name")

@@ -14,7 +14,6 @@ from typing import Any
 import click
 
 from ..errors import ConfigError, check_range
-from ..io.cwru import cwru_nominal_rpm
 from .common import (
     Number,
     available_cores,
@@ -238,25 +237,13 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 def _load_record(path: str, req: _Request) -> tuple[Any, str]:
     """The record (``load_signal``) and where its speed came from: the option, the file, or the
     CWRU nominal speed of the load in the file name when the file gives none."""
-    from ..signal import load_signal
+    from ..signal.diagnosis import load_signal_and_speed
 
     ch = req.channel
     if ch == "auto":  # CWRU: the fan-end records' fault is at the fan end
         mat = Path(path).suffix.lower() == ".mat"
         ch = ("FE" if "fan_end" in Path(path).name.lower() else "DE") if mat else None
-    if req.rpm is not None:
-        return load_signal(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm), "option"
-    try:
-        return load_signal(path, channel=ch, fs_hz=req.fs_hz), "file"
-    except ConfigError:
-        nominal = cwru_nominal_rpm(path)
-        if nominal is None:
-            raise
-    # the file gives no (usable) speed: read it again at the name's; a failure that was not
-    # the speed's fails again, the same way
-    load, r = nominal
-    rec = load_signal(path, channel=ch, fs_hz=req.fs_hz, rpm=r)
-    return rec, f"name (CWRU nominal speed at load {load} hp)"
+    return load_signal_and_speed(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm)
 
 
 def _echo_text(out: dict[str, Any], detail: bool) -> None:

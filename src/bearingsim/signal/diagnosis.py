@@ -785,6 +785,48 @@ def load_signal(
     return rec
 
 
+def load_signal_and_speed(
+    path: str | Path,
+    *,
+    channel: str | None = None,
+    fs_hz: float | None = None,
+    rpm: float | None = None,
+) -> tuple[SignalRecord, str]:
+    """:func:`load_signal`, and where the shaft speed came from: ``"option"`` (``rpm``),
+    ``"file"`` (the file's), or, when the file gives none, the CWRU nominal speed of the motor
+    load in its name (``"name (CWRU nominal speed at load 2 hp)"``,
+    :func:`bearingsim.io.cwru.cwru_nominal_rpm`; the CWRU 0.028 in records store no speed).
+    The one rule of ``bearingsim analyze`` and ``examples/sim_to_real.py``. The speed is also
+    what a CWRU file without a sample rate in its name has its rate read with
+    (:func:`bearingsim.io.cwru.infer_cwru_fs`).
+
+    Parameters
+    ----------
+    path, channel, fs_hz, rpm
+        As :func:`load_signal`.
+
+    Raises
+    ------
+    ConfigError
+        As :func:`load_signal`, when neither ``rpm``, the file nor its name gives a speed.
+    """
+    from ..io.cwru import cwru_nominal_rpm
+
+    if rpm is not None:
+        return load_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm), "option"
+    try:
+        return load_signal(path, channel=channel, fs_hz=fs_hz), "file"
+    except ConfigError:
+        nominal = cwru_nominal_rpm(path)
+        if nominal is None:
+            raise
+    # the file gives no (usable) speed: read it again at the name's; a failure that was not
+    # the speed's fails again, the same way
+    load, r = nominal
+    rec = load_signal(path, channel=channel, fs_hz=fs_hz, rpm=r)
+    return rec, f"name (CWRU nominal speed at load {load} hp)"
+
+
 def analyze_record(
     rec: SignalRecord,
     bearing: Bearing,
