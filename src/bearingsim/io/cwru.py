@@ -20,6 +20,7 @@ __all__ = [
     "cwru_data_dir",
     "cwru_manifest",
     "cwru_nominal_rpm",
+    "cwru_record_number",
     "CwruRecord",
     "read_cwru_mat",
     "SHARED_ENV",
@@ -82,6 +83,18 @@ def cwru_manifest(data_dir: str | Path) -> dict[str, dict[str, str]]:
 
     with open(Path(data_dir) / "manifest.csv", encoding="utf-8", newline="") as fh:
         return {row["file"]: row for row in csv.DictReader(fh)}
+
+
+def cwru_record_number(name: str | Path) -> str:
+    """The CWRU record number a file name ends in (``12k_Drive_End_IR014_2_171.mat`` → ``"171"``,
+    ``132.mat`` → ``"132"``): the stem's last ``_``-separated part.
+
+    Parameters
+    ----------
+    name : str or Path
+        File name or path.
+    """
+    return Path(name).stem.rsplit("_", 1)[-1]
 
 
 def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...io.cwru import cwru_data_dir
+from ...io.cwru import cwru_record_number as _num
 from .. import Context, Section, info, judge
 from ..figures import FULL_WIDTH, new_figure, save_figure
 
@@ -26,10 +27,6 @@ TITLE = "Diagnosis on the CWRU records: four views fused, calibrated confidence 
 NOTE = "see docs/validation.md, 'Diagnosis on the CWRU benchmark'"
 #: probability bins of the reliability curve
 BINS = ((0.5, 0.6), (0.6, 0.7), (0.7, 0.8), (0.8, 0.9), (0.9, 1.0001))
-
-
-def _num(file: str) -> str:
-    return file.rsplit("_", 1)[-1].replace(".mat", "")
 
 
 def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
@@ -69,10 +66,10 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
             continue
         a2.plot([r["margin"] for r in g], [r["p"] for r in g], mk, color=col, ms=5, label=lab,
                 mfc="none" if mk == "s" else col)  # fmt: skip
-        if lab != "right":
-            for r in g:
+        if lab != "right":  # labels alternately above and below: neighbours do not overprint
+            for i, r in enumerate(sorted(g, key=lambda q: q["margin"])):
                 a2.annotate(_num(r["file"]), (r["margin"], r["p"]), textcoords="offset points",
-                            xytext=(4, 4), fontsize=8, color=col)  # fmt: skip
+                            xytext=(5, 4 if i % 2 else -11), fontsize=8, color=col)  # fmt: skip
     a2.set_xlabel("fused margin of the leading family [-]")
     a2.set_ylabel("stated probability [-]")
     a2.set_title("margin-to-probability map", fontsize=9, loc="left")

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...io.cwru import cwru_data_dir, cwru_manifest
+from ...io.cwru import cwru_data_dir, cwru_manifest, cwru_record_number
 from ...signal import amplitude_spectrum
 from ...signal.benchmark import squared_envelope_spectrum
 from .. import Context, Section, info, judge
@@ -102,7 +102,7 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
     s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
     ratio = ratios(m, s)
     ok = within_bounds(ratio)
-    num = c["record"].rsplit("_", 1)[-1].replace(".mat", "")
+    num = cwru_record_number(c["record"])
     for k, label, unit in METRICS:
         size = f"{ratio[k]:+.1f} dB" if k == "prominence_db" else f"{ratio[k]:.3g}×"
         bound = f"±{BOUNDS[k]:g} dB" if k == "prominence_db" else f"×{BOUNDS[k]:g}"
