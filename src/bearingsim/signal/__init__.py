@@ -11,6 +11,8 @@ implementation of each primitive.
   order tracking), the order spectrum, synchronous averaging, shaft angle/speed files.
 - :mod:`.peaks` — the parabolic peak refinement, largest and strongest peaks, peak matching.
 - :mod:`.diagnosis` — fault diagnosis from the envelope spectrum; loading a record to diagnose.
+- :mod:`.contact_angle` — the shaft speed and the contact angle a bearing runs at, read from a
+  race-fault record's own lines.
 
 Signal files are read by :func:`bearingsim.io.read_signal`.
 
