@@ -12,7 +12,6 @@ contact angle of 0 (the catalogue entries 6205-cwru / 6203-cwru).
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
@@ -57,11 +56,10 @@ def main(argv: list[str] | None = None) -> int:
         lab = ("BPFO" if fam == "outer" else "BPFI") + (
             "" if est.harmonic == 1 else f" ({est.harmonic}×)"
         )
-        ang = "-" if math.isnan(est.contact_angle_rad) else f"{est.contact_angle_deg:.1f}"
         print(
             f"| {name} | {fam} | {mounting_of(row)} | {rec.rpm:g} | {60 * est.shaft_hz:.1f} "
             f"({est.shaft_lines}) | {lab} | {est.order:.4f} ({est.order_alpha0:.4f}) | "
-            f"{est.snr_db:.1f} | {ang} |"
+            f"{est.snr_db:.1f} | {est.contact_angle_deg:.1f} |"
         )
         out.append(
             {"file": name, "mounting": mounting_of(row), "stored_rpm": rec.rpm, **est.as_dict()}

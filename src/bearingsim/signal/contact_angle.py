@@ -25,7 +25,7 @@ scripts/contact_angles.py`): what the fault-line offsets of the CWRU records mea
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -33,7 +33,7 @@ from scipy.fft import next_fast_len
 from scipy.signal import hilbert
 
 from ..errors import ConfigError, check_positive
-from ..geometry import Bearing, contact_angle_from_order
+from ..geometry import Bearing, characteristic_frequencies, contact_angle_from_order
 from .peaks import refine_peak
 from .spectrum import amplitude_spectrum
 
@@ -166,17 +166,7 @@ class ContactAngleEstimate:
 
     def as_dict(self) -> dict[str, float | int | str]:
         """JSON-ready dict (the fields and ``contact_angle_deg``)."""
-        return {
-            "family": self.family,
-            "shaft_hz": self.shaft_hz,
-            "shaft_lines": self.shaft_lines,
-            "harmonic": self.harmonic,
-            "order": self.order,
-            "order_alpha0": self.order_alpha0,
-            "snr_db": self.snr_db,
-            "contact_angle_rad": self.contact_angle_rad,
-            "contact_angle_deg": self.contact_angle_deg,
-        }
+        return {**asdict(self), "contact_angle_deg": self.contact_angle_deg}
 
 
 def estimate_contact_angle(
@@ -212,18 +202,18 @@ def estimate_contact_angle(
     fs = check_positive("fs_hz", fs, "Hz")
     xa = np.asarray(x, dtype=float)
     shaft, n_lines = measured_shaft_hz(xa, fs, shaft_hz_hint)
-    g0 = bearing.element_diameter / bearing.pitch_diameter
-    z = bearing.n_elements
-    sign = -1.0 if fam == "outer" else 1.0
+    # the orders (shaft_hz = 1) of both races' lines at alpha = 0 and at ALPHA_SEARCH_MAX
+    k0 = characteristic_frequencies(replace(bearing, contact_angle=0.0), 1.0)
+    k1 = characteristic_frequencies(replace(bearing, contact_angle=ALPHA_SEARCH_MAX), 1.0)
 
-    def window(sgn: float) -> tuple[float, float, float, float]:
+    def window(attr: str) -> tuple[float, float, float, float]:
         """alpha = 0 order, order at ALPHA_SEARCH_MAX, and the padded search window [-]."""
-        a = 0.5 * z * (1.0 + sgn * g0)
-        b = 0.5 * z * (1.0 + sgn * g0 * math.cos(ALPHA_SEARCH_MAX))
+        a, b = getattr(k0, attr), getattr(k1, attr)
         return a, b, min(a, b) * (1.0 - pad_rel), max(a, b) * (1.0 + pad_rel)
 
-    o0, o1, lo, hi = window(sign)
-    _a, _b, lo_x, hi_x = window(-sign)  # the other race's line
+    own, other = ("bpfo_hz", "bpfi_hz") if fam == "outer" else ("bpfi_hz", "bpfo_hz")
+    o0, o1, lo, hi = window(own)
+    _a, _b, lo_x, hi_x = window(other)  # the other race's line
     # a harmonic whose window meets one of the other race's first three (the 6205's 3xBPFO
     # and 2xBPFI, 0.7 % apart) could read the other fault's line: not used
     usable = [
