@@ -5,7 +5,9 @@ Prints
    envelope spectra, line search, fusion) on one 10 s 12 kHz record (CWRU 169) and the share
    of each step; issue 17's target: <= 0.2 s on one core;
 2. the wall time of one ``bearingsim analyze`` call on every ``.mat`` of ``../shared/data/cwru``
-   (start-up included, ``--channel auto --json``, all cores); target: <= 15 s on 2 cores.
+   (start-up included, ``--channel auto --json``, all cores); target: <= 15 s on 2 cores;
+3. the wall time of one call on one record (CWRU 169), start-up included (the median of
+   ``--repeats`` calls): issue 17 measured 3-4 s per call, 1.6 s of it start-up (no target).
 
 Run:  PYTHONPATH=src python benchmarks/bench_diagnosis.py [--repeats 5] [--data DIR]
 
@@ -16,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import subprocess
 import sys
 import time
@@ -77,6 +80,16 @@ def main() -> int:
         f"analyze {len(files)} records in one call ({os.cpu_count()} cores seen): {wall:6.2f} s "
         f"wall, start-up included (target <= 15 s on 2 cores); {n_ok} diagnosed, "
         f"exit {r.returncode}"
+    )
+    one = [sys.executable, "-m", "bearingsim", "analyze", str(path), "--json"]
+    walls = []
+    for _ in range(max(a.repeats, 1)):
+        t0 = time.perf_counter()
+        subprocess.run(one, capture_output=True, text=True, env=env, check=True)
+        walls.append(time.perf_counter() - t0)
+    print(
+        f"analyze one record ({path.name}) in one call: {statistics.median(walls):5.2f} s wall "
+        f"(median of {len(walls)}; start-up included; issue 17 measured 3-4 s)"
     )
     return 0
 

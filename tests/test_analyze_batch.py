@@ -314,3 +314,36 @@ def test_the_cwru_records_are_not_clipped():
     for f in files:
         for x in read_cwru_mat(f).channels.values():
             check_samples(_rec(x))
+
+
+def test_one_analysis_does_not_import_scipy_signal_or_stats(tmp_path):
+    """Importing scipy.signal (and the scipy.stats it pulls in) takes 0.8-1.4 s with SciPy
+    >= 1.15, five to ten times the analysis of a 10 s record; ``analyze`` needs neither (issue
+    17: the start-up of one call). A fresh interpreter analyses a CWRU record and a CSV file;
+    the test fails if either module was imported."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from bearingsim.cli import main\n"
+        "try:\n"
+        "    main(['analyze', '--jobs', '1', '--json', *sys.argv[1:]])\n"
+        "except SystemExit as e:\n"
+        "    assert not e.code, e.code\n"
+        "bad = sorted(m for m in ('scipy.signal', 'scipy.stats') if m in sys.modules)\n"
+        "assert not bad, bad\n"
+    )
+    cases = (
+        ([str(cwru_record("107"))], "inner"),
+        (["--rpm", "1750", str(_sine_csv(tmp_path / "tone.csv"))], None),
+    )
+    for args, want in cases:
+        r = subprocess.run(
+            [sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=300
+        )
+        assert r.returncode == 0, r.stderr[-2000:]
+        out = json.loads(r.stdout)
+        assert "error" not in out
+        if want:
+            assert out["diagnosis"] == want

@@ -231,3 +231,19 @@ def test_spectrum_peaks_and_strongest_peak():
     assert_allclose(sp.freq, 9.5, atol=2e-3)
     with pytest.raises(ConfigError, match="expected_order = 100 is beyond the spectrum"):
         strongest_peak(s, 100.0)
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 3, 7, 100, 1001, 121846])
+@pytest.mark.parametrize("alpha", [0.0, 0.01, 0.02, 0.3, 0.999, 1.0, 1.5])
+def test_tukey_window_is_scipys(n, alpha):
+    """The envelope's edge taper is ``scipy.signal.windows.tukey``'s definition (Harris 1978,
+    eq. (38)), written out so that an analysis does not import scipy.signal (issue 17: the
+    start-up of one call): equal bit for bit, including the Hann window at alpha >= 1."""
+    from scipy.signal.windows import tukey
+
+    from bearingsim.signal.envelope import tukey_window
+
+    w = tukey_window(n, alpha)
+    ref = tukey(n, alpha)
+    assert w.shape == ref.shape
+    assert np.array_equal(w, ref)

@@ -28,7 +28,7 @@ __all__ = ["analyze_cmd"]
 
 #: modules an analysis imports; loaded before the worker processes are forked
 _ANALYZE_MODULES = (
-    *("numpy", "scipy.constants", "scipy.fft", "scipy.io", "scipy.signal"),
+    *("numpy", "scipy.constants", "scipy.fft", "scipy.io"),
     *("bearingsim.catalog", "bearingsim.io", "bearingsim.signal"),
 )
 #: columns of ``analyze --csv``

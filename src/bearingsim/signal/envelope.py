@@ -56,11 +56,34 @@ def check_band(band: tuple[float, float], fs: float) -> tuple[float, float]:
     return lo, hi
 
 
+def tukey_window(n: int, alpha: float) -> NDArray[np.float64]:
+    """Tukey (tapered cosine) window of ``n`` samples [-]: flat, with cosine tapers over the
+    fraction ``alpha/2`` of the window at each end; the definition of
+    ``scipy.signal.windows.tukey(n, alpha)`` (Harris 1978, eq. (38)), equal to it bit for bit
+    (``tests/test_envelope.py``).
+
+    Written out here because importing :mod:`scipy.signal` (SciPy >= 1.15 builds its array-API
+    wrappers and imports :mod:`scipy.stats` on import) takes 0.8-1.4 s, five to ten times a
+    whole ``bearingsim analyze`` of a 10 s record, and this window is all the analysis needs
+    from it (issue 17: the start-up of one call).
+    """
+    if n < 2 or alpha <= 0.0:
+        return np.ones(max(int(n), 0))
+    if alpha >= 1.0:  # the Hann window, as SciPy's general cosine window computes it
+        fac = np.linspace(-np.pi, np.pi, n)
+        return np.zeros(n) + 0.5 + 0.5 * np.cos(fac)
+    k = np.arange(n)
+    width = int(np.floor(alpha * (n - 1) / 2.0))
+    k1 = k[: width + 1]
+    k3 = k[n - width - 1 :]
+    w1 = 0.5 * (1 + np.cos(np.pi * (-1 + 2.0 * k1 / alpha / (n - 1))))
+    w3 = 0.5 * (1 + np.cos(np.pi * (-2.0 / alpha + 1 + 2.0 * k3 / alpha / (n - 1))))
+    return np.concatenate((w1, np.ones(n - w1.size - w3.size), w3))
+
+
 def _tapered(x: NDArray[np.float64]) -> NDArray[np.float64]:
     """Mean removed, Tukey taper over :data:`EDGE_TAPER` of the record at each end."""
-    from scipy.signal.windows import tukey
-
-    return (x - x.mean()) * tukey(x.size, 2.0 * EDGE_TAPER)
+    return (x - x.mean()) * tukey_window(x.size, 2.0 * EDGE_TAPER)
 
 
 def _analytic_band(x: NDArray[np.float64], fs: float, band: tuple[float, float]):
