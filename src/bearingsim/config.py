@@ -455,6 +455,12 @@ class RingScenario(Scenario):
                                                     shaft [N] (rotor unbalance m e w^2; ISO
                                                     21940-11 grades); less than the load
                                                     ``hypot(fx_n, fy_n)``
+    ``axial_load_n``                0.0             constant axial force on the inner ring [N]
+                                                    (dem, tvsm): the balls run at a contact
+                                                    angle (Jones geometry), enough of it loads
+                                                    every ball, and the fault lines move with
+                                                    the angle (``docs/models.md``, "Axial
+                                                    load"); 0 = the seeds' radial model
     ``contact_roughness_m``         0.0             composite RMS roughness sigma of the
                                                     ball-raceway contacts [m] (0 to 1e-6): the
                                                     load law is Hertz's averaged over it, a
@@ -516,6 +522,7 @@ class RingScenario(Scenario):
         "pocket_jitter_percent",
         "ball_diameter_spread_m",
         "unbalance_n",
+        "axial_load_n",
         "contact_roughness_m",
         "mass_kg",
         "damping_n_s_per_m",
@@ -554,6 +561,7 @@ class RingScenario(Scenario):
     pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
     unbalance_n: float = 0.0
+    axial_load_n: float = 0.0
     contact_roughness_m: float = 0.0
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
@@ -601,6 +609,7 @@ class RingScenario(Scenario):
                 unit="N",
             ),
         )
+        s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))

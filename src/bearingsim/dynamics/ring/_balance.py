@@ -111,7 +111,9 @@ P_RRACEI = 47  #: ball defect: the inner raceway's radius [m] (geometric profile
 P_ROUGH = 48  #: composite RMS surface roughness sigma of the rough load law [m] (0 = Hertz)
 P_RINV = 49  #: 1 / sigma [1/m] (rough law)
 P_RSN1 = 50  #: sigma^(1/2) [m^(1/2)] (rough law, balls: n = 3/2)
-HEADER = 51  #: first table entry
+P_AXZ = 51  #: axial offset z of the inner ring's groove centres under an axial load [m] (0 = none)
+P_A0 = 52  #: distance A0 = (f_i + f_o - 1) d of the groove centres of a just-touching ball [m]
+HEADER = 53  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -384,6 +386,36 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough):
 
 
 @njit(cache=True, inline="always")
+def axial_approach(ue, cl, p):
+    """Normal approach of a ball, written as the radial approach that gives it,
+    ``sqrt((A0 - cl + u.e)^2 + z^2) - A0 + cl`` [m], and the cosine of its contact angle
+    ``(A0 - cl + u.e) / sqrt(...)`` [-], with the inner ring's groove centres offset axially
+    by ``z = p[P_AXZ]`` (Jones 1960; Harris & Kotzalas 2007 vol. 2 §3; the geometry of
+    :mod:`bearingsim.quasistatic.jones` with the ring tilts held at 0). ``cl``: the ball's half
+    clearance (:func:`ball_clearance`)."""
+    a0 = p[P_A0]
+    r = a0 - cl + ue
+    z = p[P_AXZ]
+    a = math.sqrt(r * r + z * z)
+    return a - a0 + cl, r / a, a
+
+
+@njit(cache=True, inline="always")
+def ball_load_ax(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough, axial):
+    """:func:`ball_load` of a ball under an axial load (``axial``): the load ``Q`` along the
+    contact normal at the normal approach of :func:`axial_approach` (the defect's drop taken
+    from it), returned as its radial component ``Q cos(alpha)`` [N] with the radial stiffness
+    ``dQ_r/d(u.e) = Q' cos^2(alpha) + Q sin^2(alpha) / A`` [N/m] (the groove centres' distance
+    ``A``) and the contact potential [J]. Without ``axial``, :func:`ball_load` itself (bit for
+    bit)."""
+    if not axial:
+        return ball_load(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough)
+    un, ca, a = axial_approach(ue, cl, p)
+    q, kk, pot = ball_load(un, fr, zf, cl, doff, dfac, K, n, p, full, rough)
+    return q * ca, kk * ca * ca + q * (1.0 - ca * ca) / a, pot
+
+
+@njit(cache=True, inline="always")
 def loaded_threshold(p):
     """Load above which a ball counts as loaded [N]: 0 for Hertz; with a roughness the load of
     a ball at zero nominal deflection, ``K sigma^n g_n(0)`` (a ball counts as loaded when its
@@ -494,6 +526,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     tol = p[P_TOL]
     cell = p[P_CELL] > 0.0 and not point
     rough = p[P_ROUGH] > 0.0
+    axial = p[P_AXZ] != 0.0  # an axial load: the normal approach of axial_approach
     hh = p[P_HTAB]
     t0 = p[P_T0]
     w_rel = defect_rate(p)
@@ -560,8 +593,8 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
                 for j in range(Z):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load(
-                        ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough
+                    q, kk, _e = ball_load_ax(
+                        ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough, axial
                     )
                     if q > 0.0:
                         a = sn[j]
@@ -686,11 +719,15 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     boff = int(p[P_BDEV])
     qthr = loaded_threshold(p)
     rough = qthr > 0.0  # once per output sample: the law chosen at run time (one copy)
+    axial = p[P_AXZ] != 0.0
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = ball_clearance(p, boff, j, clr)
-        q, _dq, _e = ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, False, rough)
+        ue = ux * s0 + uy * c0
+        if axial:  # the load along the contact normal
+            ue = axial_approach(ue, cl, p)[0]
+        q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, rough)
         if q > qthr:
             n_loaded += 1
         if fill:

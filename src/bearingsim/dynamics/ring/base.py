@@ -16,9 +16,11 @@ deformations ``(Q_j/K)^(1/n)`` [m].
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,6 +50,7 @@ from .defects import FAULT_CODE
 
 __all__ = [
     "AUX_NAMES",
+    "AxialState",
     "integrate_model",
     "integrate_model_adaptive",
     "max_frequency",
@@ -62,6 +65,14 @@ __all__ = [
 #: number of fixed auxiliary outputs before the per-ball block
 N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
+
+
+class AxialState(NamedTuple):
+    """The static state of a ball set under an axial load (:attr:`ModelInputs.axial_state`)."""
+
+    z: float  #: axial offset of the inner ring's groove centres [m]
+    contact_angle: float  #: load-weighted mean contact angle of the loaded balls [rad]
+    ball_contact_angles: NDArray[np.float64]  #: each ball's contact angle at t = 0 [rad]
 
 
 @dataclass(frozen=True)
@@ -135,6 +146,20 @@ class ModelInputs:
         (:mod:`bearingsim.contact.rough`), so a ball entering or leaving the load zone takes
         up its load over a few ``sigma`` of approach instead of with the smooth contact's
         singular onset. 0 (default): Hertz's law, the seeds'.
+    axial_load : float
+        Constant axial force ``F_a`` on the inner ring [N] (a motor's wave spring, a thrust, a
+        fit), >= 0. Each ball then touches its grooves at a contact angle: the inner ring's
+        groove centres sit axially offset by the ``z`` of the Jones equilibrium of
+        ``(fx, fy, F_a)`` with the ring tilts held at 0
+        (:func:`bearingsim.quasistatic.jones.run_quasi_static`, at ``t = 0``, identical balls),
+        and ``z`` is held there while the ring moves radially: every ball's load follows the
+        groove-centre distance ``sqrt((A0 - P_d/2 + u.e_j)^2 + z^2)`` and acts along its
+        contact angle, of which the radial part enters the ring's balance. Enough axial load
+        loads every ball (a defect at 12 o'clock is struck). The cage and ball spin follow the
+        load-weighted mean contact angle (:attr:`axial_state`), so the fault lines move as in a
+        measured record (``BPFO = Z f_s/2 (1 - d cos(alpha)/D)``). 0 (default): the seeds'
+        radial model, bit for bit. DEM and TVSM (the VSM's secant stiffness is measured from the
+        concentric position: :meth:`require_clearance`).
     """
 
     bearing: Bearing
@@ -157,6 +182,7 @@ class ModelInputs:
     unbalance: float = 0.0
     profile: DefectProfile | str = DefectProfile.RECTANGULAR
     roughness: float = 0.0
+    axial_load: float = 0.0
 
     def __post_init__(self) -> None:
         b = self.bearing
@@ -233,6 +259,9 @@ class ModelInputs:
             self, "ball_diameter_spread", check_ball_spread(self.ball_diameter_spread)
         )
         object.__setattr__(self, "roughness", check_roughness(self.roughness))
+        object.__setattr__(
+            self, "axial_load", check_range("axial_load_n", self.axial_load, 0.0, unit="N")
+        )
         prof = parse_enum(DefectProfile, self.profile, "defect_profile")
         object.__setattr__(self, "profile", prof)
         if prof is DefectProfile.GEOMETRIC and self.retention_factor is not None:
@@ -243,9 +272,16 @@ class ModelInputs:
             )
 
     def require_clearance(self, who: str) -> None:
-        """Refuse a negative clearance for ``who`` (the VSM and its static trace): their
-        secant stiffness ``Q_j / (u.e_j)`` is measured from the concentric position, where a
-        preloaded ball already carries load (seed VSM eqs. (17)-(18))."""
+        """Refuse a negative clearance or an axial load for ``who`` (the VSM and its static
+        trace): their secant stiffness ``Q_j / (u.e_j)`` is measured from the concentric
+        position, where a preloaded ball already carries load (seed VSM eqs. (17)-(18))."""
+        if self.axial_load > 0.0:
+            raise ConfigError(
+                f"axial_load_n = {self.axial_load:.6g} N is out of range for {who}: its secant "
+                "stiffness is measured from the concentric position, where an axially loaded "
+                "ball already carries load; valid: 0 N (simulate an axial load with model dem "
+                "or tvsm)"
+            )
         pd = self.diametral_clearance
         if pd < 0.0:
             raise ConfigError(
@@ -266,10 +302,45 @@ class ModelInputs:
             return self.stiffness
         return element_stiffness(self.bearing)[0]
 
+    @functools.cached_property
+    def axial_state(self) -> AxialState:
+        """The static axial offset and contact angles under :attr:`axial_load` (see there);
+        ``z = 0`` and the bearing's own angle without one."""
+        b = self.bearing
+        if self.axial_load <= 0.0:
+            return AxialState(0.0, b.contact_angle, np.full(b.n_elements, b.contact_angle))
+        from ...quasistatic.jones import run_quasi_static
+
+        sol = run_quasi_static(
+            b,
+            0.0,
+            self.fx,
+            self.fy,
+            self.axial_load,
+            clearance=self.diametral_clearance,
+            stiffness=self.k_ball,
+            first_ball_angle=math.remainder(self.first_ball_angle, 2.0 * math.pi),
+            tilt_free=False,
+            allow_overload=None,  # the scenario's load check (plan_ring) covers it
+        )
+        q = sol.ball_loads[0]
+        alpha = sol.contact_angles[0]
+        return AxialState(
+            float(sol.displacement[0, 2]), float(np.sum(q * alpha) / np.sum(q)), alpha.copy()
+        )
+
+    @property
+    def kinematic_bearing(self) -> Bearing:
+        """The bearing at its operating contact angle (:attr:`axial_state`): the geometry
+        the cage and ball speeds follow."""
+        if self.axial_load <= 0.0:
+            return self.bearing
+        return replace(self.bearing, contact_angle=self.axial_state.contact_angle)
+
     @property
     def cage_hz(self) -> float:
-        """Cage frequency f_m = FTF [Hz]."""
-        return characteristic_frequencies(self.bearing, self.shaft_hz).ftf_hz
+        """Cage frequency f_m = FTF [Hz] (at the operating contact angle)."""
+        return characteristic_frequencies(self.kinematic_bearing, self.shaft_hz).ftf_hz
 
     @property
     def theta0(self) -> float:
@@ -356,7 +427,7 @@ class ModelInputs:
             else:
                 p[bl.P_DFAC] = self.retention_factor
             if self.defect.race is Race.BALL:
-                k = characteristic_frequencies(self.bearing, self.shaft_hz)
+                k = characteristic_frequencies(self.kinematic_bearing, self.shaft_hz)
                 p[bl.P_SPIN] = k.bsf_hz / k.ftf_hz  # spin angle per cage angle
             if self.profile is DefectProfile.GEOMETRIC:
                 b = self.bearing
@@ -382,6 +453,10 @@ class ModelInputs:
         if self.roughness > 0.0:
             p[bl.P_RINV] = 1.0 / self.roughness
             p[bl.P_RSN1] = math.sqrt(self.roughness)  # sigma^(n-1), balls: n = 3/2
+        if self.axial_load > 0.0:
+            b = self.bearing  # A0 as the Jones solver computes it (quasistatic.inputs)
+            p[bl.P_AXZ] = self.axial_state.z
+            p[bl.P_A0] = (b.inner_conformity + b.outer_conformity - 1.0) * b.element_diameter
         return p
 
 

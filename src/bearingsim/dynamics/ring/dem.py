@@ -26,7 +26,7 @@ __all__ = ["KERNEL"]
 
 
 @njit(cache=True, inline="always")
-def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough):
+def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
     ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
     cell half-widths ``hd, hw`` (the ball frame of :func:`._balance.frame_cached`), with the
@@ -34,7 +34,8 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough):
     the DEM's hot loop: inlined, scalars only inside the loop. ``rough``: the rough load law,
     a literal at the call site (:func:`._balance.ball_load`); ``full = False`` (the
     right-hand side) needs the force only: with rough contacts the tangent entries are then
-    0."""
+    0. ``axial``: an axial load (:func:`._balance.ball_load_ax`), tested at run time (a
+    loop-invariant test: the Hertz path's speed did not change measurably, bench_dynamics)."""
     Z = int(p[bl.P_Z])
     fault = int(p[bl.P_FAULT])
     psil2 = 2.0 * p[bl.P_PSIL]
@@ -58,7 +59,8 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough):
         # a ball over the defect loses the geometric drop h_min from its deflection
         fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
         cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
-        q, kk, _e = bl.ball_load(ux * s0 + uy * c0, fr, zf, cl, dof, dfac, K, n, p, full, rough)
+        ue = ux * s0 + uy * c0
+        q, kk, _e = bl.ball_load_ax(ue, fr, zf, cl, dof, dfac, K, n, p, full, rough, axial)
         if q > 0.0:
             gx += q * s0
             gy += q * c0
@@ -83,7 +85,8 @@ def _dem_force(t, ux, uy, p, point):
         hd = 0.0
         hw = 0.0
     # once per output sample: a run-time choice of the law (one compiled copy) is cheap here
-    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, True, p[bl.P_ROUGH] > 0.0)
+    rough = p[bl.P_ROUGH] > 0.0
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, True, rough, p[bl.P_AXZ] != 0.0)
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -126,10 +129,11 @@ def _dem_rhs(t, y, p, dydt):
         p[bl.P_CRW] = rw
         p[bl.P_CHD] = hd
         p[bl.P_CHW] = hw
+    ax = p[bl.P_AXZ] != 0.0  # an axial load: a run-time test, loop-invariant
     if p[bl.P_ROUGH] > 0.0:
-        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, True)
+        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, True, ax)
     else:
-        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, False)
+        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, False, ax)
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     dydt[0] = y[2]

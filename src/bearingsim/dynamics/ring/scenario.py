@@ -123,6 +123,7 @@ def model_inputs(scenario: RingScenario) -> ModelInputs:
         unbalance=scenario.unbalance_n,
         profile=scenario.defect_profile,
         roughness=scenario.contact_roughness_m,
+        axial_load=scenario.axial_load_n,
     )
 
 
@@ -200,8 +201,13 @@ def plan_ring(
     if _facts(scenario.model)[1] == "secant":
         inputs.require_clearance(f"model {scenario.model.value}")
     check_load(
-        inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name="|(fx_n, fy_n)|"
+        inputs.bearing,
+        math.hypot(inputs.fx, inputs.fy),
+        allow_overload,
+        inputs.axial_load,
+        name="|(fx_n, fy_n)|",
     )
+    inputs.axial_state  # noqa: B018 -- solved here: a bad axial load fails before any work
     check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
     decim, dt, w = choose_steps(scenario, inputs)
     chunk = max(1, min(CHUNK, MAX_CHUNK_STEPS // decim))
@@ -296,7 +302,7 @@ def run_ring(
         noise = scenario.noise_rms_m_per_s2 * rng.standard_normal((n, 2))
         ch["acc_x"] = ch["acc_x"] + noise[:, 0]
         ch["acc_y"] = ch["acc_y"] + noise[:, 1]
-    kin = characteristic_frequencies(inputs.bearing, inputs.shaft_hz)
+    kin = characteristic_frequencies(inputs.kinematic_bearing, inputs.shaft_hz)
     geo: dict[str, Any] = {}
     if inputs.defect is not None:
         g = defect_geometry(inputs.bearing, inputs.defect)
@@ -364,6 +370,18 @@ def run_ring(
             "roughness_m": scenario.contact_roughness_m,
             "model": "Hertz load law averaged over a normal asperity-height offset of standard "
             "deviation roughness_m (bearingsim.contact.rough); 0 = Hertz",
+        },
+        "axial": {
+            "force_n": inputs.axial_load,
+            "offset_z_m": inputs.axial_state.z,
+            "contact_angle_deg": math.degrees(inputs.axial_state.contact_angle),
+            "ball_contact_angles_deg": [
+                float(math.degrees(a)) for a in inputs.axial_state.ball_contact_angles
+            ],
+            "model": "inner ring's groove centres offset axially by z (Jones equilibrium of "
+            "(fx_n, fy_n, axial_load_n) at t = 0, tilts held), held while the ring moves "
+            "radially; the cage and ball spin at the load-weighted mean contact angle; "
+            "0 N = the radial model",
         },
         "unbalance": {
             "force_n": scenario.unbalance_n,
