@@ -14,9 +14,11 @@
    impacts at the cage frequency), the rotor unbalance (0-50 % of the static load, turning
    with the shaft: modulation at the shaft frequency) and the operating clearance (the
    catalogue's 6 um, 0, and preloads of 5 and 10 um: every ball loaded, so an inner-race
-   defect strikes at every pass) and the contacts' composite RMS roughness (0.05, 0.1, 0.2 um:
+   defect strikes at every pass), the contacts' composite RMS roughness (0.05, 0.1, 0.2 um:
    a ball entering the load zone takes up its load smoothly, without ringing the contact
-   resonance as Hertz's smooth onset does).
+   resonance as Hertz's smooth onset does) and an axial spring preload (none, or SKF's
+   0.005-0.01 kN per mm of bore for small electric motors: the balls run at a contact angle,
+   every ball loaded, the fault lines where an axially loaded bearing has them).
 2. **Features** (the same function on simulated and measured signals): the squared-envelope
    spectrum in the fast-kurtogram band, its levels at the characteristic frequencies of the
    bearing at the record's speed (BPFO, BPFI and their 2nd harmonics, BPFI +/- shaft, 2 x BSF and
@@ -76,6 +78,11 @@ UNBALANCE = (0.0, 0.1, 0.25, 0.5)
 #: (a motor's wave spring: ~150 N axially loads every ball of a 6205 by ~100 N, about 5 um
 #: of contact deflection; a 2-D ring model takes it as a negative clearance).
 CLEARANCES_M = (6e-6, 0.0, -5e-6, -10e-6)
+#: axial spring preload [kN per mm of bore] (``axial_load_n`` = this x the bore in mm x 1000):
+#: none, and SKF's range for the wave springs of small electric motors, F = k d with k =
+#: 0.005-0.01 (SKF, "Preloading with springs"): 125-250 N on the 6205, 85-170 N on the 6203.
+#: The CWRU records' own contact angles (2.5-14 deg, docs/validation.md) show axial loads
+AXIAL_K = (0.0, 0.005, 0.01)
 #: composite RMS roughness of the ball-raceway contacts [m] (``contact_roughness_m``): half,
 #: once and twice the 0.1 um of ground and honed raceways with grade <= G20 balls
 #: (bearingsim.side_by_side.CONTACT_ROUGHNESS_M)
@@ -162,7 +169,15 @@ def _grid():
                         unbalance=UNBALANCE[rng.integers(len(UNBALANCE))],
                         clearance=CLEARANCES_M[rng.integers(len(CLEARANCES_M))],
                         roughness=ROUGHNESS_M[rng.integers(len(ROUGHNESS_M))],
+                        axial_k=AXIAL_K[rng.integers(len(AXIAL_K))],
                     )
+
+
+def _bore_mm(bearing: str) -> float:
+    """Bore diameter of a catalogue bearing [mm]."""
+    from bearingsim.catalog import get_bearing
+
+    return get_bearing(bearing).bore * 1000.0
 
 
 def _end(bearing: str) -> str:
@@ -223,6 +238,7 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
 
     path = cache / "sim_to_real.zarr"
     grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, ROUGHNESS_M]
+    grid += [AXIAL_K]
     grid += [PROFILES]
     grid += [DURATION_S, FEATURES, "antialias", "geometric"]
     grid_key = json.dumps(grid)
@@ -260,6 +276,8 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
         )
         sc["unbalance_n"] = c["unbalance"] * math.hypot(SEED_FX_N, SEED_FY_N)
         sc["clearance_m"] = c["clearance"]
+        if c["axial_k"] > 0.0:  # a spring preload: k [kN/mm] x bore [mm] x 1000 [N/kN]
+            sc["axial_load_n"] = c["axial_k"] * _bore_mm(c["bearing"]) * 1000.0
         if c["fault"] != "none":
             sc["defect_width_m"] = c["size"] * 0.0254
         bare = simulate(sc)

@@ -109,7 +109,8 @@ def test_cli_without_a_task_is_a_usage_error():
 
 
 def test_grid_draws_every_machine_fact_and_is_reproducible():
-    """Each run draws the unpublished machine facts (ball spread, unbalance, clearance) from
+    """Each run draws the unpublished machine facts (ball spread, unbalance, clearance, axial
+    spring preload) from
     their sets; over the grid every value occurs for every fault, and the draw is the same on
     every call (the cache key does not change under a user)."""
     m = _module()
@@ -121,6 +122,7 @@ def test_grid_draws_every_machine_fact_and_is_reproducible():
         assert {r["spread"] for r in sub} == set(m.SPREADS_M)
         assert {r["unbalance"] for r in sub} == set(m.UNBALANCE)
         assert {r["clearance"] for r in sub} == set(m.CLEARANCES_M)
+        assert {r["axial_k"] for r in sub} == set(m.AXIAL_K)
 
 
 def test_a_long_record_is_judged_on_pieces_of_the_training_length(small):
