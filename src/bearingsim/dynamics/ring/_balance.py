@@ -477,6 +477,26 @@ def initial_guess(sn, cs, clr, K, n, fx, fy):
 
 
 @njit(cache=True)
+def _axial_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough):
+    """Bearing force ``sum Q_j cos(alpha_j) e_j`` [N] and tangent entries [N/m] of the static
+    solve at ring displacement ``(vx, vy)`` [m] under an axial load (:func:`ball_load_ax`);
+    the secant is not formed (the VSM, which needs it, refuses an axial load)."""
+    qx = qy = kxx = kxy = kyy = 0.0
+    for j in range(sn.size):
+        ue = vx * sn[j] + vy * cs[j]
+        q, kk, _e = ball_load_ax(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough, True)
+        if q > 0.0:
+            a = sn[j]
+            b = cs[j]
+            qx += q * a
+            qy += q * b
+            kxx += kk * a * a
+            kxy += kk * a * b
+            kyy += kk * b * b
+    return qx, qy, kxx, kxy, kyy
+
+
+@njit(cache=True)
 def static_kernel(times, point, p, table, residual, ux, uy):
     """Static solution of eq. (16) and the secant/tangent matrices at every time of ``times``.
 
@@ -591,10 +611,14 @@ def static_kernel(times, point, p, table, residual, ux, uy):
             while True:
                 # contact sums at (vx, vy)
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
-                for j in range(Z):
+                if axial:  # out of line: inlined here, it slowed the radial path by ~10 %
+                    qx, qy, kxx, kxy, kyy = _axial_sums(
+                        vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough
+                    )
+                for j in range(Z if not axial else 0):
                     ue = vx * sn[j] + vy * cs[j]
-                    q, kk, _e = ball_load_ax(
-                        ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough, axial
+                    q, kk, _e = ball_load(
+                        ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough
                     )
                     if q > 0.0:
                         a = sn[j]
