@@ -91,7 +91,7 @@ def test_fault_lines_move_with_the_contact_angle(fa, fault):
     assert read == pytest.approx(alpha, abs=0.5)
     at_alpha = characteristic_frequencies(replace(B, contact_angle=math.radians(alpha)), fr)
     assert r.meta["kinematics"][f"{line}_hz"] == pytest.approx(getattr(at_alpha, f"{line}_hz"))
-    assert abs(read - 0.0) > 3.0  # the alpha = 0 line is far from it
+    assert read > 3.0  # far from the radial model's alpha = 0
 
 
 def test_an_axial_load_strikes_an_outer_defect_at_12_oclock():

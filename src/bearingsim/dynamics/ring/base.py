@@ -73,6 +73,9 @@ class AxialState(NamedTuple):
     z: float  #: axial offset of the inner ring's groove centres [m]
     contact_angle: float  #: load-weighted mean contact angle of the loaded balls [rad]
     ball_contact_angles: NDArray[np.float64]  #: each ball's contact angle at t = 0 [rad]
+    #: groove-centre distance ``A0 = (f_i + f_o - 1) d`` of the Jones solution's geometry [m]
+    #: (0 without an axial load: not solved, not used)
+    a0: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -326,7 +329,10 @@ class ModelInputs:
         q = sol.ball_loads[0]
         alpha = sol.contact_angles[0]
         return AxialState(
-            float(sol.displacement[0, 2]), float(np.sum(q * alpha) / np.sum(q)), alpha.copy()
+            float(sol.displacement[0, 2]),
+            float(np.sum(q * alpha) / np.sum(q)),
+            alpha.copy(),
+            float(sol.geometry.a0),
         )
 
     @property
@@ -453,10 +459,9 @@ class ModelInputs:
         if self.roughness > 0.0:
             p[bl.P_RINV] = 1.0 / self.roughness
             p[bl.P_RSN1] = math.sqrt(self.roughness)  # sigma^(n-1), balls: n = 3/2
-        if self.axial_load > 0.0:
-            b = self.bearing  # A0 as the Jones solver computes it (quasistatic.inputs)
+        if self.axial_load > 0.0:  # the geometry of the Jones solution z comes from
             p[bl.P_AXZ] = self.axial_state.z
-            p[bl.P_A0] = (b.inner_conformity + b.outer_conformity - 1.0) * b.element_diameter
+            p[bl.P_A0] = self.axial_state.a0
         return p
 
 
