@@ -2,7 +2,8 @@
 0.007 in outer-race defect at 6 o'clock, 6203 FE, 9 disks, 1750 r/min) at 12 kHz output in
 <= 2 s warm on one core. Prints the warm wall time (best of 3) of the whole
 ``simulate_rotor`` call (rotor assembly and reduction, static equilibrium, integration,
-anti-alias decimation) and its parts.
+anti-alias decimation) and its parts; and the same with quasi-static balls (``ball_inertia =
+False``).
 
 Run: ``NUMBA_NUM_THREADS=1 python benchmarks/bench_rotor.py``
 """
@@ -47,6 +48,14 @@ def main() -> None:
             f"(target <= {TARGET_S} s) {ok}; {r.meta['n_rotor_coordinates']} rotor coords, "
             f"{r.meta['n_steps']} RK4 steps of {r.meta['dt_s'] * 1e6:.3f} us"
         )
+    qs = cwru_rotor_config(9, de_fault=Defect("outer"), ball_inertia=False)
+    simulate_rotor(qs, duration=0.01)
+    t, r = best(lambda: simulate_rotor(qs, duration=1.0, sample_rate=12000.0))
+    print(
+        f"simulate_rotor 1 s, 9 disks, 12 kHz, quasi-static balls: {t:.3f} s warm "
+        f"(target <= {TARGET_S} s) {'OK' if t <= TARGET_S else 'SLOW'}; "
+        f"{r.meta['n_steps']} RK4 steps of {r.meta['dt_s'] * 1e6:.3f} us"
+    )
     # parts
     t_pack, m = best(lambda: pack_model(cfg, 12000.0))
     t_static, y0 = best(lambda: static_state(m, cfg))

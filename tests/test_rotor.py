@@ -391,8 +391,9 @@ def test_unbalance_gives_a_shaft_frequency_line_proportional_to_me():
     assert_allclose(a2 / a1, 2.0, rtol=0.05, err_msg="linear in m e (small unbalance)")
 
 
-def test_dopri5_agrees_with_rk4():
-    cfg = cwru_rotor_config(1, de_fault=Defect("outer"))
+@pytest.mark.parametrize("ball_inertia", [True, False], ids=["ball-masses", "quasi-static"])
+def test_dopri5_agrees_with_rk4(ball_inertia):
+    cfg = cwru_rotor_config(1, de_fault=Defect("outer"), ball_inertia=ball_inertia)
     a = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False)
     b = simulate_rotor(cfg, duration=0.004, sample_rate=48000.0, antialias=False,
                        method="dopri5", rtol=1e-7, atol=1e-12)  # fmt: skip

@@ -41,6 +41,14 @@ with ``k`` the Hertz constant of that contact (inner and outer separately). Equa
 where ``F_b = -sum_j Q_in,j e_j`` per bearing node and ``A_K, A_C, B_b, f_0, u_c, u_s`` are the
 reduced rotor matrices premultiplied by ``M_r^-1`` (built by :mod:`bearingsim.dynamics.rotor`).
 
+With quasi-static balls (``H_QS``; :attr:`RotorConfig.ball_inertia` False) the balls are
+massless and have no coordinates (``n_b = 0`` in the state): each carries one load through both
+contacts, ``Q = max(0, k_e delta^1.5 + c/2 d(delta)/dt)`` on the total approach
+``delta = delta_in + delta_out = (u_s - u_h) . e_j - P_d/2 - h_in - h_out + Delta D_j`` with
+``k_e = (k_in^(-2/3) + k_out^(-2/3))^(-3/2)`` (the two Hertz contacts in series, as the ring
+models' ``K``) and the two contact dampers in series (``c/2``); the rough law, when set, acts
+on ``delta`` with the contacts' ``sigma``.
+
 Parameter vector ``p`` layout: a header of :data:`HDR` values (indices ``H_*``) holding the
 sizes and the offsets of the blocks that follow; two bearing blocks of :data:`BRG_LEN` values
 (indices ``B_*``); one housing block of :data:`HOUS_LEN` values (indices ``HS_*``).
@@ -66,8 +74,8 @@ H_Z_DE = 1  # balls in the drive-end bearing
 H_Z_FE = 2  # balls in the fan-end bearing
 H_OMEGA = 3  # shaft speed Omega [rad/s]
 H_GRAV = 4  # gravity acceleration on balls and housings [m/s^2] (0 = off), along -y
-H_AK = 5  # offset of A_K (n_r x n_r, row-major)
-H_AC = 6  # offset of A_C
+H_AK = 5  # offset of A_K, stored transposed (row j holds column j of A_K; n_r x n_r)
+H_AC = 6  # offset of A_C, stored transposed
 H_BB = 7  # offset of B_b (n_r x 4)
 H_F0 = 8  # offset of f_0 (n_r)
 H_UC = 9  # offset of u_c (n_r)
@@ -76,6 +84,7 @@ H_BRG_DE = 11  # offset of the drive-end bearing block
 H_BRG_FE = 12  # offset of the fan-end bearing block
 H_HOUS = 13  # offset of the housing block
 H_BALL_OUT = 14  # 1: auxiliary output includes per-ball contact forces
+H_QS = 15  # 1: quasi-static (massless) balls, no ball coordinates in the state
 HDR = 16
 
 B_Z = 0  # number of balls
@@ -108,7 +117,8 @@ B_BDEV = 26  # offset in p of the bearing's ball diameter deviations Delta D_j; 
 B_ROUGH = 27  # composite RMS roughness sigma of the contacts [m]; 0 = Hertz
 B_RINV = 28  # 1 / sigma [1/m] (0 when sigma = 0)
 B_RSN1 = 29  # sigma^(1/2) [m^0.5]
-BRG_LEN = 30
+B_KEFF = 30  # quasi-static balls: Hertz constant of the two contacts in series [N/m^1.5]
+BRG_LEN = 31
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -166,6 +176,19 @@ def _slip(t, p, o, z, wc):
 
 
 @njit(cache=True, inline="always")
+def _cage(t, p, o, z):
+    """Ball 1's azimuth [rad], the cage speed [rad/s], the balls' speed relative to the defect
+    [rad/s], one ball pitch [rad] and its cos and sin, at ``t`` (random slip included)."""
+    wc = p[o + B_OMEGA_C]
+    psi = p[o + B_PSI0] + wc * t
+    if p[o + B_SLIP] > 0.0:
+        ph, wc = _slip(t, p, o, z, wc)
+        psi += ph
+    step = TWO_PI / z
+    return psi, wc, wc - p[o + B_FOMEGA], step, math.cos(step), math.sin(step)
+
+
+@njit(cache=True, inline="always")
 def _elastic(d, k, sig, p, o):
     """Elastic load [N] of one contact at compression ``d`` [m]: Hertz ``k d^1.5`` (``sig`` =
     0), or Hertz averaged over the roughness ``sig`` [m] (:func:`bearingsim.contact.rough.
@@ -181,7 +204,7 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     shaft node (fx, fy) and on the housing (fx, fy) [N]."""
     z = int(p[o + B_Z])
     npos = nr + 4 + int(p[H_Z_DE]) + int(p[H_Z_FE])
-    wc = p[o + B_OMEGA_C]
+    psi, wc, rel_speed, step, ca, sa = _cage(t, p, o, z)
     mb = p[o + B_MBALL]
     kin = p[o + B_KIN]
     kout = p[o + B_KOUT]
@@ -190,7 +213,6 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     ch = p[o + B_CH]
     fault = int(p[o + B_FAULT])
     fang = p[o + B_FANG] + p[o + B_FOMEGA] * t
-    rel_speed = wc - p[o + B_FOMEGA]
     xs = y[node]
     ys = y[node + 1]
     vxs = y[npos + node]
@@ -199,14 +221,6 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     yh = y[nr + hous + 1]
     vxh = y[npos + nr + hous]
     vyh = y[npos + nr + hous + 1]
-    step = TWO_PI / z
-    ca = math.cos(step)
-    sa = math.sin(step)
-    psi = p[o + B_PSI0] + wc * t
-    if p[o + B_SLIP] > 0.0:
-        ph, wc = _slip(t, p, o, z, wc)
-        psi += ph
-        rel_speed = wc - p[o + B_FOMEGA]
     sp = math.sin(psi)
     cp = math.cos(psi)
     boff = int(p[o + B_BDEV])
@@ -281,22 +295,99 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
 
 
 @njit(cache=True)
-def rhs_core(t, y, p, dydt, aux, want_aux):
+def _bearing_qs(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball):
+    """:func:`_bearing` with quasi-static (massless) balls: each ball carries the same load
+    ``Q`` through both contacts, Hertz's law of the two in series on the total approach
+    ``delta_in + delta_out`` (constant ``B_KEFF``) with the contact damping of two equal
+    dampers in series (``c/2``); no ball coordinates, no centrifugal or gravity force on the
+    balls. Returns the forces on the shaft node (fx, fy) and on the housing (fx, fy) [N]."""
+    z = int(p[o + B_Z])
+    psi, wc, rel_speed, step, ca, sa = _cage(t, p, o, z)
+    keff = p[o + B_KEFF]
+    c2 = 0.5 * p[o + B_C]
+    ch = p[o + B_CH]
+    fault = int(p[o + B_FAULT])
+    fang = p[o + B_FANG] + p[o + B_FOMEGA] * t
+    # relative displacement and velocity of shaft node and housing
+    xr = y[node] - y[nr + hous]
+    yr = y[node + 1] - y[nr + hous + 1]
+    vxr = y[npos + node] - y[npos + nr + hous]
+    vyr = y[npos + node + 1] - y[npos + nr + hous + 1]
+    sp = math.sin(psi)
+    cp = math.cos(psi)
+    boff = int(p[o + B_BDEV])
+    sig = p[o + B_ROUGH]
+    onset = U_MIN * sig
+    fx = 0.0
+    fy = 0.0
+    for j in range(z):
+        h = 0.0
+        hd = 0.0
+        if fault == 3:
+            if j == 0:  # ball 1's slot meets the outer race, half a spin turn later the inner
+                spin = p[o + B_SPIN]
+                phi = _wrap(spin * (psi - p[o + B_PSI0]) - fang)
+                rb = p[o + B_RBALL]
+                h, dh = defect_drop_on(p, o, phi, rb, p[o + B_RRACE], -1.0, p[o + B_HMAX])
+                h_i, dh_i = defect_drop_on(
+                    p, o, _wrap(phi - math.pi), rb, p[o + B_RRACE_I], 1.0, p[o + B_HMAX_I]
+                )
+                h += h_i
+                hd = (dh + dh_i) * spin * wc
+        elif fault != 0:
+            h, dh = defect_drop(p, o, _wrap(psi + j * step - fang))
+            hd = dh * rel_speed
+        d = xr * sp + yr * cp - ch - h
+        if boff > 0:  # a ball larger by Delta D_j closes the two contacts by Delta D_j
+            d += p[boff + j]
+        q = 0.0
+        if d > onset:
+            q = _elastic(d, keff, sig, p, o)
+            if d > 0.0:
+                q = q + c2 * (vxr * sp + vyr * cp + wc * (xr * cp - yr * sp) - hd)
+                if q < 0.0:
+                    q = 0.0
+        fx += q * sp
+        fy += q * cp
+        if want_ball:
+            aux[aux_off + j] = q
+            aux[aux_off + z + j] = q
+        sp, cp = sp * ca + cp * sa, cp * ca - sp * sa
+    return -fx, -fy, fx, fy
+
+
+@njit(cache=True)
+def rhs_core(t, y, p, dydt, aux, want_aux, rotor=True):
     """Evaluate ``dy/dt``; when ``want_aux`` also fill ``aux`` (housing accelerations
-    [m/s^2], then per-ball inner and outer contact forces [N] if requested)."""
+    [m/s^2], then per-ball inner and outer contact forces [N] if requested). ``rotor`` False
+    skips the rotor's equations and the position derivatives (``dydt`` then holds only the
+    ball and housing accelerations: what :func:`rotor_aux` needs)."""
     nr = int(p[H_NR])
     zde = int(p[H_Z_DE])
     zfe = int(p[H_Z_FE])
-    npos = nr + 4 + zde + zfe
+    qs = p[H_QS] > 0.5
+    npos = nr + 4 if qs else nr + 4 + zde + zfe
     grav = p[H_GRAV]
     want_ball = want_aux and p[H_BALL_OUT] > 0.5
-    for i in range(npos):
-        dydt[i] = y[npos + i]
-    fde = _bearing(t, y, p, int(p[H_BRG_DE]), nr, 0, 0, 0, dydt, aux, 4, want_ball, grav)
-    ffe = _bearing(
-        t, y, p, int(p[H_BRG_FE]), nr, zde, 2, 2, dydt, aux, 4 + 2 * zde, want_ball, grav
-    )
-    # rotor: M_r^-1-premultiplied reduced equations
+    if rotor:
+        for i in range(npos):
+            dydt[i] = y[npos + i]
+    if qs:
+        fde = _bearing_qs(t, y, p, int(p[H_BRG_DE]), nr, npos, 0, 0, aux, 4, want_ball)
+        ffe = _bearing_qs(t, y, p, int(p[H_BRG_FE]), nr, npos, 2, 2, aux, 4 + 2 * zde, want_ball)
+    else:
+        fde = _bearing(t, y, p, int(p[H_BRG_DE]), nr, 0, 0, 0, dydt, aux, 4, want_ball, grav)
+        ffe = _bearing(
+            t, y, p, int(p[H_BRG_FE]), nr, zde, 2, 2, dydt, aux, 4 + 2 * zde, want_ball, grav
+        )
+    if rotor:
+        _rotor_accelerations(t, y, p, dydt, nr, npos, fde, ffe)
+    _housings(y, p, dydt, aux, want_aux, nr, npos, grav, fde, ffe)
+
+
+@njit(cache=True)
+def _rotor_accelerations(t, y, p, dydt, nr, npos, fde, ffe):
+    """The reduced rotor's accelerations (``M_r^-1``-premultiplied equations) into ``dydt``."""
     om = p[H_OMEGA]
     cw = math.cos(om * t)
     sw = math.sin(om * t)
@@ -310,20 +401,29 @@ def rhs_core(t, y, p, dydt, aux, want_aux):
     f1 = fde[1]
     f2 = ffe[0]
     f3 = ffe[1]
-    # views of the blocks: indices from range() are known non-negative, so the loop carries no
-    # negative-index wrap-around (the same arithmetic, in the same order, as flat indexing)
-    ak = p[oak : oak + nr * nr].reshape((nr, nr))
-    ac = p[oac : oac + nr * nr].reshape((nr, nr))
+    # views of the blocks (indices from range() are known non-negative: no wrap-around code)
+    akt = p[oak : oak + nr * nr].reshape((nr, nr))  # akt[j, i] = A_K[i, j]
+    act = p[oac : oac + nr * nr].reshape((nr, nr))
     q = y[:nr]
     v = y[npos : npos + nr]
+    acc = dydt[npos : npos + nr]
     for i in range(nr):
-        acc = p[of0 + i] + p[ouc + i] * cw + p[ous + i] * sw
-        for j in range(nr):
-            acc -= ak[i, j] * q[j] + ac[i, j] * v[j]
+        acc[i] = p[of0 + i] + p[ouc + i] * cw + p[ous + i] * sw
+    # column by column: the n_r sums advance side by side (SIMD lanes), each in the order of a
+    # row-by-row dot product (the same result to the last bit), 2.5x faster than one
+    for j in range(nr):
+        qj = q[j]
+        vj = v[j]
+        for i in range(nr):
+            acc[i] -= akt[j, i] * qj + act[j, i] * vj
+    for i in range(nr):
         rb = obb + 4 * i
-        acc += p[rb] * f0 + p[rb + 1] * f1 + p[rb + 2] * f2 + p[rb + 3] * f3
-        dydt[npos + i] = acc
-    # housings
+        acc[i] += p[rb] * f0 + p[rb + 1] * f1 + p[rb + 2] * f2 + p[rb + 3] * f3
+
+
+@njit(cache=True)
+def _housings(y, p, dydt, aux, want_aux, nr, npos, grav, fde, ffe):
+    """The housings' accelerations into ``dydt`` (and ``aux[:4]`` when ``want_aux``)."""
     oh = int(p[H_HOUS])
     for e in range(2):
         fx = fde[2] if e == 0 else ffe[2]
@@ -350,11 +450,11 @@ def rotor_rhs(t, y, p, dydt):
 def rotor_aux(t, y, p, out):
     """Auxiliary outputs: housing accelerations ``a_xDE, a_yDE, a_xFE, a_yFE`` [m/s^2], then
     (if enabled) ``Q_in`` and ``Q_out`` of every DE ball and of every FE ball [N]."""
-    n = y.size
-    tmp = y.copy()
-    for i in range(n):
-        tmp[i] = 0.0
-    rhs_core(t, y, p, tmp, out, True)
+    if p[H_QS] > 0.5:  # no ball coordinates: nothing but the housings' entries is written
+        tmp = np.empty(y.size)
+    else:
+        tmp = np.zeros(y.size)
+    rhs_core(t, y, p, tmp, out, True, False)
 
 
 @njit(cache=True)
@@ -362,6 +462,8 @@ def settle_balls(t, y, p, dydt, n_iter):
     """Put every ball at rest in radial equilibrium for the shaft and housing positions in
     ``y`` (modified in place): vectorised bisection on the ball accelerations, each monotone
     (decreasing) in its own ball's coordinate, within ``D/2 +/- 0.1 mm``."""
+    if p[H_QS] > 0.5:  # quasi-static balls: no ball coordinates
+        return
     nr = int(p[H_NR])
     zde = int(p[H_Z_DE])
     zfe = int(p[H_Z_FE])

@@ -340,6 +340,12 @@ class RotorConfig:
         (end 0 DE, 1 FE; :mod:`bearingsim.dynamics.ballset`).
     ball_seed : int
         Seed of the ball diameters.
+    ball_inertia : bool
+        True (default, the seed's model): each ball is a mass with a radial degree of freedom
+        between its two Hertz contacts. False: quasi-static (massless) balls, the two contacts
+        in series as in the ring models — the ball's radial mode (34–42 kHz for the CWRU
+        bearings) and its centrifugal and weight forces are dropped, which lets the step grow
+        3x (valid while that mode lies well above the output band; docs/models.md, ROTOR).
     """
 
     de: BearingSupport
@@ -359,8 +365,13 @@ class RotorConfig:
     disk_damping: float = 0.0
     ball_diameter_spread: float = 0.0
     ball_seed: int = 0
+    ball_inertia: bool = True
 
     def __post_init__(self) -> None:
+        if not isinstance(self.ball_inertia, bool | np.bool_):
+            raise ConfigError(
+                f"ball_inertia = {self.ball_inertia!r} is not a boolean; valid: true or false"
+            )
         check_positive("speed_rpm", self.speed_rpm, "r/min")
         check_ball_spread(self.ball_diameter_spread)
         check_range("unbalance_kg_m", self.unbalance, 0.0, unit="kg m")

@@ -383,6 +383,7 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
     blk[rk.B_MBALL] = sup.ball_mass
     blk[rk.B_KIN] = ball_contact(b, 1.0, Race.INNER).k_hertz
     blk[rk.B_KOUT] = ball_contact(b, 1.0, Race.OUTER).k_hertz
+    blk[rk.B_KEFF] = (blk[rk.B_KIN] ** (-2 / 3) + blk[rk.B_KOUT] ** (-2 / 3)) ** -1.5
     blk[rk.B_C] = sup.contact_damping
     blk[rk.B_RP] = 0.5 * b.pitch_diameter
     blk[rk.B_CH] = 0.5 * b.diametral_clearance
@@ -426,7 +427,8 @@ class PackedModel:
     rotor : RotorAssembly
         The reduced linear rotor.
     n_r, n_balls, n_pos : int
-        Reduced rotor coordinates, balls, position states (state size ``2 n_pos``).
+        Reduced rotor coordinates, balls, position states (state size ``2 n_pos``; the balls
+        have no coordinates when they are quasi-static, ``RotorConfig.ball_inertia`` False).
     """
 
     p: NDArray[np.float64]
@@ -449,8 +451,9 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
     Tb[:4, :4] = np.eye(4)  # boundary coordinates are the bearing-node x, y themselves
     assert np.allclose(rot.reduction.T[rot.boundary_dofs, :4], np.eye(4))
     BB = Minv @ Tb
+    # A_K and A_C transposed: the kernel's layout (its sums run column by column)
     blocks = [
-        AK.ravel(), AC.ravel(), BB.ravel(), Minv @ rot.f_static, Minv @ rot.f_unb_cos,
+        AK.T.ravel(), AC.T.ravel(), BB.ravel(), Minv @ rot.f_static, Minv @ rot.f_unb_cos,
         Minv @ rot.f_unb_sin,
     ]  # fmt: skip
     hdr = np.zeros(rk.HDR)
@@ -475,6 +478,7 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
     hdr[rk.H_BRG_FE] = off + rk.BRG_LEN
     hdr[rk.H_HOUS] = off + 2 * rk.BRG_LEN
     hdr[rk.H_BALL_OUT] = 1.0 if ball_forces else 0.0
+    hdr[rk.H_QS] = 0.0 if config.ball_inertia else 1.0
     p = np.concatenate([hdr, *blocks, *brg, hs])
     if config.ball_diameter_spread > 0.0:  # each bearing's ball diameters after the blocks
         from ..ballset import ball_deviations
@@ -492,7 +496,7 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
             off += dev.size
         p = np.concatenate([p, *tails])
     nb = z_de + z_fe
-    return PackedModel(p, rot, nr, nb, nr + 4 + nb, z_de, z_fe)
+    return PackedModel(p, rot, nr, nb, nr + 4 + (nb if config.ball_inertia else 0), z_de, z_fe)
 
 
 def _with_slip(
@@ -638,7 +642,8 @@ def stable_step(model: PackedModel, config: RotorConfig, y0: NDArray, margin: fl
         ko = ball_contact(b, 1.0, Race.OUTER).k_hertz
         kti = 1.5 * ki ** (2 / 3) * qd ** (1 / 3)
         kto = 1.5 * ko ** (2 / 3) * qd ** (1 / 3)
-        w2.append((kti + kto) / sup.ball_mass)
+        if config.ball_inertia:  # the ball's radial mode between its two contacts
+            w2.append((kti + kto) / sup.ball_mass)
         kser = 1.0 / (1.0 / kti + 1.0 / kto)
         w2.append((max(h.stiffness_x, h.stiffness_y) + b.n_elements * kser) / h.mass)
         kb = np.zeros_like(model.rotor.K)
