@@ -112,13 +112,34 @@ def test_csv_header_and_rows(run_cli, three):
 
 
 def test_text_output_one_line_per_file(run_cli, three):
+    """One line per file; the fan-end record (310) is read on its FE channel by default, and
+    the line says so."""
     r = run_cli("analyze", *three)
     assert r.code == 0, r.err
     lines = r.out.splitlines()
     assert len(lines) == 3
-    for p, ln in zip(three, lines, strict=True):
-        assert ln.startswith(f"{p} [DE]: "), ln
+    for p, ln, ch in zip(three, lines, ("DE", "FE", "DE"), strict=True):
+        assert ln.startswith(f"{p} [{ch}]: "), ln
+    assert lines[1].endswith(", channel FE and 6203-cwru from the file name"), lines[1]
+    assert "from the file name" not in lines[0] + lines[2]
     assert r.err == ""
+
+
+def test_fan_end_records_default_to_their_fan_end_channel_and_bearing(run_cli, three):
+    """A CWRU fan-end record's fault is in the fan-end bearing (6203), which the FE
+    accelerometer faces (CWRU Bearing Data Center; SOURCES.md): without --channel, analyze reads
+    FE with the 6203 there and DE with the 6205 elsewhere, as --channel auto does, and says
+    where the channel came from; --channel DE still reads the drive end."""
+    got = _lines(run_cli("analyze", *three, "--json"))
+    assert [d["channel"] for d in got] == ["DE", "FE", "DE"]
+    assert [d["bearing"] for d in got] == ["6205-cwru", "6203-cwru", "6205-cwru"]
+    assert [d["channel_source"] for d in got] == ["default", "file name (Fan_End)", "default"]
+    auto = _lines(run_cli("analyze", *three, "--json", "--channel", "auto"))
+    assert [{**d, "channel_source": None} for d in got] == [
+        {**d, "channel_source": None} for d in auto
+    ]
+    de = run_cli("analyze", three[1], "--json", "--channel", "DE").json()
+    assert (de["channel"], de["bearing"], de["channel_source"]) == ("DE", "6205-cwru", "option")
 
 
 # ------------------------------------------------------------------------- a bad file

@@ -81,7 +81,7 @@ class _Request:
 @click.option(
     "--channel",
     default=None,
-    show_default="DE for .mat; for results sensor if simulated through a rig, else y",
+    show_default="auto for .mat; for results sensor if simulated through a rig, else y",
     help="DE|FE|BA (CWRU .mat; auto: FE when the file name contains Fan_End, else DE), "
     "x|y (result; rotor results also x_fe|y_fe; sensor: the rig's output), or a CSV column.",
 )
@@ -128,11 +128,13 @@ def analyze_cmd(
     """Envelope analysis and diagnosis of a measured (CWRU .mat), simulated (.nc) or CSV signal.
 
     Prints {"diagnosis": outer|inner|ball|none|uncertain, "confidence", "band_hz", "shaft_hz"
-    (shaft frequency), "fs_hz" (sample rate), "rpm", "rpm_source", "channel", "bearing",
-    "peaks": [...]}; "uncertain" when the evidence is weak or ambiguous. Several FILEs are
-    analysed in parallel (--jobs) and reported in their order, one line (--json: one object, --csv:
-    one row) each; a FILE that cannot be analysed gets its own error line (--json: {"file",
-    "error"}) and the others go on; the exit code is then 2.
+    (shaft frequency), "fs_hz" (sample rate), "rpm", "rpm_source", "channel", "channel_source",
+    "bearing", "peaks": [...]}; a CWRU file whose name says Fan_End is read on its FE channel
+    with the fan-end bearing unless --channel says otherwise; "uncertain" when the evidence is
+    weak or ambiguous. Several FILEs are analysed in parallel (--jobs) and reported in their
+    order, one line (--json: one object, --csv: one row) each; a FILE that cannot be analysed
+    gets its own error line (--json: {"file", "error"}) and the others go on; the exit code is
+    then 2.
     """
     check_outputs(("--plot", plot))
     if as_json and as_csv:
@@ -197,7 +199,7 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     from ..signal import analyze_record
     from ..signal.diagnosis import check_resolvable, check_samples
 
-    rec, rpm_source = _load_record(path, req)
+    rec, rpm_source, channel_source = _load_record(path, req)
     check_samples(rec)
     check_resolvable(rec)
     cwru = Path(rec.source).suffix.lower() == ".mat"
@@ -225,6 +227,7 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         "file": str(path),
         **d.as_dict(),
         "channel": rec.channel,
+        "channel_source": channel_source,
         "fs_hz": rec.fs,
         "bearing": bearing.id,
         "rpm": rec.rpm,
@@ -234,16 +237,22 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     return to_jsonable(out)
 
 
-def _load_record(path: str, req: _Request) -> tuple[Any, str]:
-    """The record (``load_signal``) and where its speed came from: the option, the file, or the
-    CWRU nominal speed of the load in the file name when the file gives none."""
+def _load_record(path: str, req: _Request) -> tuple[Any, str, str]:
+    """The record (``load_signal``), where its speed came from (the option, the file, or the
+    CWRU nominal speed of the load in the file name when the file gives none) and where its
+    channel came from: ``"option"``, ``"file name (Fan_End)"`` — a CWRU fan-end record's fault
+    is in the fan-end bearing, which its FE accelerometer faces — or ``"default"``."""
     from ..signal.diagnosis import load_signal_and_speed
 
-    ch = req.channel
-    if ch == "auto":  # CWRU: the fan-end records' fault is at the fan end
-        mat = Path(path).suffix.lower() == ".mat"
-        ch = ("FE" if "fan_end" in Path(path).name.lower() else "DE") if mat else None
-    return load_signal_and_speed(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm)
+    ch, source = req.channel, "option"
+    if ch is None or ch == "auto":
+        ch, source = None, "default"
+        if Path(path).suffix.lower() == ".mat":  # CWRU: DE unless the name says fan end
+            ch = "DE"
+            if "fan_end" in Path(path).name.lower():
+                ch, source = "FE", "file name (Fan_End)"
+    rec, rpm_source = load_signal_and_speed(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm)
+    return rec, rpm_source, source
 
 
 def _echo_text(out: dict[str, Any], detail: bool) -> None:
@@ -256,6 +265,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         speed = f", rpm {out['rpm']:g} from the file {out['rpm_source']}"
     if str(out.get("fs_source", "")).startswith("inferred"):  # nor the sample rate
         speed += f", fs {out['fs_hz'] / 1000:g} kHz {out['fs_source']}"
+    if str(out.get("channel_source", "")).startswith("file name"):  # nor a fan-end default
+        speed += f", channel {out['channel']} and {out['bearing']} from the file name"
     lead = ""
     if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
         # an "uncertain" with a leading family: say which family led, at what probability
