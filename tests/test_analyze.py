@@ -281,9 +281,16 @@ def test_rate_inference_on_every_shared_record():
     """Every shared CWRU record, through the sensors of both ends: the rate read off its shaft
     lines is the manifest's (CWRU site tables), except 174, which has no shaft line to read
     and is refused. The counts it rests on: 0-3 of the nine quarter orders on a 12 kHz record,
-    8-9 on a 48 kHz one (io.cwru.infer_cwru_fs; the split is at 4/5)."""
+    8-9 on a 48 kHz one (io.cwru.infer_cwru_fs; the split is at 4/5). No record's lines refute
+    its name's rate (io.cwru.check_cwru_name_rate keeps every one)."""
     from bearingsim.errors import ConfigError
-    from bearingsim.io.cwru import cwru_data_dir, cwru_manifest, infer_cwru_fs, read_cwru_mat
+    from bearingsim.io.cwru import (
+        check_cwru_name_rate,
+        cwru_data_dir,
+        cwru_manifest,
+        infer_cwru_fs,
+        read_cwru_mat,
+    )
 
     data = cwru_data_dir()
     if not (data / "manifest.csv").is_file():
@@ -299,5 +306,32 @@ def test_rate_inference_on_every_shared_record():
                 continue
             fs, why = infer_cwru_fs(rec.acceleration(ch), rpm)
             assert fs == float(row["fs_hz"]), (name, ch, why)
+            kept = check_cwru_name_rate(rec.acceleration(ch), fs, rpm)
+            assert kept == (fs, None), (name, ch, kept)
             n += 1
     assert n == 2 * (len(cwru_manifest(data)) - 1)
+
+
+def test_a_rate_in_the_name_that_the_shaft_lines_refute_is_overruled(tmp_path, run_cli):
+    """A CWRU file whose name gives the wrong rate (the set holds records longer than its own
+    table lists): the name's rate is kept unless the record's shaft lines fall where no record
+    of that rate puts them (io.cwru.check_cwru_name_rate: a "12k" name with 8 or more of the
+    nine quarter-order lines, a "48k" name with 3 or fewer). The 48 kHz record 135 renamed 12k
+    and the 12 kHz record 132 renamed 48k are read at their true rates, diagnosed as their
+    faults (CWRU labels, outer race), and the output says why; correctly named, they keep the
+    name's rate (so does every shared record: test_rate_inference_on_every_shared_record)."""
+    import shutil
+
+    for num, wrong, fs in (("135", "12k_Drive_End_OR007@6_0_135.mat", 48000.0),
+                           ("132", "48k_Drive_End_OR007@6_2_132.mat", 12000.0)):  # fmt: skip
+        f = tmp_path / wrong
+        shutil.copy(_cwru(num), f)
+        d = run_cli("analyze", str(f), "--json").json()
+        assert d["fs_hz"] == fs and d["diagnosis"] == "outer", d
+        assert d["fs_source"].startswith("inferred from the shaft lines"), d["fs_source"]
+        assert d["fs_source"].endswith(f"the file name says {wrong[:3]})"), d["fs_source"]
+        kept = tmp_path / "right" / _cwru(num).name
+        kept.parent.mkdir(exist_ok=True)
+        shutil.copy(_cwru(num), kept)
+        d = run_cli("analyze", str(kept), "--json").json()
+        assert (d["fs_hz"], d["fs_source"]) == (fs, "file name")

@@ -134,7 +134,7 @@ def read_signal(
 
 
 def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None) -> SignalRecord:
-    from .cwru import infer_cwru_fs, read_cwru_mat
+    from .cwru import check_cwru_name_rate, cwru_nominal_rpm, infer_cwru_fs, read_cwru_mat
 
     rec = read_cwru_mat(p)
     ch = ("DE" if channel is None else channel).upper()
@@ -163,6 +163,13 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
             )
         fs, why = infer_cwru_fs(x, r)
         info["fs_source"] = f"inferred from the shaft lines ({why})"
+    elif info["fs_source"] == "file name":  # the name's rate, unless the shaft lines refute it
+        nominal = cwru_nominal_rpm(p.name)
+        speed = r if r is not None else (nominal[1] if nominal else None)
+        if speed is not None:
+            fs, why = check_cwru_name_rate(x, fs, speed)
+            if why is not None:
+                info["fs_source"] = f"inferred from the shaft lines ({why})"
     return SignalRecord(
         x,
         check_positive("fs_hz", fs, "Hz"),
