@@ -244,6 +244,40 @@ def test_read_cwru_mat_bad_contents(tmp_path):
             read_cwru_mat(p)
 
 
+def test_read_cwru_mat_with_two_records_variables(tmp_path):
+    """A CWRU file can hold the variables of two records (``X098_DE_time`` beside
+    ``X099_DE_time``): the reader takes one record's channels and speed, never a mix — the one
+    the file name ends in, else the one with the most channels (lowest number on a tie)."""
+    from scipy.io import savemat
+
+    d = {
+        "X098_DE_time": np.full((8, 1), 98.0),
+        "X098_FE_time": np.full((8, 1), -98.0),
+        "X098RPM": np.array([[1772.0]]),
+        "X099_DE_time": np.full((8, 1), 99.0),
+        "X099RPM": np.array([[1750.0]]),
+    }
+    for name, number, de, rpm, chans in [
+        ("normal_1_98.mat", "098", 98.0, 1772.0, ["DE", "FE"]),
+        ("99.mat", "099", 99.0, 1750.0, ["DE"]),
+        ("normal_2_099.mat", "099", 99.0, 1750.0, ["DE"]),
+        ("copy.mat", "098", 98.0, 1772.0, ["DE", "FE"]),  # no number: the most channels
+    ]:
+        p = tmp_path / name
+        savemat(p, d)
+        rec = read_cwru_mat(p)
+        assert rec.number == number and sorted(rec.channels) == chans, name
+        assert np.all(rec.channels["DE"] == de) and rec.rpm == rpm, name
+    # one record whose speed variable carries another number: that speed is the record's
+    p = tmp_path / "12k_Drive_End_IR028_0_3001.mat"
+    savemat(p, {"X056_DE_time": np.zeros((8, 1)), "X3001RPM": np.array([[1797.0]])})
+    rec = read_cwru_mat(p)
+    assert rec.number == "056" and rec.rpm == 1797.0
+    # a damaged channel of the record not read does not stop the read
+    savemat(tmp_path / "98.mat", {**d, "X099_DE_time": np.array([[np.nan]])})
+    assert read_cwru_mat(tmp_path / "98.mat").number == "098"
+
+
 def _in_child(check) -> None:
     """Run ``check()`` in a forked child, so that a reader that crashes the process (SIGSEGV)
     fails this test instead of killing the test run."""

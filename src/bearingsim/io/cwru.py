@@ -251,25 +251,40 @@ def read_cwru_mat(path: str | Path) -> CwruRecord:
         raise ConfigError(
             f"file = {str(p)!r} is not a readable MATLAB .mat file ({exception_text(exc)})"
         ) from None
-    channels: dict[str, np.ndarray] = {}
-    numbers = set()
-    rpm = None
-    for key, val in data.items():
+    groups: dict[str, dict[str, str]] = {}  # record number -> channel -> key
+    speeds: dict[str, str] = {}  # record number -> key of its X###RPM
+    for key in data:
         m = _KEY.match(key)
         if m:
-            numbers.add(m.group(1))
-            channels[m.group(2)] = _finite(p, key, val)
-        elif re.match(r"^X\d+RPM$", key):
-            v = _finite(p, key, val)
-            if not v.size:
-                raise ConfigError(f"file = {str(p)!r}: {key} is empty; valid: a speed [r/min]")
-            rpm = float(v[0])
-    if not channels:
+            groups.setdefault(m.group(1), {})[m.group(2)] = key
+        elif (r := re.match(r"^X(\d+)RPM$", key)) is not None:
+            speeds[r.group(1)] = key
+    if not groups:
         raise ConfigError(
             f"file = {str(p)!r} has no CWRU channel (expected keys X###_DE_time / X###_FE_time)"
         )
-    number = sorted(numbers)[0]
+    number = _record_of(groups, p)
+    channels = {ch: _finite(p, key, data[key]) for ch, key in groups[number].items()}
+    rpm = None
+    key = speeds.get(number) or (next(iter(speeds.values())) if len(speeds) == 1 else None)
+    if key is not None:
+        v = _finite(p, key, data[key])
+        if not v.size:
+            raise ConfigError(f"file = {str(p)!r}: {key} is empty; valid: a speed [r/min]")
+        rpm = float(v[0])
     return CwruRecord(p, number, channels, rpm)
+
+
+def _record_of(groups: dict[str, dict[str, str]], p: Path) -> str:
+    """The record whose variables a file holding several records' (``X098_DE_time`` beside
+    ``X099_DE_time``) is read for: the one its name ends in (``cwru_record_number``, leading
+    zeros ignored), else the one with the most channels, the lowest number on a tie. Channels
+    of two records are never mixed."""
+    want = cwru_record_number(p.name).lstrip("0")
+    for number in groups:
+        if number.lstrip("0") == want:
+            return number
+    return sorted(groups, key=lambda n: (-len(groups[n]), n))[0]
 
 
 def _finite(p: Path, key: str, val: object) -> np.ndarray:
