@@ -125,6 +125,28 @@ def test_cli_identify_refuses_in_one_line_and_writes_nothing(tmp_path):
     assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_cli_identify_reads_fan_end_records_on_their_fan_end_sensor(tmp_path):
+    """Without --channel, CWRU records whose names all say Fan_End are read on FE (their
+    faults and chain are the fan end's, as analyze reads them): the rig equals the one of
+    --channel FE. Records of both ends in one call are a one-line error naming --channel;
+    nothing is written."""
+    fe = [str(CWRU / n) for n in ("12k_Fan_End_OR014@3_0_310.mat", "12k_Fan_End_IR014_0_274.mat")]
+    rigs = {}
+    for tag, extra in (("auto", ()), ("fe", ("--channel", "FE"))):
+        out = tmp_path / f"{tag}.toml"
+        r = _cli("rig", "identify", *fe, "--name", "f", *extra, "-o", str(out), cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        rigs[tag] = load_rig(out)
+    a, b = rigs["auto"], rigs["fe"]
+    assert a.modes == b.modes and a.background == b.background and a.tones == b.tones
+    out = tmp_path / "mixed.toml"
+    r = _cli("rig", "identify", fe[0], str(CWRU / "12k_Drive_End_OR007@6_2_132.mat"), "--name",
+             "m", "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and not out.exists()
+    assert "1 of the 2 CWRU records are fan-end records" in r.stderr and "--channel" in r.stderr
+
+
 def test_shipped_profiles_load_and_carry_their_command():
     """The three CWRU profiles (issue 16 item 4), each identified only from the records of
     ../shared/data/cwru by the command in its provenance."""

@@ -6,9 +6,11 @@ from __future__ import annotations
 import shlex
 import sys
 import tomllib
+from pathlib import Path
 
 import click
 
+from ..errors import ConfigError
 from .common import Number, check_outputs, cli, emit_json, json_option, output_option
 
 
@@ -24,7 +26,7 @@ def rig_group() -> None:
 @click.option(
     "--channel",
     default=None,
-    show_default="DE for .mat",
+    show_default="auto for .mat: FE when every name says Fan_End, else DE",
     help="DE|FE|BA (CWRU .mat), x|y (result), or a CSV column; the same for every record.",
 )
 @click.option(
@@ -68,7 +70,7 @@ def identify_cmd(
     from ..rig import Rig
     from ..rig_identify import identify_rig, rig_to_toml
 
-    recs = [read_signal(p, channel=channel, rpm=rpm) for p in records]
+    recs = [read_signal(p, channel=_channel(records, channel), rpm=rpm) for p in records]
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
     ir = identify_rig(
@@ -130,3 +132,22 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     if r.background is not None:
         click.echo(f"  background: {len(r.background.psd)} PSD points")
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
+
+
+def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
+    """The channel every record is read on: the option, else for CWRU ``.mat`` files the
+    fan-end sensor when every name says ``Fan_End`` (their faults, and the chain identified from
+    them, are the fan end's; as ``analyze``), the drive end's when none does; names of both
+    ends are a one-line error (one rig is one sensor's chain)."""
+    if channel is not None and channel.strip().lower() != "auto":
+        return channel
+    mats = [Path(p).name.lower() for p in records if Path(p).suffix.lower() == ".mat"]
+    if not mats:
+        return None
+    fan = sum("fan_end" in n for n in mats)
+    if fan and fan < len(mats):
+        raise ConfigError(
+            f"channel: {fan} of the {len(mats)} CWRU records are fan-end records (Fan_End in the "
+            "name) and the others not; one rig is one sensor's chain: give --channel DE or FE"
+        )
+    return "FE" if fan else "DE"
