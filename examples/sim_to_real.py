@@ -71,8 +71,10 @@ MODEL = "dem"
 #: ball diameter spread [m]: identical balls and the ISO 3290-1 lot diameter variation of
 #: grades G10, G20, G40 (the grades deep-groove ball bearings are made with);
 SPREADS_M = (0.0, 0.5e-6, 1.0e-6, 2.0e-6)
-#: rotor unbalance [share of the static load]: a ~6 kg motor rotor balanced to ISO 21940-11
-#: G2.5-G16 at 1800 r/min gives 3-18 N against ~30 N per bearing (half its weight);
+#: rotor unbalance [share of the static load, 51 N]: the seed ROTOR's CWRU rotor (2.04 kg:
+#: armature 1.361 kg, shaft 0.68 kg) balanced to ISO 21940-11 G2.5-G16 at 1800 r/min gives
+#: 1.0-6.2 N (2-12 %); the draw reaches beyond it (25, 50 %), a deliberately wide range for the
+#: once-per-turn forces the CWRU data do not give (a heavier rotor, a coupling);
 UNBALANCE = (0.0, 0.1, 0.25, 0.5)
 #: operating diametral clearance [m]: the catalogue's 6 um, none, and preloads of 5 and 10 um
 #: (a motor's wave spring: ~150 N axially loads every ball of a 6205 by ~100 N, about 5 um
