@@ -335,3 +335,31 @@ def test_a_rate_in_the_name_that_the_shaft_lines_refute_is_overruled(tmp_path, r
         shutil.copy(_cwru(num), kept)
         d = run_cli("analyze", str(kept), "--json").json()
         assert (d["fs_hz"], d["fs_source"]) == (fs, "file name")
+
+
+def test_a_race_fault_verdict_carries_the_contact_angle_read_from_the_record(run_cli):
+    """An inner or outer verdict on a ball bearing reports the contact angle the record's own
+    fault line and shaft lines give (signal.contact_angle.estimate_contact_angle, the same
+    numbers as docs/validation.md "Contact angle of the CWRU bearings": 132 BPFO (2x line) at
+    order 3.5972 of 1750.1 r/min, 9.4 deg; 107 BPFI at 5.4018, 9.8 deg — measured, no
+    published value); other verdicts carry null."""
+    from bearingsim.catalog import get_bearing
+    from bearingsim.signal.contact_angle import estimate_contact_angle
+    from bearingsim.signal.diagnosis import load_signal
+
+    for num, fam, order, deg in (("132", "outer", 3.5972, 9.4), ("107", "inner", 5.4018, 9.8)):
+        d = run_cli("analyze", str(_cwru(num)), "--json").json()
+        assert d["diagnosis"] == fam
+        ca = d["contact_angle"]
+        assert (ca["family"], round(ca["order"], 4), round(ca["contact_angle_deg"], 1)) == (
+            fam,
+            order,
+            deg,
+        )
+        rec = load_signal(_cwru(num))
+        est = estimate_contact_angle(rec.x, rec.fs, get_bearing("6205-cwru"), fam, rec.rpm / 60)
+        assert ca == pytest.approx(est.as_dict())
+    text = run_cli("analyze", str(_cwru("132"))).out.splitlines()
+    assert text[1].startswith("  contact angle 9.4 deg: BPFO at order 3.5972 (alpha = 0: 3.5848)")
+    for num in ("97", "185"):  # healthy "none", ball "ball": no race line to read
+        assert run_cli("analyze", str(_cwru(num)), "--json").json()["contact_angle"] is None

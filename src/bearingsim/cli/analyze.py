@@ -226,6 +226,7 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     out = {
         "file": str(path),
         **d.as_dict(),
+        "contact_angle": _contact_angle(rec, bearing, d.diagnosis),
         "channel": rec.channel,
         "channel_source": channel_source,
         "fs_hz": rec.fs,
@@ -235,6 +236,27 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         "rpm_source": rpm_source,
     }
     return to_jsonable(out)
+
+
+def _contact_angle(rec: Any, bearing: Any, verdict: str) -> dict[str, Any] | None:
+    """The contact angle a ball bearing with a race fault runs at, read from the record's own
+    fault line and shaft lines (:func:`bearingsim.signal.contact_angle.estimate_contact_angle`;
+    docs/validation.md, "Contact angle of the CWRU bearings"): a few degrees mean an axial
+    load. None for another verdict, a roller bearing or an order-tracked record;
+    ``{"error": ...}`` when the record's lines do not give it."""
+    from ..errors import ConfigError
+    from ..geometry import BallBearing
+    from ..signal.contact_angle import estimate_contact_angle
+
+    if verdict not in ("inner", "outer") or not isinstance(bearing, BallBearing):
+        return None
+    if rec.rpm is None:  # order tracked: no shaft lines at a fixed frequency
+        return None
+    try:
+        est = estimate_contact_angle(rec.x, rec.fs, bearing, verdict, rec.rpm / 60.0)
+    except ConfigError as exc:
+        return {"error": " ".join(str(exc).split())}
+    return est.as_dict()
 
 
 def _load_record(path: str, req: _Request) -> tuple[Any, str, str]:
@@ -280,6 +302,15 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     )
     if not detail:
         return
+    ca = out.get("contact_angle")
+    if ca and "error" not in ca:
+        line = "BPFO" if ca["family"] == "outer" else "BPFI"
+        click.echo(
+            f"  contact angle {ca['contact_angle_deg']:.1f} deg: {line} at order "
+            f"{ca['order']:.4f} (alpha = 0: {ca['order_alpha0']:.4f}) of the measured shaft "
+            f"speed {ca['shaft_hz'] * 60:.1f} r/min ({ca['harmonic']}x line, SNR "
+            f"{ca['snr_db']:.0f} dB)"
+        )
     for p in out["peaks"]:
         if p["detected"]:
             click.echo(
