@@ -135,3 +135,85 @@ def test_cli_quasi_static_balls(run_cli, tmp_path):
 
     r = SimulationResult.load(out)
     assert r.meta["rotor"]["inputs"]["ball_inertia"] is False
+
+
+# ------------------------------------------------------------------------------ axial load
+
+
+def test_axial_load_static_state_is_the_jones_equilibrium():
+    """Under an axial load each bearing's balls sit at the Jones equilibrium of its radial load
+    at rest and the axial load (quasistatic.jones, tilts held, the balls' series Hertz
+    constant): the kernel's normal ball loads equal Jones's to 1e-6, and the rotor's weight is
+    still carried by their radial components."""
+    from dataclasses import replace
+
+    from bearingsim.quasistatic.jones import run_quasi_static
+
+    fa = 20.0
+    cfg = cwru_rotor_config(9, de_fault=Defect("outer"), ball_inertia=False, axial_load=fa)
+    m = pack_model(cfg, FS, ball_forces=True)
+    y0 = static_state(m, cfg)
+    dydt, aux = evaluate_rhs(m, 0.0, y0)
+    assert np.abs(dydt[m.n_pos :]).max() < 1e-3
+    ref = pack_model(replace(cfg, axial_load=0.0), FS, ball_forces=True)
+    _, aux0 = evaluate_rhs(ref, 0.0, static_state(ref, replace(cfg, axial_load=0.0)))
+    lift = 0.0
+    for e, sup in enumerate((cfg.de, cfg.fe)):
+        b = sup.bearing
+        z = b.n_elements
+        off = 4 + (0 if e == 0 else 2 * m.z_de)
+        psi = 2 * np.pi * np.arange(z) / z
+        q0 = aux0[off : off + z]  # the radial load each bearing carries at rest
+        fx, fy = float(np.sum(q0 * np.sin(psi))), float(np.sum(q0 * np.cos(psi)))
+        kin = ball_contact(b, 1.0, Race.INNER).k_hertz
+        kout = ball_contact(b, 1.0, Race.OUTER).k_hertz
+        ke = (kin ** (-2 / 3) + kout ** (-2 / 3)) ** -1.5
+        sol = run_quasi_static(b, 0.0, fx, fy, fa, clearance=b.diametral_clearance,
+                               stiffness=ke, tilt_free=False)  # fmt: skip
+        q = aux[off : off + z]
+        assert_allclose(q, sol.ball_loads[0], rtol=1e-6, atol=1e-6 * q.max())
+        assert np.all(q > 0), "an axial load loads every ball"
+        lift -= np.sum(q * np.cos(sol.contact_angles[0]) * np.cos(psi))
+        assert_allclose(m.axial[e][2], sol.contact_angles[0], rtol=1e-9)
+    weight = (cfg.shaft.mass + cfg.armature.mass) * G0
+    assert_allclose(lift, weight, rtol=1e-6)
+
+
+def test_axial_load_moves_the_fault_line_and_strikes_a_defect_at_12_oclock():
+    """An outer-race defect at 12 o'clock, opposite the rotor's weight, is never struck without
+    an axial load (the DE signal is the healthy one bit for bit); 20 N of axial load loads every
+    ball, the defect is struck, and the envelope's BPFO line sits at the order of the
+    load-weighted contact angle (read back within 0.5 deg, as the DEM's,
+    tests/test_axial_load.py)."""
+    from bearingsim.geometry import contact_angle_from_order
+    from bearingsim.signal.contact_angle import estimate_contact_angle
+
+    def run(defect, fa, dur=0.3):
+        cfg = cwru_rotor_config(9, de_fault=defect, ball_inertia=False, axial_load=fa)
+        return simulate_rotor(cfg, duration=dur, sample_rate=FS)
+
+    at12 = Defect("outer", angle=0.0)
+    assert np.array_equal(run(at12, 0.0).acceleration, run(None, 0.0).acceleration)
+    r = run(at12, 20.0, 2.0)
+    alpha = r.meta["axial"]["DE"]["contact_angle_deg"]
+    assert 5.0 < alpha < 15.0
+    b = cwru_rotor_config(9).de.bearing
+    # the simulation's speed is exact (it has no shaft line to measure it from)
+    est = estimate_contact_angle(r.channel("DE", "y"), FS, b, "outer", 1750.0 / 60.0,
+                                 measure_shaft=False)  # fmt: skip
+    assert est.snr_db > 20.0, "the defect at 12 o'clock is struck"
+    assert math.degrees(contact_angle_from_order(b, "bpfo", est.order)) == pytest.approx(
+        alpha, abs=0.5
+    )
+    assert r.kinematics["DE"].bpfo_hz == pytest.approx(est.order * 1750.0 / 60.0, rel=1e-3)
+
+
+def test_axial_load_bad_input():
+    with pytest.raises(ConfigError, match=r"axial_load_n = 20 N needs quasi-static balls"):
+        cwru_rotor_config(1, axial_load=20.0)
+    with pytest.raises(ConfigError, match=r"axial_load_n = -1"):
+        cwru_rotor_config(1, ball_inertia=False, axial_load=-1.0)
+    with pytest.raises(ConfigError, match=r"axial_load_n = 20 N needs quasi-static balls"):
+        rotor_config_from_scenario(Scenario.from_dict({"model": "rotor", "axial_load_n": 20.0}))
+    sc = Scenario.from_dict({"model": "rotor", "axial_load_n": 20.0, "ball_inertia": False})
+    assert rotor_config_from_scenario(sc).axial_load == 20.0

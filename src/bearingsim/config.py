@@ -733,6 +733,10 @@ class RotorScenario(Scenario):
                                                         3x larger step, valid while the balls'
                                                         radial mode (34–42 kHz, CWRU) lies well
                                                         above the output band
+    ``axial_load_n``                    0.0             axial force each bearing carries [N] (a
+                                                        wave spring's preload): the balls run at
+                                                        the Jones contact angles (needs
+                                                        ``ball_inertia = false``)
     ``unbalance_kg_m``                  0.0             static unbalance m e of the rotor [kg m]
     ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
                                                         FIR decimation of the accelerations (like
@@ -793,6 +797,7 @@ class RotorScenario(Scenario):
         "contact_roughness_m",
         "gravity",
         "ball_inertia",
+        "axial_load_n",
         "unbalance_kg_m",
         "antialias",
         "dt_s",
@@ -831,6 +836,7 @@ class RotorScenario(Scenario):
     contact_roughness_m: float = 0.0
     gravity: bool = True
     ball_inertia: bool = True
+    axial_load_n: float = 0.0
     unbalance_kg_m: float = 0.0
     antialias: bool = True
     per_ball: bool = False
@@ -891,6 +897,7 @@ class RotorScenario(Scenario):
         )
         for name in ("distributed_rotor", "gravity", "ball_inertia", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
+        s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
         _pass_jitter(self, needs_rk4=False)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))

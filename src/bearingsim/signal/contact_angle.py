@@ -193,6 +193,7 @@ def estimate_contact_angle(
     shaft_hz_hint: float,
     *,
     pad_rel: float = 0.003,
+    measure_shaft: bool = True,
 ) -> ContactAngleEstimate:
     """Contact angle of a bearing with a race fault, from the record's own lines (module
     docstring).
@@ -211,13 +212,19 @@ def estimate_contact_angle(
         Expected shaft speed [Hz] (:func:`measured_shaft_hz`).
     pad_rel : float
         Relative widening of the fault-line search window on both sides [-].
+    measure_shaft : bool
+        Measure the shaft speed from the record's shaft harmonics (step 1); False takes
+        ``shaft_hz_hint`` as the speed (a simulation's, a tachometer's; ``shaft_lines`` 0).
     """
     fam = str(family).lower()
     if fam not in ("outer", "inner"):
         raise ConfigError(f"family = {family!r} is not one of outer, inner")
     fs = check_positive("fs_hz", fs, "Hz")
     xa = np.asarray(x, dtype=float)
-    shaft, n_lines = measured_shaft_hz(xa, fs, shaft_hz_hint)
+    if measure_shaft:
+        shaft, n_lines = measured_shaft_hz(xa, fs, shaft_hz_hint)
+    else:
+        shaft, n_lines = check_positive("shaft_hz_hint", shaft_hz_hint, "Hz"), 0
     # the orders (shaft_hz = 1) of both races' lines at alpha = 0 and at ALPHA_SEARCH_MAX
     k0 = characteristic_frequencies(replace(bearing, contact_angle=0.0), 1.0)
     k1 = characteristic_frequencies(replace(bearing, contact_angle=ALPHA_SEARCH_MAX), 1.0)

@@ -47,7 +47,10 @@ contacts, ``Q = max(0, k_e delta^1.5 + c/2 d(delta)/dt)`` on the total approach
 ``delta = delta_in + delta_out = (u_s - u_h) . e_j - P_d/2 - h_in - h_out + Delta D_j`` with
 ``k_e = (k_in^(-2/3) + k_out^(-2/3))^(-3/2)`` (the two Hertz contacts in series, as the ring
 models' ``K``) and the two contact dampers in series (``c/2``); the rough law, when set, acts
-on ``delta`` with the contacts' ``sigma``.
+on ``delta`` with the contacts' ``sigma``. Under an axial load (``B_AXZ`` != 0) the groove
+centres lie ``A = sqrt((A0 + delta_r)^2 + z^2)`` apart (``delta_r`` the radial approach above,
+without the drop; the axial offset ``z`` of the Jones equilibrium, held); the normal approach
+is ``A - A0 - h`` and the load's radial component ``Q (A0 + delta_r) / A`` acts on the rings.
 
 Parameter vector ``p`` layout: a header of :data:`HDR` values (indices ``H_*``) holding the
 sizes and the offsets of the blocks that follow; two bearing blocks of :data:`BRG_LEN` values
@@ -118,7 +121,9 @@ B_ROUGH = 27  # composite RMS roughness sigma of the contacts [m]; 0 = Hertz
 B_RINV = 28  # 1 / sigma [1/m] (0 when sigma = 0)
 B_RSN1 = 29  # sigma^(1/2) [m^0.5]
 B_KEFF = 30  # quasi-static balls: Hertz constant of the two contacts in series [N/m^1.5]
-BRG_LEN = 31
+B_AXZ = 31  # quasi-static balls under an axial load: axial offset z of the groove centres [m]
+B_A0 = 32  # and their unloaded distance A0 = (f_i + f_o - 1) d [m] (0 without an axial load)
+BRG_LEN = 33
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -318,6 +323,8 @@ def _bearing_qs(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball):
     boff = int(p[o + B_BDEV])
     sig = p[o + B_ROUGH]
     onset = U_MIN * sig
+    z_ax = p[o + B_AXZ]
+    a0 = p[o + B_A0]
     fx = 0.0
     fy = 0.0
     for j in range(z):
@@ -340,18 +347,26 @@ def _bearing_qs(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball):
         d = xr * sp + yr * cp - ch - h
         if boff > 0:  # a ball larger by Delta D_j closes the two contacts by Delta D_j
             d += p[boff + j]
+        cos_a = 1.0  # cosine of the ball's contact angle
+        if z_ax != 0.0:  # groove centres A0 + radial approach apart radially, z axially
+            r = a0 + d + h
+            a = math.sqrt(r * r + z_ax * z_ax)
+            cos_a = r / a
+            d = a - a0 - h  # the normal approach, the drop taken from it
         q = 0.0
         if d > onset:
             q = _elastic(d, keff, sig, p, o)
             if d > 0.0:
-                q = q + c2 * (vxr * sp + vyr * cp + wc * (xr * cp - yr * sp) - hd)
+                rate = cos_a * (vxr * sp + vyr * cp + wc * (xr * cp - yr * sp)) - hd
+                q = q + c2 * rate
                 if q < 0.0:
                     q = 0.0
-        fx += q * sp
-        fy += q * cp
         if want_ball:
             aux[aux_off + j] = q
             aux[aux_off + z + j] = q
+        q = q * cos_a  # its radial component
+        fx += q * sp
+        fy += q * cp
         sp, cp = sp * ca + cp * sa, cp * ca - sp * sa
     return -fx, -fy, fx, fy
 

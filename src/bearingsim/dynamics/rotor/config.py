@@ -346,6 +346,11 @@ class RotorConfig:
         in series as in the ring models — the ball's radial mode (34–42 kHz for the CWRU
         bearings) and its centrifugal and weight forces are dropped, which lets the step grow
         3x (valid while that mode lies well above the output band; docs/models.md, ROTOR).
+    axial_load : float
+        Axial force each bearing carries [N] (a wave spring's preload passes through the shaft
+        to both; 0 = none). The balls then run at the contact angles of the Jones equilibrium
+        of the bearing's radial and axial load (:mod:`bearingsim.quasistatic.jones`, tilts
+        held), as in the ring models' DEM. Needs quasi-static balls (``ball_inertia`` False).
     """
 
     de: BearingSupport
@@ -366,11 +371,19 @@ class RotorConfig:
     ball_diameter_spread: float = 0.0
     ball_seed: int = 0
     ball_inertia: bool = True
+    axial_load: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.ball_inertia, bool | np.bool_):
             raise ConfigError(
                 f"ball_inertia = {self.ball_inertia!r} is not a boolean; valid: true or false"
+            )
+        check_range("axial_load_n", self.axial_load, 0.0, unit="N")
+        if self.axial_load > 0.0 and self.ball_inertia:
+            raise ConfigError(
+                f"axial_load_n = {self.axial_load:g} N needs quasi-static balls (ball_inertia = "
+                "false, --quasi-static-balls): the balls with masses move radially only; valid "
+                "with ball masses: 0"
             )
         check_positive("speed_rpm", self.speed_rpm, "r/min")
         check_ball_spread(self.ball_diameter_spread)

@@ -23,6 +23,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -438,6 +439,19 @@ class PackedModel:
     n_pos: int
     z_de: int
     z_fe: int
+    #: per bearing (DE, FE) under an axial load: ``(z [m], mean contact angle [rad], each
+    #: ball's contact angle at t = 0 [rad])`` of the Jones equilibrium; None without one
+    axial: tuple[tuple[float, float, NDArray[np.float64]], ...] | None = None
+
+    def kinematic_bearings(self, config: RotorConfig) -> tuple[Any, Any]:
+        """The DE and FE bearings at their operating contact angles (the cage and ball spin
+        follow them)."""
+        b = (config.de.bearing, config.fe.bearing)
+        if self.axial is None:
+            return b
+        return tuple(
+            dataclasses.replace(x, contact_angle=a[1]) for x, a in zip(b, self.axial, strict=True)
+        )
 
 
 def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False) -> PackedModel:
@@ -496,7 +510,56 @@ def pack_model(config: RotorConfig, cutoff_hz: float, ball_forces: bool = False)
             off += dev.size
         p = np.concatenate([p, *tails])
     nb = z_de + z_fe
-    return PackedModel(p, rot, nr, nb, nr + 4 + (nb if config.ball_inertia else 0), z_de, z_fe)
+    model = PackedModel(p, rot, nr, nb, nr + 4 + (nb if config.ball_inertia else 0), z_de, z_fe)
+    if config.axial_load > 0.0:
+        model = _with_axial_load(model, config)
+    return model
+
+
+def _with_axial_load(model: PackedModel, config: RotorConfig) -> PackedModel:
+    """``model`` with each bearing's balls at the contact angles of an axial load: the radial
+    load each bearing carries at rest (the static state without it) and ``config.axial_load``
+    give the Jones equilibrium (tilts held) of that bearing with the balls' series Hertz
+    constant; its axial offset ``z`` is held in the kernel, and the cage and ball spin turn at
+    the load-weighted mean contact angle (as the ring models' DEM, docs/models.md "Axial
+    load")."""
+    from ...quasistatic.jones import run_quasi_static
+
+    y0 = static_state(model, config)
+    _, aux = evaluate_rhs(model, 0.0, y0)
+    p = model.p.copy()
+    states = []
+    for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
+        b = sup.bearing
+        z = b.n_elements
+        o = int(p[key])
+        off = 4 + (0 if e == 0 else 2 * model.z_de)
+        psi = p[o + rk.B_PSI0] + 2.0 * np.pi * np.arange(z) / z
+        q = aux[off : off + z]  # the balls' loads at rest; the bearing carries sum Q e_j
+        fx, fy = float(np.sum(q * np.sin(psi))), float(np.sum(q * np.cos(psi)))
+        sol = run_quasi_static(
+            b,
+            0.0,
+            fx,
+            fy,
+            config.axial_load,
+            clearance=b.diametral_clearance,
+            stiffness=float(p[o + rk.B_KEFF]),
+            first_ball_angle=math.remainder(float(p[o + rk.B_PSI0]), 2.0 * math.pi),
+            tilt_free=False,
+            allow_overload=None,
+        )
+        qs, alpha = sol.ball_loads[0], sol.contact_angles[0]
+        mean = float(np.sum(qs * alpha) / np.sum(qs))
+        p[o + rk.B_AXZ] = float(sol.displacement[0, 2])
+        p[o + rk.B_A0] = float(sol.geometry.a0)
+        kb = dataclasses.replace(b, contact_angle=mean)
+        k = characteristic_frequencies(kb, config.shaft_hz)
+        p[o + rk.B_OMEGA_C] = 2 * math.pi * k.ftf_hz
+        if sup.fault is not None and sup.fault.race is Race.BALL:
+            p[o + rk.B_SPIN] = k.bsf_hz / k.ftf_hz
+        states.append((float(sol.displacement[0, 2]), mean, alpha.copy()))
+    return dataclasses.replace(model, p=p, axial=tuple(states))
 
 
 def _with_slip(
@@ -513,9 +576,10 @@ def _with_slip(
     p = model.p.copy()
     tables = []
     off = p.size
+    kbs = model.kinematic_bearings(config)
     for e, (sup, key) in enumerate(((config.de, rk.H_BRG_DE), (config.fe, rk.H_BRG_FE))):
         b = sup.bearing
-        ftf = characteristic_frequencies(b, config.shaft_hz).ftf_hz
+        ftf = characteristic_frequencies(kbs[e], config.shaft_hz).ftf_hz
         t_k, dt = ball_pass_instants(b.n_elements, ftf, slip, duration, (int(seed), 1, e), jitter)
         o = int(p[key])
         p[o + rk.B_SLIP] = off
@@ -863,7 +927,10 @@ def simulate_rotor(
     if q > 1:
         acc = decimate(acc, q, ftype="fir", axis=0, zero_phase=True)
         t, aux, pos = t[::q], aux[::q], pos[::q]
-    kin = config.kinematics()
+    kin = {
+        end: characteristic_frequencies(kb, config.shaft_hz)
+        for end, kb in zip(ENDS, model.kinematic_bearings(config), strict=True)
+    }
     red = model.rotor.reduction
     arm = config.armature
     meta = {
@@ -884,6 +951,16 @@ def simulate_rotor(
         "wall_time_s": time.perf_counter() - t_wall,
         **solver,
     }
+    if model.axial is not None:
+        meta["axial"] = {
+            end: {
+                "axial_load_n": config.axial_load,
+                "offset_z_m": a[0],
+                "contact_angle_deg": math.degrees(a[1]),
+                "ball_contact_angles_deg": np.degrees(a[2]).tolist(),
+            }
+            for end, a in zip(ENDS, model.axial, strict=True)
+        }
     bi = bo = None
     if ball_forces:
         zde, zfe = model.z_de, model.z_fe

@@ -93,6 +93,7 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
         speed_rpm=sc.rpm,
         gravity=sc.gravity,
         ball_inertia=sc.ball_inertia,
+        axial_load=sc.axial_load_n,
         unbalance=sc.unbalance_kg_m,
         n_elements=sc.n_elements,
         ball_diameter_spread=sc.ball_diameter_spread_m,
