@@ -363,3 +363,23 @@ def test_a_race_fault_verdict_carries_the_contact_angle_read_from_the_record(run
     assert text[1].startswith("  contact angle 9.4 deg: BPFO at order 3.5972 (alpha = 0: 3.5848)")
     for num in ("97", "185"):  # healthy "none", ball "ball": no race line to read
         assert run_cli("analyze", str(_cwru(num)), "--json").json()["contact_angle"] is None
+
+
+def test_a_simulation_s_contact_angle_is_read_at_its_exact_speed(run_cli, tmp_path):
+    """A simulated result's speed is exact and a model without unbalance has no shaft line to
+    measure it from: analyze reads its fault line at the file's speed. The rotor model with
+    quasi-static balls under 20 N of axial load (docs/models.md ROTOR): the angle read back
+    equals the model's load-weighted mean angle (meta["axial"]) within 0.05 deg."""
+    from bearingsim import simulate
+
+    out = tmp_path / "rotor.nc"
+    sc = dict(model="rotor", de_fault="outer", ball_inertia=False, axial_load_n=20.0,
+              duration_s=2.0, fs_hz=12000.0)  # fmt: skip
+    r = simulate(sc)
+    r.save(out)
+    d = run_cli("analyze", str(out), "--json").json()
+    ca = d["contact_angle"]
+    assert d["diagnosis"] == "outer" and ca["shaft_lines"] == 0
+    want = r.meta["rotor"]["axial"]["DE"]["contact_angle_deg"]
+    assert ca["contact_angle_deg"] == pytest.approx(want, abs=0.05)
+    assert "of the file's speed 1750.0 r/min" in run_cli("analyze", str(out)).out

@@ -252,8 +252,13 @@ def _contact_angle(rec: Any, bearing: Any, verdict: str) -> dict[str, Any] | Non
         return None
     if rec.rpm is None:  # order tracked: no shaft lines at a fixed frequency
         return None
+    # a simulation's speed is exact (and a model without unbalance has no shaft line to read);
+    # a measured record's stored speed is rounded: measured from its own shaft harmonics
+    simulated = Path(rec.source).suffix.lower() in (".nc", ".h5", ".nc4")
     try:
-        est = estimate_contact_angle(rec.x, rec.fs, bearing, verdict, rec.rpm / 60.0)
+        est = estimate_contact_angle(
+            rec.x, rec.fs, bearing, verdict, rec.rpm / 60.0, measure_shaft=not simulated
+        )
     except ConfigError as exc:
         return {"error": " ".join(str(exc).split())}
     return est.as_dict()
@@ -307,8 +312,9 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         line = "BPFO" if ca["family"] == "outer" else "BPFI"
         click.echo(
             f"  contact angle {ca['contact_angle_deg']:.1f} deg: {line} at order "
-            f"{ca['order']:.4f} (alpha = 0: {ca['order_alpha0']:.4f}) of the measured shaft "
-            f"speed {ca['shaft_hz'] * 60:.1f} r/min ({ca['harmonic']}x line, SNR "
+            f"{ca['order']:.4f} (alpha = 0: {ca['order_alpha0']:.4f}) of the "
+            + ("measured shaft speed" if ca["shaft_lines"] else "file's speed")
+            + f" {ca['shaft_hz'] * 60:.1f} r/min ({ca['harmonic']}x line, SNR "
             f"{ca['snr_db']:.0f} dB)"
         )
     for p in out["peaks"]:
