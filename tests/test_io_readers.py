@@ -261,6 +261,7 @@ def test_read_cwru_mat_with_two_records_variables(tmp_path):
         ("normal_1_98.mat", "098", 98.0, 1772.0, ["DE", "FE"]),
         ("99.mat", "099", 99.0, 1750.0, ["DE"]),
         ("normal_2_099.mat", "099", 99.0, 1750.0, ["DE"]),
+        ("X099.mat", "099", 99.0, 1750.0, ["DE"]),
         ("copy.mat", "098", 98.0, 1772.0, ["DE", "FE"]),  # no number: the most channels
     ]:
         p = tmp_path / name

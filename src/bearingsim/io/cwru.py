@@ -277,10 +277,10 @@ def read_cwru_mat(path: str | Path) -> CwruRecord:
 
 def _record_of(groups: dict[str, dict[str, str]], p: Path) -> str:
     """The record whose variables a file holding several records' (``X098_DE_time`` beside
-    ``X099_DE_time``) is read for: the one its name ends in (``cwru_record_number``, leading
-    zeros ignored), else the one with the most channels, the lowest number on a tie. Channels
-    of two records are never mixed."""
-    want = cwru_record_number(p.name).lstrip("0")
+    ``X099_DE_time``) is read for: the one its name ends in (``cwru_record_number``, a
+    leading ``X`` and zeros ignored), else the one with the most channels, the lowest number
+    on a tie. Channels of two records are never mixed."""
+    want = cwru_record_number(p.name).lstrip("Xx").lstrip("0")  # "X118.mat" names 118 too
     for number in groups:
         if number.lstrip("0") == want:
             return number
