@@ -32,6 +32,8 @@ CSV_COLUMNS = [
     "band_lo_hz",
     "band_hi_hz",
     "error",
+    "channel_source",
+    "contact_angle_deg",
 ]
 #: what ``rpm_source`` says of a speed taken from a CWRU file name at motor load 2 hp
 NAME_LOAD_2 = "name (CWRU nominal speed at load 2 hp)"
@@ -109,6 +111,9 @@ def test_csv_header_and_rows(run_cli, three):
         assert (float(c["probability"]) if c["probability"] else None) == d["probability"]
         assert [float(c["band_lo_hz"]), float(c["band_hi_hz"])] == d["band_hz"]
         assert c["error"] == ""
+        assert c["channel_source"] == d["channel_source"]
+        ca = d["contact_angle"]  # 132 outer, 310 outer, 107 inner: each reads its angle
+        assert float(c["contact_angle_deg"]) == ca["contact_angle_deg"]
 
 
 def test_text_output_one_line_per_file(run_cli, three):
@@ -201,9 +206,10 @@ def test_a_bad_file_in_csv_and_text_output(run_cli, tmp_path, three):
     c = run_cli("analyze", *files, "--csv")
     assert c.code == 2
     rows = list(csv.reader(io.StringIO(c.out)))
-    assert len(rows) == 4 and rows[2][0] == str(bad) and needle in rows[2][-1]
-    assert rows[2][1:-1] == [""] * (len(CSV_COLUMNS) - 2)
-    assert rows[1][-1] == rows[3][-1] == ""
+    err = CSV_COLUMNS.index("error")
+    assert len(rows) == 4 and rows[2][0] == str(bad) and needle in rows[2][err]
+    assert rows[2][1:err] + rows[2][err + 1 :] == [""] * (len(CSV_COLUMNS) - 2)
+    assert rows[1][err] == rows[3][err] == ""
     t = run_cli("analyze", *files)
     assert t.code == 2
     assert [ln.split(" [")[0] for ln in t.out.splitlines()] == [str(three[0]), str(three[2])]

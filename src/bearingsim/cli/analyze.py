@@ -35,6 +35,7 @@ _ANALYZE_MODULES = (
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
     *("leading", "probability", "band_lo_hz", "band_hi_hz", "error"),
+    *("channel_source", "contact_angle_deg"),
 )
 
 
@@ -331,6 +332,8 @@ def _csv_row(out: dict[str, Any]) -> list[Any]:
     row = {k: out.get(k) for k in _CSV_COLUMNS}
     if "error" not in out and out.get("domain") != "order":
         row["band_lo_hz"], row["band_hi_hz"] = out["band_hz"]
+    ca = out.get("contact_angle") or {}
+    row["contact_angle_deg"] = ca.get("contact_angle_deg")
     return [row[k] for k in _CSV_COLUMNS]
 
 
