@@ -142,7 +142,7 @@ def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
     if channel is not None and channel.strip().lower() != "auto":
         return channel
     mats = [Path(p).name.lower() for p in records if Path(p).suffix.lower() == ".mat"]
-    if not mats:
+    if len(mats) < len(records):  # other files too: each file type's own default, as before
         return None
     fan = sum("fan_end" in n for n in mats)
     if fan and fan < len(mats):
