@@ -3,9 +3,10 @@
 Prints
 1. the warm in-process time of all methods (DRS, CPW, kurtogram + infogram, four squared
    envelope spectra, line search, fusion) on one 10 s 12 kHz record (CWRU 169) and the share
-   of each step; issue 17's target: <= 0.2 s on one core;
+   of each step; issue 17's target: <= 0.2 s on one core; and of the contact-angle report
+   ``analyze`` adds to a race-fault verdict;
 2. the wall time of one ``bearingsim analyze`` call on every ``.mat`` of ``../shared/data/cwru``
-   (start-up included, ``--channel auto --json``, all cores); target: <= 15 s on 2 cores;
+   (start-up included, ``--json``, all cores); target: <= 15 s on 2 cores;
 3. the wall time of one call on one record (CWRU 169), start-up included (the median of
    ``--repeats`` calls): issue 17 measured 3-4 s per call, 1.6 s of it start-up (no target).
 
@@ -35,6 +36,7 @@ from bearingsim.signal.benchmark import (  # noqa: E402
     cepstral_prewhitening,
     discrete_random_separation,
 )
+from bearingsim.signal.contact_angle import estimate_contact_angle  # noqa: E402
 from bearingsim.signal.fused import diagnose_fused  # noqa: E402
 from bearingsim.signal.kurtogram import band_maps  # noqa: E402
 
@@ -67,8 +69,13 @@ def main() -> int:
     for name, fn in steps.items():
         t = best(fn, a.repeats)
         print(f"  {name:<22} {t * 1e3:7.1f} ms  ({100 * t / total:4.1f} %)")
+    t_ca = best(lambda: estimate_contact_angle(x, fs, b, "inner", fr), a.repeats)
+    print(
+        f"contact-angle report (analyze, race-fault verdicts): {t_ca * 1e3:7.1f} ms  "
+        f"(with the methods: {(total + t_ca) * 1e3:.1f} ms)"
+    )
     files = sorted(str(p) for p in a.data.glob("*.mat"))
-    cmd = [sys.executable, "-m", "bearingsim", "analyze", *files, "--channel", "auto", "--json"]
+    cmd = [sys.executable, "-m", "bearingsim", "analyze", *files, "--json"]
     env = dict(os.environ)
     env.pop("OMP_NUM_THREADS", None)
     env.pop("OPENBLAS_NUM_THREADS", None)
