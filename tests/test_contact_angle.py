@@ -105,6 +105,21 @@ def test_no_shaft_line_is_a_one_line_error():
         estimate_contact_angle(x, 12000.0, B, "ball", 29.0)
 
 
+def test_one_shaft_line_does_not_set_the_speed():
+    """One line near a shaft harmonic (another source's, or a lone 1x) is not a shaft speed:
+    at least 3 of the 6 harmonics must stand out (the CWRU records that have one show 5-6,
+    docs/validation.md); with three they do."""
+    fs, n = 12000.0, 48000
+    t = np.arange(n) / fs
+    noise = 1e-3 * np.random.default_rng(1).standard_normal(n)
+    one = noise + np.sin(2 * np.pi * 29.05 * t)
+    with pytest.raises(ConfigError, match=r"1 shaft harmonic\(s\) .* fewer than 3"):
+        measured_shaft_hz(one, fs, 29.0)
+    three = noise + sum(np.sin(2 * np.pi * k * 29.05 * t) for k in (1, 2, 3))
+    f, k = measured_shaft_hz(three, fs, 29.0)
+    assert k == 3 and f == pytest.approx(29.05, rel=1e-4)
+
+
 def test_a_small_axial_load_loads_every_ball():
     """Why an outer-race defect at 3 or 12 o'clock can be struck (docs/validation.md, "Contact
     angle of the CWRU bearings"): with the catalogue clearance (6 um) and the seed's 50 N radial

@@ -95,6 +95,7 @@ def measured_shaft_hz(
     harmonics: int = 6,
     rel_tol: float = 0.005,
     min_snr_db: float = 20.0,
+    min_lines: int = 3,
 ) -> tuple[float, int]:
     """Shaft speed measured from the shaft harmonics of a record (module docstring, step 1).
 
@@ -113,6 +114,9 @@ def measured_shaft_hz(
         Relative half-width of the search windows [-].
     min_snr_db : float
         A harmonic counts when it stands this far over its neighbourhood [dB].
+    min_lines : int
+        Harmonics that must count [-]: one line of another source within a window must not set
+        the speed (every CWRU record the estimate reads shows 5 or 6).
 
     Returns
     -------
@@ -136,11 +140,11 @@ def measured_shaft_hz(
         fk, snr = _line(f, A, k * hint * (1 - rel_tol), k * hint * (1 + rel_tol), df)
         if math.isfinite(snr) and snr >= min_snr_db:
             est.append(fk / k)
-    if not est:
+    if len(est) < min_lines:
         raise ConfigError(
-            f"no shaft harmonic of {hint:.6g} Hz (k = 1..{harmonics}, within ±{rel_tol:.2%}) "
-            f"stands {min_snr_db:g} dB over its neighbourhood: the shaft speed cannot be "
-            "measured here"
+            f"{len(est)} shaft harmonic(s) of {hint:.6g} Hz (k = 1..{harmonics}, within "
+            f"±{rel_tol:.2%}) stand {min_snr_db:g} dB over their neighbourhood, fewer than "
+            f"{min_lines}: the shaft speed cannot be measured here"
         )
     return float(np.median(est)), len(est)
 
