@@ -217,3 +217,9 @@ def test_axial_load_bad_input():
         rotor_config_from_scenario(Scenario.from_dict({"model": "rotor", "axial_load_n": 20.0}))
     sc = Scenario.from_dict({"model": "rotor", "axial_load_n": 20.0, "ball_inertia": False})
     assert rotor_config_from_scenario(sc).axial_load == 20.0
+    # above twice the static capacity (ISO 76), before any work, as the ring models
+    from bearingsim import simulate
+
+    big = dict(model="rotor", axial_load_n=1e6, ball_inertia=False, duration_s=0.01)
+    with pytest.raises(ConfigError, match=r"F_a = axial_load_n = 1e\+06 N\) exceeds 2 x"):
+        simulate(big)

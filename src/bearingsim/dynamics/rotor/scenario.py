@@ -28,7 +28,7 @@ from ...errors import ConfigError
 from ...geometry import Defect, check_clearance, check_unused_defect
 from ...results import SimulationResult
 from ..budget import Budget, Estimate
-from ..checks import check_speed
+from ..checks import check_load, check_speed
 from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
 from .model import plan_rotor, simulate_rotor
 
@@ -101,12 +101,16 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     )
 
 
-def _checked_config(sc: RotorScenario) -> RotorConfig:
+def _checked_config(sc: RotorScenario, allow_overload: bool = False) -> RotorConfig:
     """The scenario's :class:`RotorConfig` with the speed checked for both bearings
-    (:func:`..checks.check_speed`)."""
+    (:func:`..checks.check_speed`) and, under an axial load, each bearing's static equivalent
+    load against its static capacity (ISO 76, :func:`..checks.check_load`; the radial load,
+    the rotor's weight, is left out: ``allow_overload`` lifts the refusal above 2 C0)."""
     cfg = rotor_config_from_scenario(sc)
     for sup in (cfg.de, cfg.fe):
         check_speed(sup.bearing, sc.rpm, sc.fs_hz)
+        if cfg.axial_load > 0.0:
+            check_load(sup.bearing, 0.0, allow_overload, cfg.axial_load, name="radial load")
     return cfg
 
 
@@ -126,8 +130,8 @@ def check_rotor(
 ) -> Estimate:
     """Check a rotor scenario without running it: every input, the speed, the mesh and run
     estimates against ``budget`` (:func:`.model.plan_rotor`; this builds the model and its static
-    state). The rotor's loads are its weight: ``allow_overload`` is not used."""
-    cfg = _checked_config(scenario)
+    state). ``allow_overload`` runs an axial load above twice the static capacity."""
+    cfg = _checked_config(scenario, allow_overload)
     return plan_rotor(cfg, **_plan_args(scenario), budget=budget).estimate
 
 
@@ -140,7 +144,7 @@ def run_rotor(
     """Runner registered for ``Model.ROTOR`` in :mod:`bearingsim.simulate` (checked first, see
     :func:`check_rotor`)."""
     t_wall = time.perf_counter()
-    cfg = _checked_config(scenario)
+    cfg = _checked_config(scenario, allow_overload)
     r = simulate_rotor(
         cfg,
         duration=scenario.duration_s,
