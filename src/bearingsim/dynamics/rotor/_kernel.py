@@ -305,7 +305,18 @@ def _bearing_qs(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball):
     ``Q`` through both contacts, Hertz's law of the two in series on the total approach
     ``delta_in + delta_out`` (constant ``B_KEFF``) with the contact damping of two equal
     dampers in series (``c/2``); no ball coordinates, no centrifugal or gravity force on the
-    balls. Returns the forces on the shaft node (fx, fy) and on the housing (fx, fy) [N]."""
+    balls. Returns the forces on the shaft node (fx, fy) and on the housing (fx, fy) [N].
+    The ball loop is compiled twice, with and without the axial geometry (the choice made
+    once per call, not per ball: 5 % of the radial rotor's time in an A/B)."""
+    if p[o + B_AXZ] != 0.0:
+        return _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, True)
+    return _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, False)
+
+
+@njit(cache=True, inline="always")
+def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
+    """The ball loop of :func:`_bearing_qs`; ``axial`` is a constant at each call site, so
+    the geometry's branch folds away."""
     z = int(p[o + B_Z])
     psi, wc, rel_speed, step, ca, sa = _cage(t, p, o, z)
     keff = p[o + B_KEFF]
@@ -348,7 +359,7 @@ def _bearing_qs(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball):
         if boff > 0:  # a ball larger by Delta D_j closes the two contacts by Delta D_j
             d += p[boff + j]
         cos_a = 1.0  # cosine of the ball's contact angle
-        if z_ax != 0.0:  # groove centres A0 + radial approach apart radially, z axially
+        if axial:  # groove centres A0 + radial approach apart radially, z axially
             r = a0 + d + h
             a = math.sqrt(r * r + z_ax * z_ax)
             cos_a = r / a
