@@ -174,7 +174,7 @@ def test_axial_load_static_state_is_the_jones_equilibrium():
         assert_allclose(q, sol.ball_loads[0], rtol=1e-6, atol=1e-6 * q.max())
         assert np.all(q > 0), "an axial load loads every ball"
         lift -= np.sum(q * np.cos(sol.contact_angles[0]) * np.cos(psi))
-        assert_allclose(m.axial[e][2], sol.contact_angles[0], rtol=1e-9)
+        assert_allclose(m.axial[e].ball_contact_angles, sol.contact_angles[0], rtol=1e-9)
     weight = (cfg.shaft.mass + cfg.armature.mass) * G0
     assert_allclose(lift, weight, rtol=1e-6)
 

@@ -247,6 +247,7 @@ def _contact_angle(rec: Any, bearing: Any, verdict: str) -> dict[str, Any] | Non
     ``{"error": ...}`` when the record's lines do not give it."""
     from ..errors import ConfigError
     from ..geometry import BallBearing
+    from ..io.signal import RESULT_SUFFIXES
     from ..signal.contact_angle import estimate_contact_angle
 
     if verdict not in ("inner", "outer") or not isinstance(bearing, BallBearing):
@@ -255,7 +256,7 @@ def _contact_angle(rec: Any, bearing: Any, verdict: str) -> dict[str, Any] | Non
         return None
     # a simulation's speed is exact (and a model without unbalance has no shaft line to read);
     # a measured record's stored speed is rounded: measured from its own shaft harmonics
-    simulated = Path(rec.source).suffix.lower() in (".nc", ".h5", ".nc4")
+    simulated = Path(rec.source).suffix.lower() in RESULT_SUFFIXES
     try:
         est = estimate_contact_angle(
             rec.x, rec.fs, bearing, verdict, rec.rpm / 60.0, measure_shaft=not simulated
@@ -270,15 +271,16 @@ def _load_record(path: str, req: _Request) -> tuple[Any, str, str]:
     CWRU nominal speed of the load in the file name when the file gives none) and where its
     channel came from: ``"option"``, ``"file name (Fan_End)"`` — a CWRU fan-end record's fault
     is in the fan-end bearing, which its FE accelerometer faces — or ``"default"``."""
+    from ..io.cwru import cwru_end
     from ..signal.diagnosis import load_signal_and_speed
 
     ch, source = req.channel, "option"
     if ch is None or ch == "auto":
         ch, source = None, "default"
         if Path(path).suffix.lower() == ".mat":  # CWRU: DE unless the name says fan end
-            ch = "DE"
-            if "fan_end" in Path(path).name.lower():
-                ch, source = "FE", "file name (Fan_End)"
+            ch = cwru_end(path)
+            if ch == "FE":
+                source = "file name (Fan_End)"
     rec, rpm_source = load_signal_and_speed(path, channel=ch, fs_hz=req.fs_hz, rpm=req.rpm)
     return rec, rpm_source, source
 

@@ -139,12 +139,14 @@ def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
     fan-end sensor when every name says ``Fan_End`` (their faults, and the chain identified from
     them, are the fan end's; as ``analyze``), the drive end's when none does; names of both
     ends are a one-line error (one rig is one sensor's chain)."""
+    from ..io.cwru import cwru_end
+
     if channel is not None and channel.strip().lower() != "auto":
         return channel
-    mats = [Path(p).name.lower() for p in records if Path(p).suffix.lower() == ".mat"]
+    mats = [p for p in records if Path(p).suffix.lower() == ".mat"]
     if len(mats) < len(records):  # other files too: each file type's own default, as before
         return None
-    fan = sum("fan_end" in n for n in mats)
+    fan = sum(cwru_end(p) == "FE" for p in mats)
     if fan and fan < len(mats):
         raise ConfigError(
             f"channel: {fan} of the {len(mats)} CWRU records are fan-end records (Fan_End in the "

@@ -17,6 +17,7 @@ __all__ = [
     "CWRU_NOMINAL_RPM",
     "CWRU_RATES",
     "check_cwru_name_rate",
+    "cwru_end",
     "cwru_rate_evidence",
     "infer_cwru_fs",
     "cwru_data_dir",
@@ -97,6 +98,19 @@ def cwru_record_number(name: str | Path) -> str:
         File name or path.
     """
     return Path(name).stem.rsplit("_", 1)[-1]
+
+
+def cwru_end(name: str | Path) -> str:
+    """The end whose bearing a CWRU record's fault is in, from its file name: ``"FE"`` when the
+    name says ``Fan_End`` (any case; the fan-end records, whose FE accelerometer faces the
+    faulty 6203), else ``"DE"``.
+
+    Parameters
+    ----------
+    name : str or Path
+        File name or path.
+    """
+    return "FE" if "fan_end" in Path(name).name.lower() else "DE"
 
 
 def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:

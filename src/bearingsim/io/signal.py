@@ -69,6 +69,10 @@ class SignalRecord:
     columns: tuple[str, ...] = ()
 
 
+#: file suffixes read as bearingsim results (netCDF)
+RESULT_SUFFIXES = (".nc", ".h5", ".nc4")
+
+
 def _cwru_fs_from_name(name: str) -> float | None:
     m = re.search(r"(?<![0-9])(12|48)k", name, flags=re.IGNORECASE)
     return float(m.group(1)) * 1000.0 if m else None
@@ -123,7 +127,7 @@ def read_signal(
     suffix = p.suffix.lower()
     if suffix == ".mat":
         return _read_cwru(p, channel, fs_hz, rpm)
-    if suffix in (".nc", ".h5", ".nc4"):
+    if suffix in RESULT_SUFFIXES:
         return _read_result(p, channel, fs_hz, rpm)
     if suffix in (".csv", ".txt"):
         return _read_text(p, channel, fs_hz, rpm, time_column)

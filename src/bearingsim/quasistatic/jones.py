@@ -52,6 +52,7 @@ Newton loop and condensed into the ring Jacobian analytically.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -86,7 +87,56 @@ from .result import QuasiStaticSolution
 #: how the load check names the radial load
 _RADIAL = "|(fx_n, fy_n)|"
 
-__all__ = ["run_quasi_static", "solve_equilibrium"]
+__all__ = ["AxialState", "axial_state", "run_quasi_static", "solve_equilibrium"]
+
+
+class AxialState(NamedTuple):
+    """The static state of a ball set under an axial load (:func:`axial_state`)."""
+
+    z: float  #: axial offset of the inner ring's groove centres [m]
+    contact_angle: float  #: load-weighted mean contact angle of the loaded balls [rad]
+    ball_contact_angles: NDArray[np.float64]  #: each ball's contact angle at t = 0 [rad]
+    #: groove-centre distance ``A0 = (f_i + f_o - 1) d`` of the Jones solution's geometry [m]
+    #: (0 without an axial load: not solved, not used)
+    a0: float = 0.0
+
+
+def axial_state(
+    bearing: Bearing,
+    fx: float,
+    fy: float,
+    fa: float,
+    *,
+    clearance: float,
+    stiffness: float,
+    first_ball_angle: float,
+) -> AxialState:
+    """The axial offset ``z`` and the contact angles of a ball set under the radial load
+    ``(fx, fy)`` [N] and the axial load ``fa`` [N] (:func:`run_quasi_static` at cage angle 0,
+    the ring tilts held, no load check: the caller's), with the ball constant ``stiffness``
+    [N/m^1.5] and the diametral ``clearance`` [m]; the dynamic models (DEM, TVSM, rotor with
+    quasi-static balls) hold this ``z`` and turn the cage at the load-weighted mean angle.
+    ``first_ball_angle`` [rad]: ball 1's azimuth at t = 0."""
+    sol = run_quasi_static(
+        bearing,
+        0.0,
+        fx,
+        fy,
+        fa,
+        clearance=clearance,
+        stiffness=stiffness,
+        first_ball_angle=math.remainder(first_ball_angle, 2.0 * math.pi),
+        tilt_free=False,
+        allow_overload=None,
+    )
+    q = sol.ball_loads[0]
+    alpha = sol.contact_angles[0]
+    return AxialState(
+        float(sol.displacement[0, 2]),
+        float(np.sum(q * alpha) / np.sum(q)),
+        alpha.copy(),
+        float(sol.geometry.a0),
+    )
 
 
 def _radial_start(geom: QSGeometry, psi: NDArray[np.float64], F: NDArray[np.float64]) -> tuple:

@@ -20,7 +20,7 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import NamedTuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,9 +48,11 @@ from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
 
+if TYPE_CHECKING:
+    from ...quasistatic.jones import AxialState
+
 __all__ = [
     "AUX_NAMES",
-    "AxialState",
     "integrate_model",
     "integrate_model_adaptive",
     "max_frequency",
@@ -65,17 +67,6 @@ __all__ = [
 #: number of fixed auxiliary outputs before the per-ball block
 N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
-
-
-class AxialState(NamedTuple):
-    """The static state of a ball set under an axial load (:attr:`ModelInputs.axial_state`)."""
-
-    z: float  #: axial offset of the inner ring's groove centres [m]
-    contact_angle: float  #: load-weighted mean contact angle of the loaded balls [rad]
-    ball_contact_angles: NDArray[np.float64]  #: each ball's contact angle at t = 0 [rad]
-    #: groove-centre distance ``A0 = (f_i + f_o - 1) d`` of the Jones solution's geometry [m]
-    #: (0 without an axial load: not solved, not used)
-    a0: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -309,30 +300,20 @@ class ModelInputs:
     def axial_state(self) -> AxialState:
         """The static axial offset and contact angles under :attr:`axial_load` (see there);
         ``z = 0`` and the bearing's own angle without one."""
+        from ...quasistatic.jones import AxialState, axial_state
+
         b = self.bearing
         if self.axial_load <= 0.0:
             return AxialState(0.0, b.contact_angle, np.full(b.n_elements, b.contact_angle))
-        from ...quasistatic.jones import run_quasi_static
 
-        sol = run_quasi_static(
+        return axial_state(  # the scenario's load check (plan_ring) covers the load
             b,
-            0.0,
             self.fx,
             self.fy,
             self.axial_load,
             clearance=self.diametral_clearance,
             stiffness=self.k_ball,
-            first_ball_angle=math.remainder(self.first_ball_angle, 2.0 * math.pi),
-            tilt_free=False,
-            allow_overload=None,  # the scenario's load check (plan_ring) covers it
-        )
-        q = sol.ball_loads[0]
-        alpha = sol.contact_angles[0]
-        return AxialState(
-            float(sol.displacement[0, 2]),
-            float(np.sum(q * alpha) / np.sum(q)),
-            alpha.copy(),
-            float(sol.geometry.a0),
+            first_ball_angle=self.first_ball_angle,
         )
 
     @property

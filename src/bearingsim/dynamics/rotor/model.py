@@ -439,9 +439,9 @@ class PackedModel:
     n_pos: int
     z_de: int
     z_fe: int
-    #: per bearing (DE, FE) under an axial load: ``(z [m], mean contact angle [rad], each
-    #: ball's contact angle at t = 0 [rad])`` of the Jones equilibrium; None without one
-    axial: tuple[tuple[float, float, NDArray[np.float64]], ...] | None = None
+    #: per bearing (DE, FE) under an axial load, the Jones equilibrium
+    #: (:class:`bearingsim.quasistatic.jones.AxialState`); None without one
+    axial: tuple[Any, Any] | None = None
 
     def kinematic_bearings(self, config: RotorConfig) -> tuple[Any, Any]:
         """The DE and FE bearings at their operating contact angles (the cage and ball spin
@@ -450,7 +450,8 @@ class PackedModel:
         if self.axial is None:
             return b
         return tuple(
-            dataclasses.replace(x, contact_angle=a[1]) for x, a in zip(b, self.axial, strict=True)
+            dataclasses.replace(x, contact_angle=a.contact_angle)
+            for x, a in zip(b, self.axial, strict=True)
         )
 
 
@@ -523,7 +524,7 @@ def _with_axial_load(model: PackedModel, config: RotorConfig) -> PackedModel:
     constant; its axial offset ``z`` is held in the kernel, and the cage and ball spin turn at
     the load-weighted mean contact angle (as the ring models' DEM, docs/models.md "Axial
     load")."""
-    from ...quasistatic.jones import run_quasi_static
+    from ...quasistatic.jones import axial_state
 
     y0 = static_state(model, config)
     _, aux = evaluate_rhs(model, 0.0, y0)
@@ -537,28 +538,23 @@ def _with_axial_load(model: PackedModel, config: RotorConfig) -> PackedModel:
         psi = p[o + rk.B_PSI0] + 2.0 * np.pi * np.arange(z) / z
         q = aux[off : off + z]  # the balls' loads at rest; the bearing carries sum Q e_j
         fx, fy = float(np.sum(q * np.sin(psi))), float(np.sum(q * np.cos(psi)))
-        sol = run_quasi_static(
+        st = axial_state(  # the scenario's load check (_checked_config) covers the load
             b,
-            0.0,
             fx,
             fy,
             config.axial_load,
             clearance=b.diametral_clearance,
             stiffness=float(p[o + rk.B_KEFF]),
-            first_ball_angle=math.remainder(float(p[o + rk.B_PSI0]), 2.0 * math.pi),
-            tilt_free=False,
-            allow_overload=None,
+            first_ball_angle=float(p[o + rk.B_PSI0]),
         )
-        qs, alpha = sol.ball_loads[0], sol.contact_angles[0]
-        mean = float(np.sum(qs * alpha) / np.sum(qs))
-        p[o + rk.B_AXZ] = float(sol.displacement[0, 2])
-        p[o + rk.B_A0] = float(sol.geometry.a0)
-        kb = dataclasses.replace(b, contact_angle=mean)
+        p[o + rk.B_AXZ] = st.z
+        p[o + rk.B_A0] = st.a0
+        kb = dataclasses.replace(b, contact_angle=st.contact_angle)
         k = characteristic_frequencies(kb, config.shaft_hz)
         p[o + rk.B_OMEGA_C] = 2 * math.pi * k.ftf_hz
         if sup.fault is not None and sup.fault.race is Race.BALL:
             p[o + rk.B_SPIN] = k.bsf_hz / k.ftf_hz
-        states.append((float(sol.displacement[0, 2]), mean, alpha.copy()))
+        states.append(st)
     return dataclasses.replace(model, p=p, axial=tuple(states))
 
 
@@ -955,9 +951,9 @@ def simulate_rotor(
         meta["axial"] = {
             end: {
                 "axial_load_n": config.axial_load,
-                "offset_z_m": a[0],
-                "contact_angle_deg": math.degrees(a[1]),
-                "ball_contact_angles_deg": np.degrees(a[2]).tolist(),
+                "offset_z_m": a.z,
+                "contact_angle_deg": math.degrees(a.contact_angle),
+                "ball_contact_angles_deg": np.degrees(a.ball_contact_angles).tolist(),
             }
             for end, a in zip(ENDS, model.axial, strict=True)
         }
