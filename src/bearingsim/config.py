@@ -135,6 +135,30 @@ IAS_FS_HZ = 50_000.0
 IAS_INERTIA_KG_M2 = 6.5e-5
 
 
+#: A simulation through a measurement chain (``rig``) is meant to stand beside a measured
+#: record, so the ring and rotor scenarios take these values for the keys a rig scenario leaves
+#: unset (the values of ``bearingsim.side_by_side``, docs/models.md "Realistic defaults with a
+#: rig"); without a rig the seeds' values stay. Random slip [%]: the middle of the 1-2 % real
+#: bearings show (Randall & Antoni 2011, MSSP 25, 485-520, §2.1); the CWRU rig's own is not
+#: published.
+REALISM_SLIP_PERCENT = 1.5
+#: drop of a ball across the slot: the ball rests on the nearer edge (``"geometric"``: 0 at the
+#: edges, h_min at the centre; the rotor model's default, the ball path of Sawalhi & Randall
+#: 2008), not the seed VSM's rectangle (h_min over the whole extent, a step at each edge), which
+#: the seed comparisons keep
+REALISM_DEFECT_PROFILE = "geometric"
+#: composite RMS roughness of the ball-raceway contacts [m] (``contact_roughness_m``): the order
+#: of ground and honed raceways (R_a 0.05-0.1 um, R_q ~ 1.25 R_a) with grade <= G20 balls (R_a
+#: <= 0.02 um); the CWRU bearings' own is not published
+REALISM_CONTACT_ROUGHNESS_M = 1.0e-7
+#: the scenario keys of a realistic simulation beside a measurement, with their values
+REALISM: dict[str, Any] = {
+    "slip_percent": REALISM_SLIP_PERCENT,
+    "defect_profile": REALISM_DEFECT_PROFILE,
+    "contact_roughness_m": REALISM_CONTACT_ROUGHNESS_M,
+}
+
+
 # ------------------------------------------------------------------ helpers
 def _bool(name: str, value: Any) -> bool:
     if not isinstance(value, bool):
@@ -276,11 +300,29 @@ class Scenario:
         for k, v in out.items():
             if isinstance(v, enum.Enum):
                 out[k] = v.value
+        for k in self.auto_keys:  # resolved from the rig: the default again
+            out[k] = None
         return out
 
+    @property
+    def auto_keys(self) -> tuple[str, ...]:
+        """Keys left unset whose values this scenario chose (the realistic defaults with a
+        ``rig``, else the seeds'; :data:`REALISM`) [-]."""
+        return self.__dict__.get("auto_keys", ())
+
+    @property
+    def realism_defaults(self) -> dict[str, Any]:
+        """The :data:`REALISM` keys this scenario took because it has a ``rig`` and left them
+        unset, with their values (empty without a rig)."""
+        if getattr(self, "rig", None) is None:
+            return {}
+        return {k: getattr(self, k) for k in self.auto_keys}
+
     def replace(self, **changes: Any) -> Scenario:
-        """Copy with ``changes`` (validated; ``model`` may only change within the family)."""
-        return dataclasses.replace(self, **changes)
+        """Copy with ``changes`` (validated; ``model`` may only change within the family).
+        Keys the scenario resolved itself (:attr:`auto_keys`) are resolved again."""
+        auto = {k: None for k in self.auto_keys if k not in changes}
+        return dataclasses.replace(self, **auto, **changes)
 
     @classmethod
     def keys(cls) -> tuple[str, ...]:
@@ -385,6 +427,24 @@ def _pass_jitter(sc: Scenario, needs_rk4: bool = True) -> None:
             )
 
 
+def _resolve_realism(sc: Any, seed_values: dict[str, Any]) -> None:
+    """Give the realism keys left unset (``None``) their values: :data:`REALISM`'s when the
+    scenario has a ``rig``, else the seeds' (``seed_values``). An adaptive solver has no slip,
+    so there the slip stays 0. The keys resolved here are kept in ``sc.auto_keys``:
+    :meth:`Scenario.to_dict` gives them as ``None`` again and :meth:`Scenario.replace`
+    resolves them anew (a copy without the rig returns to the seeds' values)."""
+    auto = []
+    for name, seed in seed_values.items():
+        if getattr(sc, name) is not None:
+            continue
+        v = REALISM[name] if sc.rig is not None else seed
+        if name == "slip_percent" and sc.solver is not Solver.RK4:
+            v = 0.0
+        object.__setattr__(sc, name, v)
+        auto.append(name)
+    sc.__dict__["auto_keys"] = tuple(auto)
+
+
 def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
     """A ``rig`` key: a loadable rig (one-line errors), its modes below the output's Nyquist
     frequency, its input one of the family's acceleration channels."""
@@ -420,7 +480,8 @@ class RingScenario(Scenario):
                                                     the ball) [m] (CWRU 0.007 in)
     ``defect_depth_m``              2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
     ``defect_profile``              rectangular     drop of a ball across the defect:
-                                                    ``rectangular`` (seed VSM eqs. (1)–(3): h_min
+                                    (geometric      ``rectangular`` (seed VSM eqs. (1)–(3): h_min
+                                    with ``rig``)
                                                     over the whole extent) or ``geometric`` (the
                                                     ball rests on the nearer edge: 0 at the
                                                     edges, h_min at the centre; the rotor
@@ -437,7 +498,8 @@ class RingScenario(Scenario):
     ``seed``                        0               seed of the measurement noise (integer >= 0)
     ``noise_rms_m_per_s2``          0.0             RMS of white measurement noise on the
                                                     accelerations [m/s^2]
-    ``slip_percent``                0.0             random slip: standard deviation of each
+    ``slip_percent``                0.0 (1.5        random slip: standard deviation of each
+                                    with ``rig``)
                                                     ball-pass interval [% of its mean], 1–2 in
                                                     real bearings (Randall & Antoni 2011); 0 =
                                                     kinematic; needs ``solver = "rk4"``
@@ -461,7 +523,8 @@ class RingScenario(Scenario):
                                                     every ball, and the fault lines move with
                                                     the angle (``docs/models.md``, "Axial
                                                     load"); 0 = the seeds' radial model
-    ``contact_roughness_m``         0.0             composite RMS roughness sigma of the
+    ``contact_roughness_m``         0.0 (1e-7       composite RMS roughness sigma of the
+                                    with ``rig``)
                                                     ball-raceway contacts [m] (0 to 1e-6): the
                                                     load law is Hertz's averaged over it, a
                                                     smooth onset where balls enter and leave
@@ -491,7 +554,10 @@ class RingScenario(Scenario):
     ``rig``                         –               measurement chain applied to the output: a
                                                     shipped profile name or a rig TOML file
                                                     (:mod:`bearingsim.rig`; channel
-                                                    ``acc_sensor``)
+                                                    ``acc_sensor``); with it, unset
+                                                    ``slip_percent``, ``defect_profile`` and
+                                                    ``contact_roughness_m`` take
+                                                    :data:`REALISM`'s values
     ==============================  ==============  ================================================
 
     Renamed in 0.2.0 (same meanings; the old keys warn): ``defect_angle_deg`` →
@@ -549,7 +615,7 @@ class RingScenario(Scenario):
     fault: str = "none"
     defect_width_m: float = CWRU_DEFECT_WIDTH_M
     defect_depth_m: float = CWRU_DEFECT_DEPTH_M
-    defect_profile: str = "rectangular"
+    defect_profile: str | None = None
     defect_edge_angle_deg: float = SEED_VSM_DEFECT_EDGE_DEG
     first_ball_angle_deg: float = 0.0
     rpm: float = DEFAULT_RPM
@@ -557,12 +623,12 @@ class RingScenario(Scenario):
     fy_n: float = SEED_VSM_FY_N
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
-    slip_percent: float = 0.0
+    slip_percent: float | None = None
     pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
     unbalance_n: float = 0.0
     axial_load_n: float = 0.0
-    contact_roughness_m: float = 0.0
+    contact_roughness_m: float | None = None
     mass_kg: float | None = None
     damping_n_s_per_m: float = SEED_VSM_DAMPING_N_S_M
     stiffness_n_per_m1_5: float | None = None
@@ -575,6 +641,9 @@ class RingScenario(Scenario):
 
     def _validate(self) -> None:
         s = object.__setattr__
+        _resolve_realism(
+            self, {"slip_percent": 0.0, "defect_profile": "rectangular", "contact_roughness_m": 0.0}
+        )
         _check_bearing(self, "6205")
         _choice("fault", self.fault, _RING_FAULTS)
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
@@ -722,7 +791,8 @@ class RotorScenario(Scenario):
     ``housing_stiffness_n_per_m``       1.51e7          housing mount stiffness, X and Y [N/m]
     ``housing_damping_n_s_per_m``       2210.7          housing mount damping, X and Y [N s/m]
     ``contact_damping_n_s_per_m``       50.0            damping of each ball–race contact [N s/m]
-    ``contact_roughness_m``             0.0             composite RMS roughness of the ball-race
+    ``contact_roughness_m``             0.0 (1e-7       composite RMS roughness of the ball-race
+                                        with ``rig``)
                                                         contacts [m]: Hertz's law averaged over it
                                                         (0 = Hertz; as the ring models,
                                                         ``docs/models.md`` "Rough contact onset")
@@ -741,7 +811,8 @@ class RotorScenario(Scenario):
     ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
                                                         FIR decimation of the accelerations (like
                                                         a DAQ)
-    ``slip_percent``                    0.0             random slip of each bearing's cage: standard
+    ``slip_percent``                    0.0 (1.5        random slip of each bearing's cage: standard
+                                        with ``rig``)
                                                         deviation of each ball-pass interval [%]
     ``pocket_jitter_percent``           0.0             balls wandering in their pockets: standard
                                                         deviation of each ball-pass interval [%]
@@ -753,7 +824,10 @@ class RotorScenario(Scenario):
     ``dt_s``, ``solver``                auto, rk4       integration step [s] and integrator
     ``per_ball``                        false           also store per-ball contact forces
     ``rig``                             –               measurement chain applied to the output
-                                                        (:mod:`bearingsim.rig`; ``acc_sensor``)
+                                                        (:mod:`bearingsim.rig`; ``acc_sensor``);
+                                                        with it, unset ``slip_percent`` and
+                                                        ``contact_roughness_m`` take
+                                                        :data:`REALISM`'s values
     ==================================  ==============  ============================================
     """
 
@@ -815,13 +889,13 @@ class RotorScenario(Scenario):
     fe_fault: str = "none"
     defect_width_m: float = CWRU_DEFECT_WIDTH_M
     defect_depth_m: float = CWRU_DEFECT_DEPTH_M
-    defect_profile: str = "geometric"
+    defect_profile: str | None = None
     de_defect_angle_deg: float = 180.0
     fe_defect_angle_deg: float = 180.0
     rpm: float = DEFAULT_RPM
     seed: int = 0
     noise_rms_m_per_s2: float = 0.0
-    slip_percent: float = 0.0
+    slip_percent: float | None = None
     pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
     disks: int = SEED_ROTOR_DISKS
@@ -833,7 +907,7 @@ class RotorScenario(Scenario):
     housing_stiffness_n_per_m: float = HOUSING_STIFFNESS_N_M
     housing_damping_n_s_per_m: float = HOUSING_DAMPING_N_S_M
     contact_damping_n_s_per_m: float = CONTACT_DAMPING_N_S_M
-    contact_roughness_m: float = 0.0
+    contact_roughness_m: float | None = None
     gravity: bool = True
     ball_inertia: bool = True
     axial_load_n: float = 0.0
@@ -844,6 +918,9 @@ class RotorScenario(Scenario):
 
     def _validate(self) -> None:
         s = object.__setattr__
+        _resolve_realism(
+            self, {"slip_percent": 0.0, "defect_profile": "geometric", "contact_roughness_m": 0.0}
+        )
         for name in ("de_fault", "fe_fault"):
             _choice(name, getattr(self, name), _RING_FAULTS)
         for name in ("de_bearing", "fe_bearing"):

@@ -32,6 +32,12 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from .config import (
+    REALISM,
+    REALISM_CONTACT_ROUGHNESS_M,
+    REALISM_DEFECT_PROFILE,
+    REALISM_SLIP_PERCENT,
+)
 from .errors import ConfigError
 from .io.cwru import cwru_manifest
 
@@ -52,25 +58,12 @@ __all__ = [
 
 #: CWRU EDM fault depth [m] (0.011 in, the Case Western Reserve University Bearing Data Center)
 CWRU_DEPTH_M = 0.011 * 0.0254
-#: random slip of the simulations [%]: the middle of the 1-2 % real bearings show (Randall &
-#: Antoni 2011, MSSP 25, 485-520, §2.1); the CWRU rig's own is not published
-SLIP_PERCENT = 1.5
-#: drop of a ball across the slot: the ball rests on the nearer edge (``"geometric"``: 0 at the
-#: edges, h_min at the centre; the rotor model's default, the ball path of Sawalhi & Randall
-#: 2008), not the seed VSM's rectangle (h_min over the whole extent, a step at each edge), which
-#: the seed comparisons keep
-DEFECT_PROFILE = "geometric"
-#: composite RMS roughness of the ball-raceway contacts [m] (``contact_roughness_m``): the order
-#: of ground and honed raceways (R_a 0.05-0.1 um, R_q ~ 1.25 R_a) with grade <= G20 balls (R_a
-#: <= 0.02 um); the CWRU bearings' own is not published. docs/validation.md shows the healthy
-#: verdicts over 0.05-0.2 um
-CONTACT_ROUGHNESS_M = 1.0e-7
-#: the scenario keys of a realistic simulation beside a measurement (the defaults above)
-REALISM = {
-    "slip_percent": SLIP_PERCENT,
-    "defect_profile": DEFECT_PROFILE,
-    "contact_roughness_m": CONTACT_ROUGHNESS_M,
-}
+#: the realism of a simulation beside a measurement: the random slip [%], the drop profile and
+#: the contacts' composite RMS roughness [m] a scenario with a rig takes by default, defined
+#: with their sources in :mod:`bearingsim.config` (:data:`~bearingsim.config.REALISM`)
+SLIP_PERCENT = REALISM_SLIP_PERCENT
+DEFECT_PROFILE = REALISM_DEFECT_PROFILE
+CONTACT_ROUGHNESS_M = REALISM_CONTACT_ROUGHNESS_M
 
 
 @dataclass(frozen=True)

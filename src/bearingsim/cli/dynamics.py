@@ -76,7 +76,7 @@ def _opt(f):
             "--defect-profile",
             type=click.Choice(DEFECT_PROFILES),
             default=None,
-            show_default="rectangular; rotor: geometric",
+            show_default="rectangular; rotor and with --rig: geometric",
             help="Drop of a ball across the defect: the seed's rectangle, or resting on the "
             "nearer edge.",
         ),
@@ -360,6 +360,17 @@ def simulate_cmd(
             out["rig"] = res.meta["rig"]["name"]
             out["rms_acc_sensor"] = res.rms("acc_sensor")
             what += f", through rig {out['rig']}: RMS {out['rms_acc_sensor']:.4g} m/s^2"
+            real = sc.realism_defaults
+            if real:  # the keys the rig chose (docs/models.md "Realistic defaults with a rig")
+                out["realism_defaults"] = real
+                what += (
+                    " (rig defaults: "
+                    + ", ".join(
+                        f"{k} = {v:g}" if not isinstance(v, str) else f"{k} = {v}"
+                        for k, v in real.items()
+                    )
+                    + ")"
+                )
     if as_json:
         emit_json(out)
         return
