@@ -196,6 +196,24 @@ def test_label_helpers_leave_out_overlapping_labels():
     plt.close(fig)
 
 
+def test_envelope_plot_labels_the_diagnosed_family_first(made):
+    """A line of another family beside a harmonic of the diagnosed one (the 6205's 2xBPFI lies
+    0.7 % above 3xBPFO) does not take the label of the line that made the verdict."""
+    from dataclasses import replace
+
+    d = made["diag"]
+    assert d.diagnosis == "outer"
+    by = {p.label: p for p in d.peaks}
+    h3 = by["3xBPFO"]
+    assert h3.detected
+    near = replace(by["2xBPFI"], detected=True, freq_hz=h3.freq_hz * 1.007, amplitude=h3.amplitude)
+    d2 = replace(d, peaks=[near if p.label == "2xBPFI" else p for p in d.peaks])
+    fig = d2.plot()
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "3xBPFO" in texts and "2xBPFI" not in texts, texts
+    plt.close(fig)
+
+
 def test_strict_save_refuses_a_figure_off_the_standard(tmp_path, monkeypatch):
     from bearingsim.report.figures import STRICT_ENV, save_figure
 

@@ -202,8 +202,8 @@ class Diagnosis:
         quantity: str = "envelope amplitude",
     ):
         """Envelope spectrum with the detected lines marked, one colour and legend entry per
-        family; the fundamentals and harmonics are labelled where the labels do not overlap
-        (sidebands are marked, not labelled). Returns the Figure.
+        family; the fundamentals and harmonics are labelled where the labels do not overlap,
+        the diagnosed family's first (sidebands are marked, not labelled). Returns the Figure.
 
         Parameters
         ----------
@@ -266,9 +266,15 @@ class Diagnosis:
             )
             # lines of the series are labelled, sidebands only marked
             labelled += [(p, col) for p in found if "+" not in p.label and "-" not in p.label]
-        # the fundamentals first, then the harmonics in order: a label that would overlap one
-        # already written is left out
-        labelled.sort(key=lambda pc: (_harmonic(pc[0].label), pc[0].freq_hz))
+        # the diagnosed family's lines first (the plot shows why), each family's fundamentals
+        # before its harmonics: a label that would overlap one already written is left out
+        labelled.sort(
+            key=lambda pc: (
+                _family(pc[0].label) != self.diagnosis,
+                _harmonic(pc[0].label),
+                pc[0].freq_hz,
+            )
+        )
         label_points(
             ax,
             [p.freq_hz for p, _ in labelled],
