@@ -200,6 +200,37 @@ def test_diagnose_fused_applies_the_agreement_gate():
     assert any("no method's own reading" in n for n in d.notes)
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 17 mismatch: on halves of the records 5 of 68 parts get a wrong fault type "
+    "at p >= 0.5 (120 1/2 inner 0.84; 198 2/2 inner 0.92; 199 1/2 and 2/2 inner 0.79, 0.75; "
+    "174 1/2 ball 0.65): the 0.014 in drive-end outer-race records carry a BPFI series that "
+    "the DRS views read on their own (docs/validation.md, 'Parts of the records')",
+)
+def test_no_confident_wrong_fault_type_on_halves_of_the_records():
+    """Shorter recordings of the same mountings, no new data: each record cut in two, each half
+    diagnosed on its own. Issue 17's criterion (no wrong fault type with confidence >= 0.5)
+    holds on the whole records (26 right, 8 none/uncertain); on the halves it does not
+    (`python scripts/segment_robustness.py`: 49 right, 5 wrong, 14 none/uncertain)."""
+    from bearingsim.catalog import resolve_bearing
+    from bearingsim.signal.cwru_benchmark import truth_of
+    from bearingsim.signal.diagnosis import load_signal
+    from bearingsim.signal.fused import diagnose_fused
+
+    wrong = []
+    for r in ROWS:
+        bearing = resolve_bearing("6205-cwru" if r["end"] == "DE" else "6203-cwru")
+        rec = load_signal(CWRU / r["file"], channel=r["end"])
+        n = rec.x.size // 2
+        for k in range(2):
+            d = diagnose_fused(rec.x[k * n : (k + 1) * n], rec.fs, bearing, rec.rpm / 60.0)
+            t = truth_of(r)
+            if d.diagnosis in ("inner", "outer", "ball") and d.diagnosis != t:
+                if d.confidence >= 0.5:
+                    wrong.append((r["file"], k, t, d.diagnosis, round(d.confidence, 2)))
+    assert not wrong, wrong
+
+
 def test_no_confident_wrong_fault_type_through_the_other_ends_accelerometer():
     """Another transfer path, no new data: each record diagnosed from the accelerometer at the
     *other* end of the motor (the faulty bearing's geometry kept). The fault reaches that
