@@ -284,6 +284,9 @@ class Scenario:
             s(self, "dt_s", dt)
         self._validate()
 
+    #: the seeds' values of the realism keys (:data:`REALISM`) of families that take them
+    SEED_REALISM: ClassVar[dict[str, Any]] = {}
+
     def _validate(self) -> None:
         """Family checks (subclasses)."""
 
@@ -312,11 +315,12 @@ class Scenario:
 
     @property
     def realism_defaults(self) -> dict[str, Any]:
-        """The :data:`REALISM` keys this scenario took because it has a ``rig`` and left them
-        unset, with their values (empty without a rig)."""
+        """The :data:`REALISM` keys this scenario left unset and took, because it has a
+        ``rig``, at a value other than the seeds', with their values (empty without a rig)."""
         if getattr(self, "rig", None) is None:
             return {}
-        return {k: getattr(self, k) for k in self.auto_keys}
+        seed = self.SEED_REALISM
+        return {k: getattr(self, k) for k in self.auto_keys if getattr(self, k) != seed[k]}
 
     def replace(self, **changes: Any) -> Scenario:
         """Copy with ``changes`` (validated; ``model`` may only change within the family).
@@ -427,14 +431,15 @@ def _pass_jitter(sc: Scenario, needs_rk4: bool = True) -> None:
             )
 
 
-def _resolve_realism(sc: Any, seed_values: dict[str, Any]) -> None:
+def _resolve_realism(sc: Any) -> None:
     """Give the realism keys left unset (``None``) their values: :data:`REALISM`'s when the
-    scenario has a ``rig``, else the seeds' (``seed_values``). An adaptive solver has no slip,
-    so there the slip stays 0. The keys resolved here are kept in ``sc.auto_keys``:
-    :meth:`Scenario.to_dict` gives them as ``None`` again and :meth:`Scenario.replace`
-    resolves them anew (a copy without the rig returns to the seeds' values)."""
+    scenario has a ``rig``, else the seeds' (the family's ``SEED_REALISM``). An adaptive solver
+    has no slip, so there the slip stays 0. The keys resolved here are kept in
+    ``sc.auto_keys``: :meth:`Scenario.to_dict` gives them as ``None`` again and
+    :meth:`Scenario.replace` resolves them anew (a copy without the rig returns to the seeds'
+    values)."""
     auto = []
-    for name, seed in seed_values.items():
+    for name, seed in sc.SEED_REALISM.items():
         if getattr(sc, name) is not None:
             continue
         v = REALISM[name] if sc.rig is not None else seed
@@ -567,6 +572,12 @@ class RingScenario(Scenario):
     """
 
     MODELS: ClassVar[tuple[Model, ...]] = (Model.VSM, Model.DEM, Model.TVSM)
+    #: the seeds' values of the :data:`REALISM` keys (a scenario without a rig)
+    SEED_REALISM: ClassVar[dict[str, Any]] = {
+        "slip_percent": 0.0,
+        "defect_profile": "rectangular",
+        "contact_roughness_m": 0.0,
+    }
     KEYS: ClassVar[tuple[str, ...]] = (
         "model",
         "bearing",
@@ -641,9 +652,7 @@ class RingScenario(Scenario):
 
     def _validate(self) -> None:
         s = object.__setattr__
-        _resolve_realism(
-            self, {"slip_percent": 0.0, "defect_profile": "rectangular", "contact_roughness_m": 0.0}
-        )
+        _resolve_realism(self)
         _check_bearing(self, "6205")
         _choice("fault", self.fault, _RING_FAULTS)
         s(self, "defect_width_m", check_positive("defect_width_m", self.defect_width_m, "m"))
@@ -832,6 +841,12 @@ class RotorScenario(Scenario):
     """
 
     MODELS: ClassVar[tuple[Model, ...]] = (Model.ROTOR,)
+    #: the seed's values of the :data:`REALISM` keys (a scenario without a rig)
+    SEED_REALISM: ClassVar[dict[str, Any]] = {
+        "slip_percent": 0.0,
+        "defect_profile": "geometric",
+        "contact_roughness_m": 0.0,
+    }
     RENAMED: ClassVar[dict[str, str]] = {
         "noise_rms_m_s2": "noise_rms_m_per_s2",
         "housing_stiffness_n_m": "housing_stiffness_n_per_m",
@@ -918,9 +933,7 @@ class RotorScenario(Scenario):
 
     def _validate(self) -> None:
         s = object.__setattr__
-        _resolve_realism(
-            self, {"slip_percent": 0.0, "defect_profile": "geometric", "contact_roughness_m": 0.0}
-        )
+        _resolve_realism(self)
         for name in ("de_fault", "fe_fault"):
             _choice(name, getattr(self, name), _RING_FAULTS)
         for name in ("de_bearing", "fe_bearing"):

@@ -60,6 +60,7 @@ TOML layout (SI units in the key names)::
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -73,6 +74,7 @@ __all__ = [
     "Background",
     "Mode",
     "Rig",
+    "RigRateWarning",
     "Tone",
     "apply_rig",
     "available_rigs",
@@ -423,6 +425,34 @@ def _shaft_hz(result) -> float | None:
     return None
 
 
+class RigRateWarning(UserWarning):
+    """The output rate reaches far above the band a rig was identified in: above its
+    background table the sensor signal carries the model's output alone."""
+
+
+#: share of the output's Nyquist frequency below which a rig's background table may end
+#: before :func:`apply_rig` warns [-] (the shipped 12 kHz profiles end at 5.4 kHz, 0.9 of
+#: their records' Nyquist frequency)
+COVERAGE_WARN = 0.5
+
+
+def _warn_coverage(r: Rig, fs: float) -> None:
+    """Warn (:class:`RigRateWarning`) when ``r``'s background ends below :data:`COVERAGE_WARN`
+    of the Nyquist frequency of ``fs`` [Hz], e.g. a 12 kHz profile on a 48 kHz output."""
+    if r.background is None or not r.background.frequency_hz:
+        return
+    top = max(r.background.frequency_hz)
+    if top < COVERAGE_WARN * 0.5 * fs:
+        warnings.warn(
+            f"rig {r.name!r}: its background is defined up to {top:.4g} Hz, the output reaches "
+            f"{0.5 * fs:.6g} Hz (fs {fs:.6g} Hz): above {top:.4g} Hz the sensor signal is the "
+            "model's output alone; a profile identified at this rate fits it (e.g. "
+            "cwru-de-48k for 48 kHz)",
+            RigRateWarning,
+            stacklevel=3,
+        )
+
+
 def apply_rig(
     result, rig: Rig | str | Path, *, seed: int | None = None, channel: str = "acc_sensor"
 ):
@@ -443,6 +473,7 @@ def apply_rig(
         raise ConfigError(f"rig {r.name!r}: input_channel {r.input_channel!r} is not 1-D")
     sd = int(result.scenario.get("seed", 0) or 0) if seed is None else int(seed)
     fs = float(result.meta.get("fs_hz") or 1.0 / float(np.mean(np.diff(result.time))))
+    _warn_coverage(r, fs)
     y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)
     channels = dict(result.channels) | {channel: y}
     units = dict(result.units) | {channel: "m/s^2"}
