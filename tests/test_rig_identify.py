@@ -113,6 +113,28 @@ def test_cli_identify_writes_a_valid_rig_with_its_command(tmp_path):
     assert (tmp_path / "rig.png").stat().st_size > 10_000
 
 
+def test_cli_identify_a_users_csv_records(tmp_path):
+    """A user's own machine: CSV records of one accelerometer column without a time column need
+    --fs-hz (said in one line, nothing written, without it); with it the rig is identified and
+    its mode is the one the records ring in."""
+    paths = []
+    for seed in (0, 1):
+        rec = _impacts(seed=seed)
+        p = tmp_path / f"m{seed}.csv"
+        np.savetxt(p, rec.x, header="acc_m_per_s2", comments="")
+        paths.append(p.name)
+    out = tmp_path / "rig.toml"
+    r = _cli("rig", "identify", *paths, "--name", "mine", "-o", str(out), cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--fs-hz" in r.stderr
+    assert not out.exists()
+    r = _cli("rig", "identify", *paths, "--name", "mine", "--fs-hz", "12000", "--rpm", "1750",
+             "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    rig = load_rig(out)
+    assert any(abs(m.frequency_hz - 3000.0) < 150.0 for m in rig.modes), rig.modes
+    assert "--fs-hz 12000" in rig.provenance
+
+
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
 def test_cli_identify_refuses_in_one_line_and_writes_nothing(tmp_path):
     out = tmp_path / "rig.toml"

@@ -37,6 +37,14 @@ def rig_group() -> None:
     help="Shaft speed [r/min] of every record (for the shaft-order tones).",
 )
 @click.option(
+    "--fs-hz",
+    "fs_hz",
+    type=Number(0.0, lo_open=True, unit="Hz"),
+    default=None,
+    show_default="from each file; CWRU: 12k/48k in the name",
+    help="Sample rate of every record [Hz] (needed for a CSV file without a time column).",
+)
+@click.option(
     "--max-modes",
     type=Number(1, integer=True),
     default=3,
@@ -57,6 +65,7 @@ def identify_cmd(
     description: str,
     channel: str | None,
     rpm: float | None,
+    fs_hz: float | None,
     max_modes: int,
     plot: str | None,
     output: str,
@@ -70,7 +79,8 @@ def identify_cmd(
     from ..rig import Rig
     from ..rig_identify import identify_rig, rig_to_toml
 
-    recs = [read_signal(p, channel=_channel(records, channel), rpm=rpm) for p in records]
+    ch = _channel(records, channel)
+    recs = [read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz) for p in records]
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
     ir = identify_rig(
