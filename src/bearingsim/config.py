@@ -817,6 +817,11 @@ class RotorScenario(Scenario):
                                                         the Jones contact angles (needs
                                                         ``ball_inertia = false``)
     ``unbalance_kg_m``                  0.0             static unbalance m e of the rotor [kg m]
+    ``de_fx_n``, ``de_fy_n``,           0.0             extra constant force on the shaft at the
+    ``fe_fx_n``, ``fe_fy_n``                            DE / FE bearing [N] (a coupling, belt or
+                                                        test-rig load; +y up, gravity is -y: a
+                                                        load pressing the shaft down is fy < 0);
+                                                        its bearing carries it with the weight
     ``antialias``                       true            4x (2x above 24 kHz) internal sampling and
                                                         FIR decimation of the accelerations (like
                                                         a DAQ)
@@ -888,6 +893,10 @@ class RotorScenario(Scenario):
         "ball_inertia",
         "axial_load_n",
         "unbalance_kg_m",
+        "de_fx_n",
+        "de_fy_n",
+        "fe_fx_n",
+        "fe_fy_n",
         "antialias",
         "dt_s",
         "solver",
@@ -927,6 +936,10 @@ class RotorScenario(Scenario):
     ball_inertia: bool = True
     axial_load_n: float = 0.0
     unbalance_kg_m: float = 0.0
+    de_fx_n: float = 0.0
+    de_fy_n: float = 0.0
+    fe_fx_n: float = 0.0
+    fe_fy_n: float = 0.0
     antialias: bool = True
     per_ball: bool = False
     rig: str | None = None
@@ -985,6 +998,8 @@ class RotorScenario(Scenario):
             "unbalance_kg_m",
             check_range("unbalance_kg_m", self.unbalance_kg_m, 0.0, unit="kg m"),
         )
+        for name in ("de_fx_n", "de_fy_n", "fe_fx_n", "fe_fy_n"):
+            s(self, name, check_range(name, getattr(self, name), unit="N"))
         for name in ("distributed_rotor", "gravity", "ball_inertia", "antialias", "per_ball"):
             _bool(name, getattr(self, name))
         s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))

@@ -181,6 +181,19 @@ def rotor_simulate_options(f: Callable) -> Callable:
             show_default=_d("unbalance_kg_m"),
             help="Static rotor unbalance m e [kg m].",
         ),
+        *(
+            click.option(
+                f"--{end}-{c}-n",
+                f"{end}_{c}_n",
+                type=Number(unit="N"),
+                default=None,
+                show_default=_d(f"{end}_{c}_n"),
+                help=f"Extra constant force {c[1]} on the shaft at the {end.upper()} bearing [N] "
+                "(+y up; gravity is -y).",
+            )
+            for end in ("de", "fe")
+            for c in ("fx", "fy")
+        ),
         click.option(
             "--antialias/--no-antialias",
             default=None,

@@ -95,6 +95,7 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
         ball_inertia=sc.ball_inertia,
         axial_load=sc.axial_load_n,
         unbalance=sc.unbalance_kg_m,
+        bearing_loads=((sc.de_fx_n, sc.de_fy_n), (sc.fe_fx_n, sc.fe_fy_n)),
         n_elements=sc.n_elements,
         ball_diameter_spread=sc.ball_diameter_spread_m,
         ball_seed=sc.seed,
@@ -103,14 +104,22 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
 
 def _checked_config(sc: RotorScenario, allow_overload: bool = False) -> RotorConfig:
     """The scenario's :class:`RotorConfig` with the speed checked for both bearings
-    (:func:`..checks.check_speed`) and, under an axial load, each bearing's static equivalent
-    load against its static capacity (ISO 76, :func:`..checks.check_load`; the radial load,
-    the rotor's weight, is left out: ``allow_overload`` lifts the refusal above 2 C0)."""
+    (:func:`..checks.check_speed`) and, under an axial load or an extra bearing load, each
+    bearing's static equivalent load against its static capacity (ISO 76,
+    :func:`..checks.check_load`; the radial load is the extra load at that bearing, the
+    rotor's weight left out: ``allow_overload`` lifts the refusal above 2 C0)."""
     cfg = rotor_config_from_scenario(sc)
-    for sup in (cfg.de, cfg.fe):
+    for sup, (fx, fy), end in zip((cfg.de, cfg.fe), cfg.bearing_loads, ("de", "fe"), strict=True):
         check_speed(sup.bearing, sc.rpm, sc.fs_hz)
-        if cfg.axial_load > 0.0:
-            check_load(sup.bearing, 0.0, allow_overload, cfg.axial_load, name="radial load")
+        fr = math.hypot(fx, fy)
+        if cfg.axial_load > 0.0 or fr > 0.0:
+            check_load(
+                sup.bearing,
+                fr,
+                allow_overload,
+                cfg.axial_load,
+                name=f"hypot({end}_fx_n, {end}_fy_n)",
+            )
     return cfg
 
 
