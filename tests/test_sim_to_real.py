@@ -30,8 +30,10 @@ def _module():
 
 @pytest.fixture()
 def small(monkeypatch):
-    """The example with a small grid (two speeds, one size and slip, one rig, 0.5 s)."""
+    """The example with a small grid (two speeds, one size and slip, one rig, the outer-race
+    defect at @6 only, 0.5 s)."""
     m = _module()
+    monkeypatch.setattr(m, "OUTER_POSITIONS", {"@6": m.OUTER_POSITIONS["@6"]})
     monkeypatch.setattr(m, "RPMS", (1750.0, 1797.0))
     monkeypatch.setattr(m, "SIZES_IN", (0.014,))
     monkeypatch.setattr(m, "SLIPS", (1.5,))
@@ -116,7 +118,20 @@ def test_grid_draws_every_machine_fact_and_is_reproducible():
     m = _module()
     runs = list(m._grid())
     assert runs == list(m._grid())
-    assert len(runs) == len(m.PROFILES) * len(m.RPMS) * len(m.SLIPS) * (1 + 3 * len(m.SIZES_IN))
+    at6 = [r for r in runs if r.get("edge_deg", 10.0) == m.OUTER_POSITIONS["@6"]]
+    assert len(at6) == len(m.PROFILES) * len(m.RPMS) * len(m.SLIPS) * (1 + 3 * len(m.SIZES_IN))
+    # outside the load zone (@3, @12) only runs whose preload or axial load loads a ball there
+    away = [r for r in runs if r not in at6]
+    assert {r["edge_deg"] for r in away} == {m.OUTER_POSITIONS[p] for p in ("@3", "@12")}
+    assert all(r["fault"] == "outer" and (r["clearance"] < 0 or r["axial_k"] > 0) for r in away)
+    assert len(away) == 184  # of 216: the 32 with neither a preload nor an axial load left out
+    # the runs at @6 draw what they drew before the other positions entered the grid
+    six = dict(m.OUTER_POSITIONS)
+    try:
+        m.OUTER_POSITIONS = {"@6": six["@6"]}
+        assert list(m._grid()) == at6
+    finally:
+        m.OUTER_POSITIONS = six
     for fault in m.LABELS:
         sub = [r for r in runs if r["fault"] == fault]
         assert {r["spread"] for r in sub} == set(m.SPREADS_M)
