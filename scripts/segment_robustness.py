@@ -1,11 +1,14 @@
-"""The fused diagnosis on parts of each CWRU record (issue 17, robustness): every record of
-``../shared/data/cwru`` cut into halves and quarters, each part diagnosed on its own as if it
-were a shorter recording of the same mounting. Prints one line per record (the verdicts of the
-whole record, its two halves and its four quarters) and the counts of right answers, wrong
-fault types at confidence >= 0.5 and none/uncertain per cut. Compared with: the CWRU labels
-(measured). Nothing is fitted here; the rule and its calibration are the shipped ones.
+"""The fused diagnosis on parts of each CWRU record and through other sensors (issue 17,
+robustness): every record of ``../shared/data/cwru`` cut into halves and quarters, each part
+diagnosed on its own as if it were a shorter recording of the same mounting; optionally read
+from another accelerometer than the faulty bearing's own (``--sensor other``: the other end's;
+``--sensor BA``: the base's, where the record has one). Prints one line per record (the
+verdicts of the whole record, its halves and its quarters) and the counts of right answers,
+wrong fault types at confidence >= 0.5 and none/uncertain per cut. Compared with: the CWRU
+labels (measured). Nothing is fitted here; the rule and its calibration are the shipped ones.
 
-    python scripts/segment_robustness.py [--data ../shared/data/cwru]
+    python scripts/segment_robustness.py [--data ../shared/data/cwru] [--sensor own|other|BA]
+        [--cuts 1 2 4]
 """
 
 from __future__ import annotations
@@ -18,6 +21,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT.parent / "shared" / "data" / "cwru"
 CUTS = (1, 2, 4)  #: the record whole, in halves, in quarters
+#: the sensor a record is read from, by its faulty bearing's end
+SENSORS = {"own": {"DE": "DE", "FE": "FE"}, "other": {"DE": "FE", "FE": "DE"},
+           "BA": {"DE": "BA", "FE": "BA"}}  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -28,20 +34,30 @@ def main(argv: list[str] | None = None) -> int:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--data", type=Path, default=DATA, help="folder with manifest.csv")
+    ap.add_argument("--sensor", choices=list(SENSORS), default="own", help="accelerometer read")
+    ap.add_argument("--cuts", type=int, nargs="+", default=list(CUTS), help="parts per record")
     a = ap.parse_args(argv)
+    if any(c < 1 for c in a.cuts):
+        print(f"error: --cuts = {a.cuts}; valid: integers >= 1", file=sys.stderr)
+        return 2
     if not (a.data / "manifest.csv").is_file():
         print(f"error: data = {str(a.data)!r} has no manifest.csv", file=sys.stderr)
         return 2
     with open(a.data / "manifest.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
-    counts = {c: {"right": 0, "wrong": 0, "none/uncertain": 0} for c in CUTS}
+    counts = {c: {"right": 0, "wrong": 0, "none/uncertain": 0} for c in a.cuts}
     wrong = []
+    skipped = []
     for r in rows:
         bearing = resolve_bearing("6205-cwru" if r["end"] == "DE" else "6203-cwru")
-        rec = load_signal(a.data / r["file"], channel=r["end"])
+        sensor = SENSORS[a.sensor][r["end"]]
+        if f"_{sensor}_time" not in r["channels"]:
+            skipped.append(r["file"])
+            continue
+        rec = load_signal(a.data / r["file"], channel=sensor)
         truth = truth_of(r)
         cells = []
-        for cut in CUTS:
+        for cut in a.cuts:
             n = rec.x.size // cut
             part = []
             for k in range(cut):
@@ -63,10 +79,12 @@ def main(argv: list[str] | None = None) -> int:
             + " | ".join(cells)
             + " |"
         )
-    for cut in CUTS:
+    n = len(rows) - len(skipped)
+    print(f"sensor {a.sensor}: {n} records" + (f" ({len(skipped)} without it)" if skipped else ""))
+    for cut in a.cuts:
         c = counts[cut]
         print(f"cut into {cut}: {c['right']} right, {c['wrong']} wrong fault types (p >= 0.5), "
-              f"{c['none/uncertain']} none/uncertain of {len(rows) * cut}")  # fmt: skip
+              f"{c['none/uncertain']} none/uncertain of {n * cut}")  # fmt: skip
     print("wrong fault types:", *wrong, sep="\n  ")
     return 0
 
