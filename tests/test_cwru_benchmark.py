@@ -164,14 +164,19 @@ def test_fit_calibration_properties():
 def test_report_section_diagnosis(tmp_path):
     """The report's section for issue 17: one row per CWRU record against its label (a
     measurement), match exactly when the verdict is the label, the counts the benchmark
-    prints, and the reliability figure."""
+    prints, the halves of the records against issue 17's criterion, and the reliability
+    figure."""
     from bearingsim.report import run_report
     from bearingsim.signal.cwru_benchmark import evaluate, evidence
 
     (sec,) = run_report(tmp_path, quick=True, sections=["diagnosis"], progress=False)
-    judged = [r for r in sec.rows if r.status != "info"]
+    judged = [r for r in sec.rows if r.status != "info" and "halves" not in r.quantity]
     _cal, recs = evaluate(evidence(CWRU))
     assert len(judged) == len(recs) == 34
+    # the halves of the records (docs/validation.md, "Parts of the records"): a mismatch row
+    (halves,) = [r for r in sec.rows if "halves" in r.quantity]
+    assert halves.reference_kind == "measured" and halves.published == "0"
+    assert halves.status == ("match" if halves.ours.startswith("0 of") else "mismatch")
     assert all(r.reference_kind == "measured" for r in judged)
     for row, rec in zip(judged, recs, strict=True):
         assert rec["file"].replace(".mat", "") in row.quantity
@@ -209,25 +214,16 @@ def test_diagnose_fused_applies_the_agreement_gate():
 )
 def test_no_confident_wrong_fault_type_on_halves_of_the_records():
     """Shorter recordings of the same mountings, no new data: each record cut in two, each half
-    diagnosed on its own. Issue 17's criterion (no wrong fault type with confidence >= 0.5)
-    holds on the whole records (26 right, 8 none/uncertain); on the halves it does not
-    (`python scripts/segment_robustness.py`: 49 right, 5 wrong, 14 none/uncertain)."""
-    from bearingsim.catalog import resolve_bearing
-    from bearingsim.signal.cwru_benchmark import truth_of
-    from bearingsim.signal.diagnosis import load_signal
-    from bearingsim.signal.fused import diagnose_fused
+    diagnosed on its own (`bearingsim.signal.cwru_benchmark.parts_check`). Issue 17's criterion
+    (no wrong fault type with confidence >= 0.5) holds on the whole records (26 right, 8
+    none/uncertain); on the halves it does not (`python scripts/segment_robustness.py`: 49
+    right, 5 wrong, 14 none/uncertain)."""
+    from bearingsim.signal.cwru_benchmark import parts_check
 
-    wrong = []
-    for r in ROWS:
-        bearing = resolve_bearing("6205-cwru" if r["end"] == "DE" else "6203-cwru")
-        rec = load_signal(CWRU / r["file"], channel=r["end"])
-        n = rec.x.size // 2
-        for k in range(2):
-            d = diagnose_fused(rec.x[k * n : (k + 1) * n], rec.fs, bearing, rec.rpm / 60.0)
-            t = truth_of(r)
-            if d.diagnosis in ("inner", "outer", "ball") and d.diagnosis != t:
-                if d.confidence >= 0.5:
-                    wrong.append((r["file"], k, t, d.diagnosis, round(d.confidence, 2)))
+    parts = parts_check(CWRU, 2)
+    assert len(parts) == 2 * len(ROWS)
+    wrong = [(p["file"], p["part"], p["verdict"], round(p["confidence"], 2)) for p in parts
+             if p["outcome"] == "wrong"]  # fmt: skip
     assert not wrong, wrong
 
 

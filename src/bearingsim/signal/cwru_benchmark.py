@@ -28,7 +28,21 @@ from ..io.cwru import cwru_manifest
 from .diagnosis import FAMILIES, load_signal
 from .fused import VIEWS, Calibration, diagnose_fused, fit_calibration
 
-__all__ = ["evaluate", "evidence", "markdown", "mounting_of", "truth_of", "wrong_type"]
+__all__ = [
+    "SENSORS",
+    "evaluate",
+    "evidence",
+    "markdown",
+    "mounting_of",
+    "parts_check",
+    "truth_of",
+    "wrong_type",
+]
+
+#: the accelerometer a record is read from by :func:`parts_check`, by its faulty bearing's end:
+#: its own, the other end's, the base's
+SENSORS = {"own": {"DE": "DE", "FE": "FE"}, "other": {"DE": "FE", "FE": "DE"},
+           "BA": {"DE": "BA", "FE": "BA"}}  # fmt: skip
 
 TRUTH = {"inner race": "inner", "outer race": "outer", "ball": "ball"}
 
@@ -113,6 +127,38 @@ def evidence(data: Path, *, verbose: bool = False) -> list[dict[str, Any]]:
         )
         if verbose:
             print(f"  {row['file']}: leading {d.leading}, margin {d.margin:.3f}", file=sys.stderr)
+    return out
+
+
+def parts_check(data: Path, cuts: int = 2, sensor: str = "own") -> list[dict[str, Any]]:
+    """The fused diagnosis (shipped rule and calibration) of each record of ``manifest.csv``
+    cut into ``cuts`` equal consecutive parts, each diagnosed on its own as a shorter
+    recording of the same mounting, read from the ``sensor`` of :data:`SENSORS` (records
+    without it are left out). One dict per part: ``file``, ``part`` (1-based), ``truth``,
+    ``verdict``, ``confidence`` [-], ``outcome`` (``right``; ``wrong`` = another fault family at
+    confidence >= 0.5, issue 17's criterion; ``none/uncertain`` otherwise)."""
+    if sensor not in SENSORS:
+        raise ValueError(f"sensor = {sensor!r}; valid: {', '.join(SENSORS)}")
+    out = []
+    for row in cwru_manifest(data).values():
+        ch = SENSORS[sensor][row["end"]]
+        if f"_{ch}_time" not in row["channels"]:
+            continue
+        bearing = resolve_bearing("6205-cwru" if row["end"] == "DE" else "6203-cwru")
+        rec = load_signal(data / row["file"], channel=ch)
+        truth = truth_of(row)
+        n = rec.x.size // cuts
+        for k in range(cuts):
+            d = diagnose_fused(rec.x[k * n : (k + 1) * n], rec.fs, bearing, rec.rpm / 60.0)
+            r = {"file": row["file"], "part": k + 1, "truth": truth, "verdict": d.diagnosis,
+                 "confidence": float(d.confidence)}  # fmt: skip
+            if d.diagnosis == truth:
+                r["outcome"] = "right"
+            elif wrong_type(r, 0.5):
+                r["outcome"] = "wrong"
+            else:
+                r["outcome"] = "none/uncertain"
+            out.append(r)
     return out
 
 

@@ -91,7 +91,7 @@ def _figure(ctx: Context, sec: Section, cal, recs: list[dict]) -> None:
 
 
 def run(ctx: Context) -> Section:
-    from ...signal.cwru_benchmark import evaluate, evidence, wrong_type
+    from ...signal.cwru_benchmark import evaluate, evidence, parts_check, wrong_type
 
     sec = Section("diagnosis", TITLE)
     data = cwru_data_dir()
@@ -99,6 +99,7 @@ def run(ctx: Context) -> Section:
         sec.rows.append(info("diagnosis", "CWRU records", "missing", f"no {data}"))
         return sec
     cal, recs = evaluate(evidence(data))
+    halves = parts_check(data, 2)
     for r in recs:
         ok = r["verdict"] == r["truth"]
         grade = f", S&R {r['grade']}" if r["grade"] != "-" else ""
@@ -131,6 +132,23 @@ def run(ctx: Context) -> Section:
             "Smith & Randall grade Y records right (issue 17: all)",
             src,
             f"{sum(r['verdict'] == r['truth'] for r in y)} of {len(y)}",
+        ),
+        judge(
+            "halves of the records, each diagnosed on its own: wrong fault type with "
+            "confidence >= 0.5",
+            "issue 17's criterion against the CWRU labels (measured); "
+            "scripts/segment_robustness.py",
+            "0",
+            f"{sum(p['outcome'] == 'wrong' for p in halves)} of {len(halves)} ("
+            + ", ".join(
+                f"{_num(p['file'])} {p['part']}/2 {p['verdict']} {p['confidence']:.2f}"
+                for p in halves
+                if p["outcome"] == "wrong"
+            )
+            + ")",
+            not any(p["outcome"] == "wrong" for p in halves),
+            "shorter recordings of the same mountings; docs/validation.md, 'Parts of the records'",
+            kind="measured",
         ),
         info(
             "calibration slope b of p = 1/(1 + exp(-b margin)), development set",
