@@ -323,3 +323,12 @@ def test_fused_diagnosis_of_simulated_faults_of_sizes_the_shared_records_lack(si
     assert got["none"].diagnosis == "none"
     assert got["outer@12"].diagnosis in ("none", "uncertain")
     assert_array_equal(xs["outer@12"], xs["none"])
+
+
+def test_cli_rig_show_states_the_background_band(tmp_path):
+    """`rig show` prints the band its background covers and the output rate above which
+    `apply_rig` warns (RigRateWarning: the table ends below a quarter of the rate)."""
+    r = _cli("rig", "show", "cwru-de-12k", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "background: 40 PSD points, 10-5400 Hz" in r.stdout
+    assert "above 21600 Hz gets a RigRateWarning" in r.stdout

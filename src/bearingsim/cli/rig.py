@@ -140,7 +140,11 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
         where = f"order {t.order:g}" if t.order is not None else f"{t.frequency_hz:g} Hz"
         click.echo(f"  tone {where}: {t.amplitude_m_per_s2:.4g} m/s^2")
     if r.background is not None:
-        click.echo(f"  background: {len(r.background.psd)} PSD points")
+        fb = r.background.frequency_hz
+        click.echo(
+            f"  background: {len(r.background.psd)} PSD points, {min(fb):g}-{max(fb):g} Hz "
+            f"(an output rate above {4 * max(fb):g} Hz gets a RigRateWarning)"
+        )
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
 
 
