@@ -13,6 +13,7 @@ from .common import (
     check_outputs,
     cli,
     deprecated,
+    echo_warnings,
     emit_json,
     json_option,
     output_option,
@@ -183,18 +184,19 @@ def run_cmd(
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)
     try:
-        rep = run_sweep(
-            spec,
-            out,
-            workers=workers,
-            scheduler=scheduler,
-            force_new=force_new,
-            retry_failed=retry_failed,
-            runs_per_task=runs_per_task,
-            writer=writer,
-            progress=not as_json,
-            connect_timeout_s=connect_timeout_s,
-        )
+        with echo_warnings():  # the runs' model warnings, each once, as one line
+            rep = run_sweep(
+                spec,
+                out,
+                workers=workers,
+                scheduler=scheduler,
+                force_new=force_new,
+                retry_failed=retry_failed,
+                runs_per_task=runs_per_task,
+                writer=writer,
+                progress=not as_json,
+                connect_timeout_s=connect_timeout_s,
+            )
     except SweepInterrupted as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(130) from None
