@@ -368,12 +368,12 @@ def _record(path: Path, rpm: float | None = None):
     ``X###RPM``, else the CWRU nominal speed of the load in the file name (the 0.028 in
     records store none): ``bearingsim.signal.diagnosis.load_signal_and_speed``, the rule of
     ``bearingsim analyze``; with none of these it is an error naming --rpm."""
-    from bearingsim.io.cwru import cwru_end
+    from bearingsim.io.cwru import cwru_bearing, cwru_end
     from bearingsim.signal.diagnosis import load_signal_and_speed
 
     end = cwru_end(path)
     r, source = load_signal_and_speed(path, channel=end, rpm=rpm)
-    return r.x, r.fs, float(r.rpm), source, "6203-cwru" if end == "FE" else "6205-cwru"
+    return r.x, r.fs, float(r.rpm), source, cwru_bearing(end)
 
 
 def segments(x, fs: float) -> list[np.ndarray]:

@@ -18,7 +18,7 @@ from pathlib import Path
 from bearingsim.catalog import resolve_bearing
 from bearingsim.errors import ConfigError
 from bearingsim.io.atomic import write_json
-from bearingsim.io.cwru import cwru_manifest
+from bearingsim.io.cwru import cwru_bearing, cwru_manifest
 from bearingsim.signal import load_signal
 from bearingsim.signal.contact_angle import estimate_contact_angle
 from bearingsim.signal.cwru_benchmark import mounting_of, truth_of
@@ -47,7 +47,7 @@ def main(argv: list[str] | None = None) -> int:
         if fam not in ("outer", "inner"):
             continue
         rec = load_signal(a.data / name, channel=row["end"])
-        bearing = resolve_bearing("6205-cwru" if row["end"] == "DE" else "6203-cwru")
+        bearing = resolve_bearing(cwru_bearing(row["end"]))
         try:
             est = estimate_contact_angle(rec.x, rec.fs, bearing, fam, rec.rpm / 60.0)
         except ConfigError as e:

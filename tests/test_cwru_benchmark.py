@@ -234,18 +234,10 @@ def test_no_confident_wrong_fault_type_through_the_other_ends_accelerometer():
     another mounting would look like to the rule. The rule must still give no wrong fault type
     with confidence >= 0.5 (issue 17's criterion). Eighth session: 26 of 34 right, the other 8
     none/uncertain (docs/validation.md)."""
-    from bearingsim.catalog import resolve_bearing
-    from bearingsim.signal.cwru_benchmark import truth_of
-    from bearingsim.signal.diagnosis import load_signal
-    from bearingsim.signal.fused import diagnose_fused
+    from bearingsim.signal.cwru_benchmark import parts_check
 
-    wrong = []
-    for r in ROWS:
-        other = "FE" if r["end"] == "DE" else "DE"
-        bearing = resolve_bearing("6205-cwru" if r["end"] == "DE" else "6203-cwru")
-        rec = load_signal(CWRU / r["file"], channel=other)
-        d = diagnose_fused(rec.x, rec.fs, bearing, rec.rpm / 60.0)
-        t = truth_of(r)
-        if d.diagnosis in ("inner", "outer", "ball") and d.diagnosis != t and d.confidence >= 0.5:
-            wrong.append((r["file"], t, d.diagnosis, round(d.confidence, 2)))
+    parts = parts_check(CWRU, 1, sensor="other")
+    assert len(parts) == len(ROWS)  # every record has both ends' sensors
+    wrong = [(p["file"], p["truth"], p["verdict"], round(p["confidence"], 2)) for p in parts
+             if p["outcome"] == "wrong"]  # fmt: skip
     assert not wrong, wrong

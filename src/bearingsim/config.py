@@ -322,6 +322,18 @@ class Scenario:
         seed = self.SEED_REALISM
         return {k: getattr(self, k) for k in self.auto_keys if getattr(self, k) != seed[k]}
 
+    @property
+    def defaults_record(self) -> dict[str, Any]:
+        """What a result's ``meta["defaults"]`` records: the keys this scenario chose itself
+        (:attr:`auto_keys`) with their values, and where they came from."""
+        rig = getattr(self, "rig", None) is not None
+        return {
+            "keys": {k: getattr(self, k) for k in self.auto_keys},
+            "source": "realistic defaults with a rig (bearingsim.config.REALISM)"
+            if rig
+            else "the seeds' defaults",
+        }
+
     def replace(self, **changes: Any) -> Scenario:
         """Copy with ``changes`` (validated; ``model`` may only change within the family).
         Keys the scenario resolved itself (:attr:`auto_keys`) are resolved again."""

@@ -78,6 +78,7 @@ __all__ = [
     "Tone",
     "apply_rig",
     "available_rigs",
+    "coverage_rate_hz",
     "load_rig",
 ]
 
@@ -436,13 +437,19 @@ class RigRateWarning(UserWarning):
 COVERAGE_WARN = 0.5
 
 
+def coverage_rate_hz(r: Rig) -> float:
+    """The output rate above which :func:`apply_rig` warns that ``r``'s background table ends
+    below :data:`COVERAGE_WARN` of the Nyquist frequency [Hz] (inf without a background)."""
+    if r.background is None or not r.background.frequency_hz:
+        return float("inf")
+    return max(r.background.frequency_hz) / (COVERAGE_WARN * 0.5)
+
+
 def _warn_coverage(r: Rig, fs: float) -> None:
     """Warn (:class:`RigRateWarning`) when ``r``'s background ends below :data:`COVERAGE_WARN`
     of the Nyquist frequency of ``fs`` [Hz], e.g. a 12 kHz profile on a 48 kHz output."""
-    if r.background is None or not r.background.frequency_hz:
-        return
-    top = max(r.background.frequency_hz)
-    if top < COVERAGE_WARN * 0.5 * fs:
+    if fs > coverage_rate_hz(r):
+        top = max(r.background.frequency_hz)
         warnings.warn(
             f"rig {r.name!r}: its background is defined up to {top:.4g} Hz, the output reaches "
             f"{0.5 * fs:.6g} Hz (fs {fs:.6g} Hz): above {top:.4g} Hz the sensor signal is the "

@@ -39,7 +39,7 @@ from .config import (
     REALISM_SLIP_PERCENT,
 )
 from .errors import ConfigError
-from .io.cwru import cwru_manifest
+from .io.cwru import cwru_bearing, cwru_manifest
 
 __all__ = [
     "CONTACT_ROUGHNESS_M",
@@ -148,7 +148,7 @@ def simulate_record(
     meas = read_signal(p, channel=end)
     fs = float(meas.fs)
     rpm = float(meas.rpm or row["nominal_rpm"])
-    bearing = "6205-cwru" if end == "DE" else "6203-cwru"
+    bearing = cwru_bearing(end)
     size_in = float(row["fault_diameter_in"])
     keys = {**REALISM, **(realism or {})}
     common = dict(

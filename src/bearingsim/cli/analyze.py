@@ -196,6 +196,7 @@ def _analyze_or_error(path: str, req: _Request) -> dict[str, Any]:
 def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     """Load, check and diagnose one file: the JSON object of ``analyze --json``."""
     from ..catalog import resolve_bearing
+    from ..io.cwru import cwru_bearing
     from ..io.jsonable import to_jsonable
     from ..signal import analyze_record
     from ..signal.diagnosis import check_resolvable, check_samples
@@ -205,9 +206,7 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     check_resolvable(rec)
     cwru = Path(rec.source).suffix.lower() == ".mat"
     bearing = (
-        req.bearing
-        or rec.bearing
-        or resolve_bearing("6203-cwru" if cwru and rec.channel == "FE" else "6205-cwru")
+        req.bearing or rec.bearing or resolve_bearing(cwru_bearing(rec.channel if cwru else "DE"))
     )
     d = analyze_record(rec, bearing, band=req.band)
     if req.plot:

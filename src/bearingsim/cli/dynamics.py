@@ -363,14 +363,7 @@ def simulate_cmd(
             real = sc.realism_defaults
             if real:  # the keys the rig chose (docs/models.md "Realistic defaults with a rig")
                 out["realism_defaults"] = real
-                what += (
-                    " (rig defaults: "
-                    + ", ".join(
-                        f"{k} = {v:g}" if not isinstance(v, str) else f"{k} = {v}"
-                        for k, v in real.items()
-                    )
-                    + ")"
-                )
+                what += " (rig defaults: " + ", ".join(f"{k} = {v}" for k, v in real.items()) + ")"
     if as_json:
         emit_json(out)
         return

@@ -125,7 +125,7 @@ def identify_cmd(
 @json_option
 def show_cmd(rig_name: str, as_json: bool) -> None:
     """Print a rig (a shipped profile or a file) after validating it."""
-    from ..rig import load_rig
+    from ..rig import coverage_rate_hz, load_rig
 
     r = load_rig(rig_name)
     if as_json:
@@ -143,7 +143,7 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
         fb = r.background.frequency_hz
         click.echo(
             f"  background: {len(r.background.psd)} PSD points, {min(fb):g}-{max(fb):g} Hz "
-            f"(an output rate above {4 * max(fb):g} Hz gets a RigRateWarning)"
+            f"(an output rate above {coverage_rate_hz(r):g} Hz gets a RigRateWarning)"
         )
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
 

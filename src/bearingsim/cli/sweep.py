@@ -184,7 +184,9 @@ def run_cmd(
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)
     try:
-        with echo_warnings():  # the runs' model warnings, each once, as one line
+        # warnings raised in this process, each once, as one line (the workers' own print in
+        # their processes)
+        with echo_warnings():
             rep = run_sweep(
                 spec,
                 out,

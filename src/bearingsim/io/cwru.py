@@ -17,6 +17,7 @@ __all__ = [
     "CWRU_NOMINAL_RPM",
     "CWRU_RATES",
     "check_cwru_name_rate",
+    "cwru_bearing",
     "cwru_end",
     "cwru_rate_evidence",
     "infer_cwru_fs",
@@ -111,6 +112,12 @@ def cwru_end(name: str | Path) -> str:
         File name or path.
     """
     return "FE" if "fan_end" in Path(name).name.lower() else "DE"
+
+
+def cwru_bearing(end: str) -> str:
+    """Catalogue id of the CWRU bearing at ``end`` (``"DE"``: the drive end's 6205, ``"FE"``:
+    the fan end's 6203; the CWRU Bearing Data Center's bearing table)."""
+    return "6203-cwru" if end == "FE" else "6205-cwru"
 
 
 def cwru_nominal_rpm(name: str | Path) -> tuple[int, float] | None:

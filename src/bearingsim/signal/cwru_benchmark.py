@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..catalog import resolve_bearing
-from ..io.cwru import cwru_manifest
+from ..io.cwru import cwru_bearing, cwru_manifest
 from .diagnosis import FAMILIES, load_signal
 from .fused import VIEWS, Calibration, diagnose_fused, fit_calibration
 
@@ -104,7 +104,7 @@ def evidence(data: Path, *, verbose: bool = False) -> list[dict[str, Any]]:
     out = []
     for row in rows:
         end = row["end"]
-        bearing = resolve_bearing("6205-cwru" if end == "DE" else "6203-cwru")
+        bearing = resolve_bearing(cwru_bearing(end))
         rec = load_signal(data / row["file"], channel=end)
         d = diagnose_fused(rec.x, rec.fs, bearing, rec.rpm / 60.0, calibration=None)
         views = {v.name: v for v in d.views}
@@ -144,7 +144,7 @@ def parts_check(data: Path, cuts: int = 2, sensor: str = "own") -> list[dict[str
         ch = SENSORS[sensor][row["end"]]
         if f"_{ch}_time" not in row["channels"]:
             continue
-        bearing = resolve_bearing("6205-cwru" if row["end"] == "DE" else "6203-cwru")
+        bearing = resolve_bearing(cwru_bearing(row["end"]))
         rec = load_signal(data / row["file"], channel=ch)
         truth = truth_of(row)
         n = rec.x.size // cuts

@@ -394,12 +394,7 @@ def run_ring(
             "model": "uniform from numpy.random.SeedSequence([seed, 2]), scaled to span the "
             "spread, zero mean (ModelInputs.ball_deviations)",
         },
-        "defaults": {
-            "keys": {k: getattr(scenario, k) for k in scenario.auto_keys},
-            "source": "realistic defaults with a rig (bearingsim.config.REALISM)"
-            if scenario.rig is not None
-            else "the seeds' defaults",
-        },
+        "defaults": scenario.defaults_record,
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }

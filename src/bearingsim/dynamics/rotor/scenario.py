@@ -213,12 +213,7 @@ def run_rotor(
             "generator": "numpy.random.default_rng(seed).standard_normal((n, 4)) on "
             "acc_x, acc_y, acc_x_fe, acc_y_fe",
         },
-        "defaults": {
-            "keys": {k: getattr(scenario, k) for k in scenario.auto_keys},
-            "source": "realistic defaults with a rig (bearingsim.config.REALISM)"
-            if scenario.rig is not None
-            else "the seeds' defaults",
-        },
+        "defaults": scenario.defaults_record,
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
