@@ -663,3 +663,23 @@ def test_ias_scenarios_sweep_like_the_others(client, tmp_path):
         r, s = ds.result(i), simulate(spec.scenario(i))
         assert_array_equal(r["omega"], s["omega"], err_msg=f"run {i} vs simulate")
         assert_allclose(r.time, s.time, rtol=0, atol=1e-15)
+
+
+def test_each_run_records_its_own_warnings(client, tmp_path):
+    # a 12 kHz rig on a 48 kHz output warns (RigRateWarning, bearingsim.rig); both 48 kHz runs
+    # run in one task on one worker, so the second is recorded although its warning repeats
+    # the first's text and code location (the default action would show it once per process)
+    spec = make_spec(
+        {"fs_hz": [12000.0, 48000.0], "fault": ["none", "outer"]},
+        base={"model": "vsm", "duration_s": 0.02, "fs_hz": 12000.0, "rig": "cwru-de-12k"},
+    )
+    out = tmp_path / "warn.zarr"
+    rep = run_sweep(spec, out, client=client, runs_per_task=4)
+    assert rep.n_ok == 4
+    ds = open_dataset(out)
+    warned = [r["warnings"] for r in ds.records()]
+    assert warned[0] == warned[1] == []
+    assert len(warned[2]) == 1 and warned[2] == warned[3]
+    assert warned[2][0].startswith("RigRateWarning: rig 'cwru-de-12k': its background")
+    assert rep.warnings == {warned[2][0]: 2}
+    assert ds.summary()["warnings"] == {warned[2][0]: [2, 3]}

@@ -238,3 +238,20 @@ def test_docs_python_example_runs(tmp_path, monkeypatch):
     assert ns["X"].shape == (2, 2, 200) and list(ns["y"]) == ["outer", "inner"]
     assert len(ns["test"]) == 2 and ns["r"].fs_hz == 4000.0
     assert ns["outer"].shape == (2, 200)
+
+
+@pytest.mark.integration
+def test_run_prints_each_runs_warning_once_and_summary_lists_the_runs(run_cli, tmp_path):
+    spec = tmp_path / "w.toml"
+    spec.write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.02\nrig = "cwru-de-12k"\n'
+        '[axes]\nfs_hz = [12000.0, 48000.0]\nfault = ["none", "outer"]\n'
+    )
+    out = tmp_path / "w.zarr"
+    r = run_cli("sweep", "run", spec, "-o", out, "--workers", "1")
+    assert r.code == 0, r.err
+    lines = [x for x in r.err.splitlines() if "RigRateWarning" in x]
+    assert len(lines) == 1 and lines[0].startswith("warning: RigRateWarning: rig 'cwru-de-12k'")
+    assert lines[0].endswith("(in 2 of the 4 runs computed; 'sweep summary' lists the runs)")
+    r = run_cli("sweep", "summary", out)
+    assert r.code == 0 and "  warning in 2 run(s) (2, 3): RigRateWarning: rig" in r.out

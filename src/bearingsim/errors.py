@@ -6,8 +6,12 @@ the offending field, its value and the valid range, so the CLI can print it unch
 
 from __future__ import annotations
 
+import contextlib
 import math
+import threading
 import tomllib
+import warnings
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +19,7 @@ __all__ = [
     "BearingsimError",
     "check_positive",
     "check_range",
+    "collect_warnings",
     "ConfigError",
     "format_range",
     "DeprecatedKeyWarning",
@@ -39,6 +44,52 @@ class SolverError(BearingsimError):
 
 class DeprecatedKeyWarning(FutureWarning):
     """A renamed scenario key or CLI option was used; it works for one more release."""
+
+
+#: this thread's list of collected warnings (``collect_warnings``), or no attribute
+_SINK = threading.local()
+#: the ``warnings.showwarning`` that ours replaced (called for threads that collect nothing)
+_shown_by: list[Any] = [None]
+#: a warning raised in bearingsim's code is collected every time, not once per code location:
+#: a sweep records each run's warnings with that run (the default action would show only the
+#: first); appended, so the filters set before it (``ignore``, ``error``) come first
+_ALWAYS_MODULE = r"bearingsim(\.|$)"
+
+
+def _show(message: Any, category: type, filename: str, lineno: int, file=None, line=None) -> None:
+    caught = getattr(_SINK, "caught", None)
+    if caught is None:
+        _shown_by[0](message, category, filename, lineno, file, line)
+    else:
+        caught.append(f"{category.__name__}: {' '.join(str(message).split())}")
+
+
+@contextlib.contextmanager
+def collect_warnings() -> Iterator[list[str]]:
+    """Collect the warnings this thread raises inside the block, each as one line
+    ``"Category: message"``, in a list (the block's value), instead of printing them.
+
+    Other threads are not affected (unlike :class:`warnings.catch_warnings`, which swaps
+    process-wide state): a sweep worker with several threads records each run's warnings with
+    that run. Warnings raised in bearingsim's modules are collected every time they occur, not
+    once per code location (the filter ``always`` for ``bearingsim.*``, appended once per
+    process: filters set before it, such as ``ignore`` or ``error`` for a category, still
+    apply)."""
+    if warnings.showwarning is not _show:  # (re)install: catch_warnings blocks restore theirs
+        _shown_by[0] = warnings.showwarning
+        warnings.showwarning = _show
+    if not any(
+        f[0] == "always" and f[3] is not None and f[3].pattern == _ALWAYS_MODULE
+        for f in warnings.filters
+    ):
+        warnings.filterwarnings("always", module=_ALWAYS_MODULE, append=True)
+    outer = getattr(_SINK, "caught", None)
+    caught: list[str] = []
+    _SINK.caught = caught
+    try:
+        yield caught
+    finally:
+        _SINK.caught = outer
 
 
 def _fmt(value: Any) -> str:

@@ -184,8 +184,8 @@ def run_cmd(
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)
     try:
-        # warnings raised in this process, each once, as one line (the workers' own print in
-        # their processes)
+        # warnings raised in this process, each once, as one line; the runs' own warnings are
+        # recorded with each run and counted in the report (printed below)
         with echo_warnings():
             rep = run_sweep(
                 spec,
@@ -206,6 +206,12 @@ def run_cmd(
     if as_json:
         emit_json(d)
         return
+    for w, n in rep.warnings.items():
+        click.echo(
+            f"warning: {w} (in {n} of the {rep.n_computed} runs computed; 'sweep summary' "
+            "lists the runs)",
+            err=True,
+        )
     thr = d["throughput_runs_per_s"]
     click.echo(
         f"{out}: {rep.n_runs} runs; {rep.n_skipped} already committed, {rep.n_computed} computed "
@@ -253,6 +259,10 @@ def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: boo
         click.echo(f"  by {'|'.join(s['label'])}:")
         for v, c in s["by_label"].items():
             click.echo(f"    {v:<24} {_counts(c)}")
+    for w, runs in s["warnings"].items():
+        shown = ", ".join(str(r) for r in runs[:max_failures])
+        more = f", ... {len(runs) - max_failures} more" if len(runs) > max_failures else ""
+        click.echo(f"  warning in {len(runs)} run(s) ({shown}{more}): {w}")
     for f in s["failures"][:max_failures]:
         params = ", ".join(f"{k}={v}" for k, v in f["params"].items())
         click.echo(f"  failed run {f['run']} ({params}): {f['error']}")

@@ -136,7 +136,9 @@ class SweepDataset:
 
     def records(self) -> list[dict[str, Any]]:
         """Record of each selected run (``{}`` for a pending run): ``status``, ``compute_s``
-        [s], ``host``, ``pid``, ``bearingsim_version``, ``meta`` (``SimulationResult.meta``).
+        [s], ``host``, ``pid``, ``bearingsim_version``, ``warnings`` (the run's warnings, one
+        ``"Category: message"`` line each; absent in older datasets), ``meta``
+        (``SimulationResult.meta``).
 
         Read from the JSON-lines files in ``DATASET/records/``; when a run was computed more
         than once (a resume after a kill, ``--retry-failed``) the newest line whose status
@@ -298,7 +300,8 @@ class SweepDataset:
         return SimulationResult(np.arange(n) / sc["fs_hz"], chans, units, sc, meta, dims)
 
     def summary(self, label: str | list[str] | None = None) -> dict[str, Any]:
-        """Counts by label and by axis value, failures with their errors, totals."""
+        """Counts by label and by axis value, failures with their errors, totals, and each
+        warning the runs raised with the runs that raised it (``warnings``: message -> runs)."""
         st = self.status
         out: dict[str, Any] = {
             "path": str(self.path),
@@ -326,8 +329,14 @@ class SweepDataset:
             if np.unique(v.astype(str)).size <= SUMMARY_MAX_VALUES:
                 by_axis[key] = counts(v)
         out["by_axis"] = by_axis
-        cs = np.array([r.get("compute_s", np.nan) for r in self.records()], dtype=float)
+        records = self.records()
+        cs = np.array([r.get("compute_s", np.nan) for r in records], dtype=float)
         done = np.isfinite(cs)
+        warned: dict[str, list[int]] = {}
+        for j, r in enumerate(records):
+            for w in dict.fromkeys(r.get("warnings") or ()):
+                warned.setdefault(w, []).append(int(self.runs[j]))
+        out["warnings"] = warned
         out["compute_s_total"] = float(cs[done].sum())
         out["compute_s_mean"] = float(cs[done].mean()) if done.any() else None
         coords = {k: self.param(k) for k in self.attrs["coordinate_keys"]}

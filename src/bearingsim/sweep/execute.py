@@ -89,7 +89,7 @@ import numpy as np
 
 from .._version import __version__
 from ..config import Scenario
-from ..errors import BearingsimError, ConfigError, check_range
+from ..errors import BearingsimError, ConfigError, check_range, collect_warnings
 from ..geometry import parse_enum
 from ..io.jsonable import to_jsonable
 from .lock import ClientLock
@@ -334,9 +334,11 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         t0 = _t.perf_counter()
         c0 = _t.thread_time()
         res, err = None, version_error
+        caught: list[str] = []
         if not err:
-            try:
-                res = simulate(Scenario.from_dict(sd, origin=f"run {i}"))
+            try:  # the run's warnings go into its record, not onto the worker's stderr
+                with collect_warnings() as caught:
+                    res = simulate(Scenario.from_dict(sd, origin=f"run {i}"))
             except Exception as exc:  # every failure is recorded; the sweep goes on
                 err = _error_text(exc)
         compute = _t.perf_counter() - t0
@@ -351,6 +353,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             "compute_s": compute,
             "cpu_s": cpu,
             "error": err,
+            "warnings": caught,
         }
         record = {
             "compute_s": compute,
@@ -358,6 +361,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
             "host": host,
             "pid": pid,
             "bearingsim_version": __version__,
+            "warnings": caught,
             "meta": None if res is None else res.meta,
         }
         settle()  # the previous run's commit (it ran while this run computed)
@@ -425,6 +429,9 @@ class SweepReport:
         fixed ``runs_per_task``, nothing to compute, or every probe failed) [s].
     committed_by : dict
         Runs committed by workers and by the client.
+    warnings : dict
+        Each warning the runs of this call raised (``"Category: message"``) and how many runs
+        raised it; every run's own list is in its record (``SweepDataset.records``).
     """
 
     out: str
@@ -451,6 +458,7 @@ class SweepReport:
     created: bool = False
     committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
     interrupted: bool = False
+    warnings: dict[str, int] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain dict (JSON)."""
@@ -1032,6 +1040,8 @@ def _execute(
             rep.n_computed += 1
             rep.compute_s += r["compute_s"]
             rep.compute_cpu_s += r.get("cpu_s", 0.0)
+            for w in dict.fromkeys(r.get("warnings") or ()):
+                rep.warnings[w] = rep.warnings.get(w, 0) + 1
             if r["status"] == FAILED:
                 rep.n_failed_now += 1
         if bar is not None:

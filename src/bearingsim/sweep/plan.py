@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..config import Scenario
-from ..errors import BearingsimError, ConfigError
+from ..errors import BearingsimError, ConfigError, collect_warnings
 from ..io.jsonable import to_jsonable
 from .spec import SweepSpec
 from .store import ChannelLayout, Layout
@@ -43,7 +43,8 @@ def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
 
     sc = Scenario.from_dict(scenario)
     quiet = {"noise_rms_m_per_s2": 0.0} if hasattr(sc, "noise_rms_m_per_s2") else {}
-    res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet))
+    with collect_warnings():  # the runs' own warnings: each run records them
+        res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet))
     out = {}
     for name, x in res.channels.items():
         a = np.asarray(x)
@@ -111,8 +112,9 @@ def extrapolate(
 def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float, float] | None:
     """On a worker: ``(fixed_s, rate_s_per_s)`` of ``scenario`` from :func:`timing_run`, or
     ``None`` when it raises anything (the run itself then records its error in the sweep)."""
-    try:
-        tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+    try:  # its warnings are the runs' own: each run records them
+        with collect_warnings():
+            tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
     except Exception:
         return None
     return None if tr is None else (tr["fixed_s"], tr["rate_s_per_s"])
