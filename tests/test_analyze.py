@@ -383,3 +383,37 @@ def test_a_simulation_s_contact_angle_is_read_at_its_exact_speed(run_cli, tmp_pa
     want = r.meta["rotor"]["axial"]["DE"]["contact_angle_deg"]
     assert ca["contact_angle_deg"] == pytest.approx(want, abs=0.05)
     assert "of the file's speed 1750.0 r/min" in run_cli("analyze", str(out)).out
+
+
+def test_a_band_too_narrow_for_the_fault_lines_is_refused(capsys):
+    """A 1 Hz envelope band cannot hold BPFO, let alone three harmonics and the shaft
+    sidebands: before, record 109 came out "none" at confidence 1.0 with it."""
+    f = _cwru("109")
+    for band in (["5000,5001"], ["0,0.5"], ["2000,2400"]):
+        msg = _run_bad(capsys, [f, "--band-hz", *band])
+        # 3 x BPFI + f_r at the record's 1796 r/min: 29.933 Hz x (3 x 5.4152 + 1)
+        assert "too narrow for the fault lines" in msg and "at least 516.22 Hz wide" in msg
+
+
+def test_a_result_states_its_own_rate_and_how_it_was_sampled(run_cli, tmp_path):
+    """--fs-hz on a simulation result was taken and reported as fs_source "file"; now a rate
+    that contradicts the result's is refused. A result sampled without an anti-aliasing filter
+    (the ring models' default, the seeds' boxcar) gets a note saying so: in the README's
+    0.3 s outer-race VSM at 48 kHz the aliased impacts put a line at a third of BPFO (-42 dB)
+    that the ball family read ("uncertain", leading ball); with --antialias it reads outer."""
+    runs = {}
+    for name, extra in (("boxcar", []), ("aa", ["--antialias"])):
+        out = tmp_path / f"{name}.nc"
+        r = run_cli("simulate", "--model", "vsm", "--bearing", "6205-cwru", "--fault", "outer",
+                    "--rpm", "1796", "--duration-s", "0.3", "-o", out, *extra)  # fmt: skip
+        assert r.code == 0, r.err
+        runs[name] = run_cli("analyze", out, "--json").json()
+    assert runs["boxcar"]["antialiased"] is False and runs["aa"]["antialiased"] is True
+    assert any("without an anti-aliasing filter" in n for n in runs["boxcar"]["notes"])
+    assert not any("anti-aliasing" in n for n in runs["aa"]["notes"])
+    assert runs["aa"]["diagnosis"] == "outer"
+    # BPFO (107 Hz) was taken for the 2x50 Hz supply line in the 3.3 Hz bins of 0.3 s
+    assert runs["boxcar"]["non_bearing"]["supply_lines"] == []
+    r = run_cli("analyze", tmp_path / "aa.nc", "--fs-hz", "12000")
+    assert r.code == 2 and "fs_hz = 12000 Hz contradicts the sample rate of the result" in r.err
+    assert run_cli("analyze", tmp_path / "aa.nc", "--fs-hz", "48000").code == 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import doctest
+import json
 import re
 import shlex
 from pathlib import Path
@@ -35,7 +36,7 @@ def test_readme_cli_examples_run(run_cli, tmp_path, monkeypatch):
     )
     text = README.read_text()
     blocks = re.findall(r"```bash\n(.*?)```", text, re.S)[1:]
-    n = 0
+    n = n_verdicts = 0
     for block in blocks:
         for line in block.strip().splitlines():
             args = shlex.split(line)
@@ -43,5 +44,11 @@ def test_readme_cli_examples_run(run_cli, tmp_path, monkeypatch):
             r = run_cli(*args[1:])
             assert r.code == 0, f"{line}: {r.err}"
             assert "deprecated" not in r.err, f"{line}: old option spelling ({r.err})"
+            if args[1:] == ["analyze", "outer.nc", "ball.nc", "--json"]:
+                # the README's simulated faults are diagnosed as what they are (before
+                # --antialias the outer race read "uncertain", leading ball: aliased lines)
+                verdicts = [json.loads(x)["diagnosis"] for x in r.out.splitlines()]
+                assert verdicts == ["outer", "ball"], line
+                n_verdicts = 1
             n += 1
-    assert n >= 4
+    assert n >= 4 and n_verdicts == 1

@@ -31,6 +31,15 @@ _ANALYZE_MODULES = (
     *("numpy", "scipy.constants", "scipy.fft", "scipy.io"),
     *("bearingsim.catalog", "bearingsim.io", "bearingsim.signal"),
 )
+#: note on a simulation result sampled without an anti-aliasing filter (``antialiased``
+#: false: the ring models' default, the seeds' boxcar sampling, docs/models.md "Sampling"):
+#: the impacts' content above fs/2 folds into the band, e.g. a line at a third of BPFO in the
+#: README's outer-race simulation at 48 kHz, which its ball family read
+ALIASING_NOTE = (
+    "the result was simulated without an anti-aliasing filter: content above fs/2 aliases "
+    "into its spectrum and may add lines (e.g. at fractions of the fault frequency); "
+    "simulate with --antialias"
+)
 #: columns of ``analyze --csv``
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
@@ -235,6 +244,8 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         **rec.info,
         "rpm_source": rpm_source,
     }
+    if rec.info.get("antialiased") is False:
+        out["notes"] = [*out.get("notes", []), ALIASING_NOTE]
     return to_jsonable(out)
 
 
@@ -307,6 +318,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         + lead
         + speed
     )
+    if ALIASING_NOTE in out.get("notes", ()):
+        click.echo(f"  note: {ALIASING_NOTE}")
     if not detail:
         return
     ca = out.get("contact_angle")

@@ -4,6 +4,7 @@ tables (``.csv``/``.txt``, through :func:`.read_table`)."""
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -211,22 +212,25 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
             f"file = {str(p)!r}: the result names no shaft speed (rpm) or sample rate (fs_hz); "
             "valid: a simulation result written by bearingsim"
         ) from None
+    if fs is not None and not math.isclose(float(fs), float(fs_file), rel_tol=1e-9):
+        raise ConfigError(
+            f"fs_hz = {float(fs):.6g} Hz contradicts the sample rate of the result "
+            f"{p.name!r} ({float(fs_file):.6g} Hz); valid: no fs_hz for a simulation result "
+            "(it states its own)"
+        )
     x = res[f"acc_{ch}"]
     if not np.all(np.isfinite(x)):
         raise ConfigError(
             f"file = {str(p)!r}: channel acc_{ch} holds samples that are not finite; valid: "
             "finite samples"
         )
-    return SignalRecord(
-        x,
-        fs or fs_file,
-        r,
-        str(p),
-        ch,
-        _bearing_from_meta(meta),
-        None,
-        {"fs_source": "file", "rpm_source": "file"},
-    )
+    info: dict[str, Any] = {"fs_source": "file", "rpm_source": "file" if rpm is None else "option"}
+    if "oversampling" in res.meta:
+        # 1: the ring models' default (the seeds'): each output sample is the mean of the
+        # integrator's samples over its interval, which lets the broadband impacts' content
+        # above fs/2 alias into the band (docs/models.md "Sampling")
+        info["antialiased"] = int(res.meta["oversampling"]) > 1
+    return SignalRecord(x, fs_file, r, str(p), ch, _bearing_from_meta(meta), None, info)
 
 
 def _bearing_from_meta(meta: dict[str, Any]) -> Bearing | None:

@@ -403,8 +403,9 @@ def diagnose_fused(
     shaft_hz : float
         Shaft frequency [Hz] (1 in the order domain).
     band : (lo, hi), optional
-        Envelope band for every method [Hz]; default: whole band for methods 1–2, the
-        kurtogram and infogram bands for the DRS views.
+        Envelope band for every method [Hz], at least :func:`min_band_width` wide (else a
+        one-line error: a narrower envelope cannot hold the lines the rule reads); default:
+        whole band for methods 1–2, the kurtogram and infogram bands for the DRS views.
     rule : DiagnosisRule, optional
         Line search (default: the documented one with shaft cursors).
     domain : Domain
@@ -420,9 +421,15 @@ def diagnose_fused(
     a = as_signal(x)
     fs = check_positive("fs_hz", fs, "Hz")
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
-    min_bw = min_band_width(bearing, shaft_hz, fs, rule) if band is None else 0.0
+    min_bw = min_band_width(bearing, shaft_hz, fs, rule)
     if band is not None:
         band = check_band(tuple(band), fs)
+        if band[1] - band[0] < min_bw:  # its envelope cannot hold the lines the rule reads
+            raise ConfigError(
+                f"band = ({band[0]:.6g}, {band[1]:.6g}) Hz is {band[1] - band[0]:.6g} Hz wide, "
+                f"too narrow for the fault lines ({rule.n_harmonics} harmonics of the highest "
+                f"and the shaft sidebands); valid: a band at least {min_bw:.6g} Hz wide"
+            )
     whole = band or (0.0, 0.5 * fs)
     rnd, _det = discrete_random_separation(a)
     ses_rnd = BandEnvelopes(rnd, fs, domain)
@@ -546,8 +553,15 @@ def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
             # a supply line is only told apart from a shaft harmonic when it is > 1 % away
             tg = [t for t in tg if abs(t[1] / shaft_hz - round(t[1] / shaft_hz)) * shaft_hz
                   > 0.01 * t[1]]  # fmt: skip
-            for p in match_peaks(es, tg, shaft_hz, tol_rel=0.002, threshold_db=rule.threshold_db):
-                if p.detected:
+            # the supply's frequency is exact: within 0.2 % or half a bin (a short record's
+            # bins are coarse: the default two-bin floor let BPFO at 107 Hz pass for 2x50 Hz
+            # in 0.3 s), and a line, not the skirt of a stronger one beside it
+            for p in match_peaks(
+                es, tg, shaft_hz, tol_rel=0.002, tol_min_bins=0.5, threshold_db=rule.threshold_db
+            ):
+                k = int(np.argmin(np.abs(es.freq - p.freq_hz)))
+                line = es.amplitude[k] >= es.amplitude[max(k - 1, 0) : k + 2].max()
+                if p.detected and line:
                     out["supply_lines"].append({"label": p.label, "snr_db": p.snr_db})
         if out["supply_lines"]:
             notes.append(
