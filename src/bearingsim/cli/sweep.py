@@ -111,7 +111,8 @@ def plan_cmd(
         click.echo(
             f"  estimate from {len(plan.timing)} timing runs: {_human_s(plan.compute_s_per_run)} "
             f"per run, {_human_s(plan.compute_s_total)} on 1 worker, "
-            f"~{_human_s(plan.wall_s)} on {plan.workers} workers (ideal scaling)"
+            f"~{_human_s(plan.wall_s)} on {plan.workers} workers (ideal scaling, at least the "
+            "longest run)"
         )
     click.echo(
         f"  disk ~{_human_bytes(plan.bytes_estimate)} ({_human_bytes(plan.bytes_raw)} uncompressed)"
@@ -213,11 +214,16 @@ def run_cmd(
             err=True,
         )
     thr = d["throughput_runs_per_s"]
-    click.echo(
-        f"{out}: {rep.n_runs} runs; {rep.n_skipped} already committed, {rep.n_computed} computed "
-        f"({rep.n_computed - rep.n_failed_now} ok, {rep.n_failed_now} failed) in "
-        f"{_human_s(rep.wall_s)}" + (f" ({thr:.3g} runs/s)" if thr else "") + f" on {rep.cluster}"
-    )
+    head = f"{out}: {rep.n_runs} runs; {rep.n_skipped} already committed, {rep.n_computed} computed"
+    if not rep.cluster:  # nothing to compute: no cluster was started
+        click.echo(f"{head}: nothing to do")
+    else:
+        click.echo(
+            f"{head} ({rep.n_computed - rep.n_failed_now} ok, {rep.n_failed_now} failed) in "
+            f"{_human_s(rep.wall_s)}"
+            + (f" ({thr:.3g} runs/s)" if thr else "")
+            + f" on {rep.cluster}"
+        )
     click.echo(f"  dataset: {rep.n_ok} ok, {rep.n_failed} failed, {rep.n_pending} pending")
 
 

@@ -27,6 +27,8 @@ from .store import (
     client_lock,
     create_dataset,
     damaged_error,
+    lost_runs,
+    lost_runs_error,
     read_attrs,
     read_error,
     read_metadata,
@@ -37,6 +39,10 @@ from .store import (
 
 #: at most this many axis values are listed per axis in a summary
 SUMMARY_MAX_VALUES = 50
+
+
+class SplitWarning(UserWarning):
+    """A train/test split leaves a class out of one side (too few runs of that label)."""
 
 
 class SweepDataset:
@@ -121,8 +127,37 @@ class SweepDataset:
 
     @property
     def xr(self):
-        """The selected runs as an :class:`xarray.Dataset` (lazy; ``.load()`` to read)."""
+        """The selected runs as an :class:`xarray.Dataset` (lazy; ``.load()`` to read).
+
+        A run committed ok whose signal chunk is missing is refused here (one existence check
+        per selected run, :meth:`check_data`): xarray would read it as NaN."""
+        self.check_data()
         return self._ds.isel(run=self.runs)
+
+    def check_data(self, runs: Any = None) -> NDArray[np.int8]:
+        """Refuse (one-line :class:`ConfigError`) when a selected run committed ok has lost its
+        signal chunk file, which a reader would serve as NaN (a dataset copied without its
+        chunks, files deleted); pending and failed runs have no chunk, which is normal.
+
+        Only the files' existence is checked (:func:`~bearingsim.sweep.store.lost_runs`: one
+        ``stat`` per run, or one directory listing), no chunk is read.
+
+        Parameters
+        ----------
+        runs : array of int, optional
+            Run numbers to check (default: the selected runs).
+
+        Returns
+        -------
+        ndarray of int8
+            The status of every run of the dataset (read before the check).
+        """
+        st = read_status(self.path)
+        md = read_metadata(self.path)
+        lost = lost_runs(self.path, self.runs if runs is None else runs, st, md)
+        if lost:
+            raise lost_runs_error(self.path, lost, md)
+        return st
 
     @property
     def channels(self) -> list[str]:
@@ -204,18 +239,60 @@ class SweepDataset:
     def random_split(
         self, test_fraction: float, seed: int = 0, stratify: bool = True
     ) -> tuple[SweepDataset, SweepDataset]:
-        """Random train/test split (stratified by label when ``stratify``), seeded."""
+        """Random train/test split (stratified by label when ``stratify``), seeded.
+
+        Each label (each stratum; the whole view without ``stratify``) puts
+        ``round(test_fraction * n)`` of its ``n`` runs into the test set. A split with an empty
+        test or train set is refused (:class:`ConfigError` naming the counts); a label left
+        out of one side while the other labels are on both warns (:class:`SplitWarning`).
+
+        Parameters
+        ----------
+        test_fraction : float
+            Fraction of the runs of each label in the test set; valid range (0, 1) [-].
+        seed : int
+            Seed of the choice [-].
+        stratify : bool
+            Split each label separately (when the dataset has label keys).
+        """
         if not 0.0 < test_fraction < 1.0:
             raise ConfigError(
                 f"test_fraction = {test_fraction!r} is out of range; valid range (0, 1)"
             )
         rng = np.random.default_rng(seed)
-        groups = self.labels() if stratify and self.label_keys else np.zeros(len(self), dtype=int)
+        strat = stratify and bool(self.label_keys)
+        groups = self.labels() if strat else np.zeros(len(self), dtype=int)
         test = np.zeros(len(self), dtype=bool)
+        short: list[str] = []
         for g in np.unique(groups):
             idx = np.flatnonzero(groups == g)
             k = int(round(test_fraction * idx.size))
+            if k in (0, idx.size):
+                side = "test" if k == 0 else "train"
+                short.append(f"{g!s} ({idx.size} run(s), none in the {side} set)")
             test[rng.choice(idx, size=k, replace=False)] = True
+        n_test = int(test.sum())
+        if n_test in (0, len(self)):
+            side = "test" if n_test == 0 else "train"
+            per = " of each label" if strat else ""
+            raise ConfigError(
+                f"test_fraction = {test_fraction!r} of {len(self)} run(s) leaves the {side} set "
+                f"empty (round(test_fraction x the runs{per})"
+                + (f": {', '.join(short[:5])}" if strat and short else "")
+                + "); valid: a test_fraction that puts at least one run on each side"
+                + (", or stratify=False" if strat else "")
+            )
+        if short:
+            import warnings
+
+            warnings.warn(
+                f"random_split(test_fraction = {test_fraction!r}): label "
+                + ", ".join(short[:5])
+                + (f" and {len(short) - 5} more" if len(short) > 5 else "")
+                + "; these labels are on one side only",
+                SplitWarning,
+                stacklevel=2,
+            )
         return self._view(self.runs[~test]), self._view(self.runs[test])
 
     def arrays(
@@ -245,6 +322,7 @@ class SweepDataset:
                     f"channel = {c!r} is not a stored time series; valid: " + ", ".join(one_d)
                 )
         idx = [one_d.index(c) for c in chans]
+        self.check_data()
         X = (
             self._values("signal", self.runs)[:, idx, :]
             if len(self)
@@ -275,7 +353,13 @@ class SweepDataset:
         channels only; time = the nominal sample times)."""
         from ..results import SimulationResult
 
-        st = int(read_status(self.path)[run])
+        n_runs = int(self.attrs["n_runs"])
+        if isinstance(run, bool) or not isinstance(run, int | np.integer) or not 0 <= run < n_runs:
+            raise ConfigError(
+                f"run = {run!r} is out of range; valid range [0, {n_runs - 1}] integer"
+            )
+        run = int(run)
+        st = int(self.check_data(np.array([run]))[run])
         if st != OK:
             raise ConfigError(f"run = {run} has status {STATUS_NAMES[st]!r}; valid: an ok run")
         sc = self.scenario(run)
@@ -302,7 +386,7 @@ class SweepDataset:
     def summary(self, label: str | list[str] | None = None) -> dict[str, Any]:
         """Counts by label and by axis value, failures with their errors, totals, and each
         warning the runs raised with the runs that raised it (``warnings``: message -> runs)."""
-        st = self.status
+        st = self.check_data()[self.runs]
         out: dict[str, Any] = {
             "path": str(self.path),
             "n_runs": len(self),
@@ -344,12 +428,26 @@ class SweepDataset:
             {
                 "run": int(self.runs[j]),
                 "params": {k: _scalar(v[j]) for k, v in coords.items()},
-                "error": read_error(self.path, int(self.runs[j])),
+                "error": self._failure(int(self.runs[j])),
             }
             for j in np.flatnonzero(st == FAILED)
         ]
         out["spec_hash"] = self.attrs.get("spec_hash")
         return out
+
+    def _failure(self, run: int) -> str:
+        """The error of the failed run ``run``; a failed run always has one (its commit writes
+        it), so a missing error chunk is damage."""
+        err = read_error(self.path, run)
+        if not err:
+            raise damaged_error(
+                self.path,
+                self.path / "error" / str(run),
+                f"is missing or empty (the error of run {run}, committed failed)",
+                todo="run 'bearingsim sweep run' again with the dataset's sweep file, this "
+                "dataset as -o and --retry-failed: it computes the failed runs again",
+            )
+        return err
 
 
 def _bad_chunk(
@@ -402,6 +500,7 @@ __all__ = [
     "ChannelLayout",
     "Layout",
     "RunWriter",
+    "SplitWarning",
     "SweepDataset",
     "client_lock",
     "create_dataset",

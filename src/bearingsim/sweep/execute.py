@@ -103,6 +103,7 @@ from .store import (
     RunWriter,
     claim_path,
     create_dataset,
+    lost_runs,
     read_attrs,
     read_claim,
     read_metadata,
@@ -110,6 +111,7 @@ from .store import (
     read_status,
     records_offsets,
     remove_stale_temporaries,
+    signal_chunk,
     write_claim,
 )
 
@@ -155,6 +157,10 @@ class Writer(enum.Enum):
     AUTO = "auto"
     #: always the client (workers send the arrays back)
     CLIENT = "client"
+
+
+class LostDataWarning(UserWarning):
+    """Runs committed ok had lost their signal chunk; the sweep computes them again."""
 
 
 class SweepInterrupted(BearingsimError):
@@ -432,6 +438,10 @@ class SweepReport:
     warnings : dict
         Each warning the runs of this call raised (``"Category: message"``) and how many runs
         raised it; every run's own list is in its record (``SweepDataset.records``).
+    n_lost : int
+        Runs committed ok whose signal chunk was missing when this call started (their data
+        were lost): set back to pending and computed again (counted in ``n_computed``, not in
+        ``n_skipped``; :class:`LostDataWarning` names them).
     """
 
     out: str
@@ -459,6 +469,7 @@ class SweepReport:
     committed_by: dict[str, int] = field(default_factory=lambda: {"worker": 0, "client": 0})
     interrupted: bool = False
     warnings: dict[str, int] = field(default_factory=dict)
+    n_lost: int = 0
 
     def as_dict(self) -> dict[str, Any]:
         """Plain dict (JSON)."""
@@ -635,9 +646,10 @@ def run_sweep(
     if path.exists():
         replace_old = _other_spec(path, h, canonical, out, force_new)
         if not replace_old:
-            read_metadata(path)  # a damaged dataset is refused before any work
+            md = read_metadata(path)  # a damaged dataset is refused before any work
             st = read_status(path)
-            if not np.any((st == PENDING) | ((st == FAILED) & retry_failed)):
+            lost = lost_runs(path, np.flatnonzero(st == OK), st, md)
+            if not lost and not np.any((st == PENDING) | ((st == FAILED) & retry_failed)):
                 rep.n_skipped = len(scenarios)  # nothing to compute: no cluster needed
                 _final_counts(rep, st)
                 rep.setup_s = time.perf_counter() - t_start
@@ -702,7 +714,16 @@ def run_sweep(
             attrs = read_attrs(path)
             uid = attrs["uuid"]
             remove_stale_temporaries(path)
+            cw = RunWriter(path, uid)
             st0 = read_status(path)
+            md = read_metadata(path)
+            lost = lost_runs(path, np.flatnonzero(st0 == OK), st0, md)
+            if lost:  # committed ok, data gone: pending again (under the lock), computed again
+                for i in lost:
+                    cw.mark_pending(i)
+                st0[lost] = PENDING
+                rep.n_lost = len(lost)
+                warnings.warn(_lost_message(out, path, lost, md), LostDataWarning, stacklevel=2)
             todo_mask = st0 == PENDING
             if retry_failed:
                 todo_mask |= st0 == FAILED
@@ -711,7 +732,6 @@ def run_sweep(
             rep.n_skipped = len(scenarios) - len(todo)
             offsets = records_offsets(path)
             counted: set[int] = set()
-            cw = RunWriter(path, uid)
             if runs_per_task is None and todo:
                 rep.estimate_s = _estimate_run_s(cl, [scenarios[i] for i in todo], futs)
             rep.setup_s = time.perf_counter() - t_start
@@ -751,6 +771,16 @@ def run_sweep(
             rep,
         ) from None
     return rep
+
+
+def _lost_message(out: Any, path: Path, lost: list[int], md: dict[str, Any]) -> str:
+    """What :class:`LostDataWarning` says: how many runs, which, what happens."""
+    shown = ", ".join(map(str, lost[:10])) + (", ..." if len(lost) > 10 else "")
+    first = signal_chunk(path, lost[0], md["signal/.zarray"])
+    return (
+        f"dataset = {str(out)!r}: {len(lost)} run(s) committed ok had lost their signal chunk "
+        f"({shown}; {str(first)!r} is missing): set back to pending and computed again"
+    )
 
 
 def _other_spec(path: Path, h: str, canonical: dict[str, Any], out: Any, force_new: bool) -> bool:
@@ -1130,6 +1160,7 @@ def _failed_records(cw: RunWriter, runs: list[int], exc: BaseException) -> list[
 
 
 __all__ = [
+    "LostDataWarning",
     "SweepInterrupted",
     "SweepPlan",
     "SweepReport",

@@ -197,7 +197,8 @@ class SweepPlan:
     workers : int
         Worker count of ``wall_s`` [-].
     wall_s : float
-        ``compute_s_total / workers`` (ideal scaling) [s].
+        ``compute_s_total / min(workers, n_runs)`` (ideal scaling), but at least the longest
+        run: a run is not split across workers [s].
     bytes_raw, bytes_estimate : int
         Size of the stored arrays uncompressed, and the estimate after compression [byte].
     timing : list of dict
@@ -292,6 +293,9 @@ def plan_sweep(
         ratio = enc / raw if raw else 1.0
         est = extrapolate(scenarios, fit)
     total = float(np.sum(est))
+    # ideal scaling over the workers that get a run, but no less than the longest run (a run
+    # runs on one worker); NaN (no estimate) stays NaN
+    wall = float(np.maximum(total / min(w, n), np.max(est)))
     ns = [sc.n_samples for sc in scenarios]
     return SweepPlan(
         n_runs=n,
@@ -302,7 +306,7 @@ def plan_sweep(
         compute_s_per_run=total / n,
         compute_s_total=total,
         workers=w,
-        wall_s=total / w,
+        wall_s=wall,
         bytes_raw=raw_per_run * n,
         bytes_estimate=int(raw_per_run * n * ratio + 600 * n),
         timing=timing,

@@ -203,7 +203,7 @@ def expand_axis(name: str, desc: Any, seed: int, origin: str = "<sweep>") -> Axi
             if keys != {"values"}:
                 raise ConfigError(
                     f"{origin}: {where} has keys {sorted(keys)}; a value list is "
-                    "{{ values = [...] }} alone"
+                    "{ values = [...] } alone"
                 )
             values = desc["values"]
             if not isinstance(values, list):
@@ -566,6 +566,17 @@ class SweepSpec:
         for tname, t in (("sweep", sw), ("base", base_t), ("axes", axes_t)):
             if not isinstance(t, dict):
                 raise ConfigError(f"{origin}: [{tname}] must be a table")
+        if "base" not in data and "axes" not in data and "base_file" not in sw:
+            # nothing says what to run: an empty file would otherwise be one default run
+            raise ConfigError(
+                f"{origin}: the sweep "
+                + (
+                    "file is empty"
+                    if not data
+                    else "has no [base], no sweep.base_file and no [axes]"
+                )
+                + "; valid: a [base] scenario (or sweep.base_file) and/or [axes]"
+            )
         bad = sorted(set(sw) - set(SWEEP_KEYS))
         if bad:
             raise ConfigError(

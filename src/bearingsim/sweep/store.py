@@ -57,7 +57,10 @@ Readers
 missing or wrong status byte, an error chunk whose length field disagrees with its size, ...)
 raises one :class:`~bearingsim.errors.ConfigError` line naming the file and what is wrong
 (:func:`damaged_error`), never a decoding exception; record lines that are not records are
-skipped (they are auxiliary: the status byte is the commit).
+skipped (they are auxiliary: the status byte is the commit). A run committed ok always has its
+``signal`` chunk (written before its status byte, never removed): :func:`lost_runs` finds the
+runs whose chunk file is missing (data lost, e.g. a copy without the chunks) by the files'
+existence alone, which the dataset readers refuse and a resume computes again.
 """
 
 from __future__ import annotations
@@ -95,7 +98,10 @@ __all__ = [
     "FAILED",
     "FORMAT",
     "Layout",
+    "LIST_DIR_RUNS",
     "LOCK_NAME",
+    "lost_runs",
+    "lost_runs_error",
     "OK",
     "PENDING",
     "read_attrs",
@@ -108,6 +114,7 @@ __all__ = [
     "remove_stale_temporaries",
     "RUN_ARRAYS",
     "RunWriter",
+    "signal_chunk",
     "STATUS_NAMES",
     "write_claim",
 ]
@@ -123,6 +130,9 @@ RUN_ARRAYS = ("status", "error")
 RECORDS_DIR = "records"
 #: claim files (``records/.claim-<task id>``): the client hands the tail of a task to a helper
 CLAIM_PREFIX = ".claim-"
+#: :func:`lost_runs` checks more runs than this with one listing of the ``signal`` directory
+#: instead of one ``stat`` per run
+LIST_DIR_RUNS = 64
 
 
 @dataclass(frozen=True)
@@ -373,6 +383,11 @@ class RunWriter:
         os.write(self._log_fd(), (dumps_jsonable(line) + "\n").encode())
         self._mark(i, status)  # the commit marker, last
 
+    def mark_pending(self, i: int) -> None:
+        """Set run ``i`` back to pending (its data were lost, :func:`lost_runs`), so that it is
+        computed again: one byte written in place, by the client holding the lock."""
+        self._mark(i, PENDING)
+
     def _mark(self, i: int, status: int) -> None:
         """Overwrite the one byte of run ``i``'s ``status`` chunk (created with the dataset) in
         place: a one-byte write cannot be torn; no file is created, nothing is renamed."""
@@ -592,14 +607,90 @@ def damaged_error(
     what: str,
     exc: BaseException | None = None,
     valid: str | None = None,
+    todo: str = "delete the dataset and run the sweep again",
 ) -> ConfigError:
     """The one-line error of a damaged dataset: the file, what is wrong with it (and the
-    decoding error ``exc``), what would be valid."""
+    decoding error ``exc``), what would be valid, what to do."""
     why = "" if exc is None else f" ({_error_text(exc)})"
     ok = "" if valid is None else f"; valid: {valid}"
     return ConfigError(
-        f"dataset = {str(dataset)!r} is damaged: {str(file)!r} {what}{why}{ok}; delete the "
-        "dataset and run the sweep again"
+        f"dataset = {str(dataset)!r} is damaged: {str(file)!r} {what}{why}{ok}; {todo}"
+    )
+
+
+def signal_chunk(path: str | Path, run: int, zarray: dict[str, Any]) -> Path:
+    """File of run ``run``'s chunk of the ``signal`` array (``zarray``: its ``.zarray``)."""
+    sep = zarray.get("dimension_separator")
+    sep = sep if sep in (".", "/") else "."
+    return Path(path) / "signal" / sep.join(map(str, (run,) + (0,) * (len(zarray["shape"]) - 1)))
+
+
+def lost_runs(
+    path: str | Path,
+    runs: Any,
+    status: NDArray[np.int8],
+    metadata: dict[str, Any] | None = None,
+) -> list[int]:
+    """The runs among ``runs`` committed ok whose ``signal`` chunk file is missing: their data
+    are lost (a dataset copied without its chunks, files deleted), not pending.
+
+    A run committed ok always has its signal chunk: the commit renames the chunk into place
+    before it writes the status byte, and nothing removes a chunk afterwards (a rewrite
+    replaces it atomically). Pending and failed runs have none, which is normal. Only the
+    existence of the files is checked (one ``stat`` per run, or one listing of the directory
+    for more than :data:`LIST_DIR_RUNS` runs), no chunk is read. Per-ball channels are not
+    checked: a run that does not produce them (``per_ball = false``) has no chunk either.
+
+    Parameters
+    ----------
+    path : str or Path
+        The dataset.
+    runs : array of int
+        Run numbers to check.
+    status : ndarray of int8
+        :func:`read_status`, read *before* this call (a run seen ok then had its chunk
+        already, so a run committed meanwhile is no false alarm).
+    metadata : dict, optional
+        :func:`read_metadata` of the dataset (read when not given).
+
+    Returns
+    -------
+    list of int
+        The runs that lost their signal chunk, in the order of ``runs``.
+    """
+    md = read_metadata(path) if metadata is None else metadata
+    zarray = md.get("signal/.zarray")
+    if zarray is None:  # no time series stored
+        return []
+    ok = [
+        int(i)
+        for i in np.asarray(runs, dtype=np.int64).ravel()
+        if 0 <= i < status.size and status[i] == OK
+    ]
+    if len(ok) <= LIST_DIR_RUNS or zarray.get("dimension_separator") == "/":  # nested keys
+        return [i for i in ok if not os.path.exists(signal_chunk(path, i, zarray))]
+    sdir = Path(path) / "signal"
+    try:
+        names = set(os.listdir(sdir))
+    except OSError as exc:
+        raise damaged_error(path, sdir, f"cannot be listed ({exc.strerror})") from None
+    return [i for i in ok if signal_chunk(path, i, zarray).name not in names]
+
+
+def lost_runs_error(dataset: str | Path, lost: list[int], metadata: dict[str, Any]) -> ConfigError:
+    """The one-line error of a dataset whose runs ``lost`` (:func:`lost_runs`) are committed ok
+    but lost their signal chunk, with what to do: ``sweep run`` computes them again."""
+    i = lost[0]
+    more = ""
+    if len(lost) > 1:
+        shown = ", ".join(map(str, lost[:10])) + (", ..." if len(lost) > 10 else "")
+        more = f"; {len(lost)} runs committed ok have lost theirs: {shown}"
+    return damaged_error(
+        dataset,
+        signal_chunk(dataset, i, metadata["signal/.zarray"]),
+        f"is missing (the signal chunk of run {i}, committed ok{more})",
+        todo="run 'bearingsim sweep run' again with the dataset's sweep file and this dataset "
+        "as -o: it computes the runs whose signal chunk is missing again",
     )
 
 

@@ -1,0 +1,339 @@
+"""Sweep defects found in review: runs committed ok whose signal chunk files were lost are refused
+by every reader and computed again by ``sweep run`` (never served as NaN); an empty sweep file;
+the table-axis message; the plan's wall-time estimate with more workers than runs; the text of a
+``sweep run`` with nothing to do; random splits with an empty side.
+
+Most tests build their dataset with ``create_dataset`` and ``RunWriter`` directly, as
+``run_sweep`` does (no cluster); the resume tests start one local cluster of one worker."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.testing import assert_array_equal
+
+from bearingsim.errors import ConfigError
+from bearingsim.sweep import store as stores
+from bearingsim.sweep.dataset import SplitWarning, open_dataset
+from bearingsim.sweep.execute import LostDataWarning, connect, run_sweep
+from bearingsim.sweep.plan import coordinates, plan_sweep
+from bearingsim.sweep.spec import SweepSpec
+from bearingsim.sweep.store import (
+    FAILED,
+    OK,
+    PENDING,
+    ChannelLayout,
+    Layout,
+    RunWriter,
+    create_dataset,
+    read_status,
+)
+
+N_TIME = 20
+#: the store's spec: 6 runs, labels none, none, outer, outer, inner, inner
+SPEC_TOML = """
+[sweep]
+label = "fault"
+[base]
+model = "dem"
+duration_s = 0.005
+fs_hz = 4000.0
+[axes]
+fault = ["none", "outer", "inner"]
+rpm = [1730.0, 1797.0]
+"""
+SPEC = SweepSpec.from_dict(
+    {
+        "sweep": {"label": "fault"},
+        "base": {"model": "dem", "duration_s": 0.005, "fs_hz": 4000.0},
+        "axes": {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1797.0]},
+    },
+    origin="t.toml",
+)
+LAYOUT = Layout(
+    n_runs=SPEC.n_runs,
+    n_time=N_TIME,
+    fs_hz=4000.0,
+    channels=(ChannelLayout("acc_x", "m/s^2"), ChannelLayout("acc_y", "m/s^2")),
+)
+#: the cluster sweeps: 4 short DEM runs (fast, see tests/test_sweep.py)
+RUN_TOML = """
+[sweep]
+label = "fault"
+[base]
+model = "dem"
+duration_s = 0.05
+fs_hz = 4000.0
+[axes]
+fault = ["outer", "inner"]
+rpm = [1730.0, 1797.0]
+"""
+
+
+def make_store(path: Path, ok: range, failed: tuple[int, ...] = ()) -> Path:
+    """A dataset of ``SPEC`` with the runs ``ok`` committed ok, ``failed`` failed, the rest
+    pending."""
+    scenarios = SPEC.scenarios()
+    attrs = {
+        "spec_hash": SPEC.spec_hash,
+        "spec_json": json.dumps(SPEC.canonical()),
+        "label": list(SPEC.label),
+        "axes": list(SPEC.axis_names),
+        "name": SPEC.name,
+    }
+    sdicts = [s.to_dict() for s in scenarios]
+    create_dataset(path, LAYOUT, attrs, coordinates(SPEC, scenarios), sdicts)
+    w = RunWriter(path)
+    t = np.arange(N_TIME, dtype=float)
+    rec = {"compute_s": 0.5, "cpu_s": 0.5, "host": "h", "pid": 1, "meta": {}}
+    for i in ok:
+        w.commit(i, OK, rec, "", {"acc_x": np.sin(t + i), "acc_y": np.cos(t * i)})
+    for i in failed:
+        w.commit(i, FAILED, rec, f"SolverError: run {i} diverged")
+    w.close()
+    return path
+
+
+@pytest.fixture
+def store(tmp_path) -> Path:
+    """Runs 0-3 ok, run 4 failed, run 5 pending."""
+    return make_store(tmp_path / "ds.zarr", range(4), (4,))
+
+
+def one_line(exc_info) -> str:
+    msg = str(exc_info.value)
+    assert len(msg.splitlines()) == 1, msg
+    return msg
+
+
+# ------------------------------------------------------------------------------ lost chunks
+@pytest.mark.parametrize("listing", [False, True], ids=["stat-per-run", "directory-listing"])
+def test_lost_signal_chunks_are_refused_by_every_reader(store, run_cli, monkeypatch, listing):
+    """A run committed ok whose signal chunk file is gone is refused in one line naming the
+    dataset, the run and the chunk, with what to do (before: NaN served as data, summary ok)."""
+    if listing:  # the check of many runs lists the directory once instead of a stat per run
+        monkeypatch.setattr(stores, "LIST_DIR_RUNS", 0)
+    good = open_dataset(store).arrays()[0]
+    for i in (1, 3):
+        (store / "signal" / f"{i}.0.0").unlink()
+    ds = open_dataset(store)  # opening checks nothing per run (cheap)
+    what = (
+        rf"^dataset = '{store}' is damaged: '{store}/signal/1\.0\.0' is missing \(the signal "
+        r"chunk of run 1, committed ok; 2 runs committed ok have lost theirs: 1, 3\); run "
+        r"'bearingsim sweep run' again with the dataset's sweep file and this dataset as -o: "
+        r"it computes the runs whose signal chunk is missing again$"
+    )
+    for call in (
+        lambda: ds.arrays(["acc_x"]),
+        lambda: ds.completed().arrays(),
+        lambda: ds.summary(),
+        lambda: ds.xr,
+    ):
+        with pytest.raises(ConfigError, match=what) as e:
+            call()
+        one_line(e)
+    one = r"'.*/signal/3\.0\.0' is missing \(the signal chunk of run 3, committed ok\); run 'bea"
+    with pytest.raises(ConfigError, match=one):
+        ds.result(3)
+    # the runs that kept their chunks, the failed and the pending runs read as before
+    intact = ds.select(fault="none").select(rpm=1730.0)  # run 0
+    assert_array_equal(intact.arrays()[0], good[[0]])
+    assert_array_equal(ds.result(2)["acc_x"], good[2, 0])
+    rest = ds.select(fault="inner")  # run 4 failed, run 5 pending: no chunks, NaN is normal
+    assert_array_equal(read_status(store)[rest.runs], [FAILED, PENDING])
+    assert np.isnan(rest.arrays()[0]).all()
+    assert rest.summary()["n_failed"] == 1 and ds.labels().size == 6 and ds.records()[0]
+    r = run_cli("sweep", "summary", store)
+    assert r.code == 2 and r.out == "" and len(r.err.splitlines()) == 1, r.err
+    assert r.err.startswith(f"error: dataset = '{store}' is damaged: '{store}/signal/1.0.0'")
+
+
+def test_the_check_reads_no_chunk(store):
+    """Only the chunk files' existence is checked: a summary of a dataset whose chunks hold
+    garbage reads none of them (the arrays then refuse it when they read it)."""
+    for i in range(4):
+        (store / "signal" / f"{i}.0.0").write_bytes(b"garbage")
+    (store / "signal" / "0.0.0").unlink()
+    ds = open_dataset(store)
+    with pytest.raises(ConfigError, match=r"'.*/signal/0\.0\.0' is missing \(the signal chunk"):
+        ds.summary()
+    s = ds.select(rpm=1797.0).summary()  # runs 1, 3, 5: chunks exist (garbage), not read
+    assert (s["n_ok"], s["n_pending"]) == (2, 1)
+    with pytest.raises(ConfigError, match=r"'.*/signal/1\.0\.0' cannot be decoded"):
+        ds.result(1)
+
+
+def test_failed_run_without_its_error_is_refused(store, run_cli):
+    (store / "error" / "4").unlink()
+    r = run_cli("sweep", "summary", store)
+    assert r.code == 2 and r.out == "" and len(r.err.splitlines()) == 1, r.err
+    assert r.err.strip() == (
+        f"error: dataset = '{store}' is damaged: '{store}/error/4' is missing or empty (the "
+        "error of run 4, committed failed); run 'bearingsim sweep run' again with the "
+        "dataset's sweep file, this dataset as -o and --retry-failed: it computes the failed "
+        "runs again"
+    )
+
+
+def test_result_of_a_run_out_of_range_is_one_line(store):
+    for run in (6, -1, 1.5):
+        with pytest.raises(ConfigError, match=r"^run = .* is out of range; valid range \[0, 5\]"):
+            open_dataset(store).result(run)
+
+
+@pytest.fixture(scope="module")
+def client():
+    with connect(workers=1) as (cl, _):
+        yield cl
+
+
+@pytest.mark.integration
+def test_resume_recomputes_runs_that_lost_their_chunks(client, tmp_path):
+    """``run_sweep`` sets runs committed ok without their signal chunk back to pending and
+    computes them again, with a warning (before: "2 already committed", NaN kept)."""
+    spec_file = tmp_path / "s.toml"
+    spec_file.write_text(RUN_TOML)
+    spec = SweepSpec.from_toml(spec_file)
+    out = tmp_path / "ds.zarr"
+    assert run_sweep(spec, out, client=client).n_ok == 4
+    X0, _ = open_dataset(out).arrays()
+    copy = tmp_path / "copy.zarr"
+    shutil.copytree(out, copy)
+    for i in (1, 2):
+        (copy / "signal" / f"{i}.0.0").unlink()
+    with pytest.warns(LostDataWarning) as caught:
+        rep = run_sweep(spec, copy, client=client)
+    assert len(caught) == 1
+    assert str(caught[0].message) == (
+        f"dataset = '{copy}': 2 run(s) committed ok had lost their signal chunk (1, 2; "
+        f"'{copy}/signal/1.0.0' is missing): set back to pending and computed again"
+    )
+    assert (rep.n_lost, rep.n_skipped, rep.n_computed, rep.n_ok, rep.n_pending) == (2, 2, 2, 4, 0)
+    ds = open_dataset(copy)
+    assert_array_equal(ds.arrays()[0], X0)  # bit for bit, as the first time
+    # runs 0 and 3 were not computed again: one record line each in the copy
+    lines = [
+        json.loads(x)
+        for f in (copy / "records").glob("*.jsonl")
+        for x in f.read_text().splitlines()
+    ]
+    assert sorted(r["run"] for r in lines) == [0, 1, 1, 2, 2, 3]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # nothing lost any more: no warning, nothing to do
+        assert run_sweep(spec, copy, client=client).n_skipped == 4
+
+
+@pytest.mark.integration
+def test_cli_run_recomputes_lost_runs_and_says_so(run_cli, tmp_path):
+    spec_file = tmp_path / "s.toml"
+    spec_file.write_text(RUN_TOML)
+    out = tmp_path / "ds.zarr"
+    assert run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1").code == 0
+    (out / "signal" / "3.0.0").unlink()
+    assert run_cli("sweep", "summary", out).code == 2
+    r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1")
+    assert r.code == 0, r.err
+    lines = [x for x in r.err.splitlines() if x.startswith("warning: ")]
+    assert lines == [
+        f"warning: dataset = '{out}': 1 run(s) committed ok had lost their signal chunk (3; "
+        f"'{out}/signal/3.0.0' is missing): set back to pending and computed again"
+    ], r.err
+    assert "3 already committed, 1 computed (1 ok, 0 failed)" in r.out
+    r = run_cli("sweep", "summary", out, "--json")
+    assert r.code == 0 and r.json()["n_ok"] == 4
+
+
+# ------------------------------------------------------------------------------------- nits
+def test_empty_sweep_file_is_refused(run_cli, tmp_path):
+    empty = tmp_path / "empty.toml"
+    empty.write_bytes(b"")
+    r = run_cli("sweep", "plan", empty, "--timing-runs", "0")
+    assert r.code == 2 and r.out == "", r.out
+    assert r.err.strip() == (
+        "error: empty.toml: the sweep file is empty; valid: a [base] scenario (or "
+        "sweep.base_file) and/or [axes]"
+    )
+    named = tmp_path / "named.toml"
+    named.write_text('[sweep]\nname = "x"\n')
+    r = run_cli("sweep", "plan", named, "--timing-runs", "0")
+    assert (
+        r.code == 2 and "named.toml: the sweep has no [base], no sweep.base_file and no " in r.err
+    )
+    base_only = tmp_path / "base.toml"
+    base_only.write_text('[base]\nmodel = "dem"\nduration_s = 0.05\n')
+    r = run_cli("sweep", "plan", base_only, "--timing-runs", "0")
+    assert r.code == 0 and "1 runs (cartesian: no axes)" in r.out, r.err
+
+
+def test_table_axis_message_has_single_braces():
+    with pytest.raises(ConfigError) as e:
+        SweepSpec.from_dict({"base": {"model": "dem"}, "axes": {"rpm": {"values": [1.0], "n": 2}}})
+    assert one_line(e).endswith(
+        "axes.rpm has keys ['n', 'values']; a value list is { values = [...] } alone"
+    )
+
+
+def test_plan_wall_time_is_at_least_one_run():
+    """More workers than runs: the wall time is one run's, not the total over the workers."""
+    spec = SweepSpec.from_dict(
+        {
+            "base": {"model": "dem", "duration_s": 0.05, "fs_hz": 4000.0},
+            "axes": {"fault": ["outer", "inner"], "rpm": [1730.0, 1797.0]},
+        }
+    )
+    many = plan_sweep(spec, timing_runs=1, timing_duration_s=0.01, workers=100_000)
+    # every run has the same model and duration: each is estimated at the mean
+    assert many.wall_s == pytest.approx(many.compute_s_per_run, rel=1e-12)
+    assert many.workers == 100_000
+    two = plan_sweep(spec, timing_runs=1, timing_duration_s=0.01, workers=2)
+    assert two.wall_s == pytest.approx(two.compute_s_total / 2, rel=1e-12)
+    assert np.isnan(plan_sweep(spec, timing_runs=0, workers=2).wall_s)  # no estimate
+
+
+def test_run_with_nothing_to_do_says_so(run_cli, tmp_path):
+    """Every run committed: no cluster starts, and the line says so (before: '... in 0 s on ')."""
+    out = make_store(tmp_path / "ds.zarr", range(5), (5,))
+    spec = tmp_path / "s.toml"
+    spec.write_text(SPEC_TOML)
+    r = run_cli("sweep", "run", spec, "-o", out)
+    assert r.code == 0, r.err
+    assert r.out.splitlines() == [
+        f"{out}: 6 runs; 6 already committed, 0 computed: nothing to do",
+        "  dataset: 5 ok, 1 failed, 0 pending",
+    ]
+
+
+def test_random_split_with_an_empty_side_is_refused(store):
+    ds = open_dataset(store).completed()  # runs 0-3: none, none, outer, outer
+    with pytest.raises(ConfigError) as e:
+        ds.random_split(0.25)  # round(0.25 x 2) = 0 of each label
+    assert one_line(e) == (
+        "test_fraction = 0.25 of 4 run(s) leaves the test set empty (round(test_fraction x the "
+        "runs of each label): none (2 run(s), none in the test set), outer (2 run(s), none in "
+        "the test set)); valid: a test_fraction that puts at least one run on each side, or "
+        "stratify=False"
+    )
+    with pytest.raises(ConfigError, match=r"^test_fraction = 0\.9 of 4 run\(s\) leaves the train"):
+        ds.random_split(0.9)
+    a, b = ds.random_split(0.25, stratify=False)  # round(0.25 x 4) = 1
+    assert (len(a), len(b)) == (3, 1)
+
+
+def test_random_split_warns_when_a_label_is_on_one_side_only(tmp_path):
+    ds = open_dataset(make_store(tmp_path / "ds.zarr", range(5))).completed()
+    with pytest.warns(SplitWarning) as caught:
+        a, b = ds.random_split(0.5, seed=3)  # none 2, outer 2, inner 1: round(0.5) = 0
+    assert str(caught[0].message) == (
+        "random_split(test_fraction = 0.5): label inner (1 run(s), none in the test set); "
+        "these labels are on one side only"
+    )
+    assert sorted(b.labels()) == ["none", "outer"] and sorted(a.labels()) == [
+        "inner",
+        "none",
+        "outer",
+    ]
