@@ -163,8 +163,8 @@ BAD = [
     (["contact", "6205"], "--ball-load-n"),
     (["load", "6205", "--fx-n", "nan", "--fy-n", "1"], "fx_n"),
     (["load", "6205", "--fy-n", "10", "--clearance-m", "0.01"], "clearance_m"),
-    (["info", "6205", "--rpm", "100", "--E-pa", "-1"], "youngs_modulus_pa"),
-    (["info", "6205", "--rpm", "100", "--nu", "0.7"], "poisson_ratio"),
+    (["info", "6205", "--rpm", "100", "--E-pa", "-1"], "E_pa = -1 Pa is out of range"),
+    (["info", "6205", "--rpm", "100", "--nu", "0.7"], "nu = 0.7 is out of range"),
 ]
 
 

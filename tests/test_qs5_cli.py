@@ -79,8 +79,8 @@ def test_text_output(run_cli):
         (["--ball-errors-deg", "0,0,0,0,nan,0,0,0,0"], "ball_errors_rad[4] = nan"),
         (["--ball-errors-deg", "0,0,a,0,0,0,0,0,0"], "ball_errors_deg[2] = 'a' is not a number"),
         (["--fx-n", "inf"], "fx_n = inf is not finite"),
-        (["--inner-tilt-deg", "nan"], "inner_tilt_rad = nan is not finite"),
-        (["--outer-tilt-azimuth-deg", "inf"], "outer_tilt_azimuth_rad = inf is not finite"),
+        (["--inner-tilt-deg", "nan"], "inner_tilt_deg = nan is not finite"),
+        (["--outer-tilt-azimuth-deg", "inf"], "outer_tilt_azimuth_deg = inf is not finite"),
         (["--clearance-m", "1e-3"], "clearance_m = 0.001 m is out of range"),
         # 1 MN axial is also beyond 2 C0 (refused, test_overload_refused): past the overload
         # check, the groove limit refuses it

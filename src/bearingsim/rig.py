@@ -31,6 +31,8 @@ TOML layout (SI units in the key names)::
     description = "drive-end accelerometer of ..."
     provenance = "how the whole profile was made (the exact command)"
     input_channel = "acc_y"          # the model channel that enters the chain
+    end = "FE"                       # optional: the machine end whose housing the sensor is on
+                                     # (DE|FE; the rotor model then reads that housing)
 
     [path]
     gain = 1.0
@@ -238,6 +240,11 @@ class Rig:
     description: str
     provenance: str
     input_channel: str = "acc_y"
+    #: the end of a two-bearing machine whose housing the sensor is on ("DE" | "FE"; None: not
+    #: said). The ring models simulate one bearing and ignore it; the rotor model feeds the
+    #: housing of that end into the chain (acc_y at DE, acc_y_fe at FE) when ``input_channel``
+    #: is the default acc_y
+    end: str | None = None
     gain: float = 1.0
     gain_provenance: str = "default: the model's output passes unchanged"
     modes: tuple[Mode, ...] = ()
@@ -247,8 +254,8 @@ class Rig:
     noise_provenance: str = "default: no sensor noise"
     source: str = field(default="", compare=False)
 
-    KEYS = ("name", "description", "provenance", "input_channel", "path", "mode", "background",
-            "tone", "sensor")  # fmt: skip
+    KEYS = ("name", "description", "provenance", "input_channel", "end", "path", "mode",
+            "background", "tone", "sensor")  # fmt: skip
 
     @classmethod
     def from_dict(cls, d: Any, source: str = "<rig>") -> Rig:
@@ -265,6 +272,9 @@ class Rig:
             ch = d.get("input_channel", "acc_y")
             if not isinstance(ch, str) or not ch:
                 raise ConfigError(f"rig.input_channel = {ch!r} is invalid; valid: a channel name")
+            end = d.get("end")
+            if end is not None and end not in ("DE", "FE"):
+                raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")
             gain, gprov = 1.0, cls.gain_provenance
             if "path" in d:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
@@ -291,6 +301,7 @@ class Rig:
                 description=desc,
                 provenance=prov,
                 input_channel=ch,
+                end=end,
                 gain=gain,
                 gain_provenance=gprov,
                 modes=tuple(Mode.from_dict(m, f"mode[{i}]") for i, m in enumerate(modes)),
@@ -316,6 +327,8 @@ class Rig:
             "input_channel": self.input_channel,
             "path": {"gain": self.gain, "provenance": self.gain_provenance},
         }
+        if self.end is not None:
+            out["end"] = self.end
         if self.modes:
             out["mode"] = [dataclasses.asdict(m) for m in self.modes]
         if self.background is not None:

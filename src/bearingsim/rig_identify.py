@@ -50,6 +50,10 @@ __all__ = ["IdentifiedRig", "identify_rig"]
 
 #: shortest record [s]
 MIN_DURATION_S = 1.0
+#: fewest samples in the spectral-kurtosis segment (2.5 ms, shorter than a ring-down): with
+#: fewer the STFT has too few frequency bins to place a mode [-]; at 2.5 ms this asks for
+#: fs >= 2**3.5 / 0.0025 = 4525 Hz (the segment is the nearest power of 2)
+MIN_SEGMENT = 16
 #: smallest mode gain kept [-]: a PSD peak 1.21 x its shoulders (0.8 dB) is within the scatter
 MIN_GAIN = 0.1
 
@@ -187,6 +191,7 @@ def identify_rig(
     min_kurtosis: float = 0.5,
     nperseg_sk: int | None = None,
     n_background: int = 40,
+    end: str | None = None,
 ) -> IdentifiedRig:
     """Identify a rig from measured records of one machine and channel (see the module
     docstring).
@@ -208,6 +213,8 @@ def identify_rig(
         STFT segment for the spectral kurtosis [samples] (default: 2.5 ms, a power of 2).
     n_background : int
         Points of the background table [-].
+    end : {"DE", "FE"}, optional
+        The machine end whose housing the records' sensor is on (:attr:`Rig.end`).
     """
     from scipy.signal import welch
 
@@ -227,6 +234,13 @@ def identify_rig(
                 f"{MIN_DURATION_S:g} s is needed"
             )
     nps = nperseg_sk or int(2 ** round(math.log2(0.0025 * fs)))
+    if nps < MIN_SEGMENT:
+        lo = 2 ** (math.log2(MIN_SEGMENT) - 0.5) / 0.0025 if nperseg_sk is None else None
+        raise ConfigError(
+            f"fs_hz = {fs:g} Hz is too low to identify a transfer path: the spectral-kurtosis "
+            f"segment holds {nps} samples, fewer than {MIN_SEGMENT}; valid range "
+            + (f"[{math.ceil(lo)}, inf) Hz" if lo else f"nperseg_sk >= {MIN_SEGMENT}")
+        )
     nwelch = int(2 ** round(math.log2(fs / 4.0)))  # ~4 Hz resolution
     psd_mean, psd_med, imp = [], [], []
     f_sk = None
@@ -340,6 +354,7 @@ def identify_rig(
         description=description,
         provenance=provenance or "bearingsim.rig_identify.identify_rig",
         input_channel="acc_y",
+        end=end,
         gain=1.0,
         gain_provenance="output-only identification: the path's direct gain is taken as 1 and "
         "each mode's gain is relative to it (bearingsim.rig_identify, item 3)",
@@ -373,7 +388,8 @@ def rig_to_toml(rig: Rig) -> str:
             return "[" + ", ".join(val(x) for x in v) + "]"
         return repr(float(v)) if isinstance(v, float) else str(v)
 
-    lines = [f"{k} = {val(d[k])}" for k in ("name", "description", "provenance", "input_channel")]
+    keys = ("name", "description", "provenance", "input_channel", "end")
+    lines = [f"{k} = {val(d[k])}" for k in keys if k in d]
     for table in ("path", "background", "sensor"):
         if table in d:
             lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]

@@ -16,12 +16,13 @@ import os
 import sys
 import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import click
 
 from .._version import __version__
-from ..errors import format_range
+from ..errors import ConfigError, check_range, format_range
 from ..materials import POISSON_RANGE, YOUNGS_MODULUS_RANGE
 
 if TYPE_CHECKING:
@@ -116,15 +117,29 @@ class Number(click.ParamType):
         self.integer = integer
         self.name = "integer" if integer else "float"
         self.valid = valid or format_range(lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+        # the bounds are enforced here (before, only quoted: a command that did not check an
+        # option itself took any value, e.g. rig identify --max-modes 0)
+        self._bounds = (
+            (lo, hi, lo_open, hi_open, unit) if lo is not None or hi is not None else None
+        )
 
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
         if isinstance(value, int | float) and not isinstance(value, bool):
-            return int(value) if self.integer and float(value).is_integer() else value
-        try:
-            return int(value) if self.integer else float(value)
-        except (TypeError, ValueError):
-            kind = "an integer" if self.integer else "a number"
-            self.fail(f"{value!r} is not {kind}; valid range {self.valid}", param, ctx)
+            v = int(value) if self.integer and float(value).is_integer() else value
+        else:
+            try:
+                v = int(value) if self.integer else float(value)
+            except (TypeError, ValueError):
+                kind = "an integer" if self.integer else "a number"
+                self.fail(f"{value!r} is not {kind}; valid range {self.valid}", param, ctx)
+        if self._bounds is not None:  # one line naming the option's key (BearingsimError)
+            lo, hi, lo_open, hi_open, unit = self._bounds
+            # named by its option as a key (--ball-load-n -> ball_load_n), as the commands'
+            # own checks name it (the Python name may differ: ball_load)
+            longs = [o for o in getattr(param, "opts", ()) if o.startswith("--")]
+            name = longs[0][2:].replace("-", "_") if longs else getattr(param, "name", "value")
+            check_range(name, v, lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+        return v
 
     def __repr__(self) -> str:
         return f"Number({self.valid!r})"
@@ -326,6 +341,10 @@ def output_option(
     return click.option("-o", "--output", dest, type=kind, required=required, help=help)
 
 
+#: the figure formats a ``--plot`` file may name (its suffix chooses the format)
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
 def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> None:
     """Refuse, before any work, an output location that cannot be written: one line naming the
     option, the path and the reason (:func:`bearingsim.io.atomic.check_output`).
@@ -340,9 +359,22 @@ def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> 
     """
     from ..io.atomic import check_output
 
+    seen: dict[Path, str] = {}
     for option, path in outputs:
         if path is not None:
             check_output(path, option, directory=directory)
+            if option.startswith("--plot") and Path(path).suffix.lower() not in FIGURE_SUFFIXES:
+                raise ConfigError(
+                    f"{option} = {str(path)!r} has no figure suffix; valid: a name ending in "
+                    + ", ".join(FIGURE_SUFFIXES)
+                )
+            key = Path(path).expanduser().resolve()
+            if key in seen:  # the second write would replace the first output
+                raise ConfigError(
+                    f"{option} = {str(path)!r} is also {seen[key]}; valid: a different path for "
+                    "each output"
+                )
+            seen[key] = option
 
 
 def available_cores() -> int:

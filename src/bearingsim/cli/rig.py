@@ -78,9 +78,19 @@ def identify_cmd(
     from ..io.signal import read_signal
     from ..rig import Rig
     from ..rig_identify import identify_rig, rig_to_toml
+    from ..signal.diagnosis import check_samples
 
+    if not name.strip():
+        raise ConfigError(f"name = {name!r} is empty; valid: a name for the rig (--name)")
     ch = _channel(records, channel)
-    recs = [read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz) for p in records]
+    recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
+    unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]
+    if unknown:
+        click.echo(
+            f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file): "
+            "the rig gets no shaft-order tones from them",
+            err=True,
+        )
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
     ir = identify_rig(
@@ -89,7 +99,10 @@ def identify_cmd(
         description=description,
         provenance=f"identified by `{command}` (bearingsim.rig_identify, output-only)",
         max_modes=int(max_modes),
-    )
+        # a CWRU sensor's end: the rotor model reads that end's housing through the rig
+        end=ch.upper() if ch and ch.upper() in ("DE", "FE")
+        and all(Path(p).suffix.lower() == ".mat" for p in records) else None,
+    )  # fmt: skip
     text = rig_to_toml(ir.rig)
     Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
@@ -131,9 +144,10 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     if as_json:
         emit_json(r.to_dict())
         return
-    click.echo(f"rig {r.name}: {r.description}")
+    click.echo(f"rig {r.name}" + (f": {r.description}" if r.description else ""))
     click.echo(f"  provenance: {r.provenance}")
-    click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}")
+    end = f"; sensor at the {r.end} end" if r.end else ""
+    click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}{end}")
     for m in r.modes:
         click.echo(f"  mode {m.frequency_hz:.1f} Hz, zeta {m.damping_ratio:.4f}, gain {m.gain:.3g}")
     for t in r.tones:

@@ -309,9 +309,21 @@ def _record_of(groups: dict[str, dict[str, str]], p: Path) -> str:
 
 
 def _finite(p: Path, key: str, val: object) -> np.ndarray:
-    """``val`` as a flat float array; a non-numeric or non-finite one is a one-line error."""
+    """``val`` as a flat float array; a non-numeric, complex, non-finite one or one of several
+    columns (a CWRU variable is one column or one row) is a one-line error."""
+    raw = np.asarray(val)
+    if np.iscomplexobj(raw):
+        raise ConfigError(
+            f"file = {str(p)!r}: {key} is complex; valid: real samples (a CWRU record)"
+        )
+    if raw.ndim > 2 or (raw.ndim == 2 and min(raw.shape) > 1):
+        shape = " x ".join(str(n) for n in raw.shape)
+        raise ConfigError(
+            f"file = {str(p)!r}: {key} is a {shape} array; valid: one column (or row) of "
+            "samples, as in a CWRU record"
+        )
     try:
-        a = np.asarray(val, dtype=float).ravel()
+        a = np.asarray(raw, dtype=float).ravel()
     except (TypeError, ValueError):
         raise ConfigError(
             f"file = {str(p)!r}: {key} is not numeric; valid: a CWRU record"

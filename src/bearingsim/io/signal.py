@@ -159,6 +159,14 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
     else:
         info["fs_source"] = "option"
     x = rec.acceleration(ch)
+
+    def flat() -> None:  # no shaft line to read a rate off: say what the record is
+        if x.size and np.all(x == x[0]):
+            raise ConfigError(
+                f"file = {p.name!r}, channel {ch!r}: all {x.size} samples equal {x[0]:.6g}; "
+                "valid: a vibration signal"
+            )
+
     if fs is None:  # the CWRU site's own names (105.mat) carry no rate: read it off the shaft
         if r is None:
             raise ConfigError(
@@ -166,12 +174,14 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
                 "sample rate (12k/48k); valid: give --rpm R (> 0 r/min), and --fs-hz F (CWRU: "
                 "12000 or 48000) unless the rate can be read off the shaft lines"
             )
+        flat()
         fs, why = infer_cwru_fs(x, r)
         info["fs_source"] = f"inferred from the shaft lines ({why})"
     elif info["fs_source"] == "file name":  # the name's rate, unless the shaft lines refute it
         nominal = cwru_nominal_rpm(p.name)
         speed = r if r is not None else (nominal[1] if nominal else None)
         if speed is not None:
+            flat()
             fs, why = check_cwru_name_rate(x, fs, speed)
             if why is not None:
                 info["fs_source"] = f"inferred from the shaft lines ({why})"
@@ -203,7 +213,10 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
             f"channel = {channel!r} is invalid for this simulation result; valid: "
             + ", ".join(valid)
         )
-    meta = {"bearing": res.meta.get("bearing_fe")} if ch.endswith("_fe") else res.meta
+    # the fan-end housing's bearing: its channels, or the sensor of a rig fed by that housing
+    rig_in = (res.meta.get("rig") or {}).get("input_channel") if ch == "sensor" else None
+    fan_end = ch.endswith("_fe") or (isinstance(rig_in, str) and rig_in.endswith("_fe"))
+    meta = {"bearing": res.meta.get("bearing_fe")} if fan_end else res.meta
     try:
         r = rpm if rpm is not None else float(res.scenario["rpm"])
         fs_file = res.fs_hz

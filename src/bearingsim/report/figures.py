@@ -52,7 +52,8 @@ STRICT_ENV = "BEARINGSIM_STRICT_FIGURES"
 
 
 def save_figure(fig, path: str | Path, dpi: int = DPI) -> Path:
-    """Save a Matplotlib figure as PNG atomically and close it; returns the path.
+    """Save a Matplotlib figure atomically and close it; returns the path. The format follows
+    the suffix: PDF for ``.pdf``, SVG for ``.svg``, PNG otherwise.
 
     With ``$BEARINGSIM_STRICT_FIGURES=1`` a figure that breaks the figure standard
     (:func:`bearingsim.plotting.figure_problems`) raises ``ValueError`` naming the file and the
@@ -65,7 +66,9 @@ def save_figure(fig, path: str | Path, dpi: int = DPI) -> Path:
         if problems:
             plt.close(fig)
             raise ValueError(f"figure {p.name} breaks the figure standard: " + "; ".join(problems))
-    with atomic_path(p, suffix=".png") as tmp:
-        fig.savefig(tmp, dpi=dpi, bbox_inches="tight", pad_inches=0.04, format="png")
+    fmt = p.suffix.lower().lstrip(".")
+    fmt = fmt if fmt in ("pdf", "svg") else "png"  # the CLI allows only these three suffixes
+    with atomic_path(p, suffix=f".{fmt}") as tmp:
+        fig.savefig(tmp, dpi=dpi, bbox_inches="tight", pad_inches=0.04, format=fmt)
     plt.close(fig)
     return p

@@ -1,0 +1,106 @@
+"""Gaps found by exploratory testing of the command line (2026-11-27): each case was
+reproduced on the previous HEAD (a traceback, a silent wrong answer or an option range quoted
+but not enforced) and is now one line on stderr with exit code 2, or right."""
+
+from __future__ import annotations
+
+import tomllib
+
+import numpy as np
+import pytest
+from conftest import cwru_record
+
+R132 = "12k_Drive_End_OR007@6_2_132.mat"
+
+
+def _one_line(r) -> str:
+    assert r.code == 2, (r.out, r.err)
+    lines = r.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
+    return lines[0]
+
+
+def test_option_ranges_are_enforced_by_the_option_itself(run_cli, tmp_path):
+    """``Number`` quoted its range in messages but did not check it: rig identify --max-modes 0
+    (or -2) ran and wrote one mode."""
+    rec = cwru_record(R132)
+    for v in ("0", "-2"):
+        line = _one_line(
+            run_cli("rig", "identify", rec, "--name", "m", "--max-modes", v, "-o", tmp_path / "m")
+        )
+        assert f"max_modes = {v} is out of range; valid range [1, inf)" in line
+    assert not list(tmp_path.iterdir())
+
+
+def test_rig_identify_refuses_a_rate_too_low_and_an_empty_name(run_cli, tmp_path):
+    """--fs-hz 100 raised 'nperseg must be a positive integer' from SciPy (exit 1, a
+    traceback); --name '' failed after the work."""
+    rec = cwru_record(R132)
+    line = _one_line(run_cli("rig", "identify", rec, "--name", "m", "--fs-hz", "100",
+                             "-o", tmp_path / "m.toml"))  # fmt: skip
+    assert "fs_hz = 100 Hz is too low to identify a transfer path" in line
+    assert "valid range [4526, inf) Hz" in line
+    line = _one_line(run_cli("rig", "identify", rec, "--name", " ", "-o", tmp_path / "m.toml"))
+    assert "name = ' ' is empty" in line
+    assert not list(tmp_path.iterdir())
+
+
+def test_an_identified_cwru_rig_names_its_sensor_end(run_cli, tmp_path):
+    """A rig identified on CWRU fan-end records says so (``end = "FE"``), and the rotor model
+    feeds that end's housing into it (before, the fan-end profile read the drive-end housing,
+    acc_y); a rig without an end keeps acc_y."""
+    from bearingsim.rig import load_rig
+
+    out = tmp_path / "fe.toml"
+    rec = cwru_record("12k_Fan_End_OR014@6_0_313.mat")
+    r = run_cli("rig", "identify", rec, "--name", "fe", "-o", out)
+    assert r.code == 0, r.err
+    assert tomllib.loads(out.read_text())["end"] == "FE"
+    assert load_rig(str(out)).end == "FE" and load_rig("cwru-fe-12k").end == "FE"
+    assert load_rig("cwru-de-12k").end == "DE"
+    assert "sensor at the FE end" in run_cli("rig", "show", "cwru-fe-12k").out
+    bad = out.read_text().replace('end = "FE"', 'end = "middle"')
+    (tmp_path / "bad.toml").write_text(bad)
+    line = _one_line(run_cli("rig", "show", tmp_path / "bad.toml"))
+    assert "rig.end = 'middle' is invalid; valid: DE, FE" in line
+
+
+@pytest.mark.parametrize(
+    "make, message",
+    [
+        (lambda x: np.hstack([x, x]), "X001_DE_time is a 12000 x 2 array; valid: one column"),
+        (lambda x: x * (1 + 1j), "X001_DE_time is complex; valid: real samples"),
+        # a CWRU file holds g: 1 g is 9.80665 m/s^2
+        (lambda x: np.ones_like(x), "all 12000 samples equal 9.80665; valid: a vibration signal"),
+    ],
+    ids=["two-columns", "complex", "constant"],
+)
+def test_mat_channels_that_are_not_one_real_signal(run_cli, tmp_path, make, message):
+    """Two columns were flattened and interleaved (record 132 read 'uncertain', leading inner
+    at 0.94); complex samples lost their imaginary part with a raw NumPy warning; a constant
+    record got the sample-rate inference error."""
+    from scipy.io import loadmat, savemat
+
+    d = loadmat(cwru_record(R132))
+    x = next(v for k, v in d.items() if k.endswith("DE_time"))[:12000]
+    f = tmp_path / "site_2_1.mat"  # a CWRU site name: no rate in it
+    savemat(f, {"X001_DE_time": make(x), "X001RPM": np.array([[1750.0]])})
+    assert message in _one_line(run_cli("analyze", f))
+    row = tmp_path / "row_2_1.mat"  # one row is one signal, as one column
+    savemat(row, {"X001_DE_time": x.T, "X001RPM": np.array([[1750.0]])})
+    assert run_cli("analyze", row, "--fs-hz", "12000").code == 0
+
+
+def test_two_outputs_on_one_path_and_plot_formats(run_cli, tmp_path):
+    """vsm-trace -o same.csv --plot same.csv replaced the CSV with the PNG and said 'wrote';
+    load --plot x.pdf wrote PNG bytes under a .pdf name."""
+    line = _one_line(run_cli("vsm-trace", "--cage-revs", "0.05", "-o", tmp_path / "same.png",
+                             "--plot", tmp_path / "same.png"))  # fmt: skip
+    assert "--plot = " in line and "is also -o/--output" in line
+    assert not list(tmp_path.iterdir())
+    line = _one_line(run_cli("load", "6205", "--fy-n", "50", "--plot", tmp_path / "x.txt"))
+    assert "has no figure suffix; valid: a name ending in .png, .pdf, .svg" in line
+    for suffix, magic in ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG")):
+        p = tmp_path / f"load{suffix}"
+        assert run_cli("load", "6205", "--fy-n", "50", "--plot", p).code == 0
+        assert p.read_bytes().startswith(magic)
