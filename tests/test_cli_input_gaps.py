@@ -104,3 +104,62 @@ def test_two_outputs_on_one_path_and_plot_formats(run_cli, tmp_path):
         p = tmp_path / f"load{suffix}"
         assert run_cli("load", "6205", "--fy-n", "50", "--plot", p).code == 0
         assert p.read_bytes().startswith(magic)
+
+
+def _write(path, **keys):
+    lines = [f"{k} = {v!r}" if isinstance(v, str) else f"{k} = {v}" for k, v in keys.items()]
+    path.write_text("\n".join(lines).replace("'", '"') + "\n")
+    return path
+
+
+NU204 = dict(id="r", type="cylindrical_roller", n_elements=11, element_diameter_m=7.94e-3,
+             pitch_diameter_m=34e-3, roller_length_m=9e-3)  # fmt: skip
+
+
+def test_bearing_files_that_are_not_a_bearing(run_cli, tmp_path):
+    """A roller bearing with raceways of 1 and 100 mm around 7.94 mm rollers on a 34 mm pitch
+    circle was accepted (inner p_max 1831 MPa against NU204-ECP's 734); an empty file named
+    'type = None'; a numeric source and a 1000 m wide bearing were accepted."""
+    f = _write(tmp_path / "r.toml", **NU204, inner_raceway_diameter_m=1e-3,
+               outer_raceway_diameter_m=0.1)  # fmt: skip
+    line = _one_line(run_cli("contact", "--bearing-file", f, "--radial-load-n", "1000"))
+    # d_m - D = 26.06 mm, within 0.1 D = 0.794 mm
+    assert "inner_raceway_diameter_m = 0.001 m is out of range; valid range [0.025266" in line
+    # the seed IAS's printed raceways (26.5/41.5 mm, 0.055 D off) stay valid
+    f = _write(tmp_path / "ok.toml", **NU204, inner_raceway_diameter_m=26.5e-3,
+               outer_raceway_diameter_m=41.5e-3)  # fmt: skip
+    assert run_cli("contact", "--bearing-file", f, "--radial-load-n", "1000").code == 0
+    (tmp_path / "empty.toml").write_text("")
+    line = _one_line(run_cli("info", "--bearing-file", tmp_path / "empty.toml", "--rpm", "1"))
+    assert "missing required key 'type'" in line
+    f = _write(tmp_path / "s.toml", **NU204, source=5)
+    assert "source = 5 is not a text" in _one_line(
+        run_cli("info", "--bearing-file", f, "--rpm", "1")
+    )
+    f = _write(tmp_path / "w.toml", **NU204, width_m=1000.0, outer_diameter_m=47e-3)
+    line = _one_line(run_cli("info", "--bearing-file", f, "--rpm", "1"))
+    assert "width_m = 1000 m is out of range; valid range [0.009, 0.047] m" in line
+
+
+def test_bearings_json_writes_bearing_files_that_read_back_the_same(run_cli, tmp_path):
+    """bearings --json left out bore, outside diameter and width, so a bearing file written
+    from it lost the checks that depend on them (the clearance range of the bore: a 60 um
+    clearance on the 6205 was refused from the catalogue and accepted from the file)."""
+    from bearingsim.catalog import bearing_from_dict, get_bearing
+
+    for item in run_cli("bearings", "--json").json()["bearings"]:
+        assert bearing_from_dict(item, "json") == get_bearing(item["id"])
+    item = next(b for b in run_cli("bearings", "--json").json()["bearings"] if b["id"] == "6205")
+    f = _write(tmp_path / "rt.toml", **item)
+    line = _one_line(run_cli("load", "--bearing-file", f, "--fy-n", "50", "--clearance-m", "6e-5"))
+    assert "clearance" in line
+
+
+def test_load_at_zero_radial_load_with_a_preload(run_cli):
+    """Every ball is loaded: the load zone is the whole bearing (psi_L = 180 deg) and the
+    load-distribution factor is unbounded (epsilon -> inf as F_r -> 0, Harris); it said
+    psi_L = 90 deg and epsilon = 0.5 at zero load and 180 deg at 1 mN."""
+    d = run_cli("load", "6205", "--clearance-m", "-6e-6", "--json").json()
+    assert (d["psi_l_deg"], d["epsilon"], d["n_loaded"]) == (180.0, None, 9)
+    d = run_cli("load", "6205", "--clearance-m", "0", "--fy-n", "0", "--json").json()
+    assert (d["psi_l_deg"], d["epsilon"]) == (90.0, 0.5)  # zero clearance: Harris's limit

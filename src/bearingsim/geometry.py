@@ -230,6 +230,12 @@ def _check_envelope(b: BallBearing | RollerBearing) -> None:
             f"outer_diameter_m = {b.outer_diameter:.6g} m is not outside the outer raceway "
             f"(diameter {outer:.6g} m); valid range ({outer:.6g}, inf) m"
         )
+    if b.width is not None:
+        # the rings hold the rolling elements (a ball's diameter, a roller's length) and a
+        # radial bearing is no wider than its outside diameter (ISO 15 series: B < D)
+        w_lo = b.element_diameter if isinstance(b, BallBearing) else b.roller_length
+        w_hi = b.outer_diameter if b.outer_diameter is not None else outer
+        _set(b, "width", check_range("width_m", b.width, w_lo, w_hi, unit="m"))
     _set(b, "diametral_clearance", check_clearance(b, b.diametral_clearance))
 
 
@@ -318,6 +324,11 @@ class BallBearing:
         return 0.5 * (self.pitch_diameter + self.element_diameter)
 
 
+#: how far a given raceway diameter may lie from pitch diameter -/+ roller diameter, as a
+#: fraction of the roller diameter [-] (:class:`RollerBearing`)
+RACEWAY_TOLERANCE = 0.1
+
+
 @dataclass(frozen=True)
 class RollerBearing:
     """Cylindrical roller bearing.
@@ -377,10 +388,16 @@ class RollerBearing:
             "roller_length",
             check_range("roller_length_m", self.roller_length, lo * d, hi * d, unit="m"),
         )
-        for name in ("inner_raceway_diameter", "outer_raceway_diameter"):
+        for name, sign in (("inner_raceway_diameter", -1.0), ("outer_raceway_diameter", 1.0)):
             v = getattr(self, name)
             if v is not None:
-                _set(self, name, check_positive(f"{name}_m", v, "m"))
+                # a raceway touches the rollers: d_m -/+ D up to the clearance; within
+                # RACEWAY_TOLERANCE x D, which keeps printed values such as the seed IAS's
+                # NU204 (26.5/41.5 mm against 26.06/41.94 mm, 0.055 D) and refuses a raceway
+                # that could not hold the rollers
+                c = self.pitch_diameter + sign * d
+                tol = RACEWAY_TOLERANCE * d
+                _set(self, name, check_range(f"{name}_m", v, c - tol, c + tol, unit="m"))
         if self.inner_raceway_diameter is None:
             _set(self, "inner_raceway_diameter", self.pitch_diameter - self.element_diameter)
         if self.outer_raceway_diameter is None:

@@ -263,9 +263,11 @@ class LoadDistribution:
     delta_max : ndarray, shape (m,)
         ``delta_r - P_d/2``, deflection on the displacement line [m].
     epsilon : ndarray, shape (m,)
-        Load-distribution factor ``(1 - P_d/(2 delta_r))/2`` [-].
+        Load-distribution factor ``(1 - P_d/(2 delta_r))/2`` [-]; above 1 every element is
+        loaded. With a preload (``P_d < 0``) it grows without bound as the radial load goes to
+        0, and is ``inf`` at zero load (JSON: ``null``).
     psi_l : ndarray, shape (m,)
-        Load-zone half angle ``arccos(P_d/(2 delta_r))`` [rad].
+        Load-zone half angle ``arccos(P_d/(2 delta_r))`` [rad], clipped to [0, pi].
     n_loaded : ndarray, shape (m,)
         Number of elements with ``Q_j > 0`` [-].
     residual : ndarray, shape (m,)
@@ -408,8 +410,13 @@ def radial_load_distribution(
     dj = u[:, :1] * np.sin(psi) + u[:, 1:] * np.cos(psi) - 0.5 * Pd
     Q = fac * K * np.maximum(dj, 0.0) ** n
     dr = np.hypot(u[:, 0], u[:, 1])
+    # P_d/(2 delta_r); at delta_r = 0 (no radial load) its limit: 0 without clearance (half
+    # the elements at the edge of loading, Harris), -inf with a preload (every element
+    # loaded equally: epsilon infinite, psi_l = pi; it was 0.5 and pi/2 there, while every
+    # element carried load)
+    at_rest = -math.inf if Pd < 0 else 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(dr > 0, 0.5 * Pd / np.where(dr > 0, dr, 1.0), 0.0)
+        ratio = np.where(dr > 0, 0.5 * Pd / np.where(dr > 0, dr, 1.0), at_rest)
     return LoadDistribution(
         fx=fx,
         fy=fy,

@@ -97,6 +97,10 @@ def bearing_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Bearing:
     origin : str
         Shown in error messages (file name).
     """
+    if "type" not in data:
+        raise ConfigError(
+            f"{origin}: missing required key 'type'; valid: 'ball' or 'cylindrical_roller'"
+        )
     btype = data.get("type")
     if btype not in _REQUIRED:
         raise ConfigError(
@@ -112,6 +116,11 @@ def bearing_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Bearing:
     missing = sorted(_REQUIRED[btype] - set(data))
     if missing:
         raise ConfigError(f"{origin}: missing required key {missing[0]!r} for type {btype!r}")
+    if not isinstance(data.get("source", ""), str):
+        raise ConfigError(
+            f"{origin}: source = {data['source']!r} is not a text; valid: where the values "
+            "come from, as a string"
+        )
     try:
         mat = Material(
             youngs_modulus=data.get("youngs_modulus_pa", 207e9),

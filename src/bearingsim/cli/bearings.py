@@ -31,7 +31,7 @@ def bearings_cmd(as_json: bool) -> None:
         click.echo(
             f"{b['id']:<16} {b['type']:<18} Z={b['n_elements']:<3} "
             f"d={b['element_diameter_m'] * 1e3:.3f} mm"
-            f"  D={b['pitch_diameter_m'] * 1e3:.3f} mm  ({b['source'][:70]})"
+            f"  D={b['pitch_diameter_m'] * 1e3:.3f} mm  ({_short(b['source'])})"
         )
 
 
@@ -54,3 +54,11 @@ def info_cmd(bearing: Bearing, rpm: float, as_json: bool) -> None:
     click.echo(bearing_summary(bearing)["id"] + f" at {rpm:g} r/min (shaft {rpm / 60:.4f} Hz)")
     for k in ("ftf", "bpfo", "bpfi", "bsf"):
         click.echo(f"  {k.upper():<5} {kin[k + '_hz']:10.4f} Hz   order {kin[k + '_order']:.5f}")
+
+
+def _short(source: str, limit: int = 70) -> str:
+    """``source`` cut at a word boundary to at most ``limit`` characters, marked by an
+    ellipsis (``--json`` has the whole text)."""
+    if len(source) <= limit:
+        return source
+    return source[: limit - 1].rsplit(" ", 1)[0].rstrip(" ,;(") + "…"

@@ -489,7 +489,8 @@ def bearing_options(required: bool = True) -> Callable:
 
 
 def bearing_summary(b: Bearing) -> dict[str, Any]:
-    """Plain-dict description of a bearing (SI)."""
+    """Plain-dict description of a bearing (SI), in the keys of a bearing file: written as TOML
+    it reads back as the same bearing (:func:`bearingsim.catalog.bearing_from_dict`)."""
     out = {
         "id": b.id,
         "type": b.kind,
@@ -510,6 +511,12 @@ def bearing_summary(b: Bearing) -> dict[str, Any]:
         out["roller_length_m"] = b.roller_length
         out["inner_raceway_diameter_m"] = b.inner_raceway_diameter
         out["outer_raceway_diameter_m"] = b.outer_raceway_diameter
+    # the envelope, where known: a bearing file written from this dict keeps the checks that
+    # depend on it (the clearance range of the bore, the ring wall under a defect)
+    for key, v in (("bore_m", b.bore), ("outer_diameter_m", b.outer_diameter),
+                   ("width_m", b.width)):  # fmt: skip
+        if v is not None:
+            out[key] = v
     return out
 
 
