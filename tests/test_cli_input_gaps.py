@@ -163,3 +163,26 @@ def test_load_at_zero_radial_load_with_a_preload(run_cli):
     assert (d["psi_l_deg"], d["epsilon"], d["n_loaded"]) == (180.0, None, 9)
     d = run_cli("load", "6205", "--clearance-m", "0", "--fy-n", "0", "--json").json()
     assert (d["psi_l_deg"], d["epsilon"]) == (90.0, 0.5)  # zero clearance: Harris's limit
+
+
+def test_messages_that_point_somewhere_useful(run_cli, tmp_path):
+    """A rig table whose frequencies do not increase named the whole 40-value list; analyze on
+    an IAS result said 'load_result reads any kind' instead of naming analyze-ias."""
+    from bearingsim.rig import load_rig
+    from bearingsim.rig_identify import rig_to_toml
+
+    d = load_rig("cwru-de-12k")
+    text = tmp_path / "r.toml"
+
+    rig = rig_to_toml(d).replace("frequency_hz = [10.0, ", "frequency_hz = [10.0, 5.0, ", 1)
+    rig = rig.replace("psd_m2_per_s4_per_hz = [", "psd_m2_per_s4_per_hz = [1e-3, ", 1)
+    text.write_text(rig)
+    line = _one_line(run_cli("rig", "show", text))
+    assert "background.frequency_hz[1] = 5 Hz does not exceed [0] = 10 Hz" in line
+    assert len(line) < 300
+    import xarray as xr
+
+    out = tmp_path / "ias.nc"  # what an IAS result's file says it is (IasResult.FORMAT)
+    xr.Dataset(attrs={"format": "bearingsim.IasResult/1"}).to_netcdf(out, engine="h5netcdf")
+    line = _one_line(run_cli("analyze", out))
+    assert "an IAS result: bearingsim analyze-ias reads it" in line

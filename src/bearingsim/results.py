@@ -52,6 +52,10 @@ FORMAT = "bearingsim.SimulationResult/1"
 
 #: ``format`` attribute -> result class (filled by :meth:`Result.__init_subclass__`)
 _FORMATS: dict[str, type[Result]] = {}
+#: what reads a file of another result class, where a command does (``check_format``'s hint)
+_OTHER_USE = {
+    "bearingsim.IasResult/1": " (an IAS result: bearingsim analyze-ias reads it)",
+}
 
 #: modules that define result classes, imported by :func:`load_result` when a file's format is
 #: not registered yet (the layers above this module may not be imported by it otherwise)
@@ -140,7 +144,7 @@ class Result:
             where = f"file = {str(path)!r}: " if path is not None else ""
             raise ConfigError(
                 f"{where}format = {got!r}{kind} is not a {cls.__name__} file; valid: "
-                f"{cls.FORMAT!r} (load_result reads any kind)"
+                f"{cls.FORMAT!r}" + _OTHER_USE.get(got, " (load_result reads any kind)")
             )
 
     def identical(self, other: Any) -> bool:

@@ -170,7 +170,11 @@ class Background:
         sv = [check_range(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, lo_open=True,
                           unit="(m/s^2)^2/Hz") for i, v in enumerate(s)]  # fmt: skip
         if any(b <= a for a, b in zip(fv, fv[1:], strict=False)):
-            raise ConfigError(f"{where}.frequency_hz must increase strictly; got {fv}")
+            k = next(i for i in range(1, len(fv)) if fv[i] <= fv[i - 1])
+            raise ConfigError(
+                f"{where}.frequency_hz[{k}] = {fv[k]:g} Hz does not exceed [{k - 1}] = "
+                f"{fv[k - 1]:g} Hz; valid: frequencies that increase strictly"
+            )
         return cls(tuple(fv), tuple(sv), _provenance(d, where))
 
     def psd_at(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
