@@ -186,3 +186,19 @@ def test_messages_that_point_somewhere_useful(run_cli, tmp_path):
     xr.Dataset(attrs={"format": "bearingsim.IasResult/1"}).to_netcdf(out, engine="h5netcdf")
     line = _one_line(run_cli("analyze", out))
     assert "an IAS result: bearingsim analyze-ias reads it" in line
+
+
+def test_the_fan_end_profile_reads_the_rotors_fan_end_housing(tmp_path):
+    """With the rotor model, cwru-fe-12k (end = "FE") is fed the fan-end housing; before, every
+    profile read acc_y, the drive-end housing, so a fan-end fault reached the fan-end sensor
+    through the drive end. analyze reads that sensor with the fan-end bearing (6203)."""
+    from bearingsim import simulate
+    from bearingsim.io.signal import read_signal
+
+    sc = dict(model="rotor", fe_fault="outer", duration_s=0.1, fs_hz=12000.0, rig="cwru-fe-12k")
+    r = simulate(sc)
+    assert r.meta["rig"]["input_channel"] == "acc_y_fe"
+    r.save(tmp_path / "fe.nc")
+    assert read_signal(tmp_path / "fe.nc").bearing.id == "6203-cwru"
+    de = simulate({**sc, "rig": "cwru-de-12k"})
+    assert de.meta["rig"]["input_channel"] == "acc_y"

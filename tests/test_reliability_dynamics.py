@@ -425,7 +425,7 @@ def test_ias_run_too_short_to_analyse_is_one_line(run_cli, tmp_path):
             ["--rotor-mass-kg", "100"],
             ["rotor_mass_kg = 100 kg", "8.25239 m long", "valid range (0, 2.46232] kg"],
         ),
-        (["--shaft-E-pa", "1e300"], ["shaft_youngs_modulus_pa = 1e+300 Pa", "[1e+09, 1.2e+12]"]),
+        (["--shaft-E-pa", "1e300"], ["shaft_E_pa = 1e+300 Pa", "[1e+09, 1.2e+12]"]),
         # Hypothesis (long profile): 1e-300 kg disks made eigh fail (LinAlgError)
         (
             ["--rotor-mass-kg", "1e-300"],

@@ -320,7 +320,9 @@ class Scenario:
         if getattr(self, "rig", None) is None:
             return {}
         seed = self.SEED_REALISM
-        return {k: getattr(self, k) for k in self.auto_keys if getattr(self, k) != seed[k]}
+        return {
+            k: getattr(self, k) for k in self.auto_keys if k in seed and getattr(self, k) != seed[k]
+        }
 
     @property
     def defaults_record(self) -> dict[str, Any]:
@@ -798,10 +800,11 @@ class RotorScenario(Scenario):
     ``rpm``                             1750.0          shaft speed [r/min]
     ``duration_s``, ``fs_hz``           1.0, 48000.0    simulated time [s], output sample rate [Hz]
     ``seed``, ``noise_rms_m_per_s2``    0, 0.0          white measurement noise on the accelerations
-    ``disks``                           9               number of equal disks carrying the rotor
-                                                        mass
+    ``disks``                           9 (one per      number of equal disks carrying the rotor
+                                        position)       mass; with ``disk_positions_mm`` it must
+                                                        equal their count (unset: it follows them)
     ``disk_positions_mm``               equal spacing   disk positions from the DE bearing [mm]
-                                                        (list)
+                                                        (list, strictly increasing)
     ``distributed_rotor``               false           rotor mass spread along the shaft instead
     ``n_elements``                      auto            minimum number of beam elements
     ``shaft_mass_model``                ``"lumped"``    lumped (half at each bearing, seed) |
@@ -934,7 +937,7 @@ class RotorScenario(Scenario):
     slip_percent: float | None = None
     pocket_jitter_percent: float = 0.0
     ball_diameter_spread_m: float = 0.0
-    disks: int = SEED_ROTOR_DISKS
+    disks: int | None = None
     disk_positions_mm: tuple[float, ...] | None = None
     distributed_rotor: bool = False
     n_elements: int | None = None
@@ -981,7 +984,8 @@ class RotorScenario(Scenario):
             "noise_rms_m_per_s2",
             check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
-        _int("disks", self.disks, 1)
+        if self.disks is not None:
+            _int("disks", self.disks, 1)
         if self.n_elements is not None:
             _int("n_elements", self.n_elements, 1)
         if self.disk_positions_mm is not None:
@@ -995,6 +999,7 @@ class RotorScenario(Scenario):
             if not pos:
                 raise ConfigError("disk_positions_mm = [] is invalid; valid: a non-empty list")
             s(self, "disk_positions_mm", pos)
+        self._resolve_disks()
         _choice("shaft_mass_model", self.shaft_mass_model, ("lumped", "distributed"))
         s(self, "housing_mass_kg", check_positive("housing_mass_kg", self.housing_mass_kg, "kg"))
         s(
@@ -1019,6 +1024,22 @@ class RotorScenario(Scenario):
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         _check_rig(self, ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe"))
+
+    def _resolve_disks(self) -> None:
+        """``disks`` left unset (``None``) becomes one per ``disk_positions_mm`` value, else the
+        seed's :data:`SEED_ROTOR_DISKS`, and joins :attr:`auto_keys` (unset again in
+        :meth:`to_dict`, resolved anew by :meth:`replace`, so it follows new positions); given
+        beside ``disk_positions_mm``, it must equal their count."""
+        pos = self.disk_positions_mm
+        if self.disks is None:
+            object.__setattr__(self, "disks", SEED_ROTOR_DISKS if pos is None else len(pos))
+            self.__dict__["auto_keys"] = (*self.auto_keys, "disks")
+        elif pos is not None and len(pos) != self.disks:
+            shown = ", ".join(f"{v:g}" for v in pos[:8]) + (", ..." if len(pos) > 8 else "")
+            raise ConfigError(
+                f"disks = {self.disks} and disk_positions_mm = [{shown}] ({len(pos)} positions) "
+                f"disagree; valid: one position per disk (disks = {len(pos)}, or disks unset)"
+            )
 
     @property
     def shaft_hz(self) -> float:

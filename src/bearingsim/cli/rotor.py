@@ -14,6 +14,7 @@ from typing import Any
 
 import click
 
+from ..config import SEED_ROTOR_DISKS
 from ..errors import ConfigError
 from ..materials import YOUNGS_MODULUS_RANGE
 from .common import DeferredDefaultOption, Number, cli, deprecated, emit_json, json_option
@@ -25,6 +26,10 @@ __all__ = [
     "rotor_options",
     "rotor_simulate_options",
 ]
+
+#: what ``--disks`` shows as its default (``disks`` unset: :data:`SEED_ROTOR_DISKS`, or one per
+#: ``--disk-positions-mm`` value)
+_DISKS_DEFAULT = f"{SEED_ROTOR_DISKS}, or one per --disk-positions-mm value"
 
 #: values of :class:`~bearingsim.dynamics.rotor.ShaftMassModel` (checked by the CLI tests; the
 #: enum's module loads the rotor kernels, which ``simulate --model vsm`` does not need)
@@ -94,8 +99,8 @@ def rotor_simulate_options(f: Callable) -> Callable:
             "--disks",
             type=Number(1, integer=True),
             default=None,
-            show_default=_d("disks"),
-            help="Number of rotor disks [-].",
+            show_default=_DISKS_DEFAULT,
+            help="Number of rotor disks [-] (with --disk-positions-mm: their count).",
         ),
         click.option(
             "--disk-positions-mm",
@@ -223,7 +228,13 @@ def rotor_options(f: Callable) -> Callable:
     """Options describing the rotor (shaft, armature, mesh); the command receives
     ``rotor_kw`` (keyword arguments for :func:`cwru_rotor_config`) instead."""
 
-    @click.option("--disks", type=Number(1, integer=True), default=9, help="Number of disks [-].")
+    @click.option(
+        "--disks",
+        type=Number(1, integer=True),
+        default=None,
+        show_default=_DISKS_DEFAULT,
+        help="Number of disks [-] (with --disk-positions-mm: their count).",
+    )
     @click.option(
         "--disk-positions-mm",
         default=None,
@@ -287,7 +298,7 @@ def rotor_options(f: Callable) -> Callable:
     )
     @functools.wraps(f)
     def wrapper(
-        disks: int,
+        disks: int | None,
         disk_positions_mm: str | None,
         distributed_rotor: bool,
         elements: int | None,
@@ -312,12 +323,20 @@ def rotor_options(f: Callable) -> Callable:
             shaft_length_mm * 1e-3, shaft_diameter_mm * 1e-3, given(shaft_e, rc.SEED_SHAFT_E_PA),
             given(shaft_mass_kg, rc.SEED_SHAFT_MASS_KG), shaft_mass_model,
         )  # fmt: skip
-        pos = _positions_mm(disk_positions_mm)
+        pos = _positions_mm(disk_positions_mm) or None
+        if disks is None:  # unset: one per position, else the seed's
+            disks = SEED_ROTOR_DISKS if pos is None else len(pos)
+        elif pos is not None and len(pos) != disks:
+            raise ConfigError(
+                f"disks = {disks} and disk_positions_mm = [{disk_positions_mm}] ({len(pos)} "
+                f"positions) disagree; valid: one position per disk (--disks {len(pos)}, or "
+                "--disks unset)"
+            )
         arm = rc.Armature(
             given(rotor_mass_kg, rc.SEED_ROTOR_MASS_KG),
             disk_diameter_mm * 1e-3,
-            n_disks=len(pos) if pos else disks,
-            positions=pos or None,
+            n_disks=disks,
+            positions=pos,
             distributed=distributed_rotor,
         )
         rotor_kw = {"shaft": shaft, "armature": arm, "n_elements": elements}

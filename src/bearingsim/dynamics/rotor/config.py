@@ -46,6 +46,7 @@ __all__ = [
     "AUX_NAMES",
     "BAND_TUNED_HOUSING",
     "BearingSupport",
+    "catalogue_bearing",
     "config_summary",
     "cwru_rotor_config",
     "default_housing",
@@ -266,8 +267,9 @@ class Armature:
     n_disks : int
         Number of equal disks (ignored when ``distributed``).
     positions : tuple of float or None
-        Disk positions from the DE bearing [m], strictly inside (0, shaft length); default
-        equally spaced ``L i / (n + 1)``.
+        Disk positions from the DE bearing [m], one per disk, strictly increasing and strictly
+        inside (0, shaft length) (checked by :class:`RotorConfig`); default equally spaced
+        ``L i / (n + 1)``.
     density : float
         Density used to infer the armature length ``m / (rho pi (D^2 - d_shaft^2)/4)`` [kg/m^3];
         each disk is the slice ``length / n`` thick (this sets its diametral inertia).
@@ -291,10 +293,18 @@ class Armature:
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
             raise ConfigError(f"n_disks = {n!r} is out of range; valid range [1, inf) integer")
         if self.positions is not None:
-            pos = tuple(float(x) for x in self.positions)
+            try:
+                pos = tuple(float(x) for x in self.positions)
+            except (TypeError, ValueError):
+                raise ConfigError(
+                    f"disk_positions_m = {self.positions!r} is invalid; valid: a list of positions "
+                    "[m], one per disk"
+                ) from None
             if len(pos) != n:
                 raise ConfigError(
-                    f"disk_positions has {len(pos)} values but n_disks = {n}; give one per disk"
+                    f"n_disks = {n} and disk_positions_m = {_fmt_positions(pos)} m "
+                    f"({len(pos)} positions) disagree; valid: one position per disk (n_disks = "
+                    f"{len(pos)} for these positions)"
                 )
             object.__setattr__(self, "positions", pos)
 
@@ -409,8 +419,14 @@ class RotorConfig:
         given = () if self.armature.distributed else (self.armature.positions or ())
         for z in given:  # equally spaced positions (the default) are inside and distinct
             check_range("disk_position_m", z, 0.0, L, lo_open=True, hi_open=True, unit="m")
-        if len(set(np.round(given, 12))) != len(given):
-            raise ConfigError("disk_positions_m has repeated positions; give distinct values")
+        for a, b in zip(given[:-1], given[1:], strict=True):
+            # 1e-12 L: the mesh merges nodes closer than that (.fe.mesh_nodes)
+            if not b - a > 1e-12 * L:
+                raise ConfigError(
+                    f"disk_positions_m = {_fmt_positions(given)} m is not strictly increasing "
+                    f"({b:.6g} m follows {a:.6g} m); valid: distinct positions in increasing "
+                    f"order within (0, {L:.6g}) m"
+                )
         n_min = (0 if self.armature.distributed else self.armature.n_disks) + 1
         if self.n_elements is not None:
             ne = self.n_elements
@@ -499,6 +515,25 @@ class RotorConfig:
         }
 
 
+def _fmt_positions(pos: tuple[float, ...]) -> str:
+    """``(0.05, 0.1)``: positions [m] for a message (6 significant digits, at most 8 shown)."""
+    shown = ", ".join(f"{z:.6g}" for z in pos[:8])
+    return f"({shown}{', ...' if len(pos) > 8 else ''})"
+
+
+def catalogue_bearing(bearing_id: str, name: str = "bearing") -> BallBearing:
+    """The catalogue bearing ``bearing_id`` (:func:`bearingsim.catalog.get_bearing`); an unknown
+    id is refused with one line naming the field ``name`` (``de_bearing``, ``fe_bearing``)."""
+    try:
+        return get_bearing(bearing_id)
+    except ConfigError as exc:
+        msg = str(exc)
+        head = f"bearing = {bearing_id!r}"
+        if name != "bearing" and msg.startswith(head):
+            raise ConfigError(f"{name} = {bearing_id!r}{msg[len(head) :]}") from None
+        raise
+
+
 def cwru_rotor_config(
     n_disks: int = 9,
     de_fault: Defect | None = None,
@@ -525,8 +560,8 @@ def cwru_rotor_config(
     """
     arm = kw.pop("armature", None) or Armature(n_disks=n_disks)
     return RotorConfig(
-        de=BearingSupport(get_bearing(de_bearing), de_fault),
-        fe=BearingSupport(get_bearing(fe_bearing), fe_fault),
+        de=BearingSupport(catalogue_bearing(de_bearing, "de_bearing"), de_fault),
+        fe=BearingSupport(catalogue_bearing(fe_bearing, "fe_bearing"), fe_fault),
         armature=arm,
         speed_rpm=speed_rpm,
         **kw,

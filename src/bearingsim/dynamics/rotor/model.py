@@ -74,10 +74,14 @@ __all__ = [
     "RotorModes",
     "build_fe",
     "build_rotor",
+    "check_fe_size",
     "evaluate_rhs",
     "fe_estimate",
     "first_bending_hz",
+    "MAX_FE_DOF",
+    "max_disks",
     "pack_model",
+    "rotor_eigenvalue_bound",
     "rotor_modes",
     "simulate_rotor",
     "stable_step",
@@ -115,6 +119,75 @@ def fe_estimate(config: RotorConfig, arrays: int = FE_ARRAYS_SIMULATE) -> Estima
     ne = n_fe_elements(config)
     n_dof = float(NDOF_NODE) * (ne + 1)
     return Estimate(f"rotor mesh: {ne} beam elements, {n_dof:.6g} DOFs", arrays * n_dof**2 * F8)
+
+
+#: largest finite-element rotor (DOFs, 4 per node) :func:`plan_rotor` builds [-]. The rotor is
+#: assembled and reduced with dense linear algebra whose cost grows as ``n_dof^3`` (the interior
+#: eigenproblem of the Craig-Bampton reduction): measured 2.7 s at 1000 DOFs (248 disks), 15 s at
+#: 2000 and 47 s at 4008 (1000 disks, past 1.7 GB; issue: a check that ran > 2 min) on the 2-core
+#: development VM under load (2026). The limit costs no physics: with 248 equally spaced disks
+#: the kept fixed-interface modes below 6 kHz lie within 0.2 % of the distributed rotor's
+#: (``Armature(distributed=True)``, the limit of many disks), and from ~100 disks on the reduced
+#: model has as many coordinates as that limit
+MAX_FE_DOF = 1000
+
+
+def _mesh_dof(length: float, positions: tuple[float, ...], n_elements: int) -> int:
+    """DOFs of the beam mesh :func:`.fe.mesh_nodes` makes on ``length`` [m] with disks at
+    ``positions`` [m] and at least ``n_elements`` elements [-]."""
+    return NDOF_NODE * int(mesh_nodes(length, positions, n_elements).size)
+
+
+def max_disks(config: RotorConfig) -> int:
+    """Most equally spaced disks [-] whose automatic mesh (``max(16, n + 1)`` elements) stays
+    within :data:`MAX_FE_DOF`: from 15 disks on the mesh has one element per interval,
+    ``4 (n + 2)`` DOFs."""
+    L = config.shaft.length
+
+    def fits(n: int) -> bool:
+        pos = tuple(L * (i + 1) / (n + 1) for i in range(n))
+        return _mesh_dof(L, pos, max(16, n + 1)) <= MAX_FE_DOF
+
+    n = MAX_FE_DOF // NDOF_NODE - 2
+    while n > 1 and not fits(n):
+        n -= 1
+    return n
+
+
+def check_fe_size(config: RotorConfig, disks: str = "n_disks") -> int:
+    """Refuse, with one line, a rotor whose beam mesh exceeds :data:`MAX_FE_DOF` (the dense
+    reduction would run for minutes); the message names the field that sets the mesh: the
+    disks (``disks``: the name of that field in the message) or ``n_elements``, its value and
+    its valid range. Returns the mesh's DOF count [-]. Check the mesh's memory first
+    (:func:`fe_estimate`): this builds the node list."""
+    n_dof = NDOF_NODE * int(fe_nodes(config).size)
+    if n_dof <= MAX_FE_DOF:
+        return n_dof
+    arm = config.armature
+    pos = config.disk_positions
+    L = config.shaft.length
+    why = (
+        f"beam mesh of {n_dof // NDOF_NODE - 1} elements, {n_dof} DOFs, above the "
+        f"{MAX_FE_DOF} DOFs of the dense finite-element reduction (MAX_FE_DOF; its cost grows as "
+        "DOFs^3)"
+    )
+    auto = _mesh_dof(L, pos, max(16, len(pos) + 1))
+    if not arm.distributed and (config.n_elements is None or auto > MAX_FE_DOF):
+        uneven = ", fewer at uneven disk_positions" if arm.positions is not None else ""
+        raise ConfigError(
+            f"{disks} = {arm.n_disks} makes a {why}; valid range [1, {max_disks(config)}] "
+            f"equally spaced disks with the automatic mesh{uneven}, or the distributed rotor "
+            "(distributed_rotor, the limit of many disks)"
+        )
+    lo = len(pos) + 1
+    hi = MAX_FE_DOF // NDOF_NODE  # the mesh has at least n_elements + 1 nodes
+    while lo < hi:  # the largest n_elements that fits (the mesh grows with it)
+        mid = (lo + hi + 1) // 2
+        lo, hi = (mid, hi) if _mesh_dof(L, pos, mid) <= MAX_FE_DOF else (lo, mid - 1)
+    raise ConfigError(
+        f"n_elements = {config.n_elements} makes a {why}; valid range [{len(pos) + 1}, {lo}] "
+        "for this rotor"
+    )
 
 
 def first_bending_hz(config: RotorConfig) -> float:
@@ -687,15 +760,23 @@ def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]
 
 def stable_step(model: PackedModel, config: RotorConfig, y0: NDArray, margin: float = 2.0):
     """Largest RK4 step [s] for the fastest mode of the linearised system, ``margin / omega_max``
-    (the RK4 stability limit on the imaginary axis is 2.83).
+    [s] with ``omega_max`` [rad/s] the largest eigenvalue modulus (the RK4 stability region holds
+    the left half-disk of radius 2.6: 2.83 on the imaginary axis, 2.79 on the negative real axis).
 
     The contact stiffness is the Hertz tangent ``1.5 k^(2/3) Q^(1/3)`` at four times the
-    largest static contact load (plus 1 N) to cover the dynamic load peaks.
+    largest static contact load (plus 1 N) to cover the dynamic load peaks. The modes bounded:
+    each ball's radial mode between its two contacts, each housing on its mount and its balls,
+    the undamped rotor on each bearing's stiffness, and the damped, gyroscopic rotor on both
+    (:func:`rotor_eigenvalue_bound`): the stiffness-proportional damping ``beta K`` puts a
+    rotor mode of ``omega`` at the real eigenvalue ``-beta omega^2`` once it is overdamped
+    (``zeta = beta omega / 2 > 1``), which outgrows ``omega`` itself (from ~12 disks at 48 kHz
+    output the fastest eigenvalue is such a mode).
     """
     _, aux = evaluate_rhs(model, 0.0, y0)
     q = aux[4:]
     qd = 4.0 * float(q.max()) + 1.0
     w2 = []
+    kb_ends = []
     for sup, h in ((config.de, config.housing_de), (config.fe, config.housing_fe)):
         b = sup.bearing
         ki = ball_contact(b, 1.0, Race.INNER).k_hertz
@@ -710,7 +791,24 @@ def stable_step(model: PackedModel, config: RotorConfig, y0: NDArray, margin: fl
         kb[:4, :4] = np.eye(4) * b.n_elements * kser
         lam = np.linalg.eigvals(np.linalg.solve(model.rotor.M, model.rotor.K + kb))
         w2.append(float(np.max(lam.real)))
-    return margin / math.sqrt(max(w2))
+        kb_ends += [b.n_elements * kser] * 2
+    w = math.sqrt(max(w2))
+    return margin / max(w, rotor_eigenvalue_bound(model.rotor, config, np.array(kb_ends)))
+
+
+def rotor_eigenvalue_bound(rot: RotorAssembly, config: RotorConfig, k_ends: NDArray) -> float:
+    """Largest eigenvalue modulus [rad/s] of the reduced rotor with its damping and gyroscopic
+    coupling, ``M q'' + (C + Omega G) q' + (K + K_b) q = 0``, on bearing springs ``k_ends``
+    [N/m] at its four boundary coordinates (DE x, y, FE x, y): the eigenvalues of the
+    first-order matrix ``[[0, I], [-M^-1 (K + K_b), -M^-1 (C + Omega G)]]``."""
+    n = rot.n
+    kb = rot.K.copy()
+    kb[np.arange(4), np.arange(4)] += k_ends
+    a = np.zeros((2 * n, 2 * n))
+    a[:n, n:] = np.eye(n)
+    a[n:, :n] = -np.linalg.solve(rot.M, kb)
+    a[n:, n:] = -np.linalg.solve(rot.M, rot.C + config.omega * rot.G)
+    return float(np.max(np.abs(np.linalg.eigvals(a))))
 
 
 # ------------------------------------------------------------------------------ simulation
@@ -804,9 +902,9 @@ def plan_rotor(
     budget: Budget | None = None,
 ) -> RotorPlan:
     """Check a rotor run before it starts (arguments of :func:`simulate_rotor`): the mesh's
-    memory, then a lower bound of the step count from the housing mounts alone, both before
-    the model is built; then the model, its static state, the step and the full estimate
-    against ``budget`` (:mod:`..budget`)."""
+    memory, its size (:func:`check_fe_size`), then a lower bound of the step count from the
+    housing mounts alone, all before the model is built; then the model, its static state, the
+    step and the full estimate against ``budget`` (:mod:`..budget`)."""
     duration = check_positive("duration_s", duration, "s")
     fs = check_positive("sample_rate_hz", sample_rate, "Hz")
     method = parse_enum(Solver, method, "solver").value
@@ -820,6 +918,7 @@ def plan_rotor(
     fs_int = q * fs
     n_int = q * (n_out - 1) + 1
     check_budget(fe_estimate(config), budget)
+    check_fe_size(config)
     if method == "rk4" and dt is None:  # the mounts alone bound the stable step (stable_step)
         w = max(math.sqrt(max(h.stiffness_x, h.stiffness_y) / h.mass)
                 for h in (config.housing_de, config.housing_fe))  # fmt: skip

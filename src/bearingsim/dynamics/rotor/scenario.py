@@ -22,15 +22,21 @@ from collections.abc import Callable
 import numpy as np
 
 from ..._version import __version__
-from ...catalog import get_bearing
 from ...config import RotorScenario
 from ...errors import ConfigError
 from ...geometry import Defect, check_clearance, check_unused_defect
 from ...results import SimulationResult
-from ..budget import Budget, Estimate
+from ..budget import Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
-from .config import Armature, BearingSupport, RotorConfig, Shaft, default_housing
-from .model import plan_rotor, simulate_rotor
+from .config import (
+    Armature,
+    BearingSupport,
+    RotorConfig,
+    Shaft,
+    catalogue_bearing,
+    default_housing,
+)
+from .model import check_fe_size, fe_estimate, plan_rotor, simulate_rotor
 
 __all__ = [
     "check_rotor",
@@ -48,7 +54,7 @@ def _support(
             fault, sc.defect_width_m, sc.defect_depth_m, math.radians(angle_deg),
             sc.defect_profile,
         )  # fmt: skip
-    b = get_bearing(bearing_id)
+    b = catalogue_bearing(bearing_id, f"{end}_bearing")
     clearance = getattr(sc, f"{end}_clearance_m")
     if clearance is not None:  # negative = preload; bounded like a bearing file's
         pd = check_clearance(b, clearance, name=f"{end}_clearance_m")
@@ -64,22 +70,25 @@ def _support(
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     """The :class:`RotorConfig` of a ``model = "rotor"`` scenario (validates every input and
     raises a one-line :class:`~bearingsim.errors.ConfigError` on bad values)."""
+    bearings = {}  # each catalogue id once, named by the first key that gives it
+    for name in ("de_bearing", "fe_bearing"):
+        bid = getattr(sc, name)
+        if bid not in bearings:
+            bearings[bid] = catalogue_bearing(bid, name)
     if sc.de_fault == sc.fe_fault == "none":  # the defect keys are unused: a defect of either
         errors = []  # bearing, as a fault there would be
-        for b in dict.fromkeys((sc.de_bearing, sc.fe_bearing)):
+        for b in bearings.values():
             try:
-                check_unused_defect(get_bearing(b), sc.defect_width_m, sc.defect_depth_m)
+                check_unused_defect(b, sc.defect_width_m, sc.defect_depth_m)
                 break
             except ConfigError as exc:
                 errors.append(exc)
         else:
             raise errors[0]
     pos = None
-    if sc.disk_positions_mm is not None:
+    if sc.disk_positions_mm is not None:  # one per disk (RotorScenario checks the count)
         pos = tuple(v * 1e-3 for v in sc.disk_positions_mm)
-    arm = Armature(
-        n_disks=len(pos) if pos else sc.disks, positions=pos, distributed=sc.distributed_rotor
-    )
+    arm = Armature(n_disks=sc.disks, positions=pos, distributed=sc.distributed_rotor)
     housing = default_housing(
         sc.housing_mass_kg, sc.housing_stiffness_n_per_m, sc.housing_damping_n_s_per_m
     )
@@ -102,12 +111,16 @@ def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
     )
 
 
-def _checked_config(sc: RotorScenario, allow_overload: bool = False) -> RotorConfig:
+def _checked_config(
+    sc: RotorScenario, allow_overload: bool = False, budget: Budget | None = None
+) -> RotorConfig:
     """The scenario's :class:`RotorConfig` with the speed checked for both bearings
     (:func:`..checks.check_speed`) and, under an axial load or an extra bearing load, each
     bearing's static equivalent load against its static capacity (ISO 76,
     :func:`..checks.check_load`; the radial load is the extra load at that bearing, the
-    rotor's weight left out: ``allow_overload`` lifts the refusal above 2 C0)."""
+    rotor's weight left out: ``allow_overload`` lifts the refusal above 2 C0); then the beam
+    mesh's memory against ``budget`` and its size (:func:`.model.check_fe_size`, naming the
+    scenario's ``disks``), before anything is built."""
     cfg = rotor_config_from_scenario(sc)
     for sup, (fx, fy), end in zip((cfg.de, cfg.fe), cfg.bearing_loads, ("de", "fe"), strict=True):
         check_speed(sup.bearing, sc.rpm, sc.fs_hz)
@@ -120,6 +133,8 @@ def _checked_config(sc: RotorScenario, allow_overload: bool = False) -> RotorCon
                 cfg.axial_load,
                 name=f"hypot({end}_fx_n, {end}_fy_n)",
             )
+    check_budget(fe_estimate(cfg), budget)  # a mesh too large to hold is refused first
+    check_fe_size(cfg, disks="disks")
     return cfg
 
 
@@ -140,7 +155,7 @@ def check_rotor(
     """Check a rotor scenario without running it: every input, the speed, the mesh and run
     estimates against ``budget`` (:func:`.model.plan_rotor`; this builds the model and its static
     state). ``allow_overload`` runs an axial load above twice the static capacity."""
-    cfg = _checked_config(scenario, allow_overload)
+    cfg = _checked_config(scenario, allow_overload, budget)
     return plan_rotor(cfg, **_plan_args(scenario), budget=budget).estimate
 
 
@@ -153,7 +168,7 @@ def run_rotor(
     """Runner registered for ``Model.ROTOR`` in :mod:`bearingsim.simulate` (checked first, see
     :func:`check_rotor`)."""
     t_wall = time.perf_counter()
-    cfg = _checked_config(scenario, allow_overload)
+    cfg = _checked_config(scenario, allow_overload, budget)
     r = simulate_rotor(
         cfg,
         duration=scenario.duration_s,
@@ -219,7 +234,10 @@ def run_rotor(
     }
     res = SimulationResult(r.time.copy(), ch, units, scenario.to_dict(), meta, dims)
     if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
-        from ...rig import apply_rig
+        from ...rig import apply_rig, load_rig
 
-        res = apply_rig(res, scenario.rig)
+        rig = load_rig(scenario.rig)
+        if rig.end == "FE" and rig.input_channel == "acc_y":  # a fan-end sensor: its housing
+            rig = dataclasses.replace(rig, input_channel="acc_y_fe")
+        res = apply_rig(res, rig)
     return res
