@@ -32,6 +32,7 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
+import numbers
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -167,9 +168,10 @@ def _bool(name: str, value: Any) -> bool:
 
 
 def _int(name: str, value: Any, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < lo:
+    """``value`` as an ``int`` >= ``lo`` (a NumPy integer too; not a bool, not a float)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < lo:
         raise ConfigError(f"{name} = {value!r} is invalid; valid range [{lo}, inf) integer")
-    return value
+    return int(value)
 
 
 def _choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
@@ -681,7 +683,7 @@ class RingScenario(Scenario):
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
         s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
         s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
-        _int("seed", self.seed, 0)
+        s(self, "seed", _int("seed", self.seed, 0))
         s(
             self,
             "noise_rms_m_per_s2",
@@ -978,16 +980,16 @@ class RotorScenario(Scenario):
         for name in ("de_clearance_m", "fe_clearance_m"):  # bounded by the bearing (rotor)
             if getattr(self, name) is not None:
                 s(self, name, check_range(name, getattr(self, name), unit="m"))
-        _int("seed", self.seed, 0)
+        s(self, "seed", _int("seed", self.seed, 0))
         s(
             self,
             "noise_rms_m_per_s2",
             check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
         if self.disks is not None:
-            _int("disks", self.disks, 1)
+            s(self, "disks", _int("disks", self.disks, 1))
         if self.n_elements is not None:
-            _int("n_elements", self.n_elements, 1)
+            s(self, "n_elements", _int("n_elements", self.n_elements, 1))
         if self.disk_positions_mm is not None:
             try:
                 pos = tuple(float(v) for v in self.disk_positions_mm)

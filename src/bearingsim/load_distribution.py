@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from .contact.capacity import check_load
 from .contact.hertz import element_stiffness
 from .errors import ConfigError, SolverError, check_range
-from .geometry import Bearing, check_clearance
+from .geometry import Bearing, check_clearance, parse_enum
 
 __all__ = [
     "check_angles",
@@ -373,7 +373,7 @@ def radial_load_distribution(
         ``2 C_0``); ``True`` runs an overload anyway, ``None`` skips the check (a caller that
         has made it).
     """
-    motion = RingMotion(motion)
+    motion = parse_enum(RingMotion, motion, "motion")
     fx = check_range("fx_n", fx, unit="N")
     fy = check_range("fy_n", fy, unit="N")
     Pd = bearing.diametral_clearance if clearance is None else clearance
@@ -389,9 +389,21 @@ def radial_load_distribution(
     if element_factors is None:
         fac = np.ones((cage.size, Z))
     else:
-        fac = np.broadcast_to(np.asarray(element_factors, dtype=float), (cage.size, Z)).copy()
+        try:
+            fac = np.asarray(element_factors, dtype=float)
+            fac = np.broadcast_to(fac, (cage.size, Z)).copy()
+        except (TypeError, ValueError):
+            shape = np.shape(element_factors)
+            raise ConfigError(
+                f"element_factors of shape {shape} is invalid; valid: numbers of shape ({Z},) "
+                f"or ({cage.size}, {Z}), one per element"
+            ) from None
         if not np.all(np.isfinite(fac)) or np.any(fac < 0):
             raise ConfigError("element_factors must be finite and >= 0; valid range [0, inf)")
+        if np.any(np.all(fac == 0.0, axis=1)):
+            raise ConfigError(
+                "element_factors are all 0: no element carries load; valid: at least one > 0"
+            )
     fr = math.hypot(fx, fy)
     check_load(bearing, fr, allow_overload, name="|(fx_n, fy_n)|")
     if fr == 0.0 and Pd > 0:

@@ -62,6 +62,7 @@ TOML layout (SI units in the key names)::
 from __future__ import annotations
 
 import dataclasses
+import numbers
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -388,6 +389,10 @@ class Rig:
         ``seed`` for the background, the tones' phases and the sensor noise)."""
         from scipy.signal import sosfilt
 
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+            raise ConfigError(f"seed = {seed!r} is invalid; valid range [0, inf) integer")
+        if shaft_hz is not None:
+            shaft_hz = check_range("shaft_hz", shaft_hz, 0.0, lo_open=True, unit="Hz")
         x = np.asarray(signal, dtype=float)
         if x.ndim != 1 or x.size < 2:
             raise ConfigError(f"signal must be 1-D with at least 2 samples; got shape {x.shape}")
@@ -495,7 +500,15 @@ def apply_rig(
     x = np.asarray(result.channels[r.input_channel])
     if x.ndim != 1:
         raise ConfigError(f"rig {r.name!r}: input_channel {r.input_channel!r} is not 1-D")
-    sd = int(result.scenario.get("seed", 0) or 0) if seed is None else int(seed)
+    sd = result.scenario.get("seed", 0) or 0 if seed is None else seed
+    if isinstance(sd, bool) or not isinstance(sd, numbers.Integral) or sd < 0:
+        raise ConfigError(f"seed = {sd!r} is invalid; valid range [0, inf) integer")
+    sd = int(sd)
+    if not isinstance(channel, str) or not channel or channel in result.channels:
+        raise ConfigError(
+            f"channel = {channel!r} is invalid; valid: a new channel name (not one of the "
+            f"result's: {', '.join(sorted(result.channels))})"
+        )
     fs = float(result.meta.get("fs_hz") or 1.0 / float(np.mean(np.diff(result.time))))
     _warn_coverage(r, fs)
     y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)

@@ -82,6 +82,9 @@ class Row:
     tolerance: float | None = None
     reference_kind: RefKind = field(kw_only=True)
     verified_by: str = field(default="", kw_only=True)
+    #: ``published`` and ``ours`` are levels in dB (20 log10 of an amplitude ratio): their
+    #: difference is the size, and :attr:`factor` the amplitude ratio it stands for
+    db_level: bool = field(default=False, kw_only=True)
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
@@ -115,12 +118,16 @@ class Row:
 
     @property
     def factor(self) -> float | None:
-        """``ours / published`` when both are non-zero finite numbers of the same sign [-]."""
+        """``ours / published`` when both are non-zero finite numbers of the same sign [-]; for
+        levels in dB (:attr:`db_level`) the amplitude ratio ``10^((ours - published)/20)``."""
         p, o = self.published, self.ours
         if isinstance(p, bool) or isinstance(o, bool):
             return None
         if not (isinstance(p, int | float) and isinstance(o, int | float)):
             return None
+        if self.db_level:
+            d = o - p
+            return 10.0 ** (d / 20.0) if math.isfinite(d) else None
         if not (p and o and math.isfinite(p) and math.isfinite(o)) or (p > 0) != (o > 0):
             return None
         return o / p
@@ -162,6 +169,7 @@ def _judged(
     tolerance: float | None,
     kind: RefKind,
     verified_by: str,
+    db_level: bool = False,
 ) -> Row:
     """The row of a comparison whose outcome ``ok`` is known: the status rules in one place."""
     if kind == "none":
@@ -179,6 +187,7 @@ def _judged(
         tolerance,
         reference_kind=kind,
         verified_by=verified_by if status == "deviates" else "",
+        db_level=db_level,
     )
 
 
@@ -216,13 +225,16 @@ def judge(
     *,
     kind: RefKind,
     verified_by: str = "",
+    db_level: bool = False,
 ) -> Row:
-    """Row for a qualitative comparison (a statement, a label): ``match`` when ``ok``, otherwise
-    ``deviates`` or ``mismatch`` by the rules of :func:`compare`; ``explanation`` is kept as the
-    note either way."""
+    """Row for a comparison judged by the caller (a statement, a label, numbers against a bound
+    of their own): ``match`` when ``ok``, otherwise ``deviates`` or ``mismatch`` by the rules of
+    :func:`compare`; ``explanation`` is kept as the note either way. ``db_level``: the two
+    numbers are levels in dB (:attr:`Row.db_level`)."""
     return _judged(
-        quantity, source, published, ours, None, ok, explanation, None, kind, verified_by
-    )
+        quantity, source, published, ours, None, ok, explanation, None, kind, verified_by,
+        db_level,
+    )  # fmt: skip
 
 
 @dataclass

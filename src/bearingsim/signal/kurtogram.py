@@ -91,6 +91,10 @@ class Kurtogram:
         return fig
 
 
+#: finest level of the kurtogram: 2^13 bands, far finer than a bearing's resonance [-]
+MAX_LEVEL = 12
+
+
 def kurtogram_levels(max_level: int) -> list[tuple[float, int]]:
     """``(level, number of bands)`` of the 1/3-binary tree up to integer level ``max_level``."""
     out = [(0.0, 1)]
@@ -230,18 +234,29 @@ def band_maps(
 
     a = as_signal(x)
     fs = check_positive("fs_hz", fs, "Hz")
+    if a.size and np.all(a == a[0]):  # no band has a kurtosis
+        raise ConfigError(f"x: all {a.size} samples equal {a[0]:.6g}; valid: a varying signal")
     n = a.size
     nyq = 0.5 * fs
     df = fs / n
+    if isinstance(min_bins, bool) or not isinstance(min_bins, int | np.integer) or min_bins < 1:
+        raise ConfigError(f"min_bins = {min_bins!r} is invalid; valid range [1, inf) integer")
     if max_level is None:
         max_level = 0
         while True:
             bw = nyq / 2 ** (max_level + 1)
-            if bw < max(min_bandwidth_hz, 0.0) or bw / df < min_bins or max_level >= 12:
+            if bw < max(min_bandwidth_hz, 0.0) or bw / df < min_bins or max_level >= MAX_LEVEL:
                 break
             max_level += 1
-    if max_level < 0:
-        raise ConfigError(f"max_level = {max_level} is invalid; valid range [0, 12]")
+    if isinstance(max_level, bool) or not isinstance(max_level, int | np.integer):
+        raise ConfigError(f"max_level = {max_level!r} is invalid; valid range [0, 12] integer")
+    # the finest level's bands must each hold a bin: nyq / 2^(level+1) >= df
+    top = min(MAX_LEVEL, max(int(math.floor(math.log2(nyq / df))) - 1, 0))
+    if not 0 <= max_level <= top:
+        raise ConfigError(
+            f"max_level = {max_level} is out of range; valid range [0, {top}] (bands of at "
+            f"least one bin of {df:.3g} Hz, at most level {MAX_LEVEL})"
+        )
     if spectrum is None:
         spectrum = BandEnvelopes(a, fs)
     elif spectrum.n != n or spectrum.fs != fs:

@@ -112,12 +112,12 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
                 f"{c['fs_hz'] / 1e3:g} kHz): {label} [{unit}], {what} ({size}; bound "
                 f"{bound})",
                 f"CWRU {num} {c['end']} (measured)",
-                # numbers where their ratio is the size; a level in dB as text
-                f"{m.prominence_db:.3g}" if k == "prominence_db" else getattr(m, k),
-                f"{s.prominence_db:.3g}" if k == "prominence_db" else getattr(s, k),
+                getattr(m, k),
+                getattr(s, k),
                 ok[k],
                 "" if ok[k] else note,
                 kind="measured",
+                db_level=k == "prominence_db",  # its size is the difference in dB
             )
         )
     return ok

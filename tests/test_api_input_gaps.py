@@ -1,0 +1,65 @@
+"""Gaps of the Python API found by exploratory testing (2026-11-27): each raised a bare
+Python/NumPy error (or allocated without bound) on the previous HEAD; now a one-line
+ConfigError naming the field, its value and the valid range, or it works."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from bearingsim import get_bearing, simulate
+from bearingsim.config import Scenario
+from bearingsim.errors import ConfigError
+from bearingsim.load_distribution import radial_load_distribution
+from bearingsim.rig import apply_rig
+from bearingsim.signal import fast_kurtogram
+
+X = np.random.default_rng(0).standard_normal(24000)
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"max_level": 50}, "max_level = 50 is out of range; valid range [0, 12]"),  # 800 PiB
+        ({"max_level": 2.5}, "max_level = 2.5 is invalid"),  # a TypeError
+        ({"min_bins": 0}, "min_bins = 0 is invalid"),  # NaN cells and warnings
+    ],
+)
+def test_kurtogram_levels_and_bins(kw, message):
+    with pytest.raises(ConfigError) as e:
+        fast_kurtogram(X, 12000.0, **kw)
+    assert message in str(e.value)
+    assert fast_kurtogram(X, 12000.0, max_level=5).level <= 5
+    with pytest.raises(ConfigError, match="all 24000 samples equal 1"):
+        fast_kurtogram(np.ones(24000), 12000.0)  # was: 'signal too short or fs too low'
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        ({"element_factors": np.zeros(9)}, "element_factors are all 0"),  # ZeroDivisionError
+        ({"element_factors": [1, 2, 3]}, "element_factors of shape (3,) is invalid"),
+        ({"motion": "fixed"}, "motion = 'fixed' is invalid; valid: free, load_line"),
+    ],
+)
+def test_load_distribution_arguments(kw, message):
+    with pytest.raises(ConfigError) as e:
+        radial_load_distribution(get_bearing("6205"), 10.0, 50.0, 0.0, **kw)
+    assert message in str(e.value)
+
+
+def test_numpy_integer_seeds_and_rig_arguments():
+    """A NumPy integer seed was refused ('seed = np.int64(3) is invalid'); apply_rig took a
+    negative seed to NumPy's own error and let the sensor channel overwrite a model channel."""
+    sc = Scenario.from_dict({"model": "vsm", "seed": np.int64(3), "duration_s": 0.05,
+                             "fs_hz": 12000.0})  # fmt: skip
+    assert sc.seed == 3 and type(sc.seed) is int
+    res = simulate(sc)
+    with pytest.raises(ConfigError, match=r"seed = -1 is invalid; valid range \[0, inf\)"):
+        apply_rig(res, "cwru-de-12k", seed=-1)
+    with pytest.raises(ConfigError, match="channel = 'acc_y' is invalid"):
+        apply_rig(res, "cwru-de-12k", channel="acc_y")
+    assert np.array_equal(
+        apply_rig(res, "cwru-de-12k", seed=np.int64(2))["acc_sensor"],
+        apply_rig(res, "cwru-de-12k", seed=2)["acc_sensor"],
+    )
