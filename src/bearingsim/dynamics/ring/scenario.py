@@ -139,7 +139,10 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
     internal rate ``oversampling * fs_hz``.
     """
     use = "secant" if _facts(scenario.model)[1] == "secant" else "tangent"
-    w = max_frequency(inputs, use)
+    # the fastest rate of the ring: its stiffest mode, or the damping's c/m where the ring is
+    # overdamped (the eigenvalue of m x'' + c x' + k x tends to -c/m; with c = 1e30 N s/m the
+    # stiffness-chosen step diverged)
+    w = max(max_frequency(inputs, use), inputs.damping / inputs.mass)
     if not math.isfinite(w) or w <= 0.0:
         raise SolverError(
             f"the stiffness of {inputs.bearing.id} under fx_n = {inputs.fx:.6g} N, fy_n = "
@@ -249,6 +252,14 @@ def run_ring(
             )  # fmt: skip
         except SolverError as exc:
             auto = 1.0 / (fs_int * max(1, math.ceil(w / (OMEGA_DT * fs_int))))
+            if w * dt <= OMEGA_DT * 1.0001:  # the step is well inside RK4's stability limit
+                what = str(exc).split(" with dt = ")[0]  # without the step hint
+                raise SolverError(
+                    f"{what} with dt_s = {dt:.3g} s, well inside RK4's stability limit "
+                    f"(omega_max dt = {w * dt:.2f} < 2.83): not the step; the model's state "
+                    "itself ran away — check stiffness_n_per_m1_5, damping_n_s_per_m, mass_kg "
+                    "and the loads"
+                ) from None
             raise SolverError(
                 f"dt_s = {dt:.6g} s is too large: {exc}; RK4 is stable only for "
                 f"omega_max dt < 2.83 (omega_max = {w:.6g} rad/s): valid range "
