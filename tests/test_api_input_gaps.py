@@ -77,3 +77,32 @@ def test_a_run_that_diverges_for_its_inputs_does_not_blame_the_step():
         simulate({**base, "damping_n_s_per_m": 1e30})
     with pytest.raises(SolverError, match="not the step; the model's state itself ran away"):
         simulate({**base, "stiffness_n_per_m1_5": 1e-30})
+
+
+def test_results_built_by_hand_and_their_repr(tmp_path):
+    """A SimulationResult built by hand could not be saved (KeyError 'fs_hz'), and its repr
+    printed every array (thousands of lines)."""
+    from bearingsim import SimulationResult, load_result
+
+    t = np.arange(100) / 1000.0
+    r = SimulationResult(t, {"a": np.sin(t)}, {"a": "m"}, {}, {})
+    assert r.fs_hz == pytest.approx(1000.0)
+    r.save(tmp_path / "r.nc")
+    assert np.array_equal(load_result(tmp_path / "r.nc")["a"], r["a"])
+    run = simulate({"model": "vsm", "duration_s": 0.01})
+    text = repr(run)
+    assert "\n" not in text and text.startswith("SimulationResult(vsm: 480 samples at 48000 Hz")
+
+
+def test_diagnosis_takes_a_catalogue_id_and_refuses_what_is_not_a_record():
+    """diagnose, diagnose_fused and analyze_record raised AttributeError for a bearing given as
+    its catalogue id, analyze_record for an array instead of a SignalRecord."""
+    from bearingsim.signal import analyze_record, diagnose, diagnose_fused
+
+    by_id = diagnose(X, 12000.0, "6205-cwru", 29.9)
+    assert by_id.diagnosis == diagnose(X, 12000.0, get_bearing("6205-cwru"), 29.9).diagnosis
+    assert diagnose_fused(X, 12000.0, "6205-cwru", 29.9).diagnosis in ("none", "uncertain")
+    with pytest.raises(ConfigError, match="rec = ndarray is invalid; valid: a SignalRecord"):
+        analyze_record(X, "6205-cwru")
+    with pytest.raises(ConfigError, match="bearing = 5 is invalid"):
+        diagnose(X, 12000.0, 5, 29.9)

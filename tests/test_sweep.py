@@ -349,6 +349,8 @@ def test_loader_for_ml(noisy):
     assert_array_equal(train.runs, [0, 2, 4]) and assert_array_equal(test.runs, [1, 3, 5])
     Xt, yt = test.arrays(["acc_y"])
     assert Xt.shape == (3, 1, 200) and list(yt) == ["none", "outer", "inner"]
+    # one channel named by a string (it was read as the list of its characters)
+    assert_array_equal(test.arrays("acc_y")[0], Xt)
     assert_array_equal(Xt[:, 0], ds.arrays()[0][[1, 3, 5], 1])
     # stratified: each class (2 runs) puts round(0.5 * 2) = 1 run in the test set
     a, b = ds.random_split(0.5, seed=1)

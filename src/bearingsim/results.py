@@ -329,10 +329,27 @@ class SimulationResult(Result):
                 f"channel = {name!r} is not in the result; valid: " + ", ".join(self.channels)
             ) from None
 
+    def __repr__(self) -> str:
+        """One line: samples, rate, channels and the model (not the arrays)."""
+        chans = ", ".join(f"{k} [{self.units.get(k, '')}]" for k in self.channels)
+        model = self.meta.get("model", self.scenario.get("model", "?"))
+        return (
+            f"SimulationResult({model}: {len(self.time)} samples at {self.fs_hz:g} Hz; "
+            f"channels {chans})"
+        )
+
     @property
     def fs_hz(self) -> float:
-        """Output sample rate [Hz]."""
-        return float(self.meta["fs_hz"])
+        """Output sample rate [Hz]: ``meta["fs_hz"]``, else from the sample times (a result
+        built by hand)."""
+        if "fs_hz" in self.meta:
+            return float(self.meta["fs_hz"])
+        t = np.asarray(self.time, dtype=float)
+        if t.size < 2 or not np.all(np.diff(t) > 0):
+            raise ConfigError(
+                "time: a result needs at least 2 increasing sample times (or meta['fs_hz'])"
+            )
+        return float((t.size - 1) / (t[-1] - t[0]))
 
     @property
     def shaft_hz(self) -> float:

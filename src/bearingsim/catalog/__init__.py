@@ -222,6 +222,22 @@ def with_material(
     return replace(bearing, material=mat)
 
 
+def as_bearing(bearing: Bearing | str, name: str = "bearing") -> Bearing:
+    """``bearing`` itself, or the catalogue bearing of that id (a string); anything else is a
+    one-line :class:`ConfigError` naming ``name``."""
+    if isinstance(bearing, str):
+        return get_bearing(bearing)
+    from ..geometry import BallBearing as _Ball
+    from ..geometry import RollerBearing as _Roller
+
+    if not isinstance(bearing, _Ball | _Roller):
+        raise ConfigError(
+            f"{name} = {bearing!r} is invalid; valid: a Bearing or a catalogue id "
+            "(bearingsim bearings)"
+        )
+    return bearing
+
+
 def resolve_bearing(
     bearing_id: str | None = None,
     bearing_file: str | Path | None = None,
@@ -237,6 +253,7 @@ def resolve_bearing(
 
 
 __all__ = [
+    "as_bearing",
     "BallBearing",
     "RollerBearing",
     "bearing_from_dict",

@@ -16,10 +16,11 @@ implementation of each primitive.
 
 Signal files are read by :func:`bearingsim.io.read_signal`.
 
-May import: errors, geometry, materials, io — never a model family (the IAS spall-width
+May import: errors, geometry, materials, catalog, io — never a model family (the IAS spall-width
 estimate, a model analysis, is :mod:`bearingsim.dynamics.ias.spall`).
 """
 
+from .benchmark import cepstral_prewhitening, discrete_random_separation
 from .diagnosis import (
     BandSelection,
     Diagnosis,
@@ -29,6 +30,7 @@ from .diagnosis import (
     load_signal,
 )
 from .envelope import EnvelopeKind, check_band, envelope, envelope_spectrum
+from .fused import FusedDiagnosis, diagnose_fused
 from .kurtogram import Kurtogram, fast_kurtogram, kurtogram_levels
 from .order import (
     AngleSignal,
@@ -49,6 +51,7 @@ __all__ = [
     "AngleSignal",
     "Diagnosis",
     "DiagnosisRule",
+    "FusedDiagnosis",
     "Domain",
     "EnvelopeKind",
     "Interpolation",
@@ -60,8 +63,11 @@ __all__ = [
     "amplitude_spectrum",
     "analyze_record",
     "angle_from_speed",
+    "cepstral_prewhitening",
     "check_band",
     "diagnose",
+    "diagnose_fused",
+    "discrete_random_separation",
     "envelope",
     "envelope_spectrum",
     "fast_kurtogram",

@@ -539,6 +539,9 @@ def diagnose(
     domain : Domain
         :attr:`Domain.HZ` or :attr:`Domain.ORDER` (abscissa of the spectra).
     """
+    from ..catalog import as_bearing
+
+    bearing = as_bearing(bearing)
     rule = rule or DiagnosisRule()
     domain = parse_enum(Domain, domain, "domain")
     fs = check_positive("fs_hz", fs, "Hz")
@@ -835,7 +838,7 @@ def load_signal_and_speed(
 
 def analyze_record(
     rec: SignalRecord,
-    bearing: Bearing,
+    bearing: Bearing | str,
     *,
     band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
@@ -849,8 +852,8 @@ def analyze_record(
     ----------
     rec : SignalRecord
         The signal (:func:`load_signal`).
-    bearing : Bearing
-        Geometry for the characteristic frequencies.
+    bearing : Bearing or str
+        Geometry for the characteristic frequencies (or its catalogue id).
     band : (lo, hi) or BandSelection
         Envelope band of every method [Hz] (orders when order tracked), or ``"auto"`` (whole
         band for the raw and pre-whitened views, kurtogram and infogram bands for the DRS
@@ -865,8 +868,15 @@ def analyze_record(
     FusedDiagnosis
         Verdict, calibrated confidence and the evidence of each method.
     """
+    from ..catalog import as_bearing
     from .fused import diagnose_fused
 
+    if not isinstance(rec, SignalRecord):
+        raise ConfigError(
+            f"rec = {type(rec).__name__} is invalid; valid: a SignalRecord (load_signal, or "
+            "SignalRecord(x, fs, rpm, source, channel))"
+        )
+    bearing = as_bearing(bearing)
     band_v = _band_value(band)
     rule = rule or DiagnosisRule(shaft_cursors=True)
     if rec.speed_hz is not None and rec.rpm is None:

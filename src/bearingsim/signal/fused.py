@@ -414,8 +414,10 @@ def diagnose_fused(
         Margin-to-probability map; ``None`` leaves ``probability`` unset and gives the leading
         family with confidence 0 (used to fit the calibration).
     """
+    from ..catalog import as_bearing
     from ..geometry import parse_enum
 
+    bearing = as_bearing(bearing)
     rule = rule or DiagnosisRule(shaft_cursors=True)
     domain = parse_enum(Domain, domain, "domain")
     a = as_signal(x)

@@ -315,7 +315,8 @@ class SweepDataset:
             Labels.
         """
         one_d = self.series
-        chans = one_d if channels is None else list(channels)
+        chans = one_d if channels is None else ([channels] if isinstance(channels, str)
+                                                 else list(channels))  # fmt: skip
         for c in chans:
             if c not in one_d:
                 raise ConfigError(
