@@ -106,3 +106,20 @@ def test_diagnosis_takes_a_catalogue_id_and_refuses_what_is_not_a_record():
         analyze_record(X, "6205-cwru")
     with pytest.raises(ConfigError, match="bearing = 5 is invalid"):
         diagnose(X, 12000.0, 5, 29.9)
+
+
+def test_contact_stress_and_rating_life_arguments():
+    """subsurface_stresses took nu = 0.9 (tau_max 776 MPa) and index 5 raised IndexError;
+    basic_rating_life(rows=1.5) returned the one-row life."""
+    from bearingsim.contact.hertz import ball_contact, subsurface_stresses
+    from bearingsim.life.iso281 import basic_rating_life
+
+    b = get_bearing("6206")
+    c = ball_contact(b, 1000.0, "inner")
+    with pytest.raises(ConfigError, match=r"nu = 0.9 is out of range; valid range \[0, 0.5\)"):
+        subsurface_stresses(c, 0.9)
+    with pytest.raises(ConfigError, match=r"index = 5 is out of range; valid range \[0, 0\]"):
+        subsurface_stresses(c, 0.3, 5)
+    with pytest.raises(ConfigError, match="rows = 1.5 is invalid"):
+        basic_rating_life(b, 5000.0, rows=1.5)
+    assert basic_rating_life(b, 5000.0, rows=2) > 0

@@ -14,13 +14,14 @@ import enum
 import math
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
-from ..errors import ConfigError, check_positive
+from ..errors import ConfigError, check_positive, check_range
 from ..geometry import BallBearing, Race, RollerBearing, contact_race
 from ..materials import effective_modulus
 from ..signal.peaks import refine_peak
@@ -337,6 +338,17 @@ def _lundberg_palmgren(b_over_a: float) -> tuple[float, float]:
     return tau0, z0
 
 
+def _check_nu_index(nu: Any, index: Any, n: int) -> tuple[float, int]:
+    """Poisson's ratio in [0, 0.5) (:data:`~bearingsim.materials.POISSON_RANGE`) and a load
+    index in [0, n): one-line errors."""
+    from ..materials import POISSON_RANGE
+
+    nu = check_range("nu", nu, *POISSON_RANGE, hi_open=True)
+    if isinstance(index, bool) or not isinstance(index, int | np.integer) or not 0 <= index < n:
+        raise ConfigError(f"index = {index!r} is out of range; valid range [0, {n - 1}] integer")
+    return nu, int(index)
+
+
 def subsurface_stresses(contact: PointContact, nu: float, index: int = 0) -> SubsurfaceStresses:
     """Subsurface stresses on the depth axis under the centre of a point contact.
 
@@ -354,6 +366,7 @@ def subsurface_stresses(contact: PointContact, nu: float, index: int = 0) -> Sub
     index : int
         Which load of ``contact`` (flat index) [-].
     """
+    nu, index = _check_nu_index(nu, index, np.size(contact.p_max))
     p0 = float(np.ravel(contact.p_max)[index])
     b = float(np.ravel(contact.b)[index])
     k = contact.ellipticity.k
@@ -499,6 +512,7 @@ def line_subsurface_stresses(contact: LineContact, nu: float, index: int = 0) ->
     index : int
         Which load (flat index).
     """
+    nu, index = _check_nu_index(nu, index, np.size(contact.p_max))
     p0 = float(np.ravel(contact.p_max)[index])
     b = float(np.ravel(contact.b)[index])
     s = np.linspace(3.0 / 4000, 3.0, 4000)

@@ -175,7 +175,9 @@ def dynamic_load_rating(bearing: Bearing, rows: int = 1) -> DynamicRating:
     rows : int
         Number of rows ``i`` [-].
     """
-    i = int(check_range("rows", rows, 1, 8))
+    if isinstance(rows, bool) or not float(check_range("rows", rows, 1, 8)).is_integer():
+        raise ConfigError(f"rows = {rows!r} is invalid; valid range [1, 8] integer")
+    i = int(rows)
     g = gamma(bearing)
     ca = math.cos(bearing.contact_angle)
     Z = bearing.n_elements
