@@ -156,7 +156,7 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
             ),
             "mode[0].provenance is missing",
         ),  # fmt: skip
-        (("[20.0, 6000.0]", "[6000.0, 20.0]"), "frequency_hz[1] = 20 Hz does not exceed [0] = 6000 Hz"),
+        (("[20.0, 6000.0]", "[6000.0, 20.0]"), "[1] = 20 Hz does not exceed [0] = 6000 Hz"),
         (("order = 1.0", "order = 1.0\nfrequency_hz = 60.0"), "exactly one of order and frequency"),
     ],
 )
