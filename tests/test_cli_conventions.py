@@ -209,7 +209,7 @@ def test_old_spelling_keeps_checks_and_errors(run_cli):
     assert lines[0] == "warning: --ball-load is deprecated; use --ball-load-n"
     assert lines[1:] == ["error: ball_load_n = -3 N is out of range; valid range [0, inf) N"]
     r = run_cli("ias", "--torque-nm", "0", "-o", "never.nc")
-    assert r.code == 2 and "torque_nm = 0 N m with zero initial speed" in r.err
+    assert r.code == 2 and "torque_n_m = 0 N m with zero initial speed" in r.err
     r = run_cli("ias", "--rpm", "60", "--torque-nm", "9", "-o", "never.nc")
     assert r.code == 2 and "at most one of --rpm and --torque-n-m" in r.err
 

@@ -202,3 +202,26 @@ def test_the_fan_end_profile_reads_the_rotors_fan_end_housing(tmp_path):
     assert read_signal(tmp_path / "fe.nc").bearing.id == "6203-cwru"
     de = simulate({**sc, "rig": "cwru-de-12k"})
     assert de.meta["rig"]["input_channel"] == "acc_y"
+
+
+def test_simulate_options_that_contradict_each_other(run_cli, tmp_path, capsys):
+    """--bearing with --bearing-file ran with the file's bearing and ignored an invalid id;
+    --set KEY twice kept the last silently; -o x.csv wrote netCDF under a CSV name; zero radial
+    load named unbalance_n with the empty range [0, 0)."""
+    f = _write(tmp_path / "mb.toml", id="mine", type="ball", n_elements=9,
+               element_diameter_m=7.94e-3, pitch_diameter_m=39e-3,
+               inner_groove_radius_m=4.089e-3, outer_groove_radius_m=4.169e-3)  # fmt: skip
+    out = tmp_path / "r.nc"
+    line = _one_line(run_cli("simulate", "--bearing-file", f, "--bearing", "nosuch",
+                             "--duration-s", "0.01", "-o", out))  # fmt: skip
+    assert "bearing = 'nosuch' and bearing_file = " in line and "given together" in line
+    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "--set", "rpm=100",
+                             "--set", "rpm=200", "-o", out))  # fmt: skip
+    assert "--set rpm=... is given twice" in line
+    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "-o", tmp_path / "x.csv"))
+    assert "names no netCDF file; valid: a name ending in .nc, .nc4 or .h5" in line
+    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "--fx-n", "0", "--fy-n", "0",
+                             "-o", out))  # fmt: skip
+    assert "unbalance_n" not in line and "radial load |(fx_n, fy_n)| = 0 N" in line
+    assert not list(tmp_path.glob("*.nc")) and not (tmp_path / "x.csv").exists()
+    assert run_cli("simulate", "--bearing-file", f, "--duration-s", "0.01", "-o", out).code == 0

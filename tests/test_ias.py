@@ -254,7 +254,7 @@ def test_plots(faulty):
 def test_bad_parameters():
     with pytest.raises(ConfigError, match=r"spall_width_m = 0.009 m is out of range"):
         replace(SEED, spall=replace(SEED.spall, width=9e-3))
-    with pytest.raises(ConfigError, match="torque_nm = 0 N m with zero initial speed"):
+    with pytest.raises(ConfigError, match="torque_n_m = 0 N m with zero initial speed"):
         replace(SEED, torque=0.0)
     replace(SEED, torque=0.0, initial_speed=6.0)  # coasting down is a valid case
     with pytest.raises(ConfigError, match=r"dt_s = 0.001 s is too large for stability"):

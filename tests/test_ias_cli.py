@@ -156,7 +156,7 @@ def _bad(capsys, args, *needles, out=None):
         (["--dt-s", "-1e-6"], ["dt_s = -1e-06 s", "valid range"]),
         (["--duration-s", "0"], ["duration_s = 0 s", "valid range (0, inf) s"]),
         (["--dt-s", "1e-3"], ["dt_s = 0.001 s is too large for stability", "valid range (0, "]),
-        (["--torque-n-m", "0"], ["torque_nm = 0 N m with zero initial speed"]),
+        (["--torque-n-m", "0"], ["torque_n_m = 0 N m with zero initial speed"]),
         (["--torque-n-m", "0", "--initial-rpm", "60", "--dt-s", "1e-5"], ["needs a turning shaft"]),
         (["--rpm", "0"], ["rpm = 0 r/min", "valid range (0, inf)"]),
         (["--rpm", "60", "--torque-n-m", "9"], ["at most one of --rpm and --torque-n-m"]),

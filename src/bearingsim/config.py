@@ -691,18 +691,15 @@ class RingScenario(Scenario):
         )
         _pass_jitter(self)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
-        s(
-            self,
-            "unbalance_n",
-            check_range(
-                "unbalance_n",
-                self.unbalance_n,
-                0.0,
-                math.hypot(self.fx_n, self.fy_n),
-                hi_open=True,
-                unit="N",
-            ),
-        )
+        fr = math.hypot(self.fx_n, self.fy_n)
+        if fr == 0.0 and self.unbalance_n != 0.0:  # [0, |F|) is empty: say why
+            raise ConfigError(
+                f"unbalance_n = {self.unbalance_n!r} N needs a radial load larger than it; "
+                "fx_n and fy_n are 0; valid: unbalance_n = 0, or a radial load (fx_n, fy_n)"
+            )
+        if fr > 0.0:
+            ub = check_range("unbalance_n", self.unbalance_n, 0.0, fr, hi_open=True, unit="N")
+            s(self, "unbalance_n", ub)
         s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         if self.mass_kg is not None:

@@ -161,6 +161,8 @@ def _parse_set(items: tuple[str, ...]) -> dict[str, Any]:
         key = key.strip()
         if not sep or not key:
             raise ConfigError(f"--set {item!r} is invalid; valid: KEY=VALUE (a scenario key)")
+        if key in out:  # the later one silently won
+            raise ConfigError(f"--set {key}=... is given twice; valid: each key once")
         try:
             out[key] = tomllib.loads(f"v = {raw.strip()}")["v"]
         except tomllib.TOMLDecodeError:
@@ -182,6 +184,12 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     if clash:
         raise ConfigError(f"--set {clash[0]}=... and its option given together; give one")
     given.update(extra)
+    if "bearing_file" in given and "bearing" in given:  # the option wins over a file's key,
+        # but two given together contradict each other
+        raise ConfigError(
+            f"bearing = {given['bearing']!r} and bearing_file = {given['bearing_file']!r} given "
+            "together; valid: exactly one of a catalogue id (--bearing) or --bearing-file PATH"
+        )
     if "bearing_file" in given:
         base["bearing"] = None
     if "bearing" in given:
@@ -301,6 +309,11 @@ def simulate_cmd(
     Options override the keys of SCENARIO.toml (see bearingsim.config for the keys).
     """
     check_outputs(("-o/--output", output))
+    if Path(output).suffix.lower() not in (".nc", ".nc4", ".h5"):  # it writes netCDF-4
+        raise ConfigError(
+            f"-o/--output = {output!r} names no netCDF file; valid: a name ending in .nc, .nc4 "
+            "or .h5 (the result is netCDF-4; load_result and analyze read it)"
+        )
     from tqdm import tqdm
 
     from ..simulation import simulate, validate_scenario
@@ -373,6 +386,27 @@ def simulate_cmd(
     )
 
 
+def _check_zero_load(kw: dict[str, Any]) -> None:
+    """``vsm-trace``: a radial load of zero refused before the scenario is built, with the rule
+    of the trace (:func:`bearingsim.dynamics.ring.trace.check_trace_load`: the ring position is
+    undetermined in a clearance, there is no stiffness without one, a preload is refused
+    whatever the load), not the scenario's bound on ``unbalance_n`` that it would hit first."""
+    import dataclasses
+
+    from ..catalog import resolve_bearing
+    from ..config import RingScenario
+    from ..dynamics.ring.trace import check_trace_load
+
+    default = {f.name: f.default for f in dataclasses.fields(RingScenario)}
+    fx = default["fx_n"] if kw.get("fx_n") is None else kw["fx_n"]
+    fy = default["fy_n"] if kw.get("fy_n") is None else kw["fy_n"]
+    if not (fx == 0.0 and fy == 0.0):  # other loads: the scenario checks them
+        return
+    bid, bfile = kw.get("bearing"), kw.get("bearing_file")
+    bearing = resolve_bearing(default["bearing"] if bid is None and bfile is None else bid, bfile)
+    check_trace_load(bearing, fx, fy, kw.get("clearance_m"))
+
+
 @cli.command("vsm-trace")
 @_opt
 @click.option(
@@ -422,7 +456,14 @@ def vsm_trace_cmd(
     budget: Any,
     **kw: Any,
 ) -> None:
-    """Quasi-static VSM stiffness, contact force and deformation vs cage angle."""
+    """Quasi-static VSM stiffness, contact force and deformation vs cage angle.
+
+    Needs a radial load (fx_n, fy_n) other than zero and a clearance P_d >= 0 (a preload is
+    simulated with model dem or tvsm); an overriding ball constant must be a physical one,
+    [1e8, 1e12] N/m^1.5. A static balance that does not converge is refused, not written.
+
+    CSV columns and JSON keys of stiffnesses end in _n_per_m [N/m] (formerly _n_m; the JSON
+    keeps k_load_min_n_m and k_load_max_n_m as deprecated copies for one release)."""
     check_outputs(("-o/--output", output), ("--plot", plot))
     import numpy as np
 
@@ -434,8 +475,14 @@ def vsm_trace_cmd(
 
     if output is None and plot is None and not as_json:
         raise ConfigError("vsm-trace: give -o/--output OUT.csv, --plot PNG and/or --json")
+    if ball is not None and plot is None:  # its figure is PLOT with suffix _ballN
+        raise ConfigError(
+            f"ball = {ball} is given without --plot: the ball's figure is written beside the "
+            "--plot PNG (suffix _ballN); valid: --ball with --plot PNG"
+        )
     revs = check_range("cage_revs", cage_revs, 0.0, 100.0, lo_open=True)
     step = check_range("step_deg", step_deg, 0.0, 10.0, lo_open=True, unit="deg")
+    _check_zero_load(kw)
     sc = _scenario(None, {**kw, "first_ball_angle_deg": first_ball_deg, "duration_s": 1.0})
     inputs = model_inputs(sc)
     check_speed_limit(inputs.bearing, sc.rpm)  # the speed the trace's shaft angle assumes
@@ -469,18 +516,21 @@ def vsm_trace_cmd(
         "n_points": n,
         "label": tr.label,
         "psi_l0_deg": math.degrees(tr.psi_l0),
-        "k_load_min_n_m": float(tr.k_load.min()),
-        "k_load_max_n_m": float(tr.k_load.max()),
+        "k_load_min_n_per_m": float(tr.k_load.min()),
+        "k_load_max_n_per_m": float(tr.k_load.max()),
         "n_loaded_min": int(tr.n_loaded.min()),
         "n_loaded_max": int(tr.n_loaded.max()),
         "residual_max": float(tr.residual.max()),
         "events": ev,
     }
+    # the former keys (N/m spelled _n_m, which the unit rule reads N m), for one release
+    out["k_load_min_n_m"] = out["k_load_min_n_per_m"]
+    out["k_load_max_n_m"] = out["k_load_max_n_per_m"]
     if as_json:
         emit_json(out)
         return
     click.echo(
-        f"{tr.label}: k_load {out['k_load_min_n_m']:.4g}..{out['k_load_max_n_m']:.4g} N/m, "
+        f"{tr.label}: k_load {out['k_load_min_n_per_m']:.4g}..{out['k_load_max_n_per_m']:.4g} N/m, "
         f"{out['n_loaded_min']}-{out['n_loaded_max']} loaded balls, {len(ev)} events"
         + (f", wrote {output}" if output else "")
     )

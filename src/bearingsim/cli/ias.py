@@ -260,6 +260,7 @@ def ias_cmd(
 
     from ..config import IasScenario
     from ..dynamics.ias.scenario import check_ias, read_scenario, run_ias
+    from ..dynamics.ias.spall import ShortSignalError
 
     settings: dict[str, Any] = read_scenario(scenario) if scenario else {}
     if bearing_id is not None or bearing_file is not None:
@@ -287,14 +288,9 @@ def ias_cmd(
         bar.close()
     params = res.params
     try:
-        summary = res.analyze(sc.skip_s)
-    except ConfigError as exc:  # too little rotation to average one defect period
-        skip = res.default_skip() if sc.skip_s is None else sc.skip_s
-        why = str(exc).split("; valid")[0]
-        raise ConfigError(
-            f"duration_s = {sc.duration_s:g} s with skip_s = {skip:g} s leaves too little "
-            f"rotation to analyse ({why}); valid: a longer duration_s or a smaller skip_s"
-        ) from None
+        summary = res.analyze(sc.skip_s, budget=budget)
+    except ShortSignalError as exc:  # too little rotation to resolve the BPFO order
+        raise ConfigError(_too_short(res, sc, exc)) from None
     if plot:
         from ..report.figures import save_figure
 
@@ -322,6 +318,31 @@ def ias_cmd(
     )
     _print_summary(d)
     click.echo(f"wrote {out}")
+
+
+def _too_short(res, sc, exc: Exception) -> str:
+    """The refusal of a run too short to resolve the BPFO order (``exc``, a
+    :class:`~bearingsim.dynamics.ias.spall.ShortSignalError`): its ``duration_s`` and
+    ``skip_s``, why, and the duration that would do at the simulated speed (the analysed span,
+    after ``skip_s`` — 10 % of the run unless given —, covering
+    :func:`~bearingsim.dynamics.ias.spall.min_revs` revolutions)."""
+    from ..dynamics.ias.spall import min_revs
+
+    skip = res.default_skip() if sc.skip_s is None else sc.skip_s
+    why = str(exc).split("; valid")[0]
+    revs = min_revs(res.constants.bpfo_order)
+    hint = f" for n_revs >= {revs:.4g}"
+    m = res.steady(skip)
+    t, th = res.t[m], res.theta[m]
+    revs_per_s = (th[-1] - th[0]) / TWO_PI / (t[-1] - t[0])
+    if revs_per_s > 0.0:
+        need = revs / revs_per_s  # analysed time needed [s]
+        dur = need / 0.9 if sc.skip_s is None else skip + need
+        hint += f" (about duration_s >= {dur:.3g} s at the simulated {revs_per_s * 60:.4g} r/min)"
+    return (
+        f"duration_s = {sc.duration_s:g} s with skip_s = {skip:g} s leaves too little rotation "
+        f"to analyse ({why}); valid: a longer duration_s or a smaller skip_s{hint}"
+    )
 
 
 _KINDS = tuple(k.value for k in ShaftSignalKind)
@@ -360,6 +381,7 @@ _KINDS = tuple(k.value for k in ShaftSignalKind)
     help="Angular resampling density [1/rev].",
 )
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG.")
+@budget_options(steps=False)
 @json_option
 def analyze_ias_cmd(
     file: str,
@@ -370,11 +392,14 @@ def analyze_ias_cmd(
     samples_per_rev: int | None,
     plot: str | None,
     as_json: bool,
+    budget: Any,
 ) -> None:
     """Angle-domain analysis of a shaft angle or speed signal vs time (encoder/IAS).
 
     Mean speed, ripple, order peaks and, with a roller bearing, the outer-race spall width
-    (seed IAS eq. (37)).
+    (seed IAS eq. (37)); with a bearing, the signal must span at least 4 / BPFO order
+    revolutions (the order resolution that separates the fault order from its harmonics).
+    The resampling and the order spectrum must fit the memory budget (--max-memory-gb).
 
     FILE is a two-column text file (time [s], angle or speed) or an IAS result (.nc)."""
     check_outputs(("--plot", plot))
@@ -400,7 +425,7 @@ def analyze_ias_cmd(
 
         res = IasResult.load(p)
         bearing = bearing or res.params.bearing
-        sig = res.angle_signal(skip_s, samples_per_rev)
+        sig = res.angle_signal(skip_s, samples_per_rev, budget=budget)
     else:
         if not p.is_file():
             raise ConfigError(f"file = {str(p)!r} does not exist")
@@ -413,7 +438,9 @@ def analyze_ias_cmd(
             angle, speed = v, speed_from_angle(t, v)
         else:
             angle, speed = angle_from_speed(t, v), v
-        sig = resample_to_angle(angle, speed, samples_per_rev)
+        limit = budget.memory_limit()[0]  # refused before anything is allocated
+        sig = resample_to_angle(angle, speed, samples_per_rev,
+                                max_memory=limit if math.isfinite(limit) else None)  # fmt: skip
     kw: dict[str, Any] = {}
     if bearing is not None:
         from ..geometry import characteristic_frequencies

@@ -10,6 +10,7 @@ Light: imports neither NumPy nor a model (the budget module is plain Python).
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -18,6 +19,21 @@ import click
 from .common import Number
 
 __all__ = ["budget_options"]
+
+
+class _Count(Number):
+    """A count of steps: an integer, which may be written in exponent form (``--max-steps 1e9``
+    is the count 1000000000; ``1.5`` is refused: not an integer)."""
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+        if isinstance(value, str):
+            try:
+                x = float(value)
+            except ValueError:
+                x = math.nan
+            if math.isfinite(x) and x.is_integer():
+                value = int(x)
+        return super().convert(value, param, ctx)
 
 
 def budget_options(steps: bool = True) -> Callable:
@@ -29,11 +45,11 @@ def budget_options(steps: bool = True) -> Callable:
             "--max-memory-gb",
             type=Number(0.0, lo_open=True, unit="GB"),
             default=None,
-            show_default="(half the available memory)",
+            show_default="half the available memory",
             help="Memory the run may use [GB]; a run estimated above it is refused.",
         )
         @functools.wraps(f)
-        def wrapper(max_memory_gb: float | None, max_steps: float | None = None, **kw: Any):
+        def wrapper(max_memory_gb: float | None, max_steps: int | None = None, **kw: Any):
             from ..dynamics.budget import GB, Budget
             from ..errors import check_positive
 
@@ -45,9 +61,9 @@ def budget_options(steps: bool = True) -> Callable:
         if steps:
             wrapper = click.option(
                 "--max-steps",
-                type=Number(0.0, lo_open=True),
+                type=_Count(1, integer=True),
                 default=None,
-                show_default="(1e9)",
+                show_default="1e9",
                 help="Integration steps the run may take [-]; a run estimated above it is refused.",
             )(wrapper)
         return wrapper

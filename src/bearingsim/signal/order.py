@@ -19,6 +19,14 @@ Angular resampling (:func:`resample_to_angle`)
     order within 0.2 % and attenuates orders above 1.2 of it by more than 50 dB (the transition
     band lies between); its end transients span ~10 output samples.
 
+Memory (:func:`angle_grid`, :attr:`AngleGrid.memory`)
+    The output holds ``n_revs * samples_per_rev`` samples, whatever the input's length: a
+    ``samples_per_rev`` of 16 million over 125 revolutions, a speed in r/min read as rad/s, or
+    times in the wrong unit ask for terabytes. :func:`angle_grid` estimates, before anything is
+    allocated, the memory of the resampling and of the zero-padded order spectrum that every
+    angle-domain analysis computes next; :func:`resample_to_angle` with ``max_memory`` refuses
+    in one line a grid above it, naming the ``samples_per_rev`` that would fit.
+
 Order spectrum (:func:`order_spectrum`)
     the amplitude spectrum of :mod:`.spectrum` over orders (cycles per shaft revolution), zero
     padded to interpolate between the lines (the resolution stays ``1 / n_revs``).
@@ -41,10 +49,13 @@ from ..geometry import parse_enum
 from .spectrum import Domain, Spectrum, amplitude_spectrum, as_signal
 
 __all__ = [
+    "AngleGrid",
     "AngleSignal",
     "Interpolation",
     "ShaftSignalKind",
+    "analysis_memory",
     "angle_from_speed",
+    "angle_grid",
     "order_spectrum",
     "read_shaft_signal",
     "resample_to_angle",
@@ -169,6 +180,155 @@ class Interpolation(enum.Enum):
 #: relative excess of the input density over the output's tolerated without filtering [-]
 #: (an encoder with as many lines per revolution as output samples is not filtered)
 _DENSITY_TOL = 1e-6
+#: valid range of ``samples_per_rev`` [1/rev]
+SAMPLES_PER_REV_RANGE = (8, 2**24)
+#: default zero padding of :func:`order_spectrum` [-]
+PAD_FACTOR = 16
+#: bytes of one float64 [B]
+_F8 = 8.0
+#: memory per sample of the interpolation grid while resampling [B]: the grid, the index array
+#: it is built from, the interpolated values and :func:`scipy.signal.resample_poly`'s padded copy
+#: (measured with ``tracemalloc``: 17-32 B)
+_BYTES_PER_GRID_SAMPLE = 4 * _F8
+#: memory per line of the zero-padded FFT of :func:`order_spectrum` [B]: the padded input, the
+#: complex half spectrum, its magnitude and the order axis (measured: 19-20 B)
+_BYTES_PER_FFT_LINE = 3 * _F8
+
+
+def _pow2_at_least(x: float) -> float:
+    """The power of two at least ``x`` (> 0), as :func:`order_spectrum` sizes its FFT; ``inf``
+    beyond ``2**1000``."""
+    if not x < 2.0**1000:
+        return math.inf
+    return float(1 << math.ceil(math.log2(x))) if x > 1.0 else 1.0
+
+
+@dataclass(frozen=True)
+class AngleGrid:
+    """The uniform angle grid :func:`resample_to_angle` builds for a signal, known before
+    anything is allocated (:func:`angle_grid`).
+
+    Attributes
+    ----------
+    samples_per_rev : int
+        Samples per revolution of the output [1/rev].
+    n_revs : float
+        Angle spanned by the input [rev].
+    n_samples : float
+        Output samples ``floor(n_revs samples_per_rev) + 1`` [-] (a float: it may be far beyond
+        anything that can be allocated).
+    oversampling : int
+        Factor ``L`` of the anti-aliasing interpolation grid (1 = plain interpolation) [-].
+    """
+
+    samples_per_rev: int
+    n_revs: float
+    n_samples: float
+    oversampling: int
+
+    @property
+    def memory(self) -> float:
+        """Largest memory the resampling and the order spectrum of its result hold [B]
+        (:func:`analysis_memory`)."""
+        return analysis_memory(self.n_samples, self.oversampling)
+
+
+def analysis_memory(n_samples: float, oversampling: int = 1) -> float:
+    """Largest memory [B] of resampling a signal to ``n_samples`` samples uniform in angle with
+    an interpolation grid ``oversampling`` times finer, and of the order spectrum of the result
+    (default zero padding, :data:`PAD_FACTOR`), an upper bound: the interpolation grid
+    (``(n - 1) L + 1`` samples, 32 B each), the output (angles and values, 16 B a sample) and
+    the FFT (``2^ceil(log2(16 n))`` lines, 24 B each).
+
+    Parameters
+    ----------
+    n_samples : float
+        Output samples [-] (a float: it may be beyond anything that can be allocated).
+    oversampling : int
+        Factor ``L`` of the interpolation grid [-].
+    """
+    n = float(n_samples)
+    grid = (n - 1.0) * oversampling + 1.0
+    return (
+        _BYTES_PER_GRID_SAMPLE * grid
+        + 2 * _F8 * n
+        + _BYTES_PER_FFT_LINE * _pow2_at_least(PAD_FACTOR * n)
+    )
+
+
+def _checked_angle(angle: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The angles [rad] (finite, strictly increasing) and their steps [rad]."""
+    th = _arr("angle_rad", angle)
+    dth = np.diff(th)
+    if np.any(dth <= 0):
+        raise ConfigError(
+            "angle_rad is not strictly increasing; the shaft must turn one way "
+            "(drop the start-up or the stopped part)"
+        )
+    return th, dth
+
+
+def _densest(dth: NDArray) -> float:
+    """Densest input [samples/rev]: the 1st percentile of the angle steps (robust to jitter)."""
+    return TWO_PI / float(np.quantile(dth, 0.01))
+
+
+def _grid(th: NDArray, densest: float, samples_per_rev: int | None) -> AngleGrid:
+    span = float(th[-1] - th[0])
+    if samples_per_rev is None:
+        dens = (th.size - 1) / (span / TWO_PI) * (1.0 - _DENSITY_TOL)  # mean steps per rev
+        samples_per_rev = max(64, 2 ** math.ceil(math.log2(max(dens, 1.0))))
+    spr = int(check_range("samples_per_rev", samples_per_rev, *SAMPLES_PER_REV_RANGE))
+    x = span / (TWO_PI / spr)
+    n = float(math.floor(x)) + 1.0 if math.isfinite(x) else math.inf
+    # oversampling of the interpolation grid: at least the densest input [samples/rev], at most
+    # 4 times the input's samples
+    L = max(1, math.ceil(min(densest / spr * (1.0 - _DENSITY_TOL), 4 * th.size / n)))
+    return AngleGrid(spr, span / TWO_PI, n, L)
+
+
+def angle_grid(angle: ArrayLike, samples_per_rev: int | None = None) -> AngleGrid:
+    """The grid :func:`resample_to_angle` would build for samples at ``angle``, and so its
+    memory (:attr:`AngleGrid.memory`), without allocating it.
+
+    Parameters
+    ----------
+    angle : array_like
+        Shaft angle of each sample [rad], strictly increasing.
+    samples_per_rev : int, optional
+        Samples per revolution of the output [1/rev] (default as :func:`resample_to_angle`).
+    """
+    th, dth = _checked_angle(angle)
+    return _grid(th, _densest(dth), samples_per_rev)
+
+
+def _check_memory(grid: AngleGrid, th: NDArray, densest: float, max_memory: float) -> None:
+    """Refuse, in one line, a grid whose memory exceeds ``max_memory`` [B], naming the largest
+    ``samples_per_rev`` that fits."""
+    if grid.memory <= max_memory:
+        return
+    lo, hi = SAMPLES_PER_REV_RANGE
+
+    def gb(b: float) -> str:
+        return f"an estimated {b / 1e9:.3g} GB" if b < 1e30 else "more memory than any machine"
+
+    limit = f"the memory budget {max_memory / 1e9:.3g} GB (max_memory, --max-memory-gb)"
+    least = _grid(th, densest, lo).memory
+    if least > max_memory:
+        raise ConfigError(
+            f"the signal spans {grid.n_revs:.4g} shaft revolutions: even samples_per_rev = {lo} "
+            f"needs {gb(least)} for the angular resampling and its order spectrum, above "
+            f"{limit}; valid: a shorter record (check the units of the time [s] and of the speed "
+            "or angle column)"
+        )
+    while hi - lo > 1:  # the memory grows with samples_per_rev: bisect for the largest that fits
+        mid = (lo + hi) // 2
+        lo, hi = (mid, hi) if _grid(th, densest, mid).memory <= max_memory else (lo, mid)
+    raise ConfigError(
+        f"samples_per_rev = {grid.samples_per_rev} over {grid.n_revs:.4g} shaft revolutions needs "
+        f"{gb(grid.memory)} for the angular resampling and its order spectrum, above {limit}; "
+        f"valid range [{SAMPLES_PER_REV_RANGE[0]}, {lo}] for this signal"
+    )
 
 
 def resample_to_angle(
@@ -177,6 +337,7 @@ def resample_to_angle(
     samples_per_rev: int | None = None,
     *,
     interpolation: Interpolation | str = Interpolation.LINEAR,
+    max_memory: float | None = None,
 ) -> AngleSignal:
     """Resample ``value`` given at strictly increasing shaft angles onto a uniform angle grid,
     anti-aliased (module docstring).
@@ -194,34 +355,34 @@ def resample_to_angle(
         average by more than that power of two's margin.
     interpolation : Interpolation
         Between input samples: ``LINEAR`` (default) or ``CUBIC``.
+    max_memory : float, optional
+        Memory the resampling and the order spectrum of its result may take [B]
+        (:attr:`AngleGrid.memory`); a grid above it is refused in one line before anything is
+        allocated, naming the largest ``samples_per_rev`` that fits. Default: no limit.
 
     Returns
     -------
     AngleSignal
         Samples at ``angle[0] + k 2 pi / samples_per_rev`` up to ``angle[-1]``.
     """
-    th = _arr("angle_rad", angle)
+    th, dth = _checked_angle(angle)
     v = _arr("value", value)
     interp = parse_enum(Interpolation, interpolation, "interpolation")
     if th.size != v.size:
         raise ConfigError(f"value has {v.size} samples but angle has {th.size}; they must match")
-    dth = np.diff(th)
-    if np.any(dth <= 0):
+    densest = _densest(dth)
+    g = _grid(th, densest, samples_per_rev)
+    if max_memory is not None:
+        _check_memory(g, th, densest, check_positive("max_memory_bytes", max_memory, "B"))
+    spr, L = g.samples_per_rev, g.oversampling
+    if not g.n_samples <= np.iinfo(np.intp).max // max(L, 1):  # no limit given: still indexable
         raise ConfigError(
-            "angle_rad is not strictly increasing; the shaft must turn one way "
-            "(drop the start-up or the stopped part)"
+            f"samples_per_rev = {spr} over {g.n_revs:.4g} shaft revolutions gives "
+            f"{g.n_samples:.3g} samples, more than an array can hold; valid: a smaller "
+            "samples_per_rev or a shorter record"
         )
-    span = th[-1] - th[0]
-    if samples_per_rev is None:
-        dens = (th.size - 1) / (span / TWO_PI) * (1.0 - _DENSITY_TOL)  # mean steps per rev
-        samples_per_rev = max(64, 2 ** math.ceil(math.log2(max(dens, 1.0))))
-    spr = int(check_range("samples_per_rev", samples_per_rev, 8, 2**24))
     step = TWO_PI / spr
-    n = int(math.floor(span / step)) + 1
-    # oversampling of the interpolation grid: at least the densest input [samples/rev] (1st
-    # percentile of the steps: robust to jitter), at most 4 times the input's samples
-    densest = TWO_PI / float(np.quantile(dth, 0.01))
-    L = max(1, min(math.ceil(densest / spr * (1.0 - _DENSITY_TOL)), math.ceil(4 * th.size / n)))
+    n = int(g.n_samples)
     grid = th[0] + (step / L) * np.arange((n - 1) * L + 1) if L > 1 else th[0] + step * np.arange(n)
     if interp is Interpolation.LINEAR:
         y = np.interp(grid, th, v)
@@ -237,7 +398,9 @@ def resample_to_angle(
     return AngleSignal(grid, y, spr)
 
 
-def order_spectrum(sig: AngleSignal, pad_factor: int | None = 16, unit: str = "") -> Spectrum:
+def order_spectrum(
+    sig: AngleSignal, pad_factor: int | None = PAD_FACTOR, unit: str = ""
+) -> Spectrum:
     """Order spectrum of an angle-domain signal (:func:`.amplitude_spectrum`: mean removed,
     symmetric Hann window, coherent-gain corrected), zero padded.
 
@@ -298,9 +461,21 @@ def synchronous_average(
         )
     spp = int(check_range("samples_per_period", samples_per_period, 16, 2**20))
     phase = period * np.arange(spp) / spp
-    grid = sig.angle[0] + (np.arange(k)[:, None] * period + phase[None, :])
-    vals = np.interp(grid.ravel(), sig.angle, sig.value).reshape(k, spp)
-    return phase, vals.mean(axis=0), k
+    # in blocks of periods (a long record has millions of them: k x spp at once took tens of
+    # GB); the rows are summed in order, each block onto the running sum, which is what
+    # ``mean(axis=0)`` of the whole (k, spp) table does, to the bit
+    per = max(1, _SYNC_BLOCK // spp)
+    total = None
+    for i in range(0, k, per):
+        rows = np.arange(i, min(k, i + per))
+        grid = sig.angle[0] + (rows[:, None] * period + phase[None, :])
+        vals = np.interp(grid.ravel(), sig.angle, sig.value).reshape(rows.size, spp)
+        total = vals.sum(axis=0) if total is None else np.vstack([total, vals]).sum(axis=0)
+    return phase, total / k, k
+
+
+#: samples interpolated at once by :func:`synchronous_average` [-] (8 MB per array)
+_SYNC_BLOCK = 2**20
 
 
 # --------------------------------------------------------------------------- shaft signal files

@@ -71,6 +71,7 @@ from ...contact.pereira import LINE_EXPONENT, seed_line_stiffness, seed_referenc
 from ...errors import ConfigError, check_positive, check_range
 from ...geometry import CWRU_DEFECT_DEPTH_M, Defect, Race, RollerBearing, parse_enum
 from ...load_distribution import STRIBECK_CONSTANT, radial_load_distribution
+from ...signal.order import analysis_memory
 from ..budget import F8, Budget, Estimate, check_budget
 from ..integrate import Trajectory, run_adaptive, run_fixed
 from ._kernel import (
@@ -266,7 +267,7 @@ class IasParams:
                 "radial load = 0 N: the IAS model needs a radial load to form a "
                 "load zone; valid range fy_n != 0 or fx_n != 0"
             )
-        s(self, "torque", check_range("torque_nm", self.torque, 0.0, unit="N m"))
+        s(self, "torque", check_range("torque_n_m", self.torque, 0.0, unit="N m"))
         s(
             self,
             "initial_speed",
@@ -274,8 +275,8 @@ class IasParams:
         )
         if self.torque == 0.0 and self.initial_speed == 0.0:
             raise ConfigError(
-                "torque_nm = 0 N m with zero initial speed: the shaft cannot turn; "
-                "valid range torque_nm > 0, or give an initial speed > 0"
+                "torque_n_m = 0 N m with zero initial speed: the shaft cannot turn; "
+                "valid range torque_n_m > 0, or give an initial speed > 0 (initial_rpm)"
             )
         for name, unit in (
             ("mass", "kg"),
@@ -641,11 +642,15 @@ MAX_CHUNK_STEPS = 1 << 22
 
 def ias_estimate(n_out: int, decim: int) -> Estimate:
     """Memory [B] and RK4 steps of an IAS run with ``n_out`` output samples of ``decim`` steps:
-    times, states and auxiliary outputs, their copy in the result's dataset and the arrays of
-    the angle-domain analysis (about as many again)."""
+    times, states and auxiliary outputs and their copy in the result's dataset, then the
+    angle-domain analysis (:func:`bearingsim.signal.order.analysis_memory`: at most twice as many
+    samples in angle as in time, the resolution being the power of two at least the output's
+    samples per revolution, on a grid at most twice finer, and the zero-padded order
+    spectrum)."""
     per_sample = (1 + len(STATE_NAMES) + N_AUX) * F8
     what = f"ias: {n_out} samples x {decim} RK4 steps"
-    return Estimate(what, 3.0 * n_out * per_sample, float(n_out - 1) * decim)
+    memory = 2.0 * n_out * per_sample + analysis_memory(2.0 * n_out, 2)
+    return Estimate(what, memory, float(n_out - 1) * decim)
 
 
 def _grid(duration: float, dt: float, rate: float) -> tuple[int, int, int]:
@@ -736,12 +741,18 @@ def simulate_ias(
     cpu = time.process_time() - c0
     from .result import IasResult
 
+    # the output interval decim dt is 1/rate when the grid meets the requested rate (as
+    # run_ias builds it: dt = 1/(rate decim)); 1/(decim dt) then differs from rate by the
+    # rounding of dt alone (49999.99999999999 for 50 kHz), so the rate itself is reported
+    out_rate = 1.0 / (decim * dt)
+    if math.isclose(out_rate, rate, rel_tol=1e-12):
+        out_rate = rate
     solver = {
         "method": method,
         "dt_s": dt,
         "decim": decim,
         "n_steps": tr.n_steps,
-        "output_rate_hz": 1.0 / (decim * dt),
+        "output_rate_hz": out_rate,
         "duration_s": duration,
         "wall_s": wall,
         "cpu_s": cpu,

@@ -4,6 +4,7 @@ analysis, plots; the result pattern of :class:`~bearingsim.results.Result` (loss
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 from typing import Any, ClassVar
 
@@ -13,6 +14,7 @@ from numpy.typing import NDArray
 from ...errors import ConfigError, check_range
 from ...geometry import Defect, RollerBearing
 from ...results import Result, json_attr, read_json_attr, var_attrs
+from ..budget import Budget
 from .model import AUX_NAMES, OMEGA_EPS, STATE_NAMES, IasConstants, IasParams
 from .spall import IasSummary, SpallEstimator
 
@@ -167,11 +169,18 @@ class IasResult(Result):
         p = self.params
         return p.torque - p.torsional_damping * w - sgn * (self.bearing_torque + self.spall_torque)
 
-    def angle_signal(self, skip_s: float | None = None, samples_per_rev: int | None = None):
+    def angle_signal(
+        self,
+        skip_s: float | None = None,
+        samples_per_rev: int | None = None,
+        budget: Budget | None = None,
+    ):
         """IAS resampled to uniform shaft angle after ``skip_s`` [s] (an
         :class:`~bearingsim.signal.AngleSignal`, anti-aliased:
         :func:`bearingsim.signal.resample_to_angle`); ``samples_per_rev`` [1/rev] defaults to
-        the smallest power of two at least the samples per revolution of the output rate."""
+        the smallest power of two at least the samples per revolution of the output rate. The
+        memory of the resampling and of its order spectrum is checked against ``budget``
+        (default :class:`~bearingsim.dynamics.budget.Budget`) before anything is allocated."""
         from ...signal.order import resample_to_angle
 
         m = self.steady(skip_s)
@@ -179,18 +188,27 @@ class IasResult(Result):
         if not (wmin > 0.0 and np.all(np.diff(self.theta[m]) > 0.0)):
             raise ConfigError(
                 f"shaft speed = {wmin:.6g} rad/s after the start-up: the angle-domain analysis "
-                "needs a turning shaft; valid range speed > 0 (raise torque_nm or skip_s)"
+                "needs a turning shaft; valid range speed > 0 (raise torque_n_m or skip_s)"
             )
-        return resample_to_angle(self.theta[m], self.omega[m], samples_per_rev)
+        limit = (Budget() if budget is None else budget).memory_limit()[0]
+        return resample_to_angle(
+            self.theta[m],
+            self.omega[m],
+            samples_per_rev,
+            max_memory=limit if math.isfinite(limit) else None,
+        )
 
     def analyze(
         self,
         skip_s: float | None = None,
         n_peaks: int = 5,
         method: SpallEstimator | str = SpallEstimator.STEPS,
+        *,
+        budget: Budget | None = None,
     ) -> IasSummary:
         """Angle-domain summary (:func:`.spall.analyze_speed_signal`) with the bearing's
-        kinematic BPFO order, D_o and cage ratio.
+        kinematic BPFO order, D_o and cage ratio; a run too short to resolve the BPFO order
+        (:func:`.spall.min_revs`) raises :class:`.spall.ShortSignalError`.
 
         Parameters
         ----------
@@ -200,12 +218,14 @@ class IasResult(Result):
             Order peaks reported [-].
         method : SpallEstimator
             Crossing-angle reading of the spall-width estimate.
+        budget : Budget, optional
+            Memory budget of the angle-domain analysis (:meth:`angle_signal`).
         """
         from .spall import analyze_speed_signal
 
         b = self.params.bearing
         return analyze_speed_signal(
-            self.angle_signal(skip_s),
+            self.angle_signal(skip_s, budget=budget),
             bpfo_order=self.constants.bpfo_order,
             outer_raceway_diameter=b.outer_raceway_diameter,
             cage_ratio=self.constants.cage_ratio,

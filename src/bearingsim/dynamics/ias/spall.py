@@ -24,6 +24,23 @@ Spall-width estimation (:func:`estimate_spall_width`)
            (median) by more than ``threshold`` times the event's peak deviation (what one reads
            off the seed's fig. 10). Smooth tails end inside the threshold, so this reads short;
     5. the width by seed IAS eq. (37): ``L_d = D_o theta_shaft f_cage / (2 f_shaft)``.
+
+Shortest signal (:func:`min_revs`)
+    The order spectrum's lines are ``1/n_revs`` apart (``n_revs`` the revolutions analysed) and
+    the Hann window spreads each component over a main lobe of half-width ``2/n_revs``: the
+    window is the rectangle times ``1/2 - cos/2``, so its transform is three Dirichlet kernels
+    shifted by -1, 0, +1 lines with weights -1/4, 1/2, -1/4, zero at every whole line from the
+    second on (the main-lobe width ``8 pi/M`` of the Hann window in Oppenheim & Schafer's window
+    comparison). The fault order ``f_o`` is a harmonic family: its neighbours are its own
+    harmonics ``0`` (the mean and the negative-frequency image) and ``2 f_o``, ``f_o`` away. The
+    fault line is separated from them when the main lobes do not overlap,
+    ``2 (2/n_revs) <= f_o``: the resolution is at most a quarter of the spacing,
+    ``1/n_revs <= f_o/4``, ``n_revs >= 4/f_o`` (0.95 rev for the seed's BPFO order 4.2156).
+    Below it the measured fault order is a blend of the lobes (seed case, 0.45 rev: 4.69 for
+    4.22) and the averaging period, hence the spall width, follow it: the analysis is refused
+    (:class:`ShortSignalError`, a :class:`~bearingsim.errors.ConfigError`). (Shaft-order lines
+    of a measured record, e.g. order 4 next to 4.22, need more revolutions to be told apart;
+    the estimate searches only within 10 % of the expected order.)
 """
 
 from __future__ import annotations
@@ -44,12 +61,16 @@ from ...signal.spectrum import Spectrum
 __all__ = [
     "EXTENT_THRESHOLD",
     "MIN_CONTRAST",
+    "RESOLUTION_FRACTION",
     "SAMPLES_PER_PASS",
     "IasSummary",
+    "ShortSignalError",
     "SpallEstimate",
     "SpallEstimator",
     "analyze_speed_signal",
     "estimate_spall_width",
+    "check_order_resolution",
+    "min_revs",
     "spall_width_from_angle",
 ]
 
@@ -155,6 +176,22 @@ MIN_CONTRAST = 20.0
 EXTENT_THRESHOLD = 0.02
 #: samples of the synchronous-averaged roller pass [-]
 SAMPLES_PER_PASS = 4096
+#: largest order resolution ``1/n_revs``, as a fraction of the fault order (the spacing of its
+#: harmonic family), at which the fault order is measured [-]: two Hann main-lobe half-widths
+#: (2 lines each) within the spacing (module docstring, "Shortest signal")
+RESOLUTION_FRACTION = 0.25
+
+
+def min_revs(fault_order: float) -> float:
+    """Fewest shaft revolutions in which the order spectrum separates the fault order from its
+    harmonic neighbours, ``1 / (RESOLUTION_FRACTION fault_order)`` [rev] (module docstring).
+
+    Parameters
+    ----------
+    fault_order : float
+        Fault order (e.g. the kinematic BPFO order) [-], > 0.
+    """
+    return 1.0 / (RESOLUTION_FRACTION * check_positive("fault_order", fault_order))
 
 
 def estimate_spall_width(
@@ -190,7 +227,11 @@ def estimate_spall_width(
         Resolution of the averaged pass [-].
     min_contrast : float
         Detection threshold on the step contrast [-].
+
+    A signal too short to resolve ``expected_order`` (:func:`min_revs`) raises
+    :class:`ShortSignalError`.
     """
+    check_order_resolution(sig.n_revs, expected_order)
     spec = order_spectrum(sig, unit="rad/s")
     return _estimate(
         sig, spec, outer_raceway_diameter, cage_ratio, expected_order, method, threshold,
@@ -222,7 +263,8 @@ def _estimate(
     rate = np.diff(np.concatenate([avg, avg[:1]])) / step  # circular d(omega)/d(angle)
     med = float(np.median(np.abs(rate)))
     i1 = int(np.argmin(rate))
-    contrast = float(-rate[i1] / med) if med > 0 else math.inf
+    # a flat average (no drop at all: a constant speed) has no event, not an infinite contrast
+    contrast = float(-rate[i1] / med) if med > 0 else (math.inf if rate[i1] < 0 else 0.0)
     if not contrast >= min_contrast:
         return None
     # second sharpest drop, outside the first one's neighbourhood
@@ -256,6 +298,32 @@ def _estimate(
         e_ang, x_ang, imp = lo * step, (hi + 1) * step, None
     width = spall_width_from_angle(crossing, do, rho)
     return SpallEstimate(width, crossing, e_ang, x_ang, imp, fo, k, method, contrast, ph, av)
+
+
+class ShortSignalError(ConfigError):
+    """The signal spans too few shaft revolutions to resolve the fault order
+    (:func:`check_order_resolution`)."""
+
+
+def check_order_resolution(n_revs: float, fault_order: float) -> None:
+    """Refuse, with a one-line :class:`ShortSignalError` naming the span, the resolution and
+    the valid range, a signal of ``n_revs`` revolutions [rev] too short to measure
+    ``fault_order`` [-] (:func:`min_revs`, module docstring)."""
+    need = min_revs(fault_order)
+    if n_revs >= need:
+        return
+    period = 1.0 / fault_order
+    what = (
+        f"less than one period {period:.4g} rev of the fault order {fault_order:.4g}"
+        if n_revs < period
+        else f"an order resolution 1/n_revs = {1.0 / n_revs:.4g}, coarser than a quarter of the "
+        f"spacing {fault_order:.4g} of the fault order's harmonics (Hann main lobes overlap)"
+    )
+    raise ShortSignalError(
+        f"the analysed signal spans n_revs = {n_revs:.4g} shaft revolutions, {what}; valid range "
+        f"n_revs >= {need:.4g} (4 / fault order: a resolution of at most a quarter of the "
+        "spacing)"
+    )
 
 
 @dataclass(frozen=True)
@@ -317,6 +385,10 @@ def analyze_speed_signal(
 ) -> IasSummary:
     """Mean speed, ripple, order peaks and (when the bearing is known) spall-width estimate.
 
+    With ``bpfo_order``, a signal shorter than :func:`min_revs` cannot separate the fault order
+    from its harmonics (module docstring, "Shortest signal"): refused with a one-line
+    :class:`ShortSignalError`.
+
     Parameters
     ----------
     sig : AngleSignal
@@ -338,6 +410,8 @@ def analyze_speed_signal(
             f"mean speed = {mean:.6g} rad/s; valid range (0, inf) rad/s (the shaft must turn)"
         )
     ripple = float((sig.value.max() - sig.value.min()) / mean)
+    if bpfo_order is not None:
+        check_order_resolution(sig.n_revs, bpfo_order)
     spec = order_spectrum(sig, unit="rad/s")
     peaks = sorted(spectrum_peaks(spec, n_peaks, f_min=0.5), key=lambda p: p.freq)
     est = None

@@ -9,6 +9,20 @@ A :class:`StiffnessTrace` follows the result pattern (:class:`~bearingsim.result
 ``save(path)`` writes a self-describing netCDF file (dims ``cage_angle``, ``ball``, ``axis``;
 every variable with its ``units``; the inputs and ``meta`` as JSON attributes), ``load`` reads it
 back losslessly; ``to_csv`` stays as a plain-text export.
+
+What a trace refuses (one line each, before any output):
+
+- a zero radial load (:func:`check_trace_load`): with ``P_d > 0`` the ring may sit anywhere in
+  the clearance; with ``P_d = 0`` every ball touches unloaded and the secant stiffness
+  ``K delta^0.5`` of each is 0, so there is nothing to trace; a preload (``P_d < 0``, where zero
+  radial load is a valid state: the ring centred, every ball equally loaded) is refused whatever
+  the load, the VSM's secant stiffness being measured from the concentric position
+  (:meth:`.base.ModelInputs.require_clearance`; model ``dem`` or ``tvsm`` simulate it);
+- a ball constant outside :data:`STIFFNESS_RANGE` (``stiffness_n_per_m1_5``), the Hertz constants
+  of real point contacts with a decade of margin;
+- a static balance that did not converge (:data:`TRACE_RESIDUAL_TOL`): a contact deflection
+  ``(|F|/K)^(2/3)`` below what the ring position resolves in floating point (a large ``K`` under
+  a small load) left the relative force residual at 1e-2..0.4 where it is ~1e-12.
 """
 
 from __future__ import annotations
@@ -25,8 +39,8 @@ from numpy.typing import NDArray
 
 from ...contact.capacity import check_load
 from ...contact.rough import rough_mean_power
-from ...errors import ConfigError
-from ...geometry import Race, defect_geometry
+from ...errors import ConfigError, SolverError, check_range
+from ...geometry import BallBearing, Race, check_clearance, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
 from ...results import Result, json_attr, read_json_attr, var_attrs
@@ -37,7 +51,38 @@ from .base import ModelInputs, static_path
 #: how the load check names the radial load
 _RADIAL = "|(fx_n, fy_n)|"
 
-__all__ = ["StiffnessTrace", "stiffness_trace", "trace_estimate"]
+__all__ = [
+    "STIFFNESS_RANGE",
+    "TRACE_RESIDUAL_TOL",
+    "StiffnessTrace",
+    "check_trace_load",
+    "check_trace_stiffness",
+    "stiffness_trace",
+    "trace_estimate",
+]
+
+#: Ball load-deflection constants ``K`` [N/m^1.5] (``Q = K delta^1.5``, seed VSM eq. (10)) a
+#: trace accepts as an override (``stiffness_n_per_m1_5``): the Hertz constants of real ball
+#: bearings with one decade of margin on each side. Derivation: for a point contact
+#: ``delta ~ Q^(2/3) (sum rho)^(1/3) / E'^(2/3)`` (Harris & Kotzalas 2007, ch. 6), so
+#: ``K = Q / delta^1.5 ~ E' (sum rho)^(-1/2)``: it grows with the modulus and with the square
+#: root of the size. :func:`bearingsim.contact.hertz.ball_stiffness` over the bearings that
+#: exist — balls of 0.5 mm (miniature bearings of 1 mm bore) to 100 mm (bores of a metre and
+#: more), groove radii 0.505 to 0.60 of the ball diameter (the conformities of
+#: :data:`bearingsim.geometry.CONFORMITY_RANGE`), rings and balls of bearing steel (207 GPa,
+#: 0.3) or silicon nitride (310 GPa, 0.26) — gives ``K`` from 1.4e9 (0.5 mm steel ball in
+#: 0.60 grooves) to 8.0e10 N/m^1.5 (100 mm Si3N4 ball in 0.505 grooves); the 6205's is 9.37e9
+#: (``tests/test_vsm_trace_input.py`` recomputes them). The decade below keeps a fitted
+#: equivalent constant (seed VSM's load zone needs 2.6e9 for the 6205) and polymer balls
+#: (E ~ 3 GPa: ~1.4e8 for the 6205's size); the decade above, tungsten-carbide or diamond
+#: contacts. Beyond: ring displacements of kilometres (1e-6) or contact deflections below the
+#: float resolution of the ring position, where the balance does not converge (1e18, 1e25).
+STIFFNESS_RANGE = (1e8, 1e12)
+
+#: largest relative force residual ``|sum Q_j e_j - F| / |F|`` of seed VSM eq. (16) a trace
+#: may report [-]: the damped Newton of :mod:`._balance` stops at ``ModelInputs.tol`` (1e-12,
+#: at most 1e-6) and converged traces end at ~1e-12; one that failed ends at 1e-2..0.4
+TRACE_RESIDUAL_TOL = 1e-6
 
 #: per-ball arrays of one cage angle held at once by :func:`stiffness_trace` (angles, their sine
 #: and cosine, deflections, loads, deformations, stiffnesses and the intermediate products) [-]
@@ -239,23 +284,29 @@ class StiffnessTrace(Result):
         )
 
     def to_csv(self, path: str | Path) -> None:
-        """Write the trace as CSV (one row per cage angle; SI units, angles in deg), atomically."""
+        """Write the trace as CSV (one row per cage angle; SI units, angles in deg), atomically.
+
+        Columns: ``cage_angle_deg``, ``shaft_angle_deg``, ``u_x_m``, ``u_y_m``,
+        ``k_load_n_per_m``, ``k_x_n_per_m``, ``k_y_n_per_m``, ``k_xy_n_per_m`` [N/m],
+        ``n_loaded``, ``residual``, then per ball ``Q<j>_n`` [N], ``delta<j>_m`` [m] and
+        ``k<j>_load_n_per_m`` [N/m] (formerly ``_n_m``, which the unit rule reads N m)."""
         Z = self.ball_load.shape[1]
+        # stiffnesses in N/m end in _n_per_m (docs/cli.md unit rule; the former _n_m reads N m)
         cols = [
             "cage_angle_deg",
             "shaft_angle_deg",
             "u_x_m",
             "u_y_m",
-            "k_load_n_m",
-            "k_x_n_m",
-            "k_y_n_m",
-            "k_xy_n_m",
+            "k_load_n_per_m",
+            "k_x_n_per_m",
+            "k_y_n_per_m",
+            "k_xy_n_per_m",
             "n_loaded",
             "residual",
         ]
         cols += [f"Q{j + 1}_n" for j in range(Z)]
         cols += [f"delta{j + 1}_m" for j in range(Z)]
-        cols += [f"k{j + 1}_load_n_m" for j in range(Z)]
+        cols += [f"k{j + 1}_load_n_per_m" for j in range(Z)]
         data = np.column_stack(
             [
                 np.degrees(self.cage_angle),
@@ -332,6 +383,96 @@ class StiffnessTrace(Result):
         return fig
 
 
+def check_trace_load(
+    bearing: BallBearing, fx: float, fy: float, clearance: float | None = None
+) -> None:
+    """Refuse, in one line naming ``fx_n``, ``fy_n`` and ``clearance_m``, the loads a VSM trace
+    cannot trace (module docstring): a zero radial load with ``P_d >= 0``, and a preload
+    ``P_d < 0`` whatever the load.
+
+    Parameters
+    ----------
+    bearing : BallBearing
+        The bearing (its clearance unless ``clearance`` is given).
+    fx, fy : float
+        Radial load components [N].
+    clearance : float, optional
+        Diametral clearance P_d [m] (default the bearing's).
+    """
+    if not isinstance(bearing, BallBearing):
+        raise ConfigError(
+            f"bearing = {getattr(bearing, 'id', bearing)!r} is not a ball bearing; the VSM "
+            "stiffness trace needs a ball bearing"
+        )
+    fx = check_range("fx_n", fx, unit="N")
+    fy = check_range("fy_n", fy, unit="N")
+    pd = bearing.diametral_clearance
+    if clearance is not None:
+        pd = check_clearance(
+            bearing, clearance, name="clearance_m", hi=0.5 * bearing.element_diameter
+        )
+    if pd < 0.0:
+        raise ConfigError(
+            f"clearance_m = {pd:.6g} m (a preload) is out of range for the VSM stiffness trace: "
+            "its secant stiffness is measured from the concentric position, where a preloaded "
+            "ball already carries load (with a preload even fx_n = fy_n = 0 N is a valid state, "
+            "every ball equally loaded); valid range [0, inf) m (simulate a preloaded bearing "
+            "with model dem or tvsm)"
+        )
+    if math.hypot(fx, fy) > 0.0:
+        return
+    if pd > 0.0:
+        why = (
+            f"with clearance_m = {pd:.6g} m > 0 the ring position within the clearance is "
+            "undetermined"
+        )
+    else:
+        why = (
+            "with clearance_m = 0 m every ball touches unloaded and its secant stiffness "
+            "K delta^0.5 is 0: there is no stiffness to trace"
+        )
+    raise ConfigError(
+        f"radial load |(fx_n, fy_n)| = 0 N (fx_n = {fx:g} N, fy_n = {fy:g} N): {why}; valid "
+        "range |(fx_n, fy_n)| > 0 N"
+    )
+
+
+def check_trace_stiffness(inputs: ModelInputs) -> None:
+    """Refuse an overriding ball constant (``stiffness_n_per_m1_5``) outside
+    :data:`STIFFNESS_RANGE`, in one line with the bearing's Hertz value."""
+    if inputs.stiffness is None:
+        return
+    lo, hi = STIFFNESS_RANGE
+    if not lo <= inputs.stiffness <= hi:
+        from ...contact.hertz import element_stiffness
+
+        hertz = element_stiffness(inputs.bearing)[0]
+        raise ConfigError(
+            f"stiffness_n_per_m1_5 = {inputs.stiffness:.6g} N/m^1.5 is out of range; valid "
+            f"range [{lo:g}, {hi:g}] N/m^1.5 (the Hertz constants of steel and ceramic ball "
+            f"contacts from 0.5 to 100 mm balls, with a decade of margin; {inputs.bearing.id}: "
+            f"{hertz:.3g})"
+        )
+
+
+def _check_residual(inputs: ModelInputs, cage: NDArray, res: NDArray, K: float) -> None:
+    """Refuse a trace whose static balance did not converge (:data:`TRACE_RESIDUAL_TOL`)."""
+    bad = ~(res <= TRACE_RESIDUAL_TOL)
+    if not np.any(bad):
+        return
+    i = int(np.argmax(np.where(bad, np.nan_to_num(res, nan=np.inf), -np.inf)))
+    f = math.hypot(inputs.fx, inputs.fy)
+    delta = (f / K) ** (2.0 / 3.0)
+    raise SolverError(
+        f"the static balance of seed VSM eq. (16) did not converge: residual_max = "
+        f"{res[i]:.3g} (relative force residual) at cage angle {math.degrees(cage[i]):.4g} deg, "
+        f"above {TRACE_RESIDUAL_TOL:g}; the contact deflection (|F|/K)^(2/3) = {delta:.3g} m "
+        f"under |(fx_n, fy_n)| = {f:.6g} N with K = {K:.3g} N/m^1.5 is below what the ring "
+        f"position (P_d/2 = {0.5 * inputs.diametral_clearance:.3g} m) resolves; valid: a larger "
+        "radial load or a smaller stiffness_n_per_m1_5"
+    )
+
+
 def trace_estimate(inputs: ModelInputs, n_points: int) -> Estimate:
     """Memory [B] of :func:`stiffness_trace` over ``n_points`` cage angles: the table of the
     quasi-static solution and :data:`TRACE_BALL_ARRAYS` arrays per ball and angle (no
@@ -355,7 +496,9 @@ def stiffness_trace(
     ----------
     inputs : ModelInputs
         Bearing, load, defect, speed (only the shaft/cage speed ratio matters here), optional
-        stiffness/clearance/retention overrides.
+        stiffness/clearance/retention overrides; a preload, an axial load and a ball constant
+        outside :data:`STIFFNESS_RANGE` are refused, and so is a result whose static balance
+        did not converge (:data:`TRACE_RESIDUAL_TOL`; :class:`~bearingsim.errors.SolverError`).
     cage_angle : ndarray, optional
         Cage angles [rad]; default ``n_points`` over ``cage_revs`` revolutions.
     cage_revs : float
@@ -369,6 +512,7 @@ def stiffness_trace(
     """
     check_load(inputs.bearing, math.hypot(inputs.fx, inputs.fy), allow_overload, name=_RADIAL)
     inputs.require_clearance("the VSM stiffness trace")
+    check_trace_stiffness(inputs)
     if cage_angle is None:
         if not (isinstance(n_points, int) and n_points >= 2):
             raise ConfigError(f"n_points = {n_points!r} is invalid; valid range [2, inf) integer")
@@ -380,6 +524,7 @@ def stiffness_trace(
     times = cage / w_cage
     table, res = static_path(inputs, times)
     p = inputs.header()
+    _check_residual(inputs, cage, res, float(p[bl.P_K]))
     Z = inputs.bearing.n_elements
     psi = cage[:, None] + inputs.first_ball_angle + 2 * math.pi * np.arange(Z)[None, :] / Z
     sn, cs = np.sin(psi), np.cos(psi)
