@@ -225,3 +225,14 @@ def test_simulate_options_that_contradict_each_other(run_cli, tmp_path, capsys):
     assert "unbalance_n" not in line and "radial load |(fx_n, fy_n)| = 0 N" in line
     assert not list(tmp_path.glob("*.nc")) and not (tmp_path / "x.csv").exists()
     assert run_cli("simulate", "--bearing-file", f, "--duration-s", "0.01", "-o", out).code == 0
+
+
+def test_rotor_modes_says_what_it_cannot_give(run_cli):
+    """--n-modes 1000 returned the model's 36 modes without a word; --distributed-rotor with
+    --disks gave the same answer for any disk count (the disks were ignored)."""
+    r = run_cli("rotor-modes", "--n-modes", "1000", "--json")
+    assert r.code == 0 and len(r.json()["frequency_hz"]) < 1000
+    assert "warning: n_modes = 1000: the model has" in r.err
+    line = _one_line(run_cli("rotor-modes", "--distributed-rotor", "--disks", "3"))
+    assert "--disks and --disk-positions-mm do not apply" in line
+    assert run_cli("rotor-modes", "--distributed-rotor").code == 0

@@ -324,6 +324,11 @@ def rotor_options(f: Callable) -> Callable:
             given(shaft_mass_kg, rc.SEED_SHAFT_MASS_KG), shaft_mass_model,
         )  # fmt: skip
         pos = _positions_mm(disk_positions_mm) or None
+        if distributed_rotor and (disks is not None or pos is not None):  # they were ignored
+            raise ConfigError(
+                "--distributed-rotor spreads the rotor mass along the shaft: --disks and "
+                "--disk-positions-mm do not apply; valid: one of the two descriptions"
+            )
         if disks is None:  # unset: one per position, else the seed's
             disks = SEED_ROTOR_DISKS if pos is None else len(pos)
         elif pos is not None and len(pos) != disks:
@@ -373,6 +378,12 @@ def rotor_modes_cmd(
         raise ConfigError(f"n_modes = {n_modes} is out of range; valid range [1, inf)")
     cfg = cwru_rotor_config(**rotor_kw)
     m = rotor_modes(cfg, supports=supports, speed_rpm=rpm, n_modes=n_modes, budget=budget)
+    if len(m.frequency_hz) < n_modes:  # the model has fewer (its FE degrees of freedom)
+        click.echo(
+            f"warning: n_modes = {n_modes}: the model has {len(m.frequency_hz)} modes "
+            f"({m.n_dof} FE DOF); all are listed",
+            err=True,
+        )
     out = {
         "supports": supports,
         "speed_rpm": rpm,
