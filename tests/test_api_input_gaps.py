@@ -123,3 +123,15 @@ def test_contact_stress_and_rating_life_arguments():
     with pytest.raises(ConfigError, match="rows = 1.5 is invalid"):
         basic_rating_life(b, 5000.0, rows=1.5)
     assert basic_rating_life(b, 5000.0, rows=2) > 0
+
+
+def test_replace_takes_what_from_dict_takes():
+    """replace(bogus=1) and replace(noise_rms_m_s2=1) (a deprecated spelling from_dict
+    accepts) raised a dataclass TypeError."""
+    from bearingsim.errors import DeprecatedKeyWarning
+
+    sc = Scenario.from_dict({"model": "vsm"})
+    with pytest.raises(ConfigError, match="replace: unknown key 'bogus'; valid keys: model"):
+        sc.replace(bogus=1)
+    with pytest.warns(DeprecatedKeyWarning, match="use 'noise_rms_m_per_s2'"):
+        assert sc.replace(noise_rms_m_s2=1.0).noise_rms_m_per_s2 == 1.0

@@ -341,6 +341,12 @@ class Scenario:
     def replace(self, **changes: Any) -> Scenario:
         """Copy with ``changes`` (validated; ``model`` may only change within the family).
         Keys the scenario resolved itself (:attr:`auto_keys`) are resolved again."""
+        changes = self._renamed(dict(changes), "replace")  # old spellings, as from_dict
+        unknown = [k for k in changes if k not in self.KEYS]
+        if unknown:  # a TypeError from the dataclass before
+            raise ConfigError(
+                f"replace: unknown key {unknown[0]!r}; valid keys: " + ", ".join(self.KEYS)
+            )
         auto = {k: None for k in self.auto_keys if k not in changes}
         return dataclasses.replace(self, **auto, **changes)
 
