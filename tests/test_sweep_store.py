@@ -11,6 +11,7 @@ import os
 import socket
 import threading
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +20,7 @@ from numpy.testing import assert_array_equal
 
 from bearingsim.errors import ConfigError
 from bearingsim.sweep import lock as locks
-from bearingsim.sweep.dataset import open_dataset
+from bearingsim.sweep.dataset import SplitWarning, open_dataset
 from bearingsim.sweep.execute import SweepReport, _exact_counts, _remove_dataset, run_sweep
 from bearingsim.sweep.lock import ClientLock, client_lock, judge_lock, this_process
 from bearingsim.sweep.plan import coordinates
@@ -193,7 +194,11 @@ def read_everything(d: Path) -> list[str]:
         calls += [lambda: ds.completed().random_split(0.5)]
     for call in calls:
         try:
-            call()
+            with warnings.catch_warnings():
+                # a damaged label column may leave a label on one side of a split: a warning
+                # (SplitWarning), which the suite's 'error' filter would make an exception
+                warnings.simplefilter("ignore", SplitWarning)
+                call()
         except ConfigError as exc:
             errors.append(str(exc))
     assert all(len(e.splitlines()) == 1 for e in errors), errors
