@@ -1,7 +1,8 @@
 """Sim-to-real: train a fault classifier on simulated signals only and label measured records
 (issue 16, item 6; first version).
 
-    python examples/sim_to_real.py --predict FILE... [--json] [--cache DIR]
+    python examples/sim_to_real.py --predict FILE... [--json] [--cache DIR] [--rpm R]
+        [--fs-hz F] [--channel CH]
     python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru]
 
 1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): DEM simulations of
@@ -32,7 +33,9 @@
    bearingsim[ml]``), trained on the simulated set only. Labels ``none``, ``inner``, ``outer``,
    ``ball`` (the ring models' ball defect, issue 16 item 2).
 
-``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities"}``; a
+``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities",
+"rpm", "rpm_source", "fs_hz", "fs_source"}`` (and ``"warning"`` when the speed lies outside
+the trained ones), ``--fs-hz`` and ``--channel`` passed to the reader (:func:`_record`); a
 record longer than the simulations is cut into pieces of their length (``DURATION_S``) and the
 pieces' class probabilities are averaged (:func:`segments`).
 ``--evaluate`` labels every record of the CWRU folder, prints the accuracy per class and
@@ -116,18 +119,19 @@ DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 CACHE = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "bearingsim"
 
 
-def features(x: np.ndarray, fs: float, rpm: float, bearing: str) -> np.ndarray:
-    """The feature vector of a signal [m/s^2] at ``fs`` [Hz] and shaft speed ``rpm``."""
+def features(x: np.ndarray, fs: float, rpm: float, bearing) -> np.ndarray:
+    """The feature vector of a signal [m/s^2] at ``fs`` [Hz] and shaft speed ``rpm`` of
+    ``bearing`` (a catalogue id or a Bearing)."""
     from scipy.stats import kurtosis
 
-    from bearingsim.catalog import get_bearing
+    from bearingsim.catalog import as_bearing
     from bearingsim.geometry import characteristic_frequencies
     from bearingsim.signal.envelope import EnvelopeKind, envelope_spectrum
     from bearingsim.signal.kurtogram import fast_kurtogram
 
     a = np.asarray(x, dtype=float) - float(np.mean(x))
     fsh = rpm / 60.0
-    kin = characteristic_frequencies(get_bearing(bearing), fsh)
+    kin = characteristic_frequencies(as_bearing(bearing), fsh)
     k = fast_kurtogram(a, fs, min_bandwidth_hz=max(4.0 * kin.bpfi_hz, 400.0))
     s = envelope_spectrum(a, fs, k.band, EnvelopeKind.SQUARED)
     f, amp = s.freq, s.amplitude
@@ -249,15 +253,12 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
     """The features of the grid through each rig set of ``names`` (:func:`rig_set`): each run
     is simulated once and passed through every set's rig of its profile. Cached (Zarr, one
     array per set, keyed by the grid and the rigs' tables); a set without a rig for a profile
-    drops that profile's runs. Returns ``({name: (X, y)}, meta)``; ``meta["rigs"]`` holds the
-    sets' rigs."""
+    drops that profile's runs. A damaged cache (:func:`read_cache`) is rebuilt, with a warning
+    on stderr; an unwritable cache location is a :class:`CacheLocationError` before any
+    simulation. Returns ``({name: (X, y)}, meta)``; ``meta["rigs"]`` holds the sets' rigs."""
     import zarr
-    from tqdm import tqdm
 
-    from bearingsim import simulate
-    from bearingsim.rig import apply_rig
-
-    path = cache / "sim_to_real.zarr"
+    path = Path(cache) / "sim_to_real.zarr"
     grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, ROUGHNESS_M]
     grid += [AXIAL_K]
     grid += [PROFILES]
@@ -269,16 +270,74 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
     rigs = {n: rig_set(n, data) for n in names}
     keys = {n: _set_key(grid_key, rigs[n]) for n in names}
     runs = list(_grid())
-    if path.exists():
-        g = zarr.open_group(str(path), mode="r")
-        stored = g.attrs.get("keys", {})
-        if all(stored.get(n) == keys[n] for n in names):
-            out = {}
-            for n in names:
-                keep = np.asarray(g[f"mask_{n}"])
-                out[n] = (np.asarray(g[f"X_{n}"])[keep], np.asarray(g["y"])[keep])
-            return out, dict(g.attrs) | {"rigs": rigs}
+    try:
+        got = read_cache(path, names, keys, len(runs))
+    except CacheDamaged as exc:
+        print(f"warning: cache {path} is damaged ({exc}); rebuilding", file=sys.stderr)
+        got = None
+    if got is not None:
+        out, attrs = got
+        return out, attrs | {"rigs": rigs}
+    check_cache_location(Path(cache))  # before minutes of simulation, not after them
+    print(
+        f"building the training set: {len(runs)} simulations through {len(names)} rig set(s) "
+        f"(minutes; cached at {path})",
+        file=sys.stderr,
+        flush=True,
+    )
     t0 = time.perf_counter()
+    X, y, mask = simulate_runs(runs, names, rigs, progress)
+    for n in names:  # a run without finite features trains nothing (and reads as damage)
+        mask[n] &= np.all(np.isfinite(X[n]), axis=1)
+        X[n][~mask[n]] = np.nan
+    gen_s = time.perf_counter() - t0
+    cache = Path(cache)
+    cache.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(dir=cache, prefix=".sim_to_real."))
+    try:
+        g = zarr.open_group(str(tmp / "g.zarr"), mode="w")
+        g.create_array("y", data=y)
+        for n in names:
+            g.create_array(f"X_{n}", data=X[n])
+            g.create_array(f"mask_{n}", data=mask[n])
+        g.attrs.update(
+            {
+                "grid": grid_key,
+                "keys": keys,
+                "sets": names,
+                "features": list(FEATURES),
+                "labels": list(LABELS),
+                "n_runs": len(runs),
+                "generation_s": gen_s,
+            }
+        )
+        if path.is_symlink() or path.is_file():  # a damaged cache may be anything
+            path.unlink()
+        elif path.exists():
+            shutil.rmtree(path)
+        (tmp / "g.zarr").rename(path)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
+    print(
+        f"dataset: {len(runs)} simulations through {len(names)} rig set(s) "
+        f"({', '.join(names)}) in {gen_s:.1f} s, {size / 1e3:.0f} kB at {path}",
+        file=sys.stderr,
+    )
+    out = {n: (X[n][mask[n]], y[mask[n]]) for n in names}
+    meta = {"n_runs": len(runs), "generation_s": gen_s, "grid": grid_key, "keys": keys}
+    return out, meta | {"rigs": rigs}
+
+
+def simulate_runs(runs: list, names: list, rigs: dict, progress: bool = True):
+    """Simulate each run of the grid once and take its features through every set's rig of its
+    profile. Returns ``(X, y, mask)``: ``X`` and ``mask`` by set name (NaN rows and False where
+    a set has no rig for the run's profile), ``y`` the label indices."""
+    from tqdm import tqdm
+
+    from bearingsim import simulate
+    from bearingsim.rig import apply_rig
+
     X = {n: np.full((len(runs), len(FEATURES)), np.nan) for n in names}
     mask = {n: np.zeros(len(runs), dtype=bool) for n in names}
     y = np.empty(len(runs), dtype=np.int64)
@@ -314,40 +373,103 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
             r = apply_rig(bare, rig, seed=c["seed"])
             X[n][i] = features(r["acc_sensor"], c["fs"], c["rpm"], c["bearing"])
             mask[n][i] = True
-    gen_s = time.perf_counter() - t0
-    cache.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(dir=cache, prefix=".sim_to_real."))
-    try:
-        g = zarr.open_group(str(tmp / "g.zarr"), mode="w")
-        g.create_array("y", data=y)
-        for n in names:
-            g.create_array(f"X_{n}", data=X[n])
-            g.create_array(f"mask_{n}", data=mask[n])
-        g.attrs.update(
-            {
-                "grid": grid_key,
-                "keys": keys,
-                "sets": names,
-                "features": list(FEATURES),
-                "labels": list(LABELS),
-                "n_runs": len(runs),
-                "generation_s": gen_s,
-            }
+    return X, y, mask
+
+
+class CacheDamaged(Exception):
+    """The cached dataset cannot be trusted (the message says why); it is rebuilt."""
+
+
+class CacheLocationError(Exception):
+    """The cache location cannot hold the dataset (one line naming it)."""
+
+
+def check_cache_location(cache: Path) -> None:
+    """Raise :class:`CacheLocationError` unless ``cache`` is, or can be created as, a writable
+    folder (checked before any simulation: the failure would otherwise come minutes later)."""
+    cache = Path(cache)
+    probe = cache
+    while not probe.exists():  # the nearest existing ancestor must be a writable folder
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    if probe.exists() and not probe.is_dir():
+        raise CacheLocationError(
+            f"--cache = {str(cache)!r} is not creatable: {str(probe)!r} is not a folder; "
+            "valid: a writable folder (or one that can be created)"
         )
-        if path.exists():
-            shutil.rmtree(path)
-        (tmp / "g.zarr").rename(path)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
-    print(
-        f"dataset: {len(runs)} simulations through {len(names)} rig set(s) "
-        f"({', '.join(names)}) in {gen_s:.1f} s, {size / 1e3:.0f} kB at {path}",
-        file=sys.stderr,
-    )
-    out = {n: (X[n][mask[n]], y[mask[n]]) for n in names}
-    meta = {"n_runs": len(runs), "generation_s": gen_s, "grid": grid_key, "keys": keys}
-    return out, meta | {"rigs": rigs}
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise CacheLocationError(
+            f"--cache = {str(cache)!r} is not writable ({str(probe)!r} denies it); valid: a "
+            "writable folder (or one that can be created)"
+        )
+
+
+def read_cache(path: Path, names: list, keys: dict, n_runs: int):
+    """The cached sets ``({name: (X, y)}, attrs)``, or None when there is no cache or it was
+    built for another grid or other rigs (its keys differ). Raises :class:`CacheDamaged` when
+    the store cannot be read or its arrays are not what :func:`build_datasets` writes: every
+    chunk present (zarr fills a missing one with zeros), ``X`` of shape ``(n_runs, features)``
+    finite exactly where ``mask`` is set, labels from :data:`LABELS` with more than one class
+    among the kept runs."""
+    import zarr
+
+    path = Path(path)
+    if not (path.exists() or path.is_symlink()):
+        return None
+    try:
+        g = zarr.open_group(str(path), mode="r")
+        stored = g.attrs.get("keys", {})
+        if not isinstance(stored, dict):
+            raise CacheDamaged(f"attribute keys = {type(stored).__name__}; valid: a mapping")
+        if not all(stored.get(n) == keys[n] for n in names):
+            return None  # another grid or other rigs: rebuilt silently, as always
+        arrays = {}
+        for name in ["y", *(f"{k}_{n}" for n in names for k in ("X", "mask"))]:
+            if name not in g:
+                raise CacheDamaged(f"array {name!r} is missing")
+            a = g[name]
+            if a.nchunks_initialized != a.nchunks:
+                raise CacheDamaged(
+                    f"array {name!r} has {a.nchunks_initialized} of its {a.nchunks} chunks"
+                )
+            arrays[name] = np.asarray(a[...])
+        attrs = dict(g.attrs)
+    except CacheDamaged:
+        raise
+    except Exception as exc:  # whatever the reader raises on a damaged store is one line
+        why = " ".join(str(exc).split())[:200] or type(exc).__name__
+        raise CacheDamaged(f"{type(exc).__name__}: {why}") from None
+    y = arrays["y"]
+    if y.shape != (n_runs,) or y.dtype.kind not in "iu":
+        raise CacheDamaged(f"y has shape {y.shape}, {y.dtype}; valid: ({n_runs},) integers")
+    if y.size and (y.min() < 0 or y.max() >= len(LABELS)):
+        raise CacheDamaged(f"labels outside the valid range [0, {len(LABELS) - 1}]")
+    out = {}
+    for n in names:
+        X, mask = arrays[f"X_{n}"], arrays[f"mask_{n}"]
+        if X.shape != (n_runs, len(FEATURES)) or X.dtype.kind != "f":
+            raise CacheDamaged(
+                f"X_{n} has shape {X.shape}, {X.dtype}; valid: ({n_runs}, {len(FEATURES)}) floats"
+            )
+        if mask.shape != (n_runs,) or mask.dtype != bool:
+            raise CacheDamaged(
+                f"mask_{n} has shape {mask.shape}, {mask.dtype}; valid: ({n_runs},) bools"
+            )
+        finite = np.all(np.isfinite(X), axis=1)
+        if not np.array_equal(finite, mask):
+            bad = int(np.count_nonzero(finite != mask))
+            raise CacheDamaged(
+                f"X_{n} and mask_{n} disagree on {bad} run(s) (finite rows = kept runs)"
+            )
+        classes = np.unique(y[mask])
+        if classes.size < 2:
+            raise CacheDamaged(
+                f"set {n!r} keeps {mask.sum()} run(s) of {classes.size} class(es); valid: at "
+                "least 2 classes"
+            )
+        out[n] = (X[mask], y[mask])
+    return out, attrs
 
 
 def train(X, y):
@@ -362,18 +484,86 @@ def train(X, y):
     return clf.fit(X, y)
 
 
-def _record(path: Path, rpm: float | None = None):
-    """Signal, fs, shaft speed [r/min], where the speed came from, and bearing of a CWRU record
-    (the fan end's records on their channel). The speed: ``rpm`` if given, else the file's
-    ``X###RPM``, else the CWRU nominal speed of the load in the file name (the 0.028 in
-    records store none): ``bearingsim.signal.diagnosis.load_signal_and_speed``, the rule of
-    ``bearingsim analyze``; with none of these it is an error naming --rpm."""
+#: the largest spread of a per-sample speed (a text file's ``rpm`` or ``speed_hz`` column) a
+#: record is judged at its median speed with: the 1st-99th percentile span over the median.
+#: The features read each line within +/- 1.5 % of its frequency, a 3 % window
+SPEED_SPREAD_MAX = 0.03
+#: how far outside the trained speeds (``RPMS``) a record's speed may lie before its result
+#: carries a warning (a share of the range's ends)
+RPM_MARGIN = 0.05
+
+
+def _record(
+    path: Path,
+    rpm: float | None = None,
+    *,
+    channel: str | None = None,
+    fs_hz: float | None = None,
+    info: dict | None = None,
+):
+    """Signal, fs, shaft speed [r/min], where the speed came from, and bearing of a record
+    (``bearingsim.signal.diagnosis.load_signal_and_speed``, the rule of ``bearingsim analyze``).
+
+    * CWRU ``.mat``: the channel of the fault's end in the file name (``FE`` for
+      ``Fan_End``, else ``DE``) unless ``channel`` is given; the bearing of that end (the
+      6205, or the 6203 on ``FE``). The speed: ``rpm`` if given, else the file's ``X###RPM``,
+      else the CWRU nominal speed of the load in the file name (the 0.028 in records store
+      none); with none of these it is an error naming --rpm.
+    * bearingsim result ``.nc``/``.h5``: the reader's channel (``sensor`` if the result has
+      it, else ``y``) unless ``channel`` is given; the bearing stored in the file.
+    * ``.csv``/``.txt``: ``channel`` (a column) or the first signal column, ``fs_hz`` where
+      there is no time column; the bearing of the end in the name, as for ``.mat``. A
+      per-sample speed column (``rpm`` or ``speed_hz``) is judged at its median when its
+      1st-99th percentile span is within :data:`SPEED_SPREAD_MAX` of it, else refused.
+
+    ``info`` (a dict) receives the reader's ``fs_source``."""
+    from bearingsim.errors import ConfigError
     from bearingsim.io.cwru import cwru_bearing, cwru_end
     from bearingsim.signal.diagnosis import load_signal_and_speed
 
     end = cwru_end(path)
-    r, source = load_signal_and_speed(path, channel=end, rpm=rpm)
-    return r.x, r.fs, float(r.rpm), source, cwru_bearing(end)
+    suffix = Path(path).suffix.lower()
+    ch = channel
+    if suffix == ".mat" and ch is None:
+        ch = end
+    r, source = load_signal_and_speed(path, channel=ch, fs_hz=fs_hz, rpm=rpm)
+    if info is not None:
+        info.update(r.info)
+        info.setdefault("fs_source", "option" if fs_hz is not None else "file")
+    x = np.asarray(r.x, dtype=float)
+    if not np.all(np.isfinite(x)):
+        bad = int(np.count_nonzero(~np.isfinite(x)))
+        raise ConfigError(
+            f"file = {Path(path).name!r}: {bad} of {x.size} samples are not finite; valid: "
+            "finite samples"
+        )
+    speed = r.rpm
+    if speed is None:  # a per-sample speed column: judged at its median if it barely varies
+        v = np.asarray(r.speed_hz, dtype=float) * 60.0
+        if not (v.size and np.all(np.isfinite(v)) and np.all(v > 0.0)):
+            raise ConfigError(
+                f"file = {Path(path).name!r}: the speed column holds values that are not "
+                "finite and > 0; valid range (0, inf) r/min, or give --rpm R"
+            )
+        med = float(np.median(v))
+        lo, hi = (float(q) for q in np.percentile(v, [1.0, 99.0]))
+        spread = (hi - lo) / med
+        if spread > SPEED_SPREAD_MAX:
+            raise ConfigError(
+                f"file = {Path(path).name!r}: the speed column varies by {100 * spread:.1f} % "
+                f"({lo:.0f}-{hi:.0f} r/min, 1st-99th percentile); valid range [0, "
+                f"{100 * SPEED_SPREAD_MAX:g}] % (the features read each line within +/- 1.5 %), "
+                "or give --rpm R to judge it at one speed"
+            )
+        speed = med
+        source = f"median of the speed column ({100 * spread:.1f} % spread)"
+    if r.bearing is not None:  # a bearingsim result states its bearing
+        bearing = r.bearing
+    elif suffix == ".mat" and r.channel in ("DE", "FE"):
+        bearing = cwru_bearing(r.channel)
+    else:
+        bearing = cwru_bearing(end)
+    return x, float(r.fs), float(speed), source, bearing
 
 
 def segments(x, fs: float) -> list[np.ndarray]:
@@ -389,25 +579,49 @@ def segments(x, fs: float) -> list[np.ndarray]:
     return [x[i : i + n] for i in range(0, x.size - n + 1, n)]
 
 
-def predict(clf, files, rpm: float | None = None):
-    """One result per file: ``{"file", "predicted", "probabilities", "rpm", "rpm_source"}``,
+def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
+    """One result per file: ``{"file", "predicted", "probabilities", "rpm", "rpm_source",
+    "fs_hz", "fs_source"}`` (and ``"warning"`` when the speed lies outside the trained ones),
     or ``{"file", "predicted": None, "probabilities": None, "error"}``."""
+    lo, hi = min(RPMS), max(RPMS)
     for f in files:
         p = Path(f)
         try:
-            x, fs, rpm_used, source, bearing = _record(p, rpm)
+            info: dict = {}
+            x, fs, rpm_used, source, bearing = _record(
+                p, rpm, channel=channel, fs_hz=fs_hz, info=info
+            )
             segs = segments(x, fs)
-            feats = np.array([features(seg, fs, rpm_used, bearing) for seg in segs])
-            prob = clf.predict_proba(feats).mean(axis=0)
+            feats = []
+            for k, seg in enumerate(segs):
+                try:
+                    v = features(seg, fs, rpm_used, bearing)
+                    if not np.all(np.isfinite(v)):
+                        raise ValueError("its features are not finite")
+                except Exception as exc:
+                    t0 = k * DURATION_S
+                    t1 = t0 + seg.size / fs
+                    raise ValueError(
+                        f"piece {k + 1} of {len(segs)} ({t0:g}-{t1:g} s): {exc}"
+                    ) from None
+                feats.append(v)
+            prob = clf.predict_proba(np.array(feats)).mean(axis=0)
         except Exception as exc:  # one bad file is its own line
-            err = " ".join(str(exc).split())
+            err = " ".join(str(exc).split()) or type(exc).__name__
             yield {"file": str(p), "predicted": None, "probabilities": None, "error": err}
             continue
         probs = dict.fromkeys(LABELS, 0.0)
         probs |= {LABELS[c]: float(v) for c, v in zip(clf.classes_, prob, strict=True)}
         best = max(probs, key=probs.get)
-        yield {"file": str(p), "predicted": best, "probabilities": probs, "rpm": rpm_used,
-               "rpm_source": source}  # fmt: skip
+        o = {"file": str(p), "predicted": best, "probabilities": probs, "rpm": rpm_used,
+             "rpm_source": source, "fs_hz": fs,
+             "fs_source": info["fs_source"]}  # fmt: skip
+        if not (lo * (1.0 - RPM_MARGIN) <= rpm_used <= hi * (1.0 + RPM_MARGIN)):
+            o["warning"] = (
+                f"rpm = {rpm_used:g} r/min is outside the trained speeds ({lo:g}-{hi:g} r/min, "
+                f"+/- {100 * RPM_MARGIN:g} %); the label is an extrapolation"
+            )
+        yield o
 
 
 def _profile(end: str, fs: float) -> str | None:
@@ -492,6 +706,19 @@ def evaluate(clfs: dict, data: Path, rigs: dict):
     return out
 
 
+def _emit(o: dict, as_json: bool) -> None:
+    """One result: a JSON line, or a text line (errors and warnings on stderr)."""
+    if as_json:
+        print(json.dumps(o, allow_nan=False), flush=True)
+    elif "error" in o:
+        print(f"{o['file']}: error: {o['error']}", file=sys.stderr, flush=True)
+    else:
+        p = ", ".join(f"{k} {v:.2f}" for k, v in o["probabilities"].items())
+        print(f"{o['file']}: {o['predicted']} ({p})", flush=True)
+        if "warning" in o:
+            print(f"{o['file']}: warning: {o['warning']}", file=sys.stderr, flush=True)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--predict", nargs="+", metavar="FILE")
@@ -502,29 +729,49 @@ def main() -> int:
     ap.add_argument("--rpm", type=float, default=None,
                     help="shaft speed [r/min] for --predict (default: the file's, else the "
                     "CWRU nominal speed of the load in its name)")  # fmt: skip
+    ap.add_argument("--fs-hz", type=float, default=None,
+                    help="sample rate [Hz] of --predict files (CSV/TXT without a time column; "
+                    "a CWRU .mat whose name gives no 12k/48k)")  # fmt: skip
+    ap.add_argument("--channel", default=None,
+                    help="channel of --predict files: DE, FE or BA (.mat; default the fault's "
+                    "end in the name), a column (CSV/TXT), x, y or sensor (.nc; default sensor "
+                    "if present, else y)")  # fmt: skip
     a = ap.parse_args()
     if not a.predict and not a.evaluate:
         ap.error("give --predict FILE... or --evaluate")
     if a.rpm is not None and not (math.isfinite(a.rpm) and 0.0 < a.rpm <= 1e6):
         ap.error(f"--rpm = {a.rpm:g} r/min; valid range (0, 1e6] r/min")
+    if a.fs_hz is not None and not (math.isfinite(a.fs_hz) and 0.0 < a.fs_hz <= 1e8):
+        ap.error(f"--fs-hz = {a.fs_hz:g} Hz; valid range (0, 1e8] Hz")
     names = ["shipped", *(f"without-{s}" for s in HELD_OUT)] if a.evaluate else ["shipped"]
-    sets, meta = build_datasets(a.cache, names, data=a.data, progress=not a.json)
+    try:
+        sets, meta = build_datasets(a.cache, names, data=a.data, progress=not a.json)
+    except (CacheLocationError, ValueError, FileNotFoundError) as exc:
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return 2
     clfs = {n: train(*sets[n]) for n in names}
     bad = 0
     if a.predict:
-        for o in predict(clfs["shipped"], a.predict, a.rpm):
+        kw = dict(channel=a.channel, fs_hz=a.fs_hz)
+        for o in predict(clfs["shipped"], a.predict, a.rpm, **kw):
             bad += "error" in o
-            if a.json:
-                print(json.dumps(o))
-            elif "error" in o:
-                print(f"{o['file']}: error: {o['error']}")
-            else:
-                p = ", ".join(f"{k} {v:.2f}" for k, v in o["probabilities"].items())
-                print(f"{o['file']}: {o['predicted']} ({p})")
+            _emit(o, a.json)
     if a.evaluate:
         evaluate(clfs, a.data, meta["rigs"])
     return 1 if bad else 0
 
 
+def _run() -> int:
+    """:func:`main`; a reader that closes the pipe (``| head -1``) ends it quietly."""
+    try:
+        return main()
+    except BrokenPipeError:
+        # the rest of the output has nowhere to go: point stdout at devnull so that the
+        # interpreter's final flush does not raise again (Python docs, "Note on SIGPIPE")
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 1
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(_run())

@@ -198,3 +198,242 @@ def test_held_out_rig_sets_never_use_the_judged_size(small, tmp_path, monkeypatc
         "g", {"a": other["cwru-de-12k"]}
     )
     assert small._profile("FE", 12000.0) == "cwru-fe-12k" and small._profile("DE", 48000) is None
+
+
+# --- issue 16 item 6, the review of the predict path: a damaged cache, the readers' options ---
+
+
+def _fake_runs(runs, names, rigs, progress=True):
+    """A stand-in for the simulations (instant): finite features, every label."""
+    rng = np.random.default_rng(len(runs))
+    n_feat = 14
+    X = {n: rng.normal(size=(len(runs), n_feat)) for n in names}
+    mask = {n: np.ones(len(runs), dtype=bool) for n in names}
+    y = np.arange(len(runs), dtype=np.int64) % 4
+    return X, y, mask
+
+
+class _Stub:
+    """A classifier that always gives the same probabilities (no training)."""
+
+    classes_ = np.arange(4)
+
+    def predict_proba(self, X):
+        return np.tile([0.1, 0.2, 0.6, 0.1], (len(X), 1))
+
+
+def _damage_cases():
+    import shutil
+
+    import zarr
+
+    def write(z, name, fn):
+        g = zarr.open_group(str(z), mode="r+")
+        a = g[name]
+        v = np.asarray(a[...])
+        a[...] = fn(v)
+
+    return {
+        "X chunk deleted": lambda z: (z / "X_shipped" / "c" / "0" / "0").unlink(),
+        "y chunk deleted": lambda z: (z / "y" / "c" / "0").unlink(),
+        "mask chunk deleted": lambda z: (z / "mask_shipped" / "c" / "0").unlink(),
+        "zarr.json deleted": lambda z: (z / "zarr.json").unlink(),
+        "zarr.json truncated": lambda z: (z / "zarr.json").write_text(
+            (z / "zarr.json").read_text()[:50]
+        ),
+        "store is a file": lambda z: (shutil.rmtree(z), z.write_text("x")),
+        "X chunk truncated": lambda z: (z / "X_shipped" / "c" / "0" / "0").write_bytes(
+            (z / "X_shipped" / "c" / "0" / "0").read_bytes()[:40]
+        ),
+        "X array removed": lambda z: shutil.rmtree(z / "X_shipped"),
+        "inf in X": lambda z: write(z, "X_shipped", lambda v: np.where(v > 1.0, np.inf, v)),
+        "one class": lambda z: write(z, "y", np.zeros_like),
+        "labels out of range": lambda z: write(z, "y", lambda v: v + 7),
+        "mask cleared": lambda z: write(z, "mask_shipped", np.zeros_like),
+    }
+
+
+@pytest.mark.parametrize("case", list(_damage_cases()))
+def test_a_damaged_cache_is_rebuilt_with_a_warning(small, tmp_path, monkeypatch, capsys, case):
+    """Review defects 1 and 2: a cache whose chunks are missing (zarr fills zeros: every file
+    came out "ball" ~0.25, or "none": 1.0), unreadable (tracebacks) or inconsistent (inf,
+    one class, labels outside LABELS, an empty mask) is treated as missing: rebuilt, with one
+    warning line on stderr."""
+    monkeypatch.setattr(small, "simulate_runs", _fake_runs)
+    X, y, _ = small.build_dataset(tmp_path, progress=False)
+    capsys.readouterr()
+    _damage_cases()[case](tmp_path / "sim_to_real.zarr")
+    X2, y2, _ = small.build_dataset(tmp_path, progress=False)
+    err = capsys.readouterr().err
+    assert "warning: cache" in err and "is damaged (" in err and "; rebuilding" in err
+    assert "Traceback" not in err
+    assert np.array_equal(X, X2) and np.array_equal(y, y2)
+    X3, _, _ = small.build_dataset(tmp_path, progress=False)  # the rebuilt cache is read
+    assert np.array_equal(X, X3) and "damaged" not in capsys.readouterr().err
+
+
+def test_an_intact_cache_is_read_without_a_rebuild(small, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(small, "simulate_runs", _fake_runs)
+    small.build_dataset(tmp_path, progress=False)
+    capsys.readouterr()
+
+    def boom(*a, **k):
+        raise AssertionError("simulated again")
+
+    monkeypatch.setattr(small, "simulate_runs", boom)
+    small.build_dataset(tmp_path, progress=False)
+    assert capsys.readouterr().err == ""
+
+
+def test_an_unwritable_cache_location_fails_before_simulating(small, tmp_path, monkeypatch):
+    """Review defect 3: a --cache under a regular file failed with NotADirectoryError only
+    after minutes of simulation; now a one-line error first (exit 2 on the command line)."""
+
+    def boom(*a, **k):
+        raise AssertionError("simulated before the location was checked")
+
+    monkeypatch.setattr(small, "simulate_runs", boom)
+    (tmp_path / "file").write_text("x")
+    with pytest.raises(small.CacheLocationError, match="is not a folder"):
+        small.build_dataset(tmp_path / "file" / "sub", progress=False)
+    r = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "sim_to_real.py"), "--predict", "x.mat",
+         "--cache", str(tmp_path / "file" / "sub")],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.startswith("error: --cache = ") and r.stderr.count("\n") == 1
+
+
+def _signal(seconds=1.0, fs=12000.0):
+    from bearingsim import simulate
+
+    return simulate(dict(model="vsm", fault="outer", duration_s=seconds, fs_hz=fs, rpm=1750.0))
+
+
+def test_a_speed_column_is_judged_at_its_median_or_refused(small, tmp_path):
+    """Review defect 4: a CSV with an ``rpm`` column gave "float() argument must be ... not
+    'NoneType'". A steady column is judged at its median (said in rpm_source); one that varies
+    by more than SPEED_SPREAD_MAX is one error line naming the spread and the valid range."""
+    y = _signal()["acc_y"]
+    t = np.arange(y.size) / 12000.0
+    steady = tmp_path / "steady.csv"
+    rpm = 1750.0 + np.random.default_rng(0).normal(0.0, 2.0, y.size)
+    np.savetxt(steady, np.c_[t, y, rpm], delimiter=",", header="time_s,acc,rpm", comments="")
+    x, fs, r, source, bearing = small._record(steady)
+    assert abs(r - 1750.0) < 1.0 and source.startswith("median of the speed column")
+    assert fs == pytest.approx(12000.0)
+    ramp = tmp_path / "ramp.csv"
+    np.savetxt(
+        ramp, np.c_[t, y, np.linspace(1500, 1750, y.size)], delimiter=",",
+        header="time_s,acc,rpm", comments="",
+    )  # fmt: skip
+    from bearingsim.errors import ConfigError
+
+    with pytest.raises(ConfigError, match=r"varies by 1\d\.\d % .*valid range \[0, 3\] %"):
+        small._record(ramp)
+    assert small._record(ramp, 1600.0)[2:4] == (1600.0, "option")
+    ok, bad = small.predict(_Stub(), [steady, ramp])
+    assert ok["predicted"] == "outer" and ok["rpm_source"].startswith("median")
+    assert bad["predicted"] is None and "varies by" in bad["error"]
+
+
+def test_fs_hz_and_channel_reach_the_reader(small, tmp_path):
+    """Review defect 5: the errors asked for --fs-hz and --channel, which the script lacked."""
+    y = _signal()["acc_y"]
+    f = tmp_path / "two.csv"
+    np.savetxt(f, np.c_[0.5 * y, y], delimiter=",", header="a,b", comments="")
+    (bad,) = small.predict(_Stub(), [f], 1750.0)
+    assert "--fs-hz" in bad["error"]
+    x, fs, *_ = small._record(f, 1750.0, channel="b", fs_hz=12000.0)
+    assert fs == 12000.0 and np.allclose(x, y)
+    (ok,) = small.predict(_Stub(), [f], 1750.0, channel="b", fs_hz=12000.0)
+    assert ok["fs_hz"] == 12000.0 and ok["fs_source"] == "option"
+    r = subprocess.run([sys.executable, str(ROOT / "examples" / "sim_to_real.py"), "--help"],
+                       capture_output=True, text=True)  # fmt: skip
+    assert "--fs-hz" in r.stdout and "--channel" in r.stdout
+
+
+def test_a_bearingsim_result_is_classified_with_its_own_bearing(small, tmp_path):
+    """Review defect 6: a .nc result was always read with channel "DE" (an error) and would
+    have had the CWRU bearing; now the reader's channel and the bearing stored in the file."""
+    res = _signal()
+    path = res.save(tmp_path / "sim.nc")
+    x, fs, rpm, source, bearing = small._record(path)
+    assert (fs, rpm, source) == (12000.0, 1750.0, "file") and not isinstance(bearing, str)
+    assert np.allclose(x, res["acc_y"])
+    (o,) = small.predict(_Stub(), [path])
+    assert o["predicted"] == "outer" and o["fs_source"] == "file" and "warning" not in o
+    (o,) = small.predict(_Stub(), [path], channel="x")
+    assert "error" not in o
+
+
+def test_a_speed_outside_the_trained_ones_carries_a_warning(small, tmp_path):
+    """Review defect 7: --rpm far from the trained speeds predicted silently."""
+    path = _signal().save(tmp_path / "sim.nc")
+    (o,) = small.predict(_Stub(), [path], 600.0)
+    assert o["predicted"] and "outside the trained speeds" in o["warning"]
+    assert "1750-1797" in o["warning"]  # the small grid's speeds
+
+
+def test_a_piece_that_fails_is_named(small, tmp_path, monkeypatch):
+    path = _signal(seconds=1.6).save(tmp_path / "sim.nc")
+    calls = []
+
+    def features(seg, fs, rpm, bearing):
+        calls.append(seg.size)
+        if len(calls) == 2:
+            return np.full(14, np.nan)
+        return np.zeros(14)
+
+    monkeypatch.setattr(small, "features", features)
+    (o,) = small.predict(_Stub(), [path])
+    assert o["error"].startswith("piece 2 of 3 (0.5-1 s): its features are not finite")
+
+
+@pytest.fixture(scope="module")
+def fake_cache(tmp_path_factory):
+    """A cache for the full grid with stand-in features (no simulation), for the CLI."""
+    m = _module()
+    m.simulate_runs = _fake_runs
+    d = tmp_path_factory.mktemp("s2r-cache")
+    m.build_dataset(d, progress=False)
+    return d
+
+
+def _cli(*args, cache):
+    return subprocess.run(
+        [sys.executable, str(ROOT / "examples" / "sim_to_real.py"), *map(str, args),
+         "--cache", str(cache)],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+
+
+def test_cli_text_mode_puts_errors_and_warnings_on_stderr(fake_cache, tmp_path):
+    """Review defect 8: error lines went to stdout. Each file its own line, the others go on;
+    exit 1 when any file failed (docs/sim_to_real.md)."""
+    path = _signal().save(tmp_path / "sim.nc")
+    r = _cli("--predict", path, tmp_path / "missing.mat", path, "--rpm", "600", cache=fake_cache)
+    assert r.returncode == 1, r.stderr
+    assert r.stdout.count("\n") == 2 and ": error:" not in r.stdout
+    lines = r.stderr.splitlines()
+    assert len(lines) == 3 and "Traceback" not in r.stderr
+    assert lines[1].startswith(f"{tmp_path / 'missing.mat'}: error: file = ")
+    assert lines[0].startswith(f"{path}: warning: rpm = 600 r/min is outside")
+    r = _cli("--predict", path, "--json", cache=fake_cache)
+    assert r.returncode == 0 and r.stderr == ""
+    o = json.loads(r.stdout)
+    assert {"file", "predicted", "probabilities", "rpm", "rpm_source", "fs_hz"} <= set(o)
+    assert o["fs_source"] == "file"
+
+
+def test_cli_piped_into_head_ends_quietly(fake_cache, tmp_path):
+    path = _signal().save(tmp_path / "sim.nc")
+    cmd = [sys.executable, str(ROOT / "examples" / "sim_to_real.py"), "--json", "--cache",
+           str(fake_cache), "--predict", *[str(path)] * 8]  # fmt: skip
+    with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as p:
+        assert json.loads(p.stdout.readline())["predicted"]
+        p.stdout.close()  # as `| head -1` does
+        err = p.stderr.read().decode()
+        p.wait(timeout=120)
+    assert "Traceback" not in err and "BrokenPipe" not in err
