@@ -236,3 +236,16 @@ def test_rotor_modes_says_what_it_cannot_give(run_cli):
     line = _one_line(run_cli("rotor-modes", "--distributed-rotor", "--disks", "3"))
     assert "--disks and --disk-positions-mm do not apply" in line
     assert run_cli("rotor-modes", "--distributed-rotor").code == 0
+
+
+def test_analyze_refuses_an_order_grid_beyond_the_memory_budget(run_cli, tmp_path):
+    """A speed column in the wrong unit asked analyze's order tracking for an unbounded angle
+    grid (3e10 revolutions x 512 samples here); analyze-ias had the check, analyze did not."""
+    n, fs = 12000, 12000.0
+    t = np.arange(n) / fs
+    x = np.random.default_rng(0).standard_normal(n)
+    rows = ["time_s,DE,rpm"] + [f"{a:.8f},{b:.6f},1.8e12" for a, b in zip(t, x, strict=True)]
+    f = tmp_path / "speed.csv"
+    f.write_text("\n".join(rows) + "\n")
+    line = _one_line(run_cli("analyze", f, "--bearing", "6205-cwru"))
+    assert "the signal spans 3e+10 shaft revolutions" in line and "memory budget" in line

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import functools
 import io
+import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -217,7 +218,14 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     bearing = (
         req.bearing or rec.bearing or resolve_bearing(cwru_bearing(rec.channel if cwru else "DE"))
     )
-    d = analyze_record(rec, bearing, band=req.band)
+    # an order-tracked record's angle grid is checked against the memory budget (a speed
+    # column in the wrong unit would ask for an unbounded grid)
+    from ..dynamics.budget import Budget
+
+    limit = Budget().memory_limit()[0]
+    d = analyze_record(
+        rec, bearing, band=req.band, max_memory=limit if math.isfinite(limit) else None
+    )
     if req.plot:
         from ..report.figures import save_figure
 

@@ -843,6 +843,7 @@ def analyze_record(
     band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
     samples_per_rev: int = 512,
+    max_memory: float | None = None,
 ):
     """Diagnose a :class:`SignalRecord` with the fused benchmark methods
     (:func:`.fused.diagnose_fused`); with a per-sample speed the signal is first order tracked
@@ -862,6 +863,10 @@ def analyze_record(
         Line search (default: the documented one with shaft cursors).
     samples_per_rev : int
         Order-tracking density [1/rev].
+    max_memory : float, optional
+        Memory the order-tracked grid and its spectrum may take [B]
+        (:func:`.resample_to_angle`: refused in one line beyond it; ``bearingsim analyze``
+        passes the memory budget); ``None``: not checked.
 
     Returns
     -------
@@ -891,6 +896,7 @@ def analyze_record(
             rec.x,
             samples_per_rev,
             interpolation=Interpolation.CUBIC,
+            max_memory=max_memory,
         )
         return diagnose_fused(
             sig.value, float(samples_per_rev), bearing, 1.0, band=band_v, rule=rule,
