@@ -249,3 +249,11 @@ def test_analyze_refuses_an_order_grid_beyond_the_memory_budget(run_cli, tmp_pat
     f.write_text("\n".join(rows) + "\n")
     line = _one_line(run_cli("analyze", f, "--bearing", "6205-cwru"))
     assert "the signal spans 3e+10 shaft revolutions" in line and "memory budget" in line
+
+
+def test_the_speed_range_quoted_is_the_one_the_run_accepts(run_cli, tmp_path):
+    """At 48 kHz the rpm message said (0, 265871] while the ring-burst limit (speed factor
+    1e7 mm r/min / 39 mm) refuses everything above 256410."""
+    line = _one_line(run_cli("simulate", "--rpm", "1e6", "--duration-s", "0.01",
+                             "-o", tmp_path / "q.nc"))  # fmt: skip
+    assert "valid range (0, 256410] r/min at this fs_hz (above that the rings burst)" in line

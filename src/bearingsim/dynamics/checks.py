@@ -12,7 +12,7 @@ import warnings
 
 from ..contact.capacity import check_load
 from ..errors import ConfigError, check_positive
-from ..geometry import Bearing, characteristic_frequencies, check_speed_limit
+from ..geometry import SPEED_FACTOR_MAX, Bearing, characteristic_frequencies, check_speed_limit
 
 __all__ = [
     "SPEED_FACTOR_WARN",
@@ -72,11 +72,14 @@ def check_speed(bearing: Bearing, rpm: float, fs_hz: float, name: str = "rpm") -
     hi = max_resolved_rpm(bearing, fs_hz)
     if n > hi:
         bpfi = characteristic_frequencies(bearing, n / 60.0).bpfi_hz
+        # the range quoted is the one the run accepts: the ring-burst limit may be lower
+        ok = min(hi, SPEED_FACTOR_MAX / (bearing.pitch_diameter * 1e3))
         raise ConfigError(
             f"{name} = {n:.6g} r/min puts the ball-pass frequency BPFI = {bpfi:.6g} Hz of "
             f"{bearing.id} above the Nyquist frequency {0.5 * fs_hz:.6g} Hz of fs_hz = "
             f"{fs_hz:.6g} Hz: the output cannot resolve the ball passes; valid range "
-            f"(0, {hi:.6g}] r/min at this fs_hz"
+            f"(0, {ok:.6g}] r/min at this fs_hz"
+            + (" (above that the rings burst)" if ok < hi else "")
         )
     check_speed_limit(bearing, n, name)
     a = speed_factor(bearing, n)
