@@ -135,3 +135,14 @@ def test_replace_takes_what_from_dict_takes():
         sc.replace(bogus=1)
     with pytest.warns(DeprecatedKeyWarning, match="use 'noise_rms_m_per_s2'"):
         assert sc.replace(noise_rms_m_s2=1.0).noise_rms_m_per_s2 == 1.0
+
+
+def test_plot_time_refuses_an_empty_window():
+    """plot_time(t_range=(0.01, 0)) or a window outside the record drew an empty figure."""
+    r = simulate({"model": "vsm", "duration_s": 0.01})
+    for window in ((0.01, 0.0), (5.0, 6.0)):
+        with pytest.raises(ConfigError, match="t_range = .* holds 0 samples"):
+            r.plot_time(t_range=window)
+    import matplotlib.pyplot as plt
+
+    plt.close(r.plot_time(t_range=(0.0, 0.005)))

@@ -438,6 +438,11 @@ class SimulationResult(Result):
         x = self[channel]
         t = self.time
         sel = slice(None) if t_range is None else (t >= t_range[0]) & (t <= t_range[1])
+        if t_range is not None and np.count_nonzero(sel) < 2:  # it drew an empty figure
+            raise ConfigError(
+                f"t_range = {tuple(t_range)!r} s holds {np.count_nonzero(sel)} samples; valid: "
+                f"a window within [{t[0]:.6g}, {t[-1]:.6g}] s holding at least 2"
+            )
         fig, ax = new_figure(width=FULL_WIDTH, height=3.2)
         ax.plot(t[sel], x[sel], lw=0.6)
         ax.set_xlabel("time [s]")
