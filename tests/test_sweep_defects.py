@@ -16,26 +16,19 @@ from pathlib import Path
 import numpy as np
 import pytest
 from numpy.testing import assert_array_equal
+from test_sweep_cli import SPEC as RUN_TOML  # the cluster sweeps: 4 short DEM runs
+from test_sweep_store import commit, new_store  # the six-run store of the reader tests
 
 from bearingsim.errors import ConfigError
 from bearingsim.sweep import store as stores
 from bearingsim.sweep.dataset import SplitWarning, open_dataset
 from bearingsim.sweep.execute import LostDataWarning, connect, run_sweep
-from bearingsim.sweep.plan import coordinates, plan_sweep
+from bearingsim.sweep.plan import plan_sweep
 from bearingsim.sweep.spec import SweepSpec
-from bearingsim.sweep.store import (
-    FAILED,
-    OK,
-    PENDING,
-    ChannelLayout,
-    Layout,
-    RunWriter,
-    create_dataset,
-    read_status,
-)
+from bearingsim.sweep.store import FAILED, PENDING, RunWriter, read_status
 
-N_TIME = 20
-#: the store's spec: 6 runs, labels none, none, outer, outer, inner, inner
+#: the store's spec (6 runs, labels none, none, outer, outer, inner, inner) as a sweep file, for
+#: the resume from the command line; the store itself is tests/test_sweep_store.py's
 SPEC_TOML = """
 [sweep]
 label = "fault"
@@ -47,54 +40,17 @@ fs_hz = 4000.0
 fault = ["none", "outer", "inner"]
 rpm = [1730.0, 1797.0]
 """
-SPEC = SweepSpec.from_dict(
-    {
-        "sweep": {"label": "fault"},
-        "base": {"model": "dem", "duration_s": 0.005, "fs_hz": 4000.0},
-        "axes": {"fault": ["none", "outer", "inner"], "rpm": [1730.0, 1797.0]},
-    },
-    origin="t.toml",
-)
-LAYOUT = Layout(
-    n_runs=SPEC.n_runs,
-    n_time=N_TIME,
-    fs_hz=4000.0,
-    channels=(ChannelLayout("acc_x", "m/s^2"), ChannelLayout("acc_y", "m/s^2")),
-)
-#: the cluster sweeps: 4 short DEM runs (fast, see tests/test_sweep.py)
-RUN_TOML = """
-[sweep]
-label = "fault"
-[base]
-model = "dem"
-duration_s = 0.05
-fs_hz = 4000.0
-[axes]
-fault = ["outer", "inner"]
-rpm = [1730.0, 1797.0]
-"""
 
 
 def make_store(path: Path, ok: range, failed: tuple[int, ...] = ()) -> Path:
     """A dataset of ``SPEC`` with the runs ``ok`` committed ok, ``failed`` failed, the rest
     pending."""
-    scenarios = SPEC.scenarios()
-    attrs = {
-        "spec_hash": SPEC.spec_hash,
-        "spec_json": json.dumps(SPEC.canonical()),
-        "label": list(SPEC.label),
-        "axes": list(SPEC.axis_names),
-        "name": SPEC.name,
-    }
-    sdicts = [s.to_dict() for s in scenarios]
-    create_dataset(path, LAYOUT, attrs, coordinates(SPEC, scenarios), sdicts)
+    new_store(path)
     w = RunWriter(path)
-    t = np.arange(N_TIME, dtype=float)
-    rec = {"compute_s": 0.5, "cpu_s": 0.5, "host": "h", "pid": 1, "meta": {}}
     for i in ok:
-        w.commit(i, OK, rec, "", {"acc_x": np.sin(t + i), "acc_y": np.cos(t * i)})
+        commit(w, i)
     for i in failed:
-        w.commit(i, FAILED, rec, f"SolverError: run {i} diverged")
+        commit(w, i, FAILED)
     w.close()
     return path
 
