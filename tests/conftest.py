@@ -55,6 +55,17 @@ class CliResult:
     def json(self):
         return json.loads(self.out)
 
+    def refused(self, *parts: str) -> str:
+        """The one error line of a refusal (exit 2, nothing on stdout, ``error: ...`` alone on
+        stderr), asserted to contain each of ``parts``."""
+        assert self.code == 2, (self.code, self.out, self.err)
+        assert self.out == "", self.out
+        lines = self.err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("error: "), self.err
+        for p in parts:
+            assert p in lines[0], (p, lines[0])
+        return lines[0]
+
 
 @pytest.fixture
 def run_cli(capsys):

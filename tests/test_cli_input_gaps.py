@@ -13,21 +13,14 @@ from conftest import cwru_record
 R132 = "12k_Drive_End_OR007@6_2_132.mat"
 
 
-def _one_line(r) -> str:
-    assert r.code == 2, (r.out, r.err)
-    lines = r.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
-    return lines[0]
-
-
 def test_option_ranges_are_enforced_by_the_option_itself(run_cli, tmp_path):
     """``Number`` quoted its range in messages but did not check it: rig identify --max-modes 0
     (or -2) ran and wrote one mode."""
     rec = cwru_record(R132)
     for v in ("0", "-2"):
-        line = _one_line(
-            run_cli("rig", "identify", rec, "--name", "m", "--max-modes", v, "-o", tmp_path / "m")
-        )
+        line = run_cli(
+            "rig", "identify", rec, "--name", "m", "--max-modes", v, "-o", tmp_path / "m"
+        ).refused()
         assert f"max_modes = {v} is out of range; valid range [1, inf)" in line
     assert not list(tmp_path.iterdir())
 
@@ -36,11 +29,12 @@ def test_rig_identify_refuses_a_rate_too_low_and_an_empty_name(run_cli, tmp_path
     """--fs-hz 100 raised 'nperseg must be a positive integer' from SciPy (exit 1, a
     traceback); --name '' failed after the work."""
     rec = cwru_record(R132)
-    line = _one_line(run_cli("rig", "identify", rec, "--name", "m", "--fs-hz", "100",
-                             "-o", tmp_path / "m.toml"))  # fmt: skip
+    line = run_cli(
+        "rig", "identify", rec, "--name", "m", "--fs-hz", "100", "-o", tmp_path / "m.toml"
+    ).refused()
     assert "fs_hz = 100 Hz is too low to identify a transfer path" in line
     assert "valid range [4526, inf) Hz" in line
-    line = _one_line(run_cli("rig", "identify", rec, "--name", " ", "-o", tmp_path / "m.toml"))
+    line = run_cli("rig", "identify", rec, "--name", " ", "-o", tmp_path / "m.toml").refused()
     assert "name = ' ' is empty" in line
     assert not list(tmp_path.iterdir())
 
@@ -61,7 +55,7 @@ def test_an_identified_cwru_rig_names_its_sensor_end(run_cli, tmp_path):
     assert "sensor at the FE end" in run_cli("rig", "show", "cwru-fe-12k").out
     bad = out.read_text().replace('end = "FE"', 'end = "middle"')
     (tmp_path / "bad.toml").write_text(bad)
-    line = _one_line(run_cli("rig", "show", tmp_path / "bad.toml"))
+    line = run_cli("rig", "show", tmp_path / "bad.toml").refused()
     assert "rig.end = 'middle' is invalid; valid: DE, FE" in line
 
 
@@ -85,7 +79,7 @@ def test_mat_channels_that_are_not_one_real_signal(run_cli, tmp_path, make, mess
     x = next(v for k, v in d.items() if k.endswith("DE_time"))[:12000]
     f = tmp_path / "site_2_1.mat"  # a CWRU site name: no rate in it
     savemat(f, {"X001_DE_time": make(x), "X001RPM": np.array([[1750.0]])})
-    assert message in _one_line(run_cli("analyze", f))
+    assert message in run_cli("analyze", f).refused()
     row = tmp_path / "row_2_1.mat"  # one row is one signal, as one column
     savemat(row, {"X001_DE_time": x.T, "X001RPM": np.array([[1750.0]])})
     assert run_cli("analyze", row, "--fs-hz", "12000").code == 0
@@ -94,11 +88,18 @@ def test_mat_channels_that_are_not_one_real_signal(run_cli, tmp_path, make, mess
 def test_two_outputs_on_one_path_and_plot_formats(run_cli, tmp_path):
     """vsm-trace -o same.csv --plot same.csv replaced the CSV with the PNG and said 'wrote';
     load --plot x.pdf wrote PNG bytes under a .pdf name."""
-    line = _one_line(run_cli("vsm-trace", "--cage-revs", "0.05", "-o", tmp_path / "same.png",
-                             "--plot", tmp_path / "same.png"))  # fmt: skip
+    line = run_cli(
+        "vsm-trace",
+        "--cage-revs",
+        "0.05",
+        "-o",
+        tmp_path / "same.png",
+        "--plot",
+        tmp_path / "same.png",
+    ).refused()
     assert "--plot = " in line and "is also -o/--output" in line
     assert not list(tmp_path.iterdir())
-    line = _one_line(run_cli("load", "6205", "--fy-n", "50", "--plot", tmp_path / "x.txt"))
+    line = run_cli("load", "6205", "--fy-n", "50", "--plot", tmp_path / "x.txt").refused()
     assert "has no figure suffix; valid: a name ending in .png, .pdf, .svg" in line
     for suffix, magic in ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG")):
         p = tmp_path / f"load{suffix}"
@@ -122,7 +123,7 @@ def test_bearing_files_that_are_not_a_bearing(run_cli, tmp_path):
     'type = None'; a numeric source and a 1000 m wide bearing were accepted."""
     f = _write(tmp_path / "r.toml", **NU204, inner_raceway_diameter_m=1e-3,
                outer_raceway_diameter_m=0.1)  # fmt: skip
-    line = _one_line(run_cli("contact", "--bearing-file", f, "--radial-load-n", "1000"))
+    line = run_cli("contact", "--bearing-file", f, "--radial-load-n", "1000").refused()
     # d_m - D = 26.06 mm, within 0.1 D = 0.794 mm
     assert "inner_raceway_diameter_m = 0.001 m is out of range; valid range [0.025266" in line
     # the seed IAS's printed raceways (26.5/41.5 mm, 0.055 D off) stay valid
@@ -130,14 +131,14 @@ def test_bearing_files_that_are_not_a_bearing(run_cli, tmp_path):
                outer_raceway_diameter_m=41.5e-3)  # fmt: skip
     assert run_cli("contact", "--bearing-file", f, "--radial-load-n", "1000").code == 0
     (tmp_path / "empty.toml").write_text("")
-    line = _one_line(run_cli("info", "--bearing-file", tmp_path / "empty.toml", "--rpm", "1"))
+    line = run_cli("info", "--bearing-file", tmp_path / "empty.toml", "--rpm", "1").refused()
     assert "missing required key 'type'" in line
     f = _write(tmp_path / "s.toml", **NU204, source=5)
-    assert "source = 5 is not a text" in _one_line(
-        run_cli("info", "--bearing-file", f, "--rpm", "1")
+    assert (
+        "source = 5 is not a text" in run_cli("info", "--bearing-file", f, "--rpm", "1").refused()
     )
     f = _write(tmp_path / "w.toml", **NU204, width_m=1000.0, outer_diameter_m=47e-3)
-    line = _one_line(run_cli("info", "--bearing-file", f, "--rpm", "1"))
+    line = run_cli("info", "--bearing-file", f, "--rpm", "1").refused()
     assert "width_m = 1000 m is out of range; valid range [0.009, 0.047] m" in line
 
 
@@ -151,7 +152,7 @@ def test_bearings_json_writes_bearing_files_that_read_back_the_same(run_cli, tmp
         assert bearing_from_dict(item, "json") == get_bearing(item["id"])
     item = next(b for b in run_cli("bearings", "--json").json()["bearings"] if b["id"] == "6205")
     f = _write(tmp_path / "rt.toml", **item)
-    line = _one_line(run_cli("load", "--bearing-file", f, "--fy-n", "50", "--clearance-m", "6e-5"))
+    line = run_cli("load", "--bearing-file", f, "--fy-n", "50", "--clearance-m", "6e-5").refused()
     assert "clearance" in line
 
 
@@ -177,14 +178,14 @@ def test_messages_that_point_somewhere_useful(run_cli, tmp_path):
     rig = rig_to_toml(d).replace("frequency_hz = [10.0, ", "frequency_hz = [10.0, 5.0, ", 1)
     rig = rig.replace("psd_m2_per_s4_per_hz = [", "psd_m2_per_s4_per_hz = [1e-3, ", 1)
     text.write_text(rig)
-    line = _one_line(run_cli("rig", "show", text))
+    line = run_cli("rig", "show", text).refused()
     assert "background.frequency_hz[1] = 5 Hz does not exceed [0] = 10 Hz" in line
     assert len(line) < 300
     import xarray as xr
 
     out = tmp_path / "ias.nc"  # what an IAS result's file says it is (IasResult.FORMAT)
     xr.Dataset(attrs={"format": "bearingsim.IasResult/1"}).to_netcdf(out, engine="h5netcdf")
-    line = _one_line(run_cli("analyze", out))
+    line = run_cli("analyze", out).refused()
     assert "an IAS result: bearingsim analyze-ias reads it" in line
 
 
@@ -212,16 +213,19 @@ def test_simulate_options_that_contradict_each_other(run_cli, tmp_path, capsys):
                element_diameter_m=7.94e-3, pitch_diameter_m=39e-3,
                inner_groove_radius_m=4.089e-3, outer_groove_radius_m=4.169e-3)  # fmt: skip
     out = tmp_path / "r.nc"
-    line = _one_line(run_cli("simulate", "--bearing-file", f, "--bearing", "nosuch",
-                             "--duration-s", "0.01", "-o", out))  # fmt: skip
+    line = run_cli(
+        "simulate", "--bearing-file", f, "--bearing", "nosuch", "--duration-s", "0.01", "-o", out
+    ).refused()
     assert "bearing = 'nosuch' and bearing_file = " in line and "given together" in line
-    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "--set", "rpm=100",
-                             "--set", "rpm=200", "-o", out))  # fmt: skip
+    line = run_cli(
+        "simulate", "--duration-s", "0.01", "--set", "rpm=100", "--set", "rpm=200", "-o", out
+    ).refused()
     assert "--set rpm=... is given twice" in line
-    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "-o", tmp_path / "x.csv"))
+    line = run_cli("simulate", "--duration-s", "0.01", "-o", tmp_path / "x.csv").refused()
     assert "names no netCDF file; valid: a name ending in .nc, .nc4 or .h5" in line
-    line = _one_line(run_cli("simulate", "--duration-s", "0.01", "--fx-n", "0", "--fy-n", "0",
-                             "-o", out))  # fmt: skip
+    line = run_cli(
+        "simulate", "--duration-s", "0.01", "--fx-n", "0", "--fy-n", "0", "-o", out
+    ).refused()
     assert "unbalance_n" not in line and "radial load |(fx_n, fy_n)| = 0 N" in line
     assert not list(tmp_path.glob("*.nc")) and not (tmp_path / "x.csv").exists()
     assert run_cli("simulate", "--bearing-file", f, "--duration-s", "0.01", "-o", out).code == 0
@@ -233,7 +237,7 @@ def test_rotor_modes_says_what_it_cannot_give(run_cli):
     r = run_cli("rotor-modes", "--n-modes", "1000", "--json")
     assert r.code == 0 and len(r.json()["frequency_hz"]) < 1000
     assert "warning: n_modes = 1000: the model has" in r.err
-    line = _one_line(run_cli("rotor-modes", "--distributed-rotor", "--disks", "3"))
+    line = run_cli("rotor-modes", "--distributed-rotor", "--disks", "3").refused()
     assert "--disks and --disk-positions-mm do not apply" in line
     assert run_cli("rotor-modes", "--distributed-rotor").code == 0
 
@@ -247,13 +251,14 @@ def test_analyze_refuses_an_order_grid_beyond_the_memory_budget(run_cli, tmp_pat
     rows = ["time_s,DE,rpm"] + [f"{a:.8f},{b:.6f},1.8e12" for a, b in zip(t, x, strict=True)]
     f = tmp_path / "speed.csv"
     f.write_text("\n".join(rows) + "\n")
-    line = _one_line(run_cli("analyze", f, "--bearing", "6205-cwru"))
+    line = run_cli("analyze", f, "--bearing", "6205-cwru").refused()
     assert "the signal spans 3e+10 shaft revolutions" in line and "memory budget" in line
 
 
 def test_the_speed_range_quoted_is_the_one_the_run_accepts(run_cli, tmp_path):
     """At 48 kHz the rpm message said (0, 265871] while the ring-burst limit (speed factor
     1e7 mm r/min / 39 mm) refuses everything above 256410."""
-    line = _one_line(run_cli("simulate", "--rpm", "1e6", "--duration-s", "0.01",
-                             "-o", tmp_path / "q.nc"))  # fmt: skip
+    line = run_cli(
+        "simulate", "--rpm", "1e6", "--duration-s", "0.01", "-o", tmp_path / "q.nc"
+    ).refused()
     assert "valid range (0, 256410] r/min at this fs_hz (above that the rings burst)" in line

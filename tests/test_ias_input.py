@@ -40,16 +40,6 @@ BPFO = 11 * RHO
 DO = 41.5e-3
 
 
-def _one_line_error(r, *parts: str) -> str:
-    assert r.code == 2, (r.code, r.out, r.err)
-    assert r.out == ""
-    lines = r.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
-    for p in parts:
-        assert p in lines[0], (p, lines[0])
-    return lines[0]
-
-
 def _speed_csv(path, t_scale=1.0, rpm=1500.0, rows=5000):
     """5 s of a constant shaft speed [r/min], header ``time_s,speed_rpm`` (the reported file)."""
     t = np.linspace(0.0, 5.0, rows) * t_scale
@@ -66,7 +56,7 @@ def test_analyze_ias_samples_per_rev_beyond_the_memory_budget(run_cli, tmp_path)
     f = _speed_csv(tmp_path / "speed.csv")
     r = run_cli("analyze-ias", f, "--samples-per-rev", "16000000", "--max-memory-gb", "1",
                 "--json")  # fmt: skip
-    line = _one_line_error(r, "samples_per_rev = 16000000 over 125 shaft revolutions",
+    line = r.refused("samples_per_rev = 16000000 over 125 shaft revolutions",
                            "memory budget 1 GB", "valid range [8, ")  # fmt: skip
     # the largest value named fits the budget and the next one does not
     top = int(line.rsplit("valid range [8, ", 1)[1].split("]")[0])
@@ -88,7 +78,7 @@ def test_analyze_ias_absurd_units_refused(run_cli, tmp_path, kw, revs):
     allowed size exceeded'; now one line saying that even the coarsest grid does not fit."""
     f = _speed_csv(tmp_path / "s.csv", **kw)
     r = run_cli("analyze-ias", f, "--max-memory-gb", "4", "--json")
-    _one_line_error(r, revs, "even samples_per_rev = 8", "memory budget 4 GB",
+    r.refused(revs, "even samples_per_rev = 8", "memory budget 4 GB",
                     "check the units")  # fmt: skip
 
 
@@ -179,8 +169,7 @@ def test_ias_run_too_short_to_resolve_the_bpfo_order(run_cli, tmp_path):
     line with the duration that would do, nothing written."""
     out = tmp_path / "ix.nc"
     r = run_cli("ias", "--duration-s", "0.5", "--dt-s", "1e-5", "-o", out, "--json")
-    line = _one_line_error(
-        r,
+    line = r.refused(
         "duration_s = 0.5 s with skip_s = 0.049998 s leaves too little rotation",
         "n_revs = 0.4482 shaft revolutions",
         "valid: a longer duration_s or a smaller skip_s for n_revs >= 0.9489",
@@ -211,7 +200,7 @@ def test_flat_speed_has_no_spall_event():
 # -------------------------------------------------------------------------------- the nits
 def test_zero_torque_names_the_scenario_key(run_cli, tmp_path):
     r = run_cli("ias", "--torque-n-m", "0", "--duration-s", "0.2", "-o", tmp_path / "r.nc")
-    _one_line_error(r, "torque_n_m = 0 N m with zero initial speed",
+    r.refused("torque_n_m = 0 N m with zero initial speed",
                     "valid range torque_n_m > 0")  # fmt: skip
     assert "torque_nm" not in r.err
 
@@ -219,9 +208,9 @@ def test_zero_torque_names_the_scenario_key(run_cli, tmp_path):
 def test_max_steps_is_an_integer_count(run_cli, tmp_path):
     out = tmp_path / "r.nc"
     r = run_cli("ias", "--max-steps", "1.5", "-o", out)
-    _one_line_error(r, "'1.5' is not an integer", "valid range [1, inf)")
+    r.refused("'1.5' is not an integer", "valid range [1, inf)")
     r = run_cli("ias", "--duration-s", "0.05", "--max-steps", "1e3", "-o", out)
-    _one_line_error(r, "exceed the step budget 1e+03")
+    r.refused("exceed the step budget 1e+03")
     r = run_cli("ias", "--help")
     assert r.code == 0
     assert "--max-steps INTEGER" in r.out and "[default: (1e9)]" in r.out

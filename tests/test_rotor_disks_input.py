@@ -24,16 +24,6 @@ BIG = Budget(max_memory=1e12)
 SHORT = ["simulate", "--model", "rotor", "--duration-s", "0.002", "--fs-hz", "12000"]
 
 
-def _refused(r, *parts: str) -> str:
-    """A one-line refusal (exit 2, ``error: ...`` alone on stderr) containing ``parts``."""
-    assert r.code == 2, (r.code, r.err)
-    lines = r.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
-    for p in parts:
-        assert p in lines[0], (p, lines[0])
-    return lines[0]
-
-
 @pytest.fixture
 def no_build(monkeypatch):
     """Building the reduced rotor fails the test: a refusal must come before it."""
@@ -56,7 +46,7 @@ def test_1000_disks_refused_before_building(run_cli, tmp_path, no_build):
     # a memory budget the 5.1 GB dense mesh fits in: the refusal must not depend on the machine
     r = run_cli("simulate", "--model", "rotor", "--disks", "1000", "--duration-s", "0.001",
                 "--max-memory-gb", "1000", "-o", out, "--json")  # fmt: skip
-    _refused(r, "disks = 1000 ", "4008 DOFs", "valid range [1, 248]", "distributed")
+    r.refused("disks = 1000 ", "4008 DOFs", "valid range [1, 248]", "distributed")
     assert time.perf_counter() - t0 < 10.0
     assert r.out == "" and not out.exists()
 
@@ -82,7 +72,7 @@ def test_many_elements_refused_naming_n_elements(run_cli, tmp_path, no_build):
     """--elements 400 with the 9 default disks (1604 DOFs) was built for seconds; the range is
     the largest element count whose mesh keeps 1000 DOFs (10 intervals of 24: 241 nodes)."""
     r = run_cli(*SHORT, "--elements", "400", "-o", tmp_path / "e.nc")
-    _refused(r, "n_elements = 400 ", "1604 DOFs", "valid range [10, 240]")
+    r.refused("n_elements = 400 ", "1604 DOFs", "valid range [10, 240]")
 
 
 # ------------------------------------------------------------------ 2. the automatic step
@@ -131,7 +121,7 @@ def test_disks_and_positions_disagree_cli(run_cli, tmp_path):
     """``--disks 3 --disk-positions-mm 1,2`` exited 0, storing disks = 3 for a 2-disk model."""
     out = tmp_path / "dp.nc"
     r = run_cli(*SHORT, "--disks", "3", "--disk-positions-mm", "1,2", "-o", out)
-    _refused(r, "disks = 3 and disk_positions_mm = [1, 2] (2 positions) disagree",
+    r.refused("disks = 3 and disk_positions_mm = [1, 2] (2 positions) disagree",
              "disks = 2")  # fmt: skip
     assert not out.exists()
 
@@ -140,7 +130,7 @@ def test_disks_and_positions_disagree_scenario_and_rotor_modes(run_cli):
     with pytest.raises(ConfigError, match=r"disks = 3 and disk_positions_mm = \[60, 140\]"):
         Scenario(model="rotor", disks=3, disk_positions_mm=(60.0, 140.0))
     r = run_cli("rotor-modes", "--disks", "3", "--disk-positions-mm", "50,100")
-    _refused(r, "disks = 3 and disk_positions_mm = [50,100] (2 positions) disagree")
+    r.refused("disks = 3 and disk_positions_mm = [50,100] (2 positions) disagree")
     with pytest.raises(ConfigError) as ei:
         Armature(n_disks=3, positions=(0.05, 0.1))
     assert str(ei.value) == (
@@ -182,7 +172,7 @@ def test_unset_disks_follow_the_positions(run_cli, tmp_path):
 )  # fmt: skip
 def test_positions_must_increase(run_cli, tmp_path, positions, needle, no_build):
     r = run_cli(*SHORT, "--disk-positions-mm", positions, "-o", tmp_path / "o.nc")
-    _refused(r, needle)
+    r.refused(needle)
 
 
 # ----------------------------------------------------------------------------- 4. bearing id
@@ -191,6 +181,6 @@ def test_positions_must_increase(run_cli, tmp_path, positions, needle, no_build)
 @pytest.mark.parametrize("end", ["de", "fe"])
 def test_unknown_bearing_names_its_key(run_cli, tmp_path, end):
     r = run_cli(*SHORT, f"--{end}-bearing", "nosuch", "-o", tmp_path / "b.nc")
-    _refused(r, f"{end}_bearing = 'nosuch' is not in the catalogue; valid: ")
+    r.refused(f"{end}_bearing = 'nosuch' is not in the catalogue; valid: ")
     with pytest.raises(ConfigError, match=f"^{end}_bearing = 'nosuch' is not in the catalogue"):
         cwru_rotor_config(**{f"{end}_bearing": "nosuch"})

@@ -32,22 +32,12 @@ CAGE = np.radians(np.linspace(0.0, 36.0, 721))
 SHORT = ["--cage-revs", "0.1"]
 
 
-def _one_line_error(r, *parts: str) -> str:
-    assert r.code == 2, (r.code, r.out, r.err)
-    assert r.out == ""
-    lines = r.err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: "), r.err
-    for p in parts:
-        assert p in lines[0], (p, lines[0])
-    return lines[0]
-
-
 # ------------------------------------------------------------------------------ zero load
 def test_zero_radial_load_with_clearance_names_fx_fy(run_cli, tmp_path):
     """--fx-n 0 --fy-n 0 said 'unbalance_n = 0 N is out of range; valid range [0, 0) N'."""
     out = tmp_path / "v0.csv"
     r = run_cli("vsm-trace", "--fx-n", "0", "--fy-n", "0", "-o", out)
-    _one_line_error(r, "radial load |(fx_n, fy_n)| = 0 N (fx_n = 0 N, fy_n = 0 N)",
+    r.refused("radial load |(fx_n, fy_n)| = 0 N (fx_n = 0 N, fy_n = 0 N)",
                     "clearance_m = 6e-06 m > 0", "undetermined",
                     "valid range |(fx_n, fy_n)| > 0 N")  # fmt: skip
     assert not out.exists()
@@ -59,7 +49,7 @@ def test_zero_radial_load_without_clearance_has_no_stiffness(run_cli, tmp_path):
     (Q/K)^(2/3), so the trace's secant stiffness scales as F^(1/3) (1000 times the load: 10
     times the stiffness) and is 0 at F = 0."""
     r = run_cli("vsm-trace", "--fx-n", "0", "--fy-n", "0", "--clearance-m", "0", "--json")
-    _one_line_error(r, "clearance_m = 0 m every ball touches unloaded",
+    r.refused("clearance_m = 0 m every ball touches unloaded",
                     "no stiffness to trace")  # fmt: skip
     k = [
         stiffness_trace(ModelInputs(B6205, 0.0, f, SHAFT, clearance=0.0), CAGE[:1]).k_load[0]
@@ -73,7 +63,7 @@ def test_zero_radial_load_with_preload_names_the_clearance(run_cli, tmp_path):
     but the VSM trace measures its secant stiffness from the concentric position: refused
     whatever the load, as with a radial load."""
     r = run_cli("vsm-trace", "--fx-n", "0", "--fy-n", "0", "--clearance-m", "-5e-6", "--json")
-    _one_line_error(r, "clearance_m = -5e-06 m (a preload)", "fx_n = fy_n = 0 N is a valid state",
+    r.refused("clearance_m = -5e-06 m (a preload)", "fx_n = fy_n = 0 N is a valid state",
                     "valid range [0, inf) m", "dem or tvsm")  # fmt: skip
 
 
@@ -84,7 +74,7 @@ def test_stiffness_outside_the_hertz_range_refused(run_cli, tmp_path, k):
     nothing is written now."""
     out = tmp_path / "v.csv"
     r = run_cli("vsm-trace", *SHORT, "-o", out, "--stiffness-n-per-m1.5", k, "--json")
-    _one_line_error(r, f"stiffness_n_per_m1_5 = {float(k):g} N/m^1.5 is out of range",
+    r.refused(f"stiffness_n_per_m1_5 = {float(k):g} N/m^1.5 is out of range",
                     "valid range [1e+08, 1e+12] N/m^1.5", "6205: 9.37e+09")  # fmt: skip
     assert not out.exists()
 
@@ -134,7 +124,7 @@ def test_unconverged_balance_refused(run_cli, tmp_path):
         stiffness_trace(ModelInputs(B6205, 0.0, 1e-6, SHAFT), CAGE)
     out = tmp_path / "v.csv"
     r = run_cli("vsm-trace", *SHORT, "--fx-n", "0", "--fy-n", "1e-6", "-o", out)
-    _one_line_error(r, "static balance of seed VSM eq. (16) did not converge")
+    r.refused("static balance of seed VSM eq. (16) did not converge")
     assert not out.exists()
     assert TRACE_RESIDUAL_TOL == 1e-6
 
@@ -157,7 +147,7 @@ def test_valid_traces_unchanged(run_cli, tmp_path):
 # ---------------------------------------------------------------------------------- nits
 def test_ball_without_plot_refused(run_cli, tmp_path):
     r = run_cli("vsm-trace", *SHORT, "--ball", "1", "-o", tmp_path / "v.csv")
-    _one_line_error(r, "ball = 1 is given without --plot", "valid: --ball with --plot PNG")
+    r.refused("ball = 1 is given without --plot", "valid: --ball with --plot PNG")
     assert not list(tmp_path.iterdir())
 
 
