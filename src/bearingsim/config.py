@@ -32,13 +32,19 @@ from __future__ import annotations
 import dataclasses
 import enum
 import math
-import numbers
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
-from .errors import ConfigError, DeprecatedKeyWarning, check_positive, check_range, read_toml
+from .errors import (
+    ConfigError,
+    DeprecatedKeyWarning,
+    check_int,
+    check_positive,
+    check_range,
+    read_toml,
+)
 from .geometry import CWRU_DEFECT_DEPTH_M, CWRU_DEFECT_WIDTH_M, DefectProfile, parse_enum
 
 
@@ -165,13 +171,6 @@ def _bool(name: str, value: Any) -> bool:
     if not isinstance(value, bool):
         raise ConfigError(f"{name} = {value!r} is invalid; valid: true or false")
     return value
-
-
-def _int(name: str, value: Any, lo: int) -> int:
-    """``value`` as an ``int`` >= ``lo`` (a NumPy integer too; not a bool, not a float)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < lo:
-        raise ConfigError(f"{name} = {value!r} is invalid; valid range [{lo}, inf) integer")
-    return int(value)
 
 
 def _choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
@@ -689,7 +688,7 @@ class RingScenario(Scenario):
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
         s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
         s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
-        s(self, "seed", _int("seed", self.seed, 0))
+        s(self, "seed", check_int("seed", self.seed, 0))
         s(
             self,
             "noise_rms_m_per_s2",
@@ -983,16 +982,16 @@ class RotorScenario(Scenario):
         for name in ("de_clearance_m", "fe_clearance_m"):  # bounded by the bearing (rotor)
             if getattr(self, name) is not None:
                 s(self, name, check_range(name, getattr(self, name), unit="m"))
-        s(self, "seed", _int("seed", self.seed, 0))
+        s(self, "seed", check_int("seed", self.seed, 0))
         s(
             self,
             "noise_rms_m_per_s2",
             check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
         )
         if self.disks is not None:
-            s(self, "disks", _int("disks", self.disks, 1))
+            s(self, "disks", check_int("disks", self.disks, 1))
         if self.n_elements is not None:
-            s(self, "n_elements", _int("n_elements", self.n_elements, 1))
+            s(self, "n_elements", check_int("n_elements", self.n_elements, 1))
         if self.disk_positions_mm is not None:
             try:
                 pos = tuple(float(v) for v in self.disk_positions_mm)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import numbers
 import threading
 import tomllib
 import warnings
@@ -17,6 +18,7 @@ from typing import Any
 
 __all__ = [
     "BearingsimError",
+    "check_int",
     "check_positive",
     "check_range",
     "collect_warnings",
@@ -132,6 +134,14 @@ def format_range(
 def _is_bool(value: Any) -> bool:
     """True for ``bool`` and NumPy booleans (without importing NumPy)."""
     return isinstance(value, bool) or getattr(getattr(value, "dtype", None), "kind", "") == "b"
+
+
+def check_int(name: str, value: Any, lo: int = 0) -> int:
+    """``value`` as an ``int`` >= ``lo`` (a NumPy integer too; not a bool, not a float), else a
+    one-line :class:`ConfigError` ``NAME = VALUE is invalid; valid range [LO, inf) integer``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < lo:
+        raise ConfigError(f"{name} = {value!r} is invalid; valid range [{lo}, inf) integer")
+    return int(value)
 
 
 def check_range(

@@ -62,7 +62,6 @@ TOML layout (SI units in the key names)::
 from __future__ import annotations
 
 import dataclasses
-import numbers
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,7 +70,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import ConfigError, check_range, read_toml
+from .errors import ConfigError, check_int, check_range, read_toml
 
 __all__ = [
     "Background",
@@ -389,8 +388,7 @@ class Rig:
         ``seed`` for the background, the tones' phases and the sensor noise)."""
         from scipy.signal import sosfilt
 
-        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
-            raise ConfigError(f"seed = {seed!r} is invalid; valid range [0, inf) integer")
+        seed = check_int("seed", seed)
         if shaft_hz is not None:
             shaft_hz = check_range("shaft_hz", shaft_hz, 0.0, lo_open=True, unit="Hz")
         x = np.asarray(signal, dtype=float)
@@ -500,10 +498,7 @@ def apply_rig(
     x = np.asarray(result.channels[r.input_channel])
     if x.ndim != 1:
         raise ConfigError(f"rig {r.name!r}: input_channel {r.input_channel!r} is not 1-D")
-    sd = result.scenario.get("seed", 0) or 0 if seed is None else seed
-    if isinstance(sd, bool) or not isinstance(sd, numbers.Integral) or sd < 0:
-        raise ConfigError(f"seed = {sd!r} is invalid; valid range [0, inf) integer")
-    sd = int(sd)
+    sd = check_int("seed", result.scenario.get("seed", 0) or 0 if seed is None else seed)
     if not isinstance(channel, str) or not channel or channel in result.channels:
         raise ConfigError(
             f"channel = {channel!r} is invalid; valid: a new channel name (not one of the "
