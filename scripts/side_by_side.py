@@ -64,7 +64,8 @@ def main() -> int:
     ap.add_argument(
         "--model-gain",
         action="store_true",
-        help="scale each rig's path so that the model's RMS matches the identification records",
+        help="scale each rig's path so that the model carries the identification records' "
+        "power above the rig's background (bearingsim.side_by_side.model_path_scale)",
     )
     a = ap.parse_args()
     realism = {
@@ -88,13 +89,19 @@ def main() -> int:
             "grade": r.get("smith_randall_grade", ""),
         }
         if key not in rigs:
-            rigs[key] = lomo_rig(
-                a.data,
-                name,
-                model_gain=a.model if a.model_gain else None,
-                realism=realism,
-            )
+            try:
+                rigs[key] = lomo_rig(
+                    a.data,
+                    name,
+                    model_gain=a.model if a.model_gain else None,
+                    realism=realism,
+                )
+            except ConfigError as exc:  # e.g. no power above the background to scale to
+                rigs[key] = exc
         rig = rigs[key]
+        if isinstance(rig, ConfigError):
+            out.append(base | {"status": f"error: {rig}"})
+            continue
         if rig is not None and a.direct_gain is not None:
             rig = replace(
                 rig,

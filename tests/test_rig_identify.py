@@ -169,6 +169,35 @@ def test_cli_identify_reads_fan_end_records_on_their_fan_end_sensor(tmp_path):
     assert "1 of the 2 CWRU records are fan-end records" in r.stderr and "--channel" in r.stderr
 
 
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_cli_identify_model_gain_writes_the_models_gain(tmp_path):
+    """`rig identify --model-gain vsm` adds the VSM's path gain fitted on the fault records
+    (issue 16 item 4, the model-based part): below 1 on record 135 (the VSM is louder than
+    the record), with its provenance; the healthy record is skipped, a folder without a
+    manifest and a set of healthy records only are refused in one line before any
+    simulation, writing nothing."""
+    rec, healthy = CWRU / "48k_Drive_End_OR007@6_0_135.mat", CWRU / "normal_0_97.mat"
+    out = tmp_path / "rig.toml"
+    r = _cli("rig", "identify", str(rec), str(healthy), "--channel", "DE", "--name", "g",
+             "--model-gain", "vsm", "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    (g,) = load_rig(out).model_gains
+    assert g.model == "vsm" and 0.0 < g.scale < 1.0
+    assert "48k_Drive_End_OR007@6_0_135.mat" in g.provenance and "normal_0_97" not in g.provenance
+    assert "--model-gain vsm" in load_rig(out).provenance
+    out.unlink()
+    r = _cli("rig", "identify", str(healthy), "--channel", "DE", "--name", "g", "--model-gain",
+             "vsm", "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "no record has a bearing fault" in r.stderr
+    assert r.stderr.count("\n") == 1 and not out.exists()
+    alone = tmp_path / "135.mat"
+    alone.write_bytes(rec.read_bytes())
+    r = _cli("rig", "identify", str(alone), "--name", "g", "--fs-hz", "48000", "--model-gain",
+             "vsm", "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "is not in" in r.stderr and "manifest.csv" in r.stderr
+    assert r.stderr.count("\n") == 1 and not out.exists()
+
+
 def test_shipped_profiles_load_and_carry_their_command():
     """The three CWRU profiles (issue 16 item 4), each identified only from the records of
     ../shared/data/cwru by the command in its provenance."""
@@ -183,3 +212,8 @@ def test_shipped_profiles_load_and_carry_their_command():
         )
         assert f"--channel {ch}" in rig.provenance and f"--name {name}" in rig.provenance
         rig.check_rate(12000.0 if "12k" in name else 48000.0)
+        # the rotor's model-based path gain, identified by the same command (fourteenth
+        # session): the rotor's output lies below the background of every profile
+        assert "--model-gain rotor" in rig.provenance
+        assert [g.model for g in rig.model_gains] == ["rotor"]
+        assert rig.model_gain("rotor").scale > 1.0

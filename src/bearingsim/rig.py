@@ -57,6 +57,18 @@ TOML layout (SI units in the key names)::
     [sensor]
     noise_rms_m_per_s2 = 0.01
     provenance = "..."
+
+    [[model_gain]]                   # optional, one per model: a model-based path gain
+    model = "rotor"                  # vsm | dem | tvsm | rotor
+    scale = 6.8
+    provenance = "..."
+
+A ``[[model_gain]]`` scales the whole path (``g_0`` and every ``g_k``) for the output of one
+model. An output-only identification cannot tell the path's gain from the excitation's size
+(it takes ``g_0 = 1``); a model-based one simulates the records' conditions with that model
+and matches the power they carry above the background
+(:func:`bearingsim.side_by_side.model_path_scale`; ``bearingsim rig identify --model-gain``).
+:func:`apply_rig` applies the gain of the result's own model and no other.
 """
 
 from __future__ import annotations
@@ -74,7 +86,9 @@ from .errors import ConfigError, check_int, check_range, read_toml
 
 __all__ = [
     "Background",
+    "GAIN_MODELS",
     "Mode",
+    "ModelGain",
     "Rig",
     "RigRateWarning",
     "Tone",
@@ -97,12 +111,17 @@ def _provenance(table: dict[str, Any], where: str) -> str:
     return p.strip()
 
 
-def _keys(table: Any, allowed: tuple[str, ...], where: str) -> dict[str, Any]:
+def _keys(
+    table: Any, allowed: tuple[str, ...], where: str, required: tuple[str, ...] = ()
+) -> dict[str, Any]:
     if not isinstance(table, dict):
         raise ConfigError(f"{where} must be a table of keys")
     unknown = [k for k in table if k not in allowed]
     if unknown:
         raise ConfigError(f"{where}: unknown key {unknown[0]!r}; valid keys: " + ", ".join(allowed))
+    for k in required:
+        if k not in table:
+            raise ConfigError(f"{where}.{k} is missing")
     return table
 
 
@@ -120,10 +139,7 @@ class Mode:
 
     @classmethod
     def from_dict(cls, d: Any, where: str) -> Mode:
-        d = _keys(d, cls.KEYS, where)
-        for k in cls.KEYS[:3]:
-            if k not in d:
-                raise ConfigError(f"{where}.{k} is missing")
+        d = _keys(d, cls.KEYS, where, required=cls.KEYS[:3])
         return cls(
             check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
             check_range(
@@ -143,6 +159,35 @@ class Mode:
 
         b, a = iirpeak(self.frequency_hz, 1.0 / (2.0 * self.damping_ratio), fs=fs)
         return tf2sos(self.gain * b, a)
+
+
+#: the models a rig can carry a model-based path gain for (``[[model_gain]]``)
+GAIN_MODELS = ("vsm", "dem", "tvsm", "rotor")
+
+
+@dataclass(frozen=True)
+class ModelGain:
+    """A model-based scale of the path [-] for the output of one ``model`` (one of
+    :data:`GAIN_MODELS`), with its provenance (module docstring)."""
+
+    model: str
+    scale: float
+    provenance: str
+
+    KEYS = ("model", "scale", "provenance")
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str) -> ModelGain:
+        d = _keys(d, cls.KEYS, where, required=cls.KEYS[:2])
+        if d["model"] not in GAIN_MODELS:
+            raise ConfigError(
+                f"{where}.model = {d['model']!r} is invalid; valid: " + ", ".join(GAIN_MODELS)
+            )
+        return cls(
+            d["model"],
+            check_range(f"{where}.scale", d["scale"], 0.0, lo_open=True),
+            _provenance(d, where),
+        )
 
 
 @dataclass(frozen=True)
@@ -256,10 +301,12 @@ class Rig:
     tones: tuple[Tone, ...] = ()
     noise_rms_m_per_s2: float = 0.0
     noise_provenance: str = "default: no sensor noise"
+    #: model-based scales of the path, one per model at most (:meth:`for_model`)
+    model_gains: tuple[ModelGain, ...] = ()
     source: str = field(default="", compare=False)
 
     KEYS = ("name", "description", "provenance", "input_channel", "end", "path", "mode",
-            "background", "tone", "sensor")  # fmt: skip
+            "background", "tone", "sensor", "model_gain")  # fmt: skip
 
     @classmethod
     def from_dict(cls, d: Any, source: str = "<rig>") -> Rig:
@@ -300,6 +347,16 @@ class Rig:
                 noise = check_range("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
                                     unit="m/s^2")  # fmt: skip
                 nprov = _provenance(s, "sensor")
+            mg = d.get("model_gain", [])
+            if not isinstance(mg, list):
+                raise ConfigError("model_gain must be an array of tables ([[model_gain]])")
+            gains = tuple(ModelGain.from_dict(g, f"model_gain[{i}]") for i, g in enumerate(mg))
+            seen = [g.model for g in gains]
+            twice = sorted({m for m in seen if seen.count(m) > 1})
+            if twice:
+                raise ConfigError(
+                    f"model_gain: model {twice[0]!r} is given twice; valid: one gain per model"
+                )
             return cls(
                 name=name.strip(),
                 description=desc,
@@ -317,6 +374,7 @@ class Rig:
                 tones=tuple(Tone.from_dict(t, f"tone[{i}]") for i, t in enumerate(tones)),
                 noise_rms_m_per_s2=noise,
                 noise_provenance=nprov,
+                model_gains=gains,
                 source=source,
             )
         except ConfigError as exc:
@@ -351,7 +409,29 @@ class Rig:
             "noise_rms_m_per_s2": self.noise_rms_m_per_s2,
             "provenance": self.noise_provenance,
         }
+        if self.model_gains:
+            out["model_gain"] = [dataclasses.asdict(g) for g in self.model_gains]
         return out
+
+    def model_gain(self, model: str | None) -> ModelGain | None:
+        """The model-based path gain of ``model``, or None when the rig has none for it."""
+        return next((g for g in self.model_gains if g.model == model), None)
+
+    def for_model(self, model: str | None) -> Rig:
+        """The rig as applied to the output of ``model``: its path (direct gain and every
+        mode) scaled by that model's ``[[model_gain]]``, with no model gains left; the rig
+        itself, without its model gains, when it has none for ``model``."""
+        g = self.model_gain(model)
+        if g is None:
+            return dataclasses.replace(self, model_gains=()) if self.model_gains else self
+        return dataclasses.replace(
+            self,
+            gain=self.gain * g.scale,
+            gain_provenance=f"{self.gain_provenance}; x {g.scale:.6g} for the {g.model} model "
+            f"({g.provenance})",
+            modes=tuple(dataclasses.replace(m, gain=m.gain * g.scale) for m in self.modes),
+            model_gains=(),
+        )
 
     def check_rate(self, fs: float) -> None:
         """Refuse a mode at or above the Nyquist frequency of the output rate ``fs`` [Hz]."""
@@ -436,6 +516,11 @@ def load_rig(name_or_path: str | Path) -> Rig:
     return Rig.from_dict(read_toml(p, "rig file"), source=p.name)
 
 
+def _result_fs(result) -> float:
+    """Sample rate of a simulation result [Hz]: its ``fs_hz`` or its time step's."""
+    return float(result.meta.get("fs_hz") or 1.0 / float(np.mean(np.diff(result.time))))
+
+
 def _shaft_hz(result) -> float | None:
     meta, sc = result.meta, result.scenario
     if isinstance(meta.get("shaft_hz"), int | float):
@@ -485,11 +570,16 @@ def apply_rig(
 ):
     """A copy of a :class:`~bearingsim.results.SimulationResult` with the sensor's signal as
     channel ``channel`` [m/s^2]: the rig applied to its ``input_channel``. ``seed`` defaults to
-    the scenario's ``seed`` (0 if it has none); the rig (its table) and the seed are recorded in
+    the scenario's ``seed`` (0 if it has none). A rig with a ``[[model_gain]]`` for the
+    result's model scales its path by it (:meth:`Rig.for_model`). The rig as applied (its
+    table, the model gain already in its path), the seed and the model gain are recorded in
     ``meta["rig"]``."""
     from .results import SimulationResult
 
     r = rig if isinstance(rig, Rig) else load_rig(rig)
+    model = result.scenario.get("model") if isinstance(result.scenario, dict) else None
+    mg = r.model_gain(model)
+    r = r.for_model(model)
     if r.input_channel not in result.channels:
         raise ConfigError(
             f"rig {r.name!r}: input_channel {r.input_channel!r} is not a channel of the result; "
@@ -504,12 +594,15 @@ def apply_rig(
             f"channel = {channel!r} is invalid; valid: a new channel name (not one of the "
             f"result's: {', '.join(sorted(result.channels))})"
         )
-    fs = float(result.meta.get("fs_hz") or 1.0 / float(np.mean(np.diff(result.time))))
+    fs = _result_fs(result)
     _warn_coverage(r, fs)
     y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)
     channels = dict(result.channels) | {channel: y}
     units = dict(result.units) | {channel: "m/s^2"}
-    meta = dict(result.meta) | {"rig": r.to_dict() | {"seed": sd, "output_channel": channel}}
+    applied = r.to_dict() | {"seed": sd, "output_channel": channel}
+    if mg is not None:
+        applied["applied_model_gain"] = {"model": mg.model, "scale": mg.scale}
+    meta = dict(result.meta) | {"rig": applied}
     return SimulationResult(
         time=result.time,
         channels=channels,

@@ -393,7 +393,7 @@ def rig_to_toml(rig: Rig) -> str:
     for table in ("path", "background", "sensor"):
         if table in d:
             lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]
-    for arr in ("mode", "tone"):
+    for arr in ("mode", "tone", "model_gain"):
         for item in d.get(arr, []):
             lines += ["", f"[[{arr}]]"] + [f"{k} = {val(v)}" for k, v in item.items()]
     return "\n".join(lines) + "\n"

@@ -125,13 +125,15 @@ def simulate_record(
     dict
         ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``, ``fault_hz``,
         ``grade``, ``scenario``, ``measured`` and ``simulated`` (the signals [m/s^2], the
-        record's first ``duration_s``).
+        record's first ``duration_s``) and ``background`` (the part of ``simulated`` the rig
+        adds whatever the model does: its background, tones and sensor noise with the same
+        seed [m/s^2]; ``simulated - background`` is the model's output through the path).
     """
     from . import simulate
     from .catalog import get_bearing
     from .geometry import characteristic_frequencies
     from .io.signal import read_signal
-    from .rig import Rig, apply_rig, load_rig
+    from .rig import Rig, _result_fs, _shaft_hz, apply_rig, load_rig
 
     p = Path(record)
     rows = cwru_manifest(p.parent)
@@ -177,7 +179,14 @@ def simulate_record(
                           input_channel="acc_y_fe")  # fmt: skip
     else:
         sc = dict(model=model, bearing=bearing, fault=fault, **keys, **common)
-    res = apply_rig(simulate(sc), rig, seed=seed)
+    bare = simulate(sc)
+    res = apply_rig(bare, rig, seed=seed)
+    sensor = np.asarray(res["acc_sensor"], dtype=float)
+    # the rig is linear in the model's output: with a zero input, the same rate, shaft speed
+    # and seed as apply_rig's, it gives exactly what it adds
+    background = (rig if isinstance(rig, Rig) else load_rig(rig)).apply(
+        np.zeros(sensor.size), _result_fs(bare), shaft_hz=_shaft_hz(bare), seed=seed
+    )
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)
     fault_hz = {"outer": kin.bpfo_hz, "inner": kin.bpfi_hz, "ball": 2.0 * kin.bsf_hz}[fault]
     n = int(round(duration_s * fs))
@@ -192,7 +201,8 @@ def simulate_record(
         "grade": row.get("smith_randall_grade", ""),
         "scenario": sc,
         "measured": np.asarray(meas.x[:n], dtype=float),
-        "simulated": np.asarray(res["acc_sensor"], dtype=float),
+        "simulated": sensor,
+        "background": background,
     }
 
 
@@ -270,12 +280,24 @@ def model_path_scale(
     model: str = "vsm",
     duration_s: float = 1.0,
     realism: dict | None = None,
+    progress: bool = False,
 ):
     """The rig with its path (direct gain and every mode's gain) scaled so that the model's
-    simulated RMS through it matches the measured RMS of ``records`` — a model-based gain, the
-    part an output-only identification cannot give (issue 16, item 4). The scale is the
-    geometric mean over the records of measured / simulated RMS [-]; the background, tones and
-    sensor noise are kept (they are measured levels already).
+    output through it carries the power of ``records`` that the rig's background does not
+    explain — a model-based gain, the part an output-only identification cannot give (issue
+    16, item 4). The background, tones and sensor noise are kept (they are measured levels
+    already).
+
+    The scale ``k`` is the power balance over the records (mean-removed signals):
+
+    ``k**2 = sum_r (P_meas,r - P_bg,r) / sum_r P_path,r``
+
+    with ``P_meas`` the record's power, ``P_bg`` the power the rig adds on its own (same seed)
+    and ``P_path`` the power of the model's output through the unscaled path [(m/s^2)^2]. On
+    one record it gives that record's RMS (to the small cross term of background and path).
+    It holds whether the model's output lies above the background (the ring models) or below
+    it (the rotor model with its heavy housing): a ratio of total RMS would measure the
+    background in the second case and leave the path unscaled.
 
     Parameters
     ----------
@@ -283,22 +305,40 @@ def model_path_scale(
         The output-only rig (:func:`bearingsim.rig_identify.identify_rig`).
     records : list of Path
         CWRU fault records of the same mounting (end and sample rate) used to fit the scale.
-    model : {"vsm", "dem", "tvsm"}
-        The ring model.
+    model : {"vsm", "dem", "tvsm", "rotor"}
+        The model.
     duration_s : float
         Simulated time per record [s].
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM`.
+    progress : bool
+        A tqdm bar on stderr, one step per record.
 
     Returns
     -------
     (Rig, float)
-        The scaled rig and the scale [-].
+        The rig with the scale as its ``[[model_gain]]`` for ``model`` (replacing one it had;
+        :meth:`bearingsim.rig.Rig.for_model` applies it) and the scale [-].
+
+    Raises
+    ------
+    ConfigError
+        ``records`` is empty, or the rig's background alone carries as much power as the
+        records (nothing left for the path to explain).
     """
+    from .rig import GAIN_MODELS, ModelGain
+
     if not records:
         raise ConfigError("records is empty; valid: at least one CWRU fault record")
-    logs = []
-    for rec in records:
+    if model not in GAIN_MODELS:
+        raise ConfigError(f"model = {model!r} is invalid; valid: " + ", ".join(GAIN_MODELS))
+    # the output-only path: a gain this rig already has for the model is not compounded
+    rig = replace(rig, model_gains=tuple(g for g in rig.model_gains if g.model != model))
+    excess = path = 0.0
+    from tqdm import tqdm
+
+    bar = tqdm(records, desc=f"{model} gain", unit="record", disable=not progress, leave=False)
+    for rec in bar:
         c = simulate_record(
             rec,
             rig,
@@ -307,18 +347,27 @@ def model_path_scale(
             realism=realism,
         )
         m = c["measured"] - c["measured"].mean()
-        x = c["simulated"] - c["simulated"].mean()
-        logs.append(math.log(math.sqrt(np.mean(m * m)) / math.sqrt(np.mean(x * x))))
-    k = float(math.exp(np.mean(logs)))
+        b = c["background"] - c["background"].mean()
+        x = c["simulated"] - c["background"]
+        x = x - x.mean()
+        excess += float(np.mean(m * m) - np.mean(b * b))
+        path += float(np.mean(x * x))
     names = ", ".join(Path(r).name for r in records)
-    scaled = replace(
-        rig,
-        gain=rig.gain * k,
-        gain_provenance=f"{rig.gain_provenance}; x {k:.4g} model-based ({model} RMS vs {names})",
-        modes=tuple(replace(md, gain=md.gain * k) for md in rig.modes),
-        provenance=rig.provenance + f"; path scaled x {k:.4g} so that {model} matches the RMS "
-        f"of {names}",
+    if excess <= 0.0:
+        raise ConfigError(
+            f"records {names}: the rig's background alone carries their power; no path gain can "
+            "be identified from them; valid: records whose power exceeds the rig's background"
+        )
+    if path <= 0.0:
+        raise ConfigError(f"records {names}: the {model} model's output through the path is 0")
+    k = float(math.sqrt(excess / path))
+    gain = ModelGain(
+        model,
+        k,
+        f"power of {names} above the rig's background over the {model} model's path power "
+        f"(bearingsim.side_by_side.model_path_scale, {duration_s:g} s per record)",
     )
+    scaled = replace(rig, model_gains=(*rig.model_gains, gain))
     return scaled, k
 
 
@@ -386,8 +435,9 @@ def lomo_rig(
         A CWRU folder with its ``manifest.csv``.
     record : str
         The record's file name.
-    model_gain : {"vsm", "dem", "tvsm"}, optional
-        Also scale the path so that this model's RMS matches those other records
+    model_gain : {"vsm", "dem", "tvsm", "rotor"}, optional
+        Also scale the path so that this model carries the power of those other records above
+        the background
         (:func:`model_path_scale`; the same leave-one-mounting-out split).
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` for ``model_gain``.

@@ -52,6 +52,16 @@ def rig_group() -> None:
     help="Largest number of modes.",
 )
 @click.option(
+    "--model-gain",
+    "model_gains",
+    multiple=True,
+    type=click.Choice(("vsm", "dem", "tvsm", "rotor")),
+    help="Also identify this model's path gain (repeatable): the records' conditions are "
+    "simulated with it (1 s each, the realistic defaults of a rig) and the path scaled so "
+    "that it carries the fault records' power above the background (healthy records are "
+    "skipped). The records must be CWRU records listed in a manifest.csv beside them.",
+)
+@click.option(
     "--plot",
     default=None,
     type=click.Path(dir_okay=False),
@@ -67,12 +77,14 @@ def identify_cmd(
     rpm: float | None,
     fs_hz: float | None,
     max_modes: int,
+    model_gains: tuple[str, ...],
     plot: str | None,
     output: str,
     as_json: bool,
 ) -> None:
     """Identify a rig from measured records of one machine and channel (output-only: modes
-    from the impulsive spectrum and the ringing decay, background, shaft-order tones)."""
+    from the impulsive spectrum and the ringing decay, background, shaft-order tones; with
+    --model-gain, a model-based path gain per model)."""
     check_outputs(("-o/--output", output), ("--plot", plot))
     from ..io.atomic import atomic_open
     from ..io.signal import read_signal
@@ -91,19 +103,48 @@ def identify_cmd(
             "the rig gets no shaft-order tones from them",
             err=True,
         )
+    faulty: list[Path] = []
+    if model_gains:  # before any work: is every record's condition known?
+        from ..io.cwru import cwru_manifest
+
+        for p in records:
+            man = Path(p).parent / "manifest.csv"
+            row = cwru_manifest(man.parent).get(Path(p).name) if man.is_file() else None
+            if row is None:
+                raise ConfigError(
+                    f"--model-gain: record {Path(p).name!r} is not in {man}; valid: CWRU "
+                    "records listed there (the simulation needs each record's fault, size and "
+                    "speed)"
+                )
+            if row["fault"].split()[0] in ("outer", "inner", "ball"):
+                faulty.append(Path(p))
+        if not faulty:
+            raise ConfigError(
+                "--model-gain: no record has a bearing fault; valid: at least one outer-race, "
+                "inner-race or ball fault record (a model gain is matched to a fault's power; "
+                "healthy records are skipped)"
+            )
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
     ir = identify_rig(
         recs,
         name=name,
         description=description,
-        provenance=f"identified by `{command}` (bearingsim.rig_identify, output-only)",
+        provenance=f"identified by `{command}` (bearingsim.rig_identify, output-only"
+        + ("; the [[model_gain]] entries model-based: bearingsim.side_by_side.model_path_scale)"
+           if model_gains else ")"),  # fmt: skip
         max_modes=int(max_modes),
         # a CWRU sensor's end: the rotor model reads that end's housing through the rig
         end=ch.upper() if ch and ch.upper() in ("DE", "FE")
         and all(Path(p).suffix.lower() == ".mat" for p in records) else None,
     )  # fmt: skip
-    text = rig_to_toml(ir.rig)
+    rig = ir.rig
+    if model_gains:
+        from ..side_by_side import model_path_scale
+
+        for m in dict.fromkeys(model_gains):
+            rig, _k = model_path_scale(rig, faulty, model=m, progress=sys.stderr.isatty())
+    text = rig_to_toml(rig)
     Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
         fh.write(text)
@@ -122,6 +163,7 @@ def identify_cmd(
         "tones": [
             {"order": t.order, "amplitude_m_per_s2": t.amplitude_m_per_s2} for t in ir.rig.tones
         ],
+        "model_gains": {g.model: g.scale for g in rig.model_gains},
     }
     if as_json:
         emit_json(out)
@@ -130,7 +172,8 @@ def identify_cmd(
         f"{m.frequency_hz:.0f} Hz (zeta {m.damping_ratio:.3f}, gain {m.gain:.2f})"
         for m in ir.rig.modes
     )
-    click.echo(f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}")
+    gains = "".join(f"; {g.model} path gain {g.scale:.3g}" for g in rig.model_gains)
+    click.echo(f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}{gains}")
 
 
 @rig_group.command("show")
@@ -160,6 +203,8 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
             f"(an output rate above {coverage_rate_hz(r):g} Hz gets a RigRateWarning)"
         )
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
+    for g in r.model_gains:
+        click.echo(f"  path x {g.scale:.4g} for the {g.model} model's output (model-based)")
 
 
 def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
