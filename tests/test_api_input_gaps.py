@@ -146,3 +146,30 @@ def test_plot_time_refuses_an_empty_window():
     import matplotlib.pyplot as plt
 
     plt.close(r.plot_time(t_range=(0.0, 0.005)))
+
+
+@pytest.mark.parametrize(
+    "fn, extra",
+    [
+        ("amplitude_spectrum", ()),
+        ("envelope_spectrum", ((2000.0, 4000.0),)),
+        ("fast_kurtogram", ()),
+    ],
+)
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        (X + 1j * X, "signal is complex; valid: a real signal"),  # imaginary part dropped
+        (np.array(["a"] * 24000), "signal is not numeric"),  # a ValueError from NumPy
+    ],
+)
+def test_signal_functions_refuse_complex_and_text_samples(fn, extra, bad, message):
+    """Found by exploratory testing (thirteenth session, left for planning): a complex array
+    lost its imaginary part with only NumPy's ComplexWarning, text gave NumPy's ValueError.
+    Every signal function's input check (``spectrum.as_signal``) now refuses both in one
+    line."""
+    import bearingsim.signal as sig
+
+    with pytest.raises(ConfigError) as e:
+        getattr(sig, fn)(bad, 12000.0, *extra)
+    assert message in str(e.value) and "\n" not in str(e.value)

@@ -52,7 +52,17 @@ def as_signal(
     """``x`` as a finite one-dimensional float array (a column or row vector is flattened) of at
     least ``min_samples`` samples; anything else raises a one-line :class:`ConfigError` naming
     ``name``."""
-    a = np.asarray(x, dtype=float)
+    raw = np.asarray(x)
+    if np.iscomplexobj(raw):  # NumPy would drop the imaginary part with a warning
+        raise ConfigError(
+            f"{name} is complex; valid: a real signal (pass its real part or magnitude)"
+        )
+    try:
+        a = np.asarray(raw, dtype=float)
+    except (TypeError, ValueError):
+        raise ConfigError(
+            f"{name} is not numeric (dtype {raw.dtype}); valid: real numbers"
+        ) from None
     if a.ndim != 1:
         a = np.squeeze(a)
         if a.ndim != 1:
