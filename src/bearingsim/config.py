@@ -696,16 +696,21 @@ class RingScenario(Scenario):
         )
         _pass_jitter(self)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
+        s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
         fr = math.hypot(self.fx_n, self.fy_n)
-        if fr == 0.0 and self.unbalance_n != 0.0:  # [0, |F|) is empty: say why
+        # a preload or an axial load holds the ring without a radial load (dem, tvsm)
+        cl = self.clearance_m
+        held = self.axial_load_n > 0.0 or (isinstance(cl, int | float) and cl < 0.0)
+        if fr == 0.0 and self.unbalance_n != 0.0 and not held:  # [0, |F|) is empty: say why
             raise ConfigError(
                 f"unbalance_n = {self.unbalance_n!r} N needs a radial load larger than it; "
-                "fx_n and fy_n are 0; valid: unbalance_n = 0, or a radial load (fx_n, fy_n)"
+                "fx_n and fy_n are 0; valid: unbalance_n = 0, or a radial load (fx_n, fy_n), "
+                "or a preload (clearance_m < 0) or an axial load holding the ring"
             )
-        if fr > 0.0:
-            ub = check_range("unbalance_n", self.unbalance_n, 0.0, fr, hi_open=True, unit="N")
+        if fr > 0.0 or held:
+            hi = math.inf if held else fr
+            ub = check_range("unbalance_n", self.unbalance_n, 0.0, hi, hi_open=True, unit="N")
             s(self, "unbalance_n", ub)
-        s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))

@@ -187,10 +187,14 @@ class ModelInputs:
             )
         fx = check_range("fx_n", self.fx, unit="N")
         fy = check_range("fy_n", self.fy, unit="N")
-        if math.hypot(fx, fy) == 0.0:
+        held = (self.clearance is not None and self.clearance < 0.0) or (
+            isinstance(self.axial_load, int | float) and self.axial_load > 0.0
+        )
+        if math.hypot(fx, fy) == 0.0 and not held:
             raise ConfigError(
                 "radial load |(fx_n, fy_n)| = 0 N: the ring position is undetermined; "
-                "valid range (0, inf) N"
+                "valid range (0, inf) N (0 N only with a preload, clearance_m < 0, or an "
+                "axial load)"
             )
         object.__setattr__(self, "fx", fx)
         object.__setattr__(self, "fy", fy)
@@ -245,8 +249,13 @@ class ModelInputs:
         object.__setattr__(
             self,
             "unbalance",
-            check_range(
-                "unbalance_n", self.unbalance, 0.0, math.hypot(fx, fy), hi_open=True, unit="N"
+            check_range(  # below the static load, unless a preload or axial load holds the ring
+                "unbalance_n",
+                self.unbalance,
+                0.0,
+                math.inf if held else math.hypot(fx, fy),
+                hi_open=True,
+                unit="N",
             ),
         )
         object.__setattr__(
