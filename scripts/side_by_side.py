@@ -57,7 +57,7 @@ def main() -> int:
         type=float,
         default=None,
         help="replace the identified rig's direct gain (1: output-only identification; 0: the "
-        "sensor sees the identified modes only)",
+        "sensor sees the identified modes only); --model-gain then scales it with the modes",
     )
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
