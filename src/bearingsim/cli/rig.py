@@ -57,7 +57,7 @@ def rig_group() -> None:
     multiple=True,
     type=click.Choice(("vsm", "dem", "tvsm", "rotor")),
     help="Also identify this model's path gain (repeatable): the records' conditions are "
-    "simulated with it (1 s each, the realistic defaults of a rig) and the path scaled so "
+    "simulated with it (1 s each, with the realism a rig brings) and the path scaled so "
     "that it carries the fault records' power above the background (healthy records are "
     "skipped). The records must be CWRU records listed in a manifest.csv beside them.",
 )
