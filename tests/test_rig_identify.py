@@ -198,6 +198,67 @@ def test_cli_identify_model_gain_writes_the_models_gain(tmp_path):
     assert r.stderr.count("\n") == 1 and not out.exists()
 
 
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
+    """A user's own machine (issue 16 item 4: "A user's own machine gets its profile the same
+    way"): records outside a CWRU manifest get their model gain from a --conditions CSV. Records
+    135 and 97 (healthy) copied under other names, with their CWRU conditions written in the
+    CSV, give the same VSM gain as the manifest route, to round-off (the same simulation); the
+    healthy row is skipped. Bad files are one-line errors before any simulation, writing nothing."""
+    rec, healthy = CWRU / "48k_Drive_End_OR007@6_0_135.mat", CWRU / "normal_0_97.mat"
+    ref = tmp_path / "ref.toml"
+    r = _cli("rig", "identify", str(rec), str(healthy), "--channel", "DE", "--name", "g",
+             "--model-gain", "vsm", "-o", str(ref), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "run1.mat").write_bytes(rec.read_bytes())
+    (mine / "run0.mat").write_bytes(healthy.read_bytes())
+    cond = mine / "conditions.csv"
+    cond.write_text(
+        "file,fault,bearing,defect_width_m,defect_depth_m\n"
+        f"run1.mat,outer,6205-cwru,{0.007 * 0.0254!r},{0.011 * 0.0254!r}\n"
+        "run0.mat,none,,,\n",
+        encoding="utf-8",
+    )
+    out = mine / "rig.toml"
+    r = _cli("rig", "identify", "run1.mat", "run0.mat", "--channel", "DE", "--fs-hz", "48000",
+             "--name", "g", "--model-gain", "vsm", "--conditions", "conditions.csv", "-o",
+             "rig.toml", cwd=mine)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    (g,) = load_rig(out).model_gains
+    assert g.scale == pytest.approx(load_rig(ref).model_gain("vsm").scale, rel=1e-9)
+    assert "run1.mat" in g.provenance and "--conditions conditions.csv" in load_rig(out).provenance
+    out.unlink()
+    bad = {
+        "no_width.csv": ("file,fault,bearing\nrun1.mat,outer,6205-cwru\n",
+                         "column 'defect_width_m' is missing"),
+        "fault.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,crack,6205-cwru,1e-4\n",
+                      "line 2: fault = 'crack' is invalid"),
+        "width.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205-cwru,-1\n",
+                      "defect_width_m (line 2) = -1"),
+        "other.csv": ("file,fault,bearing,defect_width_m\nrun9.mat,outer,6205-cwru,1e-4\n",
+                      "record 'run1.mat' is not listed"),
+        "colour.csv": ("file,fault,bearing,defect_width_m,colour\nrun1.mat,outer,6205,1e-4,red\n",
+                       "unknown column 'colour'"),
+    }  # fmt: skip
+    for name, (text, message) in bad.items():
+        (mine / name).write_text(text, encoding="utf-8")
+        r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name",
+                 "g", "--model-gain", "vsm", "--conditions", name, "-o", "rig.toml",
+                 cwd=mine)  # fmt: skip
+        assert r.returncode == 2 and message in r.stderr, (name, r.stderr)
+        assert r.stderr.count("\n") == 1 and not out.exists()
+    for extra, message in (
+        (("--model-gain", "rotor", "--conditions", "conditions.csv"), "rotor model is the CWRU"),
+        (("--conditions", "conditions.csv"), "--conditions is only read with --model-gain"),
+    ):
+        r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name",
+                 "g", *extra, "-o", "rig.toml", cwd=mine)  # fmt: skip
+        assert r.returncode == 2 and message in r.stderr, r.stderr
+        assert not out.exists()
+
+
 def test_shipped_profiles_load_and_carry_their_command():
     """The three CWRU profiles (issue 16 item 4), each identified only from the records of
     ../shared/data/cwru by the command in its provenance."""

@@ -49,6 +49,7 @@ __all__ = [
     "SignalMetrics",
     "lomo_rig",
     "model_path_scale",
+    "model_path_scale_conditions",
     "ratios",
     "rig_without_size",
     "side_by_side",
@@ -326,17 +327,12 @@ def model_path_scale(
         ``records`` is empty, or the rig's background alone carries as much power as the
         records (nothing left for the path to explain).
     """
-    from .rig import GAIN_MODELS, ModelGain
-
     if not records:
         raise ConfigError("records is empty; valid: at least one CWRU fault record")
-    if model not in GAIN_MODELS:
-        raise ConfigError(f"model = {model!r} is invalid; valid: " + ", ".join(GAIN_MODELS))
-    # the output-only path: a gain this rig already has for the model is not compounded
-    rig = replace(rig, model_gains=tuple(g for g in rig.model_gains if g.model != model))
-    excess = path = 0.0
+    rig = _without_gain(rig, model)
     from tqdm import tqdm
 
+    powers = []
     bar = tqdm(records, desc=f"{model} gain", unit="record", disable=not progress, leave=False)
     for rec in bar:
         c = simulate_record(
@@ -346,29 +342,149 @@ def model_path_scale(
             duration_s=duration_s,
             realism=realism,
         )
-        m = c["measured"] - c["measured"].mean()
-        b = c["background"] - c["background"].mean()
-        x = c["simulated"] - c["background"]
-        x = x - x.mean()
-        excess += float(np.mean(m * m) - np.mean(b * b))
-        path += float(np.mean(x * x))
-    names = ", ".join(Path(r).name for r in records)
+        powers.append(_powers(c["measured"], c["simulated"], c["background"]))
+    return _with_gain(rig, model, powers, [Path(r).name for r in records], duration_s)
+
+
+def model_path_scale_conditions(
+    rig,
+    records: list,
+    conditions: list[dict],
+    *,
+    model: str = "vsm",
+    duration_s: float = 1.0,
+    realism: dict | None = None,
+    seed: int = 0,
+    progress: bool = False,
+):
+    """:func:`model_path_scale` for a user's own machine: each measured record comes with the
+    condition it was recorded in instead of a CWRU manifest row. The ring models only (the
+    rotor model is the CWRU motor).
+
+    Parameters
+    ----------
+    rig : Rig
+        The output-only rig.
+    records : list of SignalRecord
+        Measured records (:func:`bearingsim.io.signal.read_signal`), each with its sample rate
+        and, unless its condition gives ``rpm``, its shaft speed (a speed column: its median).
+    conditions : list of dict
+        Per record: ``fault`` (outer | inner | ball), ``bearing`` (a catalogue id) or
+        ``bearing_file`` (a bearing TOML),
+        ``defect_width_m`` [m], optional ``defect_depth_m`` [m] (the model's default when
+        absent) and ``rpm`` [r/min] (the record's own when absent).
+    model : {"vsm", "dem", "tvsm"}
+        The ring model.
+    duration_s : float
+        Simulated time per record [s] (at most the record's length).
+    realism : dict, optional
+        Scenario keys replacing those of :data:`REALISM`.
+    seed : int
+        Seed of the slip and of the rig's random parts.
+    progress : bool
+        A tqdm bar on stderr.
+
+    Returns
+    -------
+    (Rig, float)
+        As :func:`model_path_scale`.
+    """
+    from tqdm import tqdm
+
+    from . import simulate
+    from .rig import apply_rig
+
+    if model == "rotor":
+        raise ConfigError(
+            "model = 'rotor' is invalid for a user's records: the rotor model is the CWRU motor "
+            "(its gain is identified from CWRU records); valid: vsm, dem, tvsm"
+        )
+    if not records or len(records) != len(conditions):
+        raise ConfigError(
+            f"records ({len(records)}) and conditions ({len(conditions)}) must be non-empty "
+            "and of the same length"
+        )
+    rig = _without_gain(rig, model)
+    keys = {**REALISM, **(realism or {})}
+    powers, names = [], []
+    bar = tqdm(range(len(records)), desc=f"{model} gain", unit="record", disable=not progress,
+               leave=False)  # fmt: skip
+    for i in bar:
+        rec, cond = records[i], conditions[i]
+        rpm = cond.get("rpm") or rec.rpm
+        if rpm is None and rec.speed_hz is not None:  # a speed column: its median
+            rpm = 60.0 * float(np.median(rec.speed_hz))
+        if rpm is None:
+            raise ConfigError(
+                f"record {Path(rec.source).name}: no shaft speed; valid: an rpm in its "
+                "condition, --rpm or an rpm in the file"
+            )
+        fs = float(rec.fs)
+        dur = min(duration_s, rec.x.size / fs)
+        which = {"bearing_file": cond["bearing_file"]} if "bearing_file" in cond else {}
+        sc = dict(
+            model=model,
+            **(which or {"bearing": cond["bearing"]}),
+            fault=cond["fault"],
+            defect_width_m=cond["defect_width_m"],
+            **({"defect_depth_m": cond["defect_depth_m"]} if cond.get("defect_depth_m") else {}),
+            rpm=float(rpm),
+            duration_s=dur,
+            fs_hz=fs,
+            seed=seed,
+            antialias=True,
+            **keys,
+        )
+        res = apply_rig(simulate(sc), rig, seed=seed)
+        sim = np.asarray(res["acc_sensor"], dtype=float)
+        bg = rig.apply(np.zeros(sim.size), fs, shaft_hz=float(rpm) / 60.0, seed=seed)
+        powers.append(_powers(np.asarray(rec.x[: sim.size], dtype=float), sim, bg))
+        names.append(Path(rec.source).name)
+    return _with_gain(rig, model, powers, names, duration_s)
+
+
+def _without_gain(rig, model: str):
+    """``rig`` without a model gain for ``model`` (the output-only path the scale is fitted
+    on: a gain it already has is not compounded); ``model`` checked."""
+    from .rig import GAIN_MODELS
+
+    if model not in GAIN_MODELS:
+        raise ConfigError(f"model = {model!r} is invalid; valid: " + ", ".join(GAIN_MODELS))
+    return replace(rig, model_gains=tuple(g for g in rig.model_gains if g.model != model))
+
+
+def _powers(measured, simulated, background) -> tuple[float, float]:
+    """(measured power above the rig's background, power of the model's output through the
+    path) of one record, mean-removed [(m/s^2)^2]."""
+    m = measured - measured.mean()
+    b = background - background.mean()
+    x = simulated - background
+    x = x - x.mean()
+    return float(np.mean(m * m) - np.mean(b * b)), float(np.mean(x * x))
+
+
+def _with_gain(rig, model: str, powers, names: list[str], duration_s: float):
+    """The rig with the power-balance scale of ``powers`` as its ``[[model_gain]]``."""
+    from .rig import ModelGain
+
+    excess = sum(e for e, _ in powers)
+    path = sum(q for _, q in powers)
+    joined = ", ".join(names)
     if excess <= 0.0:
         raise ConfigError(
-            f"records {names}: the rig's background alone carries their power; no path gain can "
-            "be identified from them; valid: records whose power exceeds the rig's background"
+            f"records {joined}: the rig's background alone carries their power; no path gain "
+            "can be identified from them; valid: records whose power exceeds the rig's background"
         )
     if path <= 0.0:
-        raise ConfigError(f"records {names}: the {model} model's output through the path is 0")
+        raise ConfigError(f"records {joined}: the {model} model's output through the path is 0")
     k = float(math.sqrt(excess / path))
     gain = ModelGain(
         model,
         k,
-        f"power of {names} above the rig's background over the {model} model's path power "
+        f"power of {joined} above the rig's background over the {model} model's path power "
         f"(bearingsim.side_by_side.model_path_scale, {duration_s:g} s per record)",
     )
-    scaled = replace(rig, model_gains=(*rig.model_gains, gain))
-    return scaled, k
+    return replace(rig, model_gains=(*rig.model_gains, gain)), k
 
 
 def _other_size_records(data_dir: Path, end: str, fs_hz: float, size_in: str) -> list[str]:

@@ -62,6 +62,15 @@ def rig_group() -> None:
     "skipped). The records must be CWRU records listed in a manifest.csv beside them.",
 )
 @click.option(
+    "--conditions",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="CSV of the records' conditions for --model-gain on a user's own records (columns "
+    "file, fault, bearing (a catalogue id or a bearing TOML beside the CSV), defect_width_m; "
+    "optional defect_depth_m, rpm); without it the records must be CWRU records listed in a "
+    "manifest.csv.",
+)
+@click.option(
     "--plot",
     default=None,
     type=click.Path(dir_okay=False),
@@ -78,6 +87,7 @@ def identify_cmd(
     fs_hz: float | None,
     max_modes: int,
     model_gains: tuple[str, ...],
+    conditions: str | None,
     plot: str | None,
     output: str,
     as_json: bool,
@@ -104,7 +114,12 @@ def identify_cmd(
             err=True,
         )
     faulty: list[Path] = []
-    if model_gains:  # before any work: is every record's condition known?
+    user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
+    if conditions is not None and not model_gains:
+        raise ConfigError("--conditions is only read with --model-gain; give both or neither")
+    if conditions is not None:
+        user = _user_conditions(conditions, records, recs, model_gains)
+    elif model_gains:  # before any work: is every record's condition known?
         from ..io.cwru import cwru_manifest
 
         for p in records:
@@ -140,10 +155,16 @@ def identify_cmd(
     )  # fmt: skip
     rig = ir.rig
     if model_gains:
-        from ..side_by_side import model_path_scale
+        from ..side_by_side import model_path_scale, model_path_scale_conditions
 
         for m in dict.fromkeys(model_gains):
-            rig, _k = model_path_scale(rig, faulty, model=m, progress=sys.stderr.isatty())
+            if user:
+                rig, _k = model_path_scale_conditions(
+                    rig, [r for r, _ in user], [c for _, c in user], model=m,
+                    progress=sys.stderr.isatty(),
+                )  # fmt: skip
+            else:
+                rig, _k = model_path_scale(rig, faulty, model=m, progress=sys.stderr.isatty())
     text = rig_to_toml(rig)
     Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
@@ -205,6 +226,94 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
     for g in r.model_gains:
         click.echo(f"  path x {g.scale:.4g} for the {g.model} model's output (model-based)")
+
+
+#: columns of a --conditions file: required, then optional
+_COND_REQUIRED = ("file", "fault", "bearing", "defect_width_m")
+_COND_OPTIONAL = ("defect_depth_m", "rpm")
+
+
+def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tuple[str, ...]):
+    """The (record, condition) pairs of the fault records for a model gain on a user's own
+    records, read from the --conditions CSV and checked before any work (one-line errors):
+    every record listed once by file name, a known fault and bearing, positive sizes."""
+    import csv
+
+    from ..catalog import get_bearing, load_bearing_file
+    from ..errors import check_range
+
+    if "rotor" in models:
+        raise ConfigError(
+            "--model-gain rotor with --conditions: the rotor model is the CWRU motor; its gain "
+            "is identified from CWRU records (without --conditions); valid models here: vsm, "
+            "dem, tvsm"
+        )
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            rows = list(csv.DictReader(fh))
+            header = rows[0].keys() if rows else []
+    except OSError as exc:
+        raise ConfigError(f"--conditions {path}: cannot be read ({exc.strerror})") from None
+    missing = [c for c in _COND_REQUIRED if c not in header]
+    if missing:
+        raise ConfigError(
+            f"--conditions {path}: column {missing[0]!r} is missing; valid columns: "
+            + ", ".join(_COND_REQUIRED + _COND_OPTIONAL)
+        )
+    unknown = [c for c in header if c not in _COND_REQUIRED + _COND_OPTIONAL]
+    if unknown:
+        raise ConfigError(
+            f"--conditions {path}: unknown column {unknown[0]!r}; valid columns: "
+            + ", ".join(_COND_REQUIRED + _COND_OPTIONAL)
+        )
+    by_name: dict[str, dict] = {}
+    for i, row in enumerate(rows, start=2):  # line numbers of the file (header = 1)
+        name = (row["file"] or "").strip()
+        if name in by_name:
+            raise ConfigError(f"--conditions {path}, line {i}: file {name!r} is listed twice")
+        fault = (row["fault"] or "").strip().lower()
+        if fault not in ("none", "outer", "inner", "ball"):
+            raise ConfigError(
+                f"--conditions {path}, line {i}: fault = {row['fault']!r} is invalid; valid: "
+                "none, outer, inner, ball"
+            )
+        cond: dict = {"fault": fault}
+        if fault != "none":
+            b = (row["bearing"] or "").strip()
+            if b.lower().endswith(".toml"):  # a user's bearing file, beside the CSV
+                f = Path(b) if Path(b).is_absolute() else Path(path).parent / b
+                load_bearing_file(f)  # checked now, read again by the scenario
+                cond["bearing_file"] = str(f)
+            else:
+                cond["bearing"] = get_bearing(b).id
+            for key in ("defect_width_m",) + _COND_OPTIONAL:
+                text = (row.get(key) or "").strip()
+                if key != "defect_width_m" and not text:
+                    continue
+                try:
+                    value = float(text)
+                except ValueError:
+                    raise ConfigError(
+                        f"--conditions {path}, line {i}: {key} = {text!r} is not a number"
+                    ) from None
+                cond[key] = check_range(f"{key} (line {i})", value, 0.0, lo_open=True)
+        by_name[name] = cond
+    pairs = []
+    for p, rec in zip(records, recs, strict=True):
+        cond = by_name.get(Path(p).name)
+        if cond is None:
+            raise ConfigError(
+                f"--conditions {path}: record {Path(p).name!r} is not listed; valid: one row "
+                "per record (column file: its file name)"
+            )
+        if cond["fault"] != "none":
+            pairs.append((rec, cond))
+    if not pairs:
+        raise ConfigError(
+            f"--conditions {path}: no record has a bearing fault; valid: at least one outer, "
+            "inner or ball row (a model gain is matched to a fault's power)"
+        )
+    return pairs
 
 
 def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
