@@ -161,6 +161,12 @@ def test_plot_time_refuses_an_empty_window():
     [
         (X + 1j * X, "signal is complex; valid: a real signal"),  # imaginary part dropped
         (np.array(["a"] * 24000), "signal is not numeric"),  # a ValueError from NumPy
+        # found by exploratory testing in the fourteenth session (accepted, or NaN out):
+        (X.astype(str), "signal is not numeric (dtype <U"),  # numeric text was parsed
+        (np.arange(24000).astype("datetime64[s]"), "signal is not numeric (dtype datetime64"),
+        (np.ma.masked_array(X, mask=X > 3.0), "masked samples"),  # the mask was ignored
+        (X * 1e200, "peak magnitude of 4.49e+200; valid range [1e-100, 1e+100]"),  # NaN out
+        (X * 1e-320, "peak magnitude of 4.49e-320; valid range"),  # read as "constant"
     ],
 )
 def test_signal_functions_refuse_complex_and_text_samples(fn, extra, bad, message):

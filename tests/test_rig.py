@@ -166,6 +166,10 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
         ((_MG, _MG.replace('"rotor"', '"fem"')), "model_gain[0].model = 'fem' is invalid"),
         ((_MG, _MG.replace("6.5", "0.0")), "model_gain[0].scale = 0"),
         ((_MG, _MG.replace("6.5", "nan")), "model_gain[0].scale = nan is not finite"),
+        # exploratory testing (fourteenth session): 1e308 overflowed the mode filters with a
+        # traceback, 1e200 wrote an infinite RMS
+        ((_MG, _MG.replace("6.5", "1e308")), "model_gain[0].scale = 1e+308 is out of range"),
+        (("gain = 4.0", "gain = 1e200"), "mode[0].gain = 1e+200 is out of range"),
         (
             (_MG, _MG.replace('provenance = "test gain"\n', "")),
             "model_gain[0].provenance is missing",
@@ -392,3 +396,20 @@ def test_cli_rig_show_states_the_background_band(tmp_path):
     assert "background: 40 PSD points, 10-5400 Hz" in r.stdout
     assert "above 21600 Hz gets a RigRateWarning" in r.stdout
     assert "for the rotor model's output (model-based)" in r.stdout
+
+
+def test_cli_simulate_json_reports_the_applied_model_gain(tmp_path):
+    """`simulate --rig --json` names the model gain it applied (the rotor's on cwru-de-12k) and
+    null for a model the rig has none for; the text line says it too (exploratory testing,
+    fourteenth session: the JSON gave only the rig's name)."""
+    import json
+
+    gains = {}
+    for model, fault in (("rotor", "--de-fault"), ("vsm", "--fault")):
+        r = _cli("simulate", "--model", model, fault, "outer", "--duration-s", "0.02", "--fs-hz",
+                 "12000", "--rig", "cwru-de-12k", "-o", f"{model}.nc", "--json",
+                 cwd=tmp_path)  # fmt: skip
+        assert r.returncode == 0, r.stderr
+        gains[model] = json.loads(r.stdout)["rig_model_gain"]
+    assert gains["rotor"] == pytest.approx(load_rig("cwru-de-12k").model_gain("rotor").scale)
+    assert gains["vsm"] is None

@@ -230,20 +230,41 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
     assert g.scale == pytest.approx(load_rig(ref).model_gain("vsm").scale, rel=1e-9)
     assert "run1.mat" in g.provenance and "--conditions conditions.csv" in load_rig(out).provenance
     out.unlink()
+    # a spreadsheet's "CSV UTF-8" (a byte-order mark) with padded header names reads the same
+    text = cond.read_text(encoding="utf-8").replace("file,fault,", " file , fault ,", 1)
+    (mine / "excel.csv").write_bytes(b"\xef\xbb\xbf" + text.encode("utf-8"))
+    r = _cli("rig", "identify", "run1.mat", "run0.mat", "--channel", "DE", "--fs-hz", "48000",
+             "--name", "g", "--model-gain", "vsm", "--conditions", "excel.csv", "-o",
+             "rig.toml", cwd=mine)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert load_rig(out).model_gain("vsm").scale == pytest.approx(g.scale, rel=1e-12)
+    out.unlink()
     bad = {
         "no_width.csv": ("file,fault,bearing\nrun1.mat,outer,6205-cwru\n",
                          "column 'defect_width_m' is missing"),
         "fault.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,crack,6205-cwru,1e-4\n",
                       "line 2: fault = 'crack' is invalid"),
         "width.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205-cwru,-1\n",
-                      "defect_width_m (line 2) = -1"),
+                      "width.csv, line 2: defect_width_m = -1 is out of range"),
         "other.csv": ("file,fault,bearing,defect_width_m\nrun9.mat,outer,6205-cwru,1e-4\n",
                       "record 'run1.mat' is not listed"),
         "colour.csv": ("file,fault,bearing,defect_width_m,colour\nrun1.mat,outer,6205,1e-4,red\n",
                        "unknown column 'colour'"),
+        # exploratory testing (fourteenth session): tracebacks or messages without a place
+        "extra.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,1e-4,red\n",
+                      "line 2: more fields than the header's 4"),
+        "blank.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,,1e-4\n",
+                      "blank.csv, line 2: bearing"),
+        "nosuch.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,nosuch.toml,1e-4\n",
+                       "nosuch.csv, line 2: bearing_file"),
     }  # fmt: skip
+    (mine / "latin1.csv").write_bytes(
+        b"file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,1e-4 # caf\xe9\n"
+    )
+    bad["latin1.csv"] = (None, "is not UTF-8; valid: a UTF-8 text file")
     for name, (text, message) in bad.items():
-        (mine / name).write_text(text, encoding="utf-8")
+        if text is not None:
+            (mine / name).write_text(text, encoding="utf-8")
         r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name",
                  "g", "--model-gain", "vsm", "--conditions", name, "-o", "rig.toml",
                  cwd=mine)  # fmt: skip

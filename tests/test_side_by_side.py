@@ -3,6 +3,7 @@ same way on both signals."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -217,3 +218,36 @@ def test_rotor_side_by_side_simulates_the_records_bearing():
     )
     assert f["scenario"]["fe_fault"] == "ball" and "de_fault" not in f["scenario"]
     assert f["fault_hz"] == pytest.approx(3.9874 * f["rpm"] / 60.0, rel=1e-3)  # 6203 2xBSF
+
+
+@needs_data
+def test_model_path_scale_conditions_skips_healthy_records_and_checks_its_conditions():
+    """The Python form of ``rig identify --conditions``: a healthy record is skipped as the
+    command line skips it (it gave a gain 3x the CLI's before, and a gain of 30 alone), and a
+    condition that is not a dict or has an unknown key is a one-line error (an AttributeError;
+    silently ignored) — exploratory testing, fourteenth session."""
+    from bearingsim.io.signal import read_signal
+    from bearingsim.rig import load_rig
+    from bearingsim.side_by_side import model_path_scale, model_path_scale_conditions
+
+    rig = load_rig("cwru-de-48k")
+    a = read_signal(CWRU / "48k_Drive_End_OR007@6_0_135.mat", channel="DE")
+    b = read_signal(CWRU / "normal_0_97.mat", channel="DE")
+    outer = dict(fault="outer", bearing="6205-cwru", defect_width_m=0.007 * 0.0254)
+    none = dict(fault="none")
+    _, k1 = model_path_scale_conditions(rig, [a], [outer], duration_s=0.2)
+    _, k2 = model_path_scale_conditions(rig, [a, b], [outer, none], duration_s=0.2)
+    assert k2 == k1
+    for conds, message in (
+        ([none], "no record has a bearing fault"),
+        (["outer"], "conditions[0] = 'outer' is invalid; valid: a dict"),
+        ([outer | {"foo": 1}], "conditions[0]: unknown key 'foo'"),
+    ):
+        with pytest.raises(ConfigError, match=re.escape(message)):
+            model_path_scale_conditions(rig, [a], conds, duration_s=0.2)
+    # the CWRU form skips the healthy record too (docs/models.md: "Healthy records are skipped")
+    recs = [CWRU / "48k_Drive_End_OR007@6_0_135.mat", CWRU / "normal_0_97.mat"]
+    assert (
+        model_path_scale(rig, recs, duration_s=0.2)[1]
+        == model_path_scale(rig, recs[:1], duration_s=0.2)[1]
+    )

@@ -293,3 +293,41 @@ def test_random_split_warns_when_a_label_is_on_one_side_only(tmp_path):
         "none",
         "outer",
     ]
+
+
+def test_a_rotor_sweep_is_planned(tmp_path):
+    """A rotor sweep failed at its spec hash (exploratory testing, fourteenth session): the
+    hash resolved a ring bearing the rotor family has no key for, and said "bearing: give
+    exactly one of a catalogue id or --bearing-file PATH"."""
+    p = tmp_path / "rotor.toml"
+    p.write_text(
+        '[base]\nmodel = "rotor"\nduration_s = 0.02\nfs_hz = 12000.0\nde_fault = "ball"\n'
+        'rig = "cwru-de-12k"\n[axes]\nseed = [0, 1]\n',
+        encoding="utf-8",
+    )
+    spec = SweepSpec.from_toml(p)
+    assert spec.n_runs == 2 and len(spec.spec_hash) == 64
+    assert "bearings" in spec.canonical() and spec.canonical()["bearings"] == {}
+
+
+def test_an_edited_rig_file_is_a_changed_spec(tmp_path, monkeypatch):
+    """The spec hash covers the rig's content, as it covers a bearing file's: resuming a sweep
+    after its rig file was edited (a model gain 0.5 -> 5) mixed runs of both gains in one
+    dataset (exploratory testing, fourteenth session); now the hashes differ, so the resume is
+    refused as a different spec."""
+    from bearingsim.rig import load_rig
+    from bearingsim.rig_identify import rig_to_toml
+
+    monkeypatch.chdir(tmp_path)
+    rig = load_rig("cwru-de-12k")
+    (tmp_path / "myrig.toml").write_text(rig_to_toml(rig), encoding="utf-8")
+    p = tmp_path / "ring.toml"
+    p.write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.02\nfs_hz = 12000.0\nrig = "myrig.toml"\n'
+        "[axes]\nseed = [0, 1]\n",
+        encoding="utf-8",
+    )
+    before = SweepSpec.from_toml(p).spec_hash
+    text = (tmp_path / "myrig.toml").read_text(encoding="utf-8")
+    (tmp_path / "myrig.toml").write_text(text.replace("scale = 6.8", "scale = 60.8"), "utf-8")
+    assert SweepSpec.from_toml(p).spec_hash != before

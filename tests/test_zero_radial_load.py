@@ -54,13 +54,54 @@ def test_an_unbalance_is_valid_on_a_held_ring_without_radial_load():
 @pytest.mark.parametrize(
     "sc, message",
     [
-        (dict(model="dem"), "0 N only with a preload, clearance_m < 0, or an axial load"),
+        (dict(model="dem"), "0 N only with a preload, clearance_m <= -1e-09 m, or an axial"),
         (dict(model="vsm"), "the ring position is undetermined"),
         (dict(model="vsm", clearance_m=-5e-6), "clearance_m = -5e-06 m (a preload) is out of"),
-        (dict(model="dem", unbalance_n=5.0), "unbalance_n = 5.0 N needs a radial load"),
+        (dict(model="dem", unbalance_n=5.0), "the ring position is undetermined"),
+        # a vanishing preload holds nothing (exploratory testing: an all-zero signal before)
+        (dict(model="dem", clearance_m=-1e-300), "clearance_m <= -1e-09 m"),
     ],
 )
 def test_an_unheld_ring_without_radial_load_is_still_refused(sc, message):
     with pytest.raises(ConfigError) as e:
         simulate({**BASE, "fault": "none", **sc})
     assert message in str(e.value) and "\n" not in str(e.value)
+
+
+def test_scenario_validation_refuses_an_unheld_zero_load_and_a_vsm_preload_up_front():
+    """A sweep validates every run's scenario before it starts (docs/sweeps.md); the zero-load
+    and VSM-preload refusals lived in the model inputs and so failed runs part-way through a
+    sweep (exploratory testing, fourteenth session). They are scenario checks now."""
+    from bearingsim.config import Scenario
+
+    for d, message in (
+        (dict(model="dem", fx_n=0.0, fy_n=0.0), "the ring position is undetermined"),
+        (dict(model="vsm", clearance_m=-5e-6), "(a preload) is out of range for model vsm"),
+        (dict(model="vsm", axial_load_n=10.0), "axial_load_n = 10 N is out of range for model"),
+    ):
+        with pytest.raises(ConfigError, match=message.replace("(", r"\(").replace(")", r"\)")):
+            Scenario.from_dict(d)
+
+
+def test_a_held_ring_takes_a_float32_preload_and_its_unbalance_against_the_capacity():
+    """np.float32 and text preloads were not seen as holding the ring when an unbalance was
+    given (the check ran before the value was converted); an unbalance far above the static
+    capacity was accepted on a held ring (1e6 N: ±1.4 mm ring excursions) and is now checked
+    with the static load as the peak radial load against 2 C0 (ISO 76)."""
+    from bearingsim.config import Scenario
+
+    sc = Scenario.from_dict(
+        dict(model="dem", fx_n=0.0, fy_n=0.0, clearance_m=np.float32(-5e-6), unbalance_n=5.0)
+    )
+    assert sc.unbalance_n == 5.0
+    with pytest.raises(ConfigError, match=r"\|\(fx_n, fy_n\)\| \+ unbalance_n = 1e\+06 N exceeds"):
+        simulate(dict(model="dem", fault="none", unbalance_n=1e6, clearance_m=-5e-6, **BASE))
+
+
+def test_negative_zero_loads_give_the_load_direction_of_zero():
+    """--fx-n -0.0 --fy-n -0.0 gave theta0 = -180 deg (atan2 of signed zeros)."""
+    from bearingsim.catalog import get_bearing
+    from bearingsim.load_distribution import radial_load_distribution
+
+    r = radial_load_distribution(get_bearing("6205"), -0.0, -0.0, clearance=-5e-6)
+    assert float(np.ravel(r.theta0)[0]) == 0.0

@@ -45,7 +45,13 @@ from .errors import (
     check_range,
     read_toml,
 )
-from .geometry import CWRU_DEFECT_DEPTH_M, CWRU_DEFECT_WIDTH_M, DefectProfile, parse_enum
+from .geometry import (
+    CWRU_DEFECT_DEPTH_M,
+    CWRU_DEFECT_WIDTH_M,
+    HOLDING_PRELOAD_M,
+    DefectProfile,
+    parse_enum,
+)
 
 
 class Model(enum.Enum):
@@ -167,6 +173,41 @@ REALISM: dict[str, Any] = {
 
 
 # ------------------------------------------------------------------ helpers
+#: the refusal of a ring scenario without radial load and without anything holding the ring
+ZERO_RADIAL_LOAD = (
+    "radial load |(fx_n, fy_n)| = 0 N: the ring position is undetermined; valid range (0, inf) "
+    f"N (0 N only with a preload, clearance_m <= -{HOLDING_PRELOAD_M:g} m, or an axial load; "
+    "models dem, tvsm)"
+)
+
+
+def ring_is_held(clearance_m: float | None, axial_load_n: float) -> bool:
+    """Whether a preload (``clearance_m <= -HOLDING_PRELOAD_M`` [m]) or an axial load [N]
+    holds a ring without a radial load (every ball loaded, the ring concentric)."""
+    pre = clearance_m is not None and clearance_m <= -HOLDING_PRELOAD_M
+    return pre or axial_load_n > 0.0
+
+
+def secant_refusal(who: str, clearance_m: float | None, axial_load_n: float) -> None:
+    """Refuse a preload (``clearance_m`` < 0 [m]) or an axial load [N] for ``who`` (the VSM and
+    its static trace): their secant stiffness ``Q_j / (u.e_j)`` is measured from the
+    concentric position, where a preloaded or axially loaded ball already carries load (seed
+    VSM eqs. (17)-(18))."""
+    if axial_load_n > 0.0:
+        raise ConfigError(
+            f"axial_load_n = {axial_load_n:.6g} N is out of range for {who}: its secant "
+            "stiffness is measured from the concentric position, where an axially loaded "
+            "ball already carries load; valid: 0 N (simulate an axial load with model dem "
+            "or tvsm)"
+        )
+    if clearance_m is not None and clearance_m < 0.0:
+        raise ConfigError(
+            f"clearance_m = {clearance_m:.6g} m (a preload) is out of range for {who}: its secant "
+            "stiffness needs P_d >= 0; valid range [0, inf) m (simulate a preloaded bearing "
+            "with model dem or tvsm)"
+        )
+
+
 def _bool(name: str, value: Any) -> bool:
     if not isinstance(value, bool):
         raise ConfigError(f"{name} = {value!r} is invalid; valid: true or false")
@@ -686,8 +727,8 @@ class RingScenario(Scenario):
         )
         s(self, "first_ball_angle_deg", _angle("first_ball_angle_deg", self.first_ball_angle_deg))
         s(self, "rpm", check_positive("rpm", self.rpm, "r/min"))
-        s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N"))
-        s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N"))
+        s(self, "fx_n", check_range("fx_n", self.fx_n, unit="N") + 0.0)  # -0.0 -> 0.0
+        s(self, "fy_n", check_range("fy_n", self.fy_n, unit="N") + 0.0)
         s(self, "seed", check_int("seed", self.seed, 0))
         s(
             self,
@@ -697,20 +738,20 @@ class RingScenario(Scenario):
         _pass_jitter(self)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
         s(self, "axial_load_n", check_range("axial_load_n", self.axial_load_n, 0.0, unit="N"))
+        if self.clearance_m is not None:
+            # negative = preload, bounded by the bearing (dynamics.ring.base.ModelInputs)
+            s(self, "clearance_m", check_range("clearance_m", self.clearance_m, unit="m"))
+        if self.model is Model.VSM:  # its secant stiffness: no preload, no axial load
+            secant_refusal(f"model {self.model.value}", self.clearance_m, self.axial_load_n)
         fr = math.hypot(self.fx_n, self.fy_n)
-        # a preload or an axial load holds the ring without a radial load (dem, tvsm)
-        cl = self.clearance_m
-        held = self.axial_load_n > 0.0 or (isinstance(cl, int | float) and cl < 0.0)
-        if fr == 0.0 and self.unbalance_n != 0.0 and not held:  # [0, |F|) is empty: say why
-            raise ConfigError(
-                f"unbalance_n = {self.unbalance_n!r} N needs a radial load larger than it; "
-                "fx_n and fy_n are 0; valid: unbalance_n = 0, or a radial load (fx_n, fy_n), "
-                "or a preload (clearance_m < 0) or an axial load holding the ring"
-            )
-        if fr > 0.0 or held:
-            hi = math.inf if held else fr
-            ub = check_range("unbalance_n", self.unbalance_n, 0.0, hi, hi_open=True, unit="N")
-            s(self, "unbalance_n", ub)
+        held = ring_is_held(self.clearance_m, self.axial_load_n)
+        if fr == 0.0 and not held:
+            raise ConfigError(ZERO_RADIAL_LOAD)
+        # below the static load, unless a preload or axial load holds the ring (the peak
+        # radial load is checked against the static capacity before the run)
+        hi = math.inf if held else fr
+        ub = check_range("unbalance_n", self.unbalance_n, 0.0, hi, hi_open=True, unit="N")
+        s(self, "unbalance_n", ub)
         s(self, "contact_roughness_m", check_roughness(self.contact_roughness_m))
         if self.mass_kg is not None:
             s(self, "mass_kg", check_positive("mass_kg", self.mass_kg, "kg"))
@@ -725,9 +766,6 @@ class RingScenario(Scenario):
                 "stiffness_n_per_m1_5",
                 check_positive("stiffness_n_per_m1_5", self.stiffness_n_per_m1_5, "N/m^1.5"),
             )
-        if self.clearance_m is not None:
-            # negative = preload, bounded by the bearing (dynamics.ring.base.ModelInputs)
-            s(self, "clearance_m", check_range("clearance_m", self.clearance_m, unit="m"))
         if self.retention_factor is not None:
             s(
                 self,

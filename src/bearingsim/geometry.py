@@ -142,6 +142,12 @@ def clearance_range(bearing: BallBearing | RollerBearing) -> tuple[float, float]
     return -c5, c5
 
 
+#: smallest preload (negative diametral clearance) that holds a ring without a radial load
+#: [m]: 1 nm, below any raceway's roughness; the ball loads of a smaller one vanish beside the
+#: balls' Hertz constants (a 1e-300 m "preload" gave an all-zero DEM signal, fault unseen)
+HOLDING_PRELOAD_M = 1e-9
+
+
 def check_clearance(
     bearing: BallBearing | RollerBearing,
     value: object,

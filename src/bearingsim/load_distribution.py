@@ -374,8 +374,8 @@ def radial_load_distribution(
         has made it).
     """
     motion = parse_enum(RingMotion, motion, "motion")
-    fx = check_range("fx_n", fx, unit="N")
-    fy = check_range("fy_n", fy, unit="N")
+    fx = check_range("fx_n", fx, unit="N") + 0.0  # -0.0 -> 0.0 (the load direction)
+    fy = check_range("fy_n", fy, unit="N") + 0.0
     Pd = bearing.diametral_clearance if clearance is None else clearance
     Pd = check_clearance(bearing, Pd, "clearance_m")
     psi0 = check_range(

@@ -102,6 +102,13 @@ __all__ = [
 PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 
 
+#: largest gain a rig takes (direct, mode, model scale) [-]: a lightly damped structure
+#: amplifies by ~1/(2 zeta) at resonance (5000 at zeta = 1e-4); 1e6 leaves room for a sensor in
+#: other units, and keeps the filters and signals finite (a scale of 1e308 overflowed the mode
+#: filters with a traceback; 1e200 wrote an infinite RMS)
+MAX_GAIN = 1e6
+
+
 def _provenance(table: dict[str, Any], where: str) -> str:
     p = table.get("provenance")
     if not isinstance(p, str) or not p.strip():
@@ -145,7 +152,7 @@ class Mode:
             check_range(
                 f"{where}.damping_ratio", d["damping_ratio"], 0.0, 1.0, lo_open=True, hi_open=True
             ),  # fmt: skip
-            check_range(f"{where}.gain", d["gain"], 0.0),
+            check_range(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
             _provenance(d, where),
         )
 
@@ -185,7 +192,7 @@ class ModelGain:
             )
         return cls(
             d["model"],
-            check_range(f"{where}.scale", d["scale"], 0.0, lo_open=True),
+            check_range(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
             _provenance(d, where),
         )
 
@@ -331,7 +338,7 @@ class Rig:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
                 if "gain" not in p:
                     raise ConfigError("path.gain is missing")
-                gain = check_range("path.gain", p["gain"], 0.0)
+                gain = check_range("path.gain", p["gain"], 0.0, MAX_GAIN)
                 gprov = _provenance(p, "path")
             modes = d.get("mode", [])
             if not isinstance(modes, list):
@@ -493,6 +500,12 @@ class Rig:
                 )
         if self.noise_rms_m_per_s2 > 0.0:
             y = y + self.noise_rms_m_per_s2 * rng.standard_normal(x.size)
+        if not np.all(np.isfinite(y)):
+            raise ConfigError(
+                f"rig {self.name!r}: the sensor signal is not finite (peak input "
+                f"{float(np.max(np.abs(x))):.3g}, path gain {self.gain:.3g}); valid: a signal and "
+                "gains whose product stays finite"
+            )
         return y
 
 

@@ -305,7 +305,8 @@ def model_path_scale(
     rig : Rig
         The output-only rig (:func:`bearingsim.rig_identify.identify_rig`).
     records : list of Path
-        CWRU fault records of the same mounting (end and sample rate) used to fit the scale.
+        CWRU fault records of the same mounting (end and sample rate) used to fit the scale
+        (healthy records among them are skipped: no fault power to match).
     model : {"vsm", "dem", "tvsm", "rotor"}
         The model.
     duration_s : float
@@ -330,6 +331,12 @@ def model_path_scale(
     if not records:
         raise ConfigError("records is empty; valid: at least one CWRU fault record")
     rig = _without_gain(rig, model)
+    records = [r for r in records if _has_fault(Path(r))]  # healthy ones: no fault power
+    if not records:
+        raise ConfigError(
+            "records: none has a bearing fault; valid: at least one CWRU outer-race, inner-race "
+            "or ball fault record"
+        )
     from tqdm import tqdm
 
     powers = []
@@ -369,7 +376,8 @@ def model_path_scale_conditions(
         Measured records (:func:`bearingsim.io.signal.read_signal`), each with its sample rate
         and, unless its condition gives ``rpm``, its shaft speed (a speed column: its median).
     conditions : list of dict
-        Per record: ``fault`` (outer | inner | ball), ``bearing`` (a catalogue id) or
+        Per record: ``fault`` (none | outer | inner | ball; ``none`` records are skipped: no
+        fault power to match), ``bearing`` (a catalogue id) or
         ``bearing_file`` (a bearing TOML),
         ``defect_width_m`` [m], optional ``defect_depth_m`` [m] (the model's default when
         absent) and ``rpm`` [r/min] (the record's own when absent).
@@ -404,6 +412,29 @@ def model_path_scale_conditions(
             f"records ({len(records)}) and conditions ({len(conditions)}) must be non-empty "
             "and of the same length"
         )
+    allowed = {"fault", "bearing", "bearing_file", "defect_width_m", "defect_depth_m", "rpm"}
+    for i, cond in enumerate(conditions):
+        if not isinstance(cond, dict):
+            raise ConfigError(f"conditions[{i}] = {cond!r} is invalid; valid: a dict")
+        extra = sorted(set(cond) - allowed)
+        if extra:
+            raise ConfigError(
+                f"conditions[{i}]: unknown key {extra[0]!r}; valid keys: "
+                + ", ".join(sorted(allowed))
+            )
+        if cond.get("fault") not in ("none", "outer", "inner", "ball"):
+            raise ConfigError(
+                f"conditions[{i}].fault = {cond.get('fault')!r} is invalid; valid: none, outer, "
+                "inner, ball"
+            )
+    # healthy records carry no fault power to match: skipped
+    kept = [(r, c) for r, c in zip(records, conditions, strict=True) if c["fault"] != "none"]
+    if not kept:
+        raise ConfigError(
+            "conditions: no record has a bearing fault; valid: at least one outer, inner or ball "
+            "condition (a model gain is matched to a fault's power)"
+        )
+    records, conditions = [r for r, _ in kept], [c for _, c in kept]
     rig = _without_gain(rig, model)
     keys = {**REALISM, **(realism or {})}
     powers, names = [], []
@@ -441,6 +472,17 @@ def model_path_scale_conditions(
         powers.append(_powers(np.asarray(rec.x[: sim.size], dtype=float), sim, bg))
         names.append(Path(rec.source).name)
     return _with_gain(rig, model, powers, names, duration_s)
+
+
+def _has_fault(record: Path) -> bool:
+    """Whether a CWRU record's manifest row names an outer-race, inner-race or ball fault (a
+    record outside the manifest passes, for :func:`simulate_record`'s error)."""
+    row = (
+        cwru_manifest(record.parent).get(record.name)
+        if (record.parent / "manifest.csv").is_file()
+        else None
+    )
+    return row is None or row["fault"].split()[0] in ("outer", "inner", "ball")
 
 
 def _without_gain(rig, model: str):

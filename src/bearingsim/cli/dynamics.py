@@ -289,7 +289,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     metavar="NAME|FILE",
     help="Pass the output through a measurement chain (a shipped rig profile such as "
     "cwru-de-12k, or a rig TOML file): the sensor's signal is written as channel acc_sensor "
-    "(bearingsim.rig).",
+    "(bearingsim.rig); a model gain the rig has for this model scales its path.",
 )
 @allow_overload_option
 @budget_options()
@@ -372,7 +372,10 @@ def simulate_cmd(
         if rig is not None:
             out["rig"] = res.meta["rig"]["name"]
             out["rms_acc_sensor"] = res.rms("acc_sensor")
-            what += f", through rig {out['rig']}: RMS {out['rms_acc_sensor']:.4g} m/s^2"
+            mg = res.meta["rig"].get("applied_model_gain")
+            out["rig_model_gain"] = None if mg is None else mg["scale"]
+            gain = "" if mg is None else f" (path x {mg['scale']:.4g} for this model)"
+            what += f", through rig {out['rig']}{gain}: RMS {out['rms_acc_sensor']:.4g} m/s^2"
             real = sc.realism_defaults
             if real:  # the keys the rig chose (docs/models.md "Realistic defaults with a rig")
                 out["realism_defaults"] = real

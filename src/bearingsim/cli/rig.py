@@ -239,21 +239,31 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
     every record listed once by file name, a known fault and bearing, positive sizes."""
     import csv
 
-    from ..catalog import get_bearing, load_bearing_file
-    from ..errors import check_range
-
     if "rotor" in models:
         raise ConfigError(
             "--model-gain rotor with --conditions: the rotor model is the CWRU motor; its gain "
             "is identified from CWRU records (without --conditions); valid models here: vsm, "
             "dem, tvsm"
         )
-    try:
-        with open(path, encoding="utf-8", newline="") as fh:
-            rows = list(csv.DictReader(fh))
-            header = rows[0].keys() if rows else []
+    try:  # utf-8-sig: a spreadsheet's "CSV UTF-8" starts with a byte-order mark
+        with open(path, encoding="utf-8-sig", newline="") as fh:
+            reader = csv.DictReader(fh)
+            rows = list(reader)
+            header = [h.strip() for h in (reader.fieldnames or [])]
     except OSError as exc:
         raise ConfigError(f"--conditions {path}: cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError(
+            f"--conditions {path}: byte {exc.start} is not UTF-8; valid: a UTF-8 text file"
+        ) from None
+    except csv.Error as exc:
+        raise ConfigError(f"--conditions {path}: not a CSV file ({exc})") from None
+    for i, row in enumerate(rows, start=2):
+        if None in row:
+            raise ConfigError(
+                f"--conditions {path}, line {i}: more fields than the header's {len(header)}"
+            )
+    rows = [{k.strip(): v for k, v in row.items()} for row in rows]
     missing = [c for c in _COND_REQUIRED if c not in header]
     if missing:
         raise ConfigError(
@@ -278,25 +288,11 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
                 "none, outer, inner, ball"
             )
         cond: dict = {"fault": fault}
-        if fault != "none":
-            b = (row["bearing"] or "").strip()
-            if b.lower().endswith(".toml"):  # a user's bearing file, beside the CSV
-                f = Path(b) if Path(b).is_absolute() else Path(path).parent / b
-                load_bearing_file(f)  # checked now, read again by the scenario
-                cond["bearing_file"] = str(f)
-            else:
-                cond["bearing"] = get_bearing(b).id
-            for key in ("defect_width_m",) + _COND_OPTIONAL:
-                text = (row.get(key) or "").strip()
-                if key != "defect_width_m" and not text:
-                    continue
-                try:
-                    value = float(text)
-                except ValueError:
-                    raise ConfigError(
-                        f"--conditions {path}, line {i}: {key} = {text!r} is not a number"
-                    ) from None
-                cond[key] = check_range(f"{key} (line {i})", value, 0.0, lo_open=True)
+        try:
+            if fault != "none":
+                cond.update(_condition_values(row, path))
+        except ConfigError as exc:
+            raise ConfigError(f"--conditions {path}, line {i}: {exc}") from None
         by_name[name] = cond
     pairs = []
     for p, rec in zip(records, recs, strict=True):
@@ -314,6 +310,31 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
             "inner or ball row (a model gain is matched to a fault's power)"
         )
     return pairs
+
+
+def _condition_values(row: dict, path: str) -> dict:
+    """The bearing and sizes of one fault row of a --conditions CSV (one-line errors)."""
+    from ..catalog import get_bearing, load_bearing_file
+    from ..errors import check_range
+
+    cond: dict = {}
+    b = (row["bearing"] or "").strip()
+    if b.lower().endswith(".toml"):  # a user's bearing file, beside the CSV
+        f = Path(b) if Path(b).is_absolute() else Path(path).parent / b
+        load_bearing_file(f)  # checked now, read again by the scenario
+        cond["bearing_file"] = str(f)
+    else:
+        cond["bearing"] = get_bearing(b).id
+    for key in ("defect_width_m",) + _COND_OPTIONAL:
+        text = (row.get(key) or "").strip()
+        if key != "defect_width_m" and not text:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            raise ConfigError(f"{key} = {text!r} is not a number") from None
+        cond[key] = check_range(key, value, 0.0, lo_open=True)
+    return cond
 
 
 def _channel(records: tuple[str, ...], channel: str | None) -> str | None:

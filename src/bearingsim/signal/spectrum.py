@@ -46,17 +46,31 @@ class Domain(enum.Enum):
     ORDER = "order"
 
 
+#: the range of a signal's peak magnitude the signal functions take, in any unit [-]: far
+#: inside the floating-point range, so that powers and sums over a record stay finite and
+#: normal (a peak of 1e200 overflowed in DRS and came out NaN; 1e-320 read as "constant")
+PEAK_RANGE = (1e-100, 1e100)
+
+
 def as_signal(
     x: ArrayLike, name: str = "signal", min_samples: int = MIN_SAMPLES
 ) -> NDArray[np.float64]:
     """``x`` as a finite one-dimensional float array (a column or row vector is flattened) of at
-    least ``min_samples`` samples; anything else raises a one-line :class:`ConfigError` naming
-    ``name``."""
+    least ``min_samples`` samples whose peak magnitude, unless 0, lies in :data:`PEAK_RANGE`;
+    anything else (complex, text, dates, masked samples) raises a one-line
+    :class:`ConfigError` naming ``name``."""
+    if np.ma.isMaskedArray(x) and np.ma.getmaskarray(x).any():
+        raise ConfigError(
+            f"{name} has {int(np.ma.getmaskarray(x).sum())} masked samples; valid: no masked "
+            "samples (fill or cut them first)"
+        )
     raw = np.asarray(x)
     if np.iscomplexobj(raw):  # NumPy would drop the imaginary part with a warning
         raise ConfigError(
             f"{name} is complex; valid: a real signal (pass its real part or magnitude)"
         )
+    if raw.dtype.kind in "USMmV":  # text, bytes, dates, durations: never samples
+        raise ConfigError(f"{name} is not numeric (dtype {raw.dtype}); valid: real numbers")
     try:
         a = np.asarray(raw, dtype=float)
     except (TypeError, ValueError):
@@ -71,6 +85,13 @@ def as_signal(
         raise ConfigError(f"{name} has {a.size} samples; valid range [{min_samples}, inf) samples")
     if not np.all(np.isfinite(a)):
         raise ConfigError(f"{name} contains non-finite values; valid: finite numbers")
+    peak = float(np.max(np.abs(a)))
+    lo, hi = PEAK_RANGE
+    if peak != 0.0 and not lo <= peak <= hi:
+        raise ConfigError(
+            f"{name} has a peak magnitude of {peak:.3g}; valid range [{lo:g}, {hi:g}] in any "
+            "unit (rescale the signal)"
+        )
     return a
 
 

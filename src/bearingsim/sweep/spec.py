@@ -516,10 +516,13 @@ class SweepSpec:
     def canonical(self) -> dict[str, Any]:
         """The resolved content that determines the results (JSON-able, deterministic)."""
         from ..catalog import resolve_bearing
+        from ..rig import load_rig
 
         bearings = {}
-        pairs = {(self.base.get("bearing"), self.base.get("bearing_file"))}
         names = self.axis_names
+        pairs = set()
+        if "bearing" in self.base or "bearing_file" in self.base:  # the ring and IAS families
+            pairs = {(self.base.get("bearing"), self.base.get("bearing_file"))}
         if "bearing" in names or "bearing_file" in names:
             pairs = {
                 (d.get("bearing"), d.get("bearing_file"))
@@ -528,6 +531,11 @@ class SweepSpec:
         for bid, bfile in sorted(pairs, key=str):
             b = resolve_bearing(bid, bfile)
             bearings[str(bfile) if bfile else str(bid)] = dataclasses.asdict(b)
+        # the rigs' content, as the bearings': an edited rig file is a changed spec
+        rigs = {self.base.get("rig")}
+        if "rig" in names:
+            rigs = {self._merge(v).get("rig") for v in self.iter_values()}
+        rig_tables = {str(r): load_rig(r).to_dict() for r in sorted(rigs - {None}, key=str)}
         return {
             "format": SPEC_FORMAT,
             "base": self.base,
@@ -537,7 +545,7 @@ class SweepSpec:
             "channels": None if self.channels is None else list(self.channels),
             "per_run_seed": self.per_run_seed,
             "bearings": bearings,
-        }
+        } | ({"rigs": rig_tables} if rig_tables else {})
 
     @property
     def spec_hash(self) -> str:

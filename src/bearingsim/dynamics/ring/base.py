@@ -28,8 +28,11 @@ from numpy.typing import NDArray
 from ...config import (
     SEED_VSM_DAMPING_N_S_M,
     SEED_VSM_MASS_OUTER_KG,
+    ZERO_RADIAL_LOAD,
     check_ball_spread,
     check_roughness,
+    ring_is_held,
+    secant_refusal,
 )
 from ...contact.hertz import element_stiffness
 from ...errors import ConfigError, check_positive, check_range
@@ -185,17 +188,13 @@ class ModelInputs:
                 f"bearing = {getattr(b, 'id', b)!r} is not a ball bearing; the VSM/DEM/TVSM "
                 "models need a ball bearing"
             )
-        fx = check_range("fx_n", self.fx, unit="N")
-        fy = check_range("fy_n", self.fy, unit="N")
-        held = (self.clearance is not None and self.clearance < 0.0) or (
-            isinstance(self.axial_load, int | float) and self.axial_load > 0.0
-        )
+        fx = check_range("fx_n", self.fx, unit="N") + 0.0  # -0.0 -> 0.0 (the load direction)
+        fy = check_range("fy_n", self.fy, unit="N") + 0.0
+        cl = None if self.clearance is None else check_range("clearance_m", self.clearance)
+        ax = check_range("axial_load_n", self.axial_load, 0.0, unit="N")
+        held = ring_is_held(cl, ax)
         if math.hypot(fx, fy) == 0.0 and not held:
-            raise ConfigError(
-                "radial load |(fx_n, fy_n)| = 0 N: the ring position is undetermined; "
-                "valid range (0, inf) N (0 N only with a preload, clearance_m < 0, or an "
-                "axial load)"
-            )
+            raise ConfigError(ZERO_RADIAL_LOAD)
         object.__setattr__(self, "fx", fx)
         object.__setattr__(self, "fy", fy)
         object.__setattr__(self, "shaft_hz", check_positive("shaft_hz", self.shaft_hz, "Hz"))
@@ -276,22 +275,8 @@ class ModelInputs:
 
     def require_clearance(self, who: str) -> None:
         """Refuse a negative clearance or an axial load for ``who`` (the VSM and its static
-        trace): their secant stiffness ``Q_j / (u.e_j)`` is measured from the concentric
-        position, where a preloaded ball already carries load (seed VSM eqs. (17)-(18))."""
-        if self.axial_load > 0.0:
-            raise ConfigError(
-                f"axial_load_n = {self.axial_load:.6g} N is out of range for {who}: its secant "
-                "stiffness is measured from the concentric position, where an axially loaded "
-                "ball already carries load; valid: 0 N (simulate an axial load with model dem "
-                "or tvsm)"
-            )
-        pd = self.diametral_clearance
-        if pd < 0.0:
-            raise ConfigError(
-                f"clearance_m = {pd:.6g} m (a preload) is out of range for {who}: its secant "
-                "stiffness needs P_d >= 0; valid range [0, inf) m (simulate a preloaded bearing "
-                "with model dem or tvsm)"
-            )
+        trace; :func:`bearingsim.config.secant_refusal`)."""
+        secant_refusal(who, self.diametral_clearance, self.axial_load)
 
     @property
     def diametral_clearance(self) -> float:

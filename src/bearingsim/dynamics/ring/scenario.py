@@ -194,21 +194,22 @@ def plan_ring(
 ) -> RingPlan:
     """Check a VSM/DEM/TVSM scenario before any work and plan its run.
 
-    Builds the model inputs (every value checked), checks the radial load against the bearing's
-    static capacity (:func:`..checks.check_load`; ``allow_overload`` lifts the refusal above
-    2 C0), the speed against what the output resolves (:func:`..checks.check_speed`), chooses
-    the step (:func:`choose_steps`) and checks the memory and step estimate against ``budget``
-    (:mod:`..budget`). Bad values raise a one-line :class:`~bearingsim.errors.ConfigError`.
+    Builds the model inputs (every value checked), checks the peak radial load (static plus
+    unbalance) against the bearing's static capacity (:func:`..checks.check_load`;
+    ``allow_overload`` lifts the refusal above 2 C0), the speed against what the output
+    resolves (:func:`..checks.check_speed`), chooses the step (:func:`choose_steps`) and checks
+    the memory and step estimate against ``budget`` (:mod:`..budget`). Bad values raise a
+    one-line :class:`~bearingsim.errors.ConfigError`.
     """
     inputs = model_inputs(scenario)
     if _facts(scenario.model)[1] == "secant":
         inputs.require_clearance(f"model {scenario.model.value}")
-    check_load(
+    check_load(  # the peak radial load: the static one plus the rotating unbalance
         inputs.bearing,
-        math.hypot(inputs.fx, inputs.fy),
+        math.hypot(inputs.fx, inputs.fy) + inputs.unbalance,
         allow_overload,
         inputs.axial_load,
-        name="|(fx_n, fy_n)|",
+        name="|(fx_n, fy_n)| + unbalance_n" if inputs.unbalance > 0.0 else "|(fx_n, fy_n)|",
     )
     inputs.axial_state  # noqa: B018 -- solved here: a bad axial load fails before any work
     check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
