@@ -211,7 +211,15 @@ def test_the_output_check_covers_every_output_option_of_every_command():
 
     from bearingsim.cli import COMMANDS, cli
 
-    inputs = {"--bearing-file", "scenario_file", "scenario", "file", "spec_file", "dataset"}
+    inputs = {
+        "--bearing-file",
+        "--conditions",
+        "scenario_file",
+        "scenario",
+        "file",
+        "spec_file",
+        "dataset",
+    }
     found = set()
     ctx = click.Context(cli)
     for name in COMMANDS:
