@@ -521,3 +521,14 @@ def test_read_signal_refuses_a_result_whose_samples_are_not_finite(tmp_path):
     p = r.save(tmp_path / "nan.nc")
     with pytest.raises(ConfigError, match="channel acc_y holds samples that are not finite"):
         read_signal(p)
+
+
+def test_a_text_table_refuses_python_digit_grouping(tmp_path):
+    """`1_000` in a CSV was read as 1000 (Python's float accepts digit grouping; exploratory
+    testing, fourteenth session): a data file never holds it, so the line is non-numeric."""
+    p = tmp_path / "g.csv"
+    p.write_text("time_s,acc\n0.0,1_000\n0.1,2.0\n", encoding="utf-8")
+    with pytest.raises(ConfigError, match=r"non-numeric line '0\.0,1_000'"):
+        read_table(p)
+    p.write_text("time_s,acc\n0.0,1000\n0.1,2.0\n", encoding="utf-8")
+    assert read_table(p).data[0, 1] == 1000.0

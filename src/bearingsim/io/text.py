@@ -47,6 +47,11 @@ def _fields(line: str) -> list[str]:
 
 
 def _number(s: str) -> float | None:
+    """The number a field holds, or None. Python's digit grouping (``1_000``) is not a number
+    in a data file: a spreadsheet never writes it, and a field such as ``3_2`` is more likely a
+    label than 32."""
+    if "_" in s:
+        return None
     try:
         return float(s)
     except ValueError:
