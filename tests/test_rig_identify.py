@@ -176,6 +176,12 @@ def test_cli_identify_model_gain_writes_the_models_gain(tmp_path):
     the record), with its provenance; the healthy record is skipped, a folder without a
     manifest and a set of healthy records only are refused in one line before any
     simulation, writing nothing."""
+    from bearingsim.cli.rig import identify_cmd
+    from bearingsim.rig import GAIN_MODELS
+
+    # the option's choices are written out (the CLI starts without NumPy): the rig's models
+    opt = next(p for p in identify_cmd.params if p.name == "model_gains")
+    assert tuple(opt.type.choices) == GAIN_MODELS
     rec, healthy = CWRU / "48k_Drive_End_OR007@6_0_135.mat", CWRU / "normal_0_97.mat"
     out = tmp_path / "rig.toml"
     r = _cli("rig", "identify", str(rec), str(healthy), "--channel", "DE", "--name", "g",

@@ -50,6 +50,7 @@ __all__ = [
     "lomo_rig",
     "model_path_scale",
     "model_path_scale_conditions",
+    "cwru_row",
     "ratios",
     "rig_without_size",
     "side_by_side",
@@ -59,6 +60,8 @@ __all__ = [
 
 #: CWRU EDM fault depth [m] (0.011 in, the Case Western Reserve University Bearing Data Center)
 CWRU_DEPTH_M = 0.011 * 0.0254
+#: the bearing faults a record can be simulated with (and a model gain matched to)
+FAULT_FAMILIES = ("outer", "inner", "ball")
 #: the realism of a simulation beside a measurement: the random slip [%], the drop profile and
 #: the contacts' composite RMS roughness [m] a scenario with a rig takes by default, defined
 #: with their sources in :mod:`bearingsim.config` (:data:`~bearingsim.config.REALISM`)
@@ -134,20 +137,20 @@ def simulate_record(
     from .catalog import get_bearing
     from .geometry import characteristic_frequencies
     from .io.signal import read_signal
-    from .rig import Rig, _result_fs, _shaft_hz, apply_rig, load_rig
+    from .rig import Rig, load_rig
 
     p = Path(record)
-    rows = cwru_manifest(p.parent)
-    if p.name not in rows:
+    row = cwru_row(p)
+    if row is None:
         raise ConfigError(f"record {p.name!r} is not in {p.parent / 'manifest.csv'}")
-    row = rows[p.name]
     fault = row["fault"].split()[0]
-    if fault not in ("outer", "inner", "ball"):
+    if fault not in FAULT_FAMILIES:
         raise ConfigError(
             f"record {p.name}: fault {row['fault']!r} cannot be simulated; valid: a record of "
             "an outer-race, inner-race or ball fault"
         )
     end = row["end"]
+    rig = rig if isinstance(rig, Rig) else load_rig(rig)
     meas = read_signal(p, channel=end)
     fs = float(meas.fs)
     rpm = float(meas.rpm or row["nominal_rpm"])
@@ -176,18 +179,10 @@ def simulate_record(
             **common,
         )
         if end == "FE":
-            rig = replace(load_rig(rig) if not isinstance(rig, Rig) else rig,
-                          input_channel="acc_y_fe")  # fmt: skip
+            rig = replace(rig, input_channel="acc_y_fe")
     else:
         sc = dict(model=model, bearing=bearing, fault=fault, **keys, **common)
-    bare = simulate(sc)
-    res = apply_rig(bare, rig, seed=seed)
-    sensor = np.asarray(res["acc_sensor"], dtype=float)
-    # the rig is linear in the model's output: with a zero input, the same rate, shaft speed
-    # and seed as apply_rig's, it gives exactly what it adds
-    background = (rig if isinstance(rig, Rig) else load_rig(rig)).apply(
-        np.zeros(sensor.size), _result_fs(bare), shaft_hz=_shaft_hz(bare), seed=seed
-    )
+    sensor, background = _through_rig(simulate(sc), rig, seed)
     kin = characteristic_frequencies(get_bearing(bearing), rpm / 60.0)
     fault_hz = {"outer": kin.bpfo_hz, "inner": kin.bpfi_hz, "ball": 2.0 * kin.bsf_hz}[fault]
     n = int(round(duration_s * fs))
@@ -400,7 +395,6 @@ def model_path_scale_conditions(
     from tqdm import tqdm
 
     from . import simulate
-    from .rig import apply_rig
 
     if model == "rotor":
         raise ConfigError(
@@ -422,7 +416,7 @@ def model_path_scale_conditions(
                 f"conditions[{i}]: unknown key {extra[0]!r}; valid keys: "
                 + ", ".join(sorted(allowed))
             )
-        if cond.get("fault") not in ("none", "outer", "inner", "ball"):
+        if cond.get("fault") not in ("none", *FAULT_FAMILIES):
             raise ConfigError(
                 f"conditions[{i}].fault = {cond.get('fault')!r} is invalid; valid: none, outer, "
                 "inner, ball"
@@ -466,23 +460,40 @@ def model_path_scale_conditions(
             antialias=True,
             **keys,
         )
-        res = apply_rig(simulate(sc), rig, seed=seed)
-        sim = np.asarray(res["acc_sensor"], dtype=float)
-        bg = rig.apply(np.zeros(sim.size), fs, shaft_hz=float(rpm) / 60.0, seed=seed)
+        sim, bg = _through_rig(simulate(sc), rig, seed)
         powers.append(_powers(np.asarray(rec.x[: sim.size], dtype=float), sim, bg))
         names.append(Path(rec.source).name)
     return _with_gain(rig, model, powers, names, duration_s)
 
 
+def cwru_row(record: str | Path) -> dict[str, str] | None:
+    """The ``manifest.csv`` row of a CWRU record (the manifest beside it), or None when the
+    folder has no manifest or the manifest does not list the record."""
+    p = Path(record)
+    if not (p.parent / "manifest.csv").is_file():
+        return None
+    return cwru_manifest(p.parent).get(p.name)
+
+
 def _has_fault(record: Path) -> bool:
-    """Whether a CWRU record's manifest row names an outer-race, inner-race or ball fault (a
-    record outside the manifest passes, for :func:`simulate_record`'s error)."""
-    row = (
-        cwru_manifest(record.parent).get(record.name)
-        if (record.parent / "manifest.csv").is_file()
-        else None
+    """Whether a CWRU record's manifest row names one of :data:`FAULT_FAMILIES` (a record
+    outside the manifest passes, for :func:`simulate_record`'s error)."""
+    row = cwru_row(record)
+    return row is None or row["fault"].split()[0] in FAULT_FAMILIES
+
+
+def _through_rig(bare, rig, seed: int):
+    """The sensor signal of a simulation result through ``rig`` (a :class:`Rig`) and the part
+    of it the rig adds whatever the model does (background, tones, sensor noise) [m/s^2]. The
+    rig is linear in the model's output: with a zero input, the same rate, shaft speed and
+    seed as :func:`bearingsim.rig.apply_rig`'s, it gives exactly what it adds."""
+    from .rig import _result_fs, _shaft_hz, apply_rig
+
+    sensor = np.asarray(apply_rig(bare, rig, seed=seed)["acc_sensor"], dtype=float)
+    background = rig.apply(
+        np.zeros(sensor.size), _result_fs(bare), shaft_hz=_shaft_hz(bare), seed=seed
     )
-    return row is None or row["fault"].split()[0] in ("outer", "inner", "ball")
+    return sensor, background
 
 
 def _without_gain(rig, model: str):

@@ -55,6 +55,7 @@ def rig_group() -> None:
     "--model-gain",
     "model_gains",
     multiple=True,
+    # bearingsim.rig.GAIN_MODELS, written out: the CLI starts without importing NumPy
     type=click.Choice(("vsm", "dem", "tvsm", "rotor")),
     help="Also identify this model's path gain (repeatable): the records' conditions are "
     "simulated with it (1 s each, with the realism a rig brings) and the path scaled so "
@@ -120,18 +121,17 @@ def identify_cmd(
     if conditions is not None:
         user = _user_conditions(conditions, records, recs, model_gains)
     elif model_gains:  # before any work: is every record's condition known?
-        from ..io.cwru import cwru_manifest
+        from ..side_by_side import FAULT_FAMILIES, cwru_row
 
         for p in records:
-            man = Path(p).parent / "manifest.csv"
-            row = cwru_manifest(man.parent).get(Path(p).name) if man.is_file() else None
+            row = cwru_row(p)
             if row is None:
                 raise ConfigError(
-                    f"--model-gain: record {Path(p).name!r} is not in {man}; valid: CWRU "
-                    "records listed there (the simulation needs each record's fault, size and "
-                    "speed)"
+                    f"--model-gain: record {Path(p).name!r} is not in "
+                    f"{Path(p).parent / 'manifest.csv'}; valid: CWRU records listed there (the "
+                    "simulation needs each record's fault, size and speed)"
                 )
-            if row["fault"].split()[0] in ("outer", "inner", "ball"):
+            if row["fault"].split()[0] in FAULT_FAMILIES:
                 faulty.append(Path(p))
         if not faulty:
             raise ConfigError(
@@ -239,6 +239,8 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
     every record listed once by file name, a known fault and bearing, positive sizes."""
     import csv
 
+    from ..side_by_side import FAULT_FAMILIES
+
     if "rotor" in models:
         raise ConfigError(
             "--model-gain rotor with --conditions: the rotor model is the CWRU motor; its gain "
@@ -282,7 +284,7 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
         if name in by_name:
             raise ConfigError(f"--conditions {path}, line {i}: file {name!r} is listed twice")
         fault = (row["fault"] or "").strip().lower()
-        if fault not in ("none", "outer", "inner", "ball"):
+        if fault not in ("none", *FAULT_FAMILIES):
             raise ConfigError(
                 f"--conditions {path}, line {i}: fault = {row['fault']!r} is invalid; valid: "
                 "none, outer, inner, ball"

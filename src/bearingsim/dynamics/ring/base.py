@@ -261,9 +261,7 @@ class ModelInputs:
             self, "ball_diameter_spread", check_ball_spread(self.ball_diameter_spread)
         )
         object.__setattr__(self, "roughness", check_roughness(self.roughness))
-        object.__setattr__(
-            self, "axial_load", check_range("axial_load_n", self.axial_load, 0.0, unit="N")
-        )
+        object.__setattr__(self, "axial_load", ax)  # checked above, with the radial load
         prof = parse_enum(DefectProfile, self.profile, "defect_profile")
         object.__setattr__(self, "profile", prof)
         if prof is DefectProfile.GEOMETRIC and self.retention_factor is not None:
