@@ -152,14 +152,14 @@ def test_negentropy_of_gaussian_noise():
 
 def test_fused_diagnosis_of_the_synthetic_outer_fault(synthetic):
     """All methods together: the BPFO train in tones and noise is an outer-race fault, found in
-    at least three of the four views, with a calibrated confidence >= 0.5."""
+    at least three of the five views, with a calibrated confidence >= 0.5."""
     x = synthetic["bearing"] + synthetic["tones"] + synthetic["noise"]
     d = diagnose_fused(x, FS, BEARING, SHAFT)
     assert d.diagnosis == "outer", d.notes
     assert d.confidence >= 0.5
     assert sum("outer" in v.supported for v in d.views) >= 3
     js = d.as_dict()
-    assert [e["method"] for e in js["evidence"]] == ["raw", "cpw", "drs_sk", "drs_info"]
+    assert [e["method"] for e in js["evidence"]] == ["raw", "cpw", "drs_sk", "drs_info", "csc"]
 
 
 def test_noise_alone_is_none():

@@ -16,7 +16,9 @@ MSSP 64–65, 100–131, §4), one function each, as building blocks of
    (:func:`.kurtogram.band_maps`) and its SES — Smith & Randall's "benchmark method".
 
 The fourth view, for records where impulsive noise fools the kurtogram, is the spectral infogram
-(Antoni 2016; :func:`.kurtogram.band_maps`).
+(Antoni 2016; :func:`.kurtogram.band_maps`); the fifth, which chooses no band at all, the
+enhanced envelope spectrum of the cyclic spectral coherence (Antoni, Xin & Hamzaoui 2017;
+:mod:`.coherence`).
 
 **Equations.**
 SES (Randall & Antoni 2011, §3.2): ``SE(t) = |x_a(t)|^2`` with ``x_a`` the analytic signal of

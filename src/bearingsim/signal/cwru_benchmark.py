@@ -203,9 +203,9 @@ def markdown(cal: Calibration, recs: list[dict[str, Any]]) -> str:
         f"Calibration fitted on the development set: p = 1/(1 + exp(-({cal.intercept:.3f} + "
         f"{cal.slope:.3f} margin))) ({cal.fitted_on}).",
         "",
-        "| record | truth | S&R grade | raw | cpw | drs_sk | drs_info | leading | margin | "
+        "| record | truth | S&R grade | raw | cpw | drs_sk | drs_info | csc | leading | margin | "
         "p (how) | verdict | confidence | right | evidence (best view) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in recs:
         p = "-" if r["p"] is None else f"{r['p']:.2f} ({r['how']})"
@@ -213,7 +213,8 @@ def markdown(cal: Calibration, recs: list[dict[str, Any]]) -> str:
         v = r["views"]
         lines.append(
             f"| `{r['file']}` | {r['truth']} | {r['grade']} | {v['raw']} | {v['cpw']} | "
-            f"{v['drs_sk']} | {v['drs_info']} | {r['leading'] or '-'} | {r['margin']:.2f} | {p} "
+            f"{v['drs_sk']} | {v['drs_info']} | {v['csc']} | {r['leading'] or '-'} | "
+            f"{r['margin']:.2f} | {p} "
             f"| {r['verdict']} | {r['confidence']:.2f} | {ok} | {r['evidence']} |"
         )
     # reliability: probability of the leading family vs share right

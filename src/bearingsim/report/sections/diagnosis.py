@@ -1,14 +1,15 @@
 """Report section for issue 17: the fused diagnosis on every CWRU record, and its calibration.
 
 Each record of ``../shared/data/cwru`` is diagnosed by :func:`bearingsim.signal.fused.
-diagnose_fused` (four views: raw, cepstral pre-whitening, DRS + kurtogram band, DRS + infogram
-band), and its margin mapped to a probability by the calibration fitted on the development
-set (every 0.014 in record), each development record getting the map fitted **without its
-mounting** (:mod:`bearingsim.signal.cwru_benchmark`, the same code as
-``scripts/calibrate_diagnosis.py``). One row per record against its CWRU label (a
-measurement): ``match`` when the verdict is the seeded fault (or "none" for the healthy
-record), ``mismatch`` otherwise — a wrong fault type, or "none"/"uncertain" for a faulty
-record. A figure shows the reliability curve (stated probability against the share right) and
+diagnose_fused` (five views: raw, cepstral pre-whitening, DRS + kurtogram band, DRS + infogram
+band, DRS cyclic spectral coherence over every band), and its margin mapped to a probability
+by the calibration fitted on the development set (every 0.014 in record), each development
+record getting the map fitted **without its mounting**
+(:mod:`bearingsim.signal.cwru_benchmark`, the same code as ``scripts/calibrate_diagnosis.py``).
+One row per record against its CWRU label (a measurement): ``match`` when the verdict is the
+seeded fault (or "none" for the healthy record), ``mismatch`` otherwise — a wrong fault type,
+or "none"/"uncertain" for a faulty record. A figure shows the reliability curve (stated
+probability against the share right) and
 the margin-to-probability map with every record on it.
 """
 
@@ -23,7 +24,7 @@ from ..figures import FULL_WIDTH, new_figure, save_figure
 
 __all__ = ["TITLE", "run"]
 
-TITLE = "Diagnosis on the CWRU records: four views fused, calibrated confidence (issue 17)"
+TITLE = "Diagnosis on the CWRU records: five views fused, calibrated confidence (issue 17)"
 NOTE = "see docs/validation.md, 'Diagnosis on the CWRU benchmark'"
 #: probability bins of the reliability curve
 BINS = ((0.5, 0.6), (0.6, 0.7), (0.7, 0.8), (0.8, 0.9), (0.9, 1.0001))
@@ -158,7 +159,7 @@ def run(ctx: Context) -> Section:
     ]
     _figure(ctx, sec, cal, recs)
     sec.text = (
-        "Every record of the CWRU folder, diagnosed with one fixed rule (four views, a family "
+        "Every record of the CWRU folder, diagnosed with one fixed rule (five views, a family "
         "needs two, and at least one method must read it on its own: otherwise 'uncertain'). "
         "The confidence is the calibrated probability of the leading family; the "
         "0.014 in records are the development set and each gets the map fitted without its "
