@@ -18,8 +18,9 @@ It is the spectral correlation ``S_x(alpha, f_k)`` seen through the window's cyc
 frequency-shifted products to extend it beyond the window's bandwidth, which is not needed here:
 the window is chosen short enough to pass every cyclic frequency read). Dividing by the carrier's
 mean power (whitening) and by ``W(alpha) / W(0)`` gives the magnitude of the cyclic spectral
-coherence ``|gamma(alpha, f_k)|``, 1 at ``alpha = 0`` and between 0 and about 1 elsewhere:
-the depth at which carrier ``f_k`` is modulated at ``alpha``, whatever its power.
+coherence ``|gamma(alpha, f_k)|``, between 0 and about 1 for ``alpha > 0``: the depth at which
+carrier ``f_k`` is modulated at ``alpha``, whatever its power. (At ``alpha = 0`` it is 1 by
+definition; the results give 0 there, the mean removed as in the other views' spectra.)
 
 The **enhanced envelope spectrum** (EES) is its mean over the carriers::
 
@@ -118,7 +119,7 @@ class CyclicCoherence:
     alpha : ndarray
         Cyclic frequencies [Hz] (orders), shape ``(A,)``, from 0 to ``alpha_max``.
     gamma : ndarray
-        ``|gamma(alpha, f_k)|`` [-], shape ``(K, A)``.
+        ``|gamma(alpha, f_k)|`` [-], shape ``(K, A)`` (0 at ``alpha = 0``: module docstring).
     window : int
         STFT window ``N_w`` [samples].
     hop : int
@@ -183,7 +184,9 @@ def cyclic_modulation_coherence(
     mean = power.mean(axis=1, keepdims=True)
     mean[mean <= 0.0] = 1.0  # a silent carrier: zero coherence, not NaN
     n_t = power.shape[1]
-    gamma = np.abs(np.fft.rfft(power / mean, axis=1)) / n_t
+    # the mean removed, as in the other views' spectra: gamma(0) = 1 by definition carries
+    # nothing and would dwarf every line in a plot
+    gamma = np.abs(np.fft.rfft(power / mean - 1.0, axis=1)) / n_t
     alpha = np.fft.rfftfreq(n_t, hop / fs)
     m = alpha <= alpha_max
     w2 = w**2

@@ -370,22 +370,27 @@ class FusedDiagnosis:
         }
 
     def plot(self, title: str = "", f_max: float | None = None, unit: str | None = None):
-        """Squared envelope spectrum of :attr:`best_view` with its lines marked (see
-        :meth:`.diagnosis.Diagnosis.plot`); returns the Figure."""
+        """Envelope spectrum of :attr:`best_view` with its lines marked (see
+        :meth:`.diagnosis.Diagnosis.plot`): a squared envelope spectrum [unit^2], or for the
+        ``csc`` view the enhanced envelope spectrum (a coherence [-]); returns the Figure."""
         from dataclasses import replace
 
         v = self.best_view
-        u = f"({unit})^2" if unit else None
         shown = replace(v.diagnosis, peaks=self.peaks)  # without the shaft cursors
+        if v.name == "csc":
+            what, u, quantity = "enhanced envelope spectrum", "-", "mean cyclic coherence"
+        else:
+            what, u = "squared envelope spectrum", f"({unit})^2" if unit else None
+            quantity = "squared-envelope amplitude"
         return shown.plot(
             title=title
             or (
-                f"{v.name}: squared envelope spectrum, band {v.band[0]:.0f}-{v.band[1]:.0f}: "
+                f"{v.name}: {what}, band {v.band[0]:.0f}-{v.band[1]:.0f}: "
                 f"{self.diagnosis} ({self.confidence:.2f})"
             ),
             f_max=f_max,
             unit=u,
-            quantity="squared-envelope amplitude",
+            quantity=quantity,
         )
 
 
