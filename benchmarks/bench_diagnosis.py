@@ -2,9 +2,9 @@
 
 Prints
 1. the warm in-process time of all methods (DRS, CPW, kurtogram + infogram, four squared
-   envelope spectra, line search, fusion) on one 10 s 12 kHz record (CWRU 169) and the share
-   of each step; issue 17's target: <= 0.2 s on one core; and of the contact-angle report
-   ``analyze`` adds to a race-fault verdict;
+   envelope spectra, the cyclic-coherence view, line search, fusion) on one 10 s 12 kHz
+   record (CWRU 169) and the share of each step; issue 17's target: <= 0.2 s on one core;
+   and of the contact-angle report ``analyze`` adds to a race-fault verdict;
 2. the wall time of one ``bearingsim analyze`` call on every ``.mat`` of ``../shared/data/cwru``
    (start-up included, ``--json``, all cores); target: <= 15 s on 2 cores;
 3. the wall time of one call on one record (CWRU 169), start-up included (the median of
@@ -36,6 +36,7 @@ from bearingsim.signal.benchmark import (  # noqa: E402
     cepstral_prewhitening,
     discrete_random_separation,
 )
+from bearingsim.signal.coherence import enhanced_envelope_spectrum  # noqa: E402
 from bearingsim.signal.contact_angle import estimate_contact_angle  # noqa: E402
 from bearingsim.signal.fused import diagnose_fused  # noqa: E402
 from bearingsim.signal.kurtogram import band_maps  # noqa: E402
@@ -62,6 +63,7 @@ def main() -> int:
         "DRS": lambda: discrete_random_separation(x),
         "CPW": lambda: cepstral_prewhitening(x),
         "kurtogram + infogram": lambda: band_maps(rnd, fs, min_bandwidth_hz=3 * 5.4152 * fr + fr),
+        "cyclic coherence (EES)": lambda: enhanced_envelope_spectrum(rnd, fs, 3 * 5.4152 * fr + fr),
     }
     total = best(lambda: diagnose_fused(x, fs, b, fr), a.repeats)
     print(f"record {path.name}: {x.size} samples at {fs:.0f} Hz ({x.size / fs:.2f} s)")
