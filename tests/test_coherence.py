@@ -160,3 +160,17 @@ def test_a_verdict_shown_in_the_coherence_view_is_plotted_as_a_coherence():
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def test_a_rate_too_low_for_the_coherence_leaves_four_views():
+    """At 2 kHz the 6205's highest line read (516 Hz at 1797 r/min) needs a window shorter than
+    the coherence's shortest (8 samples would pass only 250 Hz): the fused diagnosis runs the
+    other four views and says why, instead of failing on a record the four views can read
+    (the coherence view's first version refused it)."""
+    from bearingsim.signal.fused import diagnose_fused
+
+    x = np.random.default_rng(17).standard_normal(int(20 * 2000.0))
+    d = diagnose_fused(x, 2000.0, "6205-cwru", 1797.0 / 60.0)
+    assert [v.name for v in d.views] == ["raw", "cpw", "drs_sk", "drs_info"]
+    assert d.diagnosis == "none"
+    assert any(n.startswith("csc: not run") for n in d.notes), d.notes

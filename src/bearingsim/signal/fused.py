@@ -14,7 +14,8 @@ envelope spectrum (:mod:`.coherence`):
               infogram, Antoni 2016): repetitive transients, not isolated impulses, choose it
 ``csc``       enhanced envelope spectrum of the DRS random part: its cyclic spectral coherence
               averaged over every carrier band (Antoni, Xin & Hamzaoui 2017): no band is chosen,
-              each band counts by its modulation depth, not its energy (fifteenth session)
+              each band counts by its modulation depth, not its energy (fifteenth session;
+              not run, with a note, when the sample rate is below 8 x the highest line read)
 ============  ==============================================================================
 
 A band given by the caller replaces the whole band and the two selected bands (the three
@@ -94,6 +95,7 @@ from numpy.typing import ArrayLike
 from ..errors import ConfigError, check_positive
 from ..geometry import Bearing
 from .benchmark import cepstral_prewhitening, discrete_random_separation
+from .coherence import MIN_WINDOW as COHERENCE_MIN_WINDOW
 from .coherence import enhanced_envelope_spectrum
 from .diagnosis import FAMILIES, Diagnosis, DiagnosisRule, diagnose_spectrum, min_band_width
 from .envelope import BandEnvelopes, check_band
@@ -465,8 +467,15 @@ def diagnose_fused(
     }
     if band is None:
         spectra["drs_info"] = (b_info, ses_rnd.squared_spectrum(b_info))
-    ees = enhanced_envelope_spectrum(rnd, fs, min_bw, carrier_band=band, domain=domain)
-    spectra["csc"] = (whole, ees)
+    skipped = []
+    if min_bw <= fs / COHERENCE_MIN_WINDOW:
+        ees = enhanced_envelope_spectrum(rnd, fs, min_bw, carrier_band=band, domain=domain)
+        spectra["csc"] = (whole, ees)
+    else:  # no window of >= 8 samples passes the highest line: the other views still can
+        skipped.append(
+            f"csc: not run, the sample rate {fs:.6g} is below {COHERENCE_MIN_WINDOW} x the "
+            f"highest line read ({min_bw:.6g}); the other four views decide"
+        )
     views: list[View] = []
     cage_views = 0
     for name, (b, es) in spectra.items():
@@ -489,7 +498,7 @@ def diagnose_fused(
         f"{', '.join(v.supported) or 'nothing'}, scores "
         + ", ".join(f"{f} {v.scores[f]:.2f}" for f in FAMILIES)
         for v in views
-    ]
+    ] + skipped
     if kg is not None:
         notes.append(f"kurtogram of the DRS random part: kurtosis {kg.max_kurtosis:.3g}")
     if ig is not None:
