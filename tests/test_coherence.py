@@ -110,6 +110,7 @@ def test_carrier_band_keeps_its_bins():
     d = cyclic_modulation_coherence(x, FS, 500.0)
     assert d.carrier.min() >= 500.0 and d.carrier.max() < FS / 2
     assert d.gamma.shape == (d.carrier.size, d.alpha.size)
+    assert d.band == (d.carrier[0] - 375.0, d.carrier[-1] + 375.0)  # what the view reports
 
 
 @pytest.mark.parametrize(
@@ -153,6 +154,7 @@ def test_a_verdict_shown_in_the_coherence_view_is_plotted_as_a_coherence():
     rec = read_signal(path, channel="DE")
     d = diagnose_fused(rec.x, rec.fs, resolve_bearing("6205-cwru"), rec.rpm / 60.0)
     assert d.best_view.name == "csc"
+    assert d.band_hz == (375.0, 5625.0)  # the carriers averaged (750-5250 Hz), not 0-6000 Hz
     fig = d.plot(unit="m/s^2")
     ax = fig.axes[0]
     assert "enhanced envelope spectrum" in ax.get_title()

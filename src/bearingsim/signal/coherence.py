@@ -126,6 +126,8 @@ class CyclicCoherence:
         STFT hop ``R`` [samples].
     resolution : float
         Cyclic resolution ``fs / n`` of the record [Hz] (orders).
+    spacing : float
+        Carrier spacing ``fs / N_w`` [Hz] (orders).
     """
 
     carrier: NDArray[np.float64]
@@ -134,6 +136,17 @@ class CyclicCoherence:
     window: int
     hop: int
     resolution: float
+    spacing: float
+
+    @property
+    def band(self) -> tuple[float, float]:
+        """Frequency band the carriers cover, half a spacing beyond the outer ones [Hz]."""
+        half = 0.5 * self.spacing
+        return float(max(self.carrier[0] - half, 0.0)), float(self.carrier[-1] + half)
+
+    def enhanced_envelope_spectrum(self, domain: Domain | str = Domain.HZ) -> Spectrum:
+        """The mean of ``gamma`` over the carriers (module docstring) [-]."""
+        return Spectrum(self.alpha, self.gamma.mean(axis=0), "-", domain, self.resolution)
 
 
 def cyclic_modulation_coherence(
@@ -191,7 +204,7 @@ def cyclic_modulation_coherence(
     m = alpha <= alpha_max
     w2 = w**2
     gamma = gamma[:, m] / _cyclic_response(w2, alpha[m], fs)[None, :]
-    return CyclicCoherence(f[keep], alpha[m], gamma, nw, hop, fs / a.size)
+    return CyclicCoherence(f[keep], alpha[m], gamma, nw, hop, fs / a.size, df)
 
 
 def enhanced_envelope_spectrum(
@@ -213,4 +226,4 @@ def enhanced_envelope_spectrum(
         Abscissa of the result.
     """
     c = cyclic_modulation_coherence(x, fs, alpha_max, carrier_band=carrier_band)
-    return Spectrum(c.alpha, c.gamma.mean(axis=0), "-", domain, resolution=c.resolution)
+    return c.enhanced_envelope_spectrum(domain)

@@ -96,7 +96,7 @@ from ..errors import ConfigError, check_positive
 from ..geometry import Bearing
 from .benchmark import cepstral_prewhitening, discrete_random_separation
 from .coherence import MIN_WINDOW as COHERENCE_MIN_WINDOW
-from .coherence import enhanced_envelope_spectrum
+from .coherence import cyclic_modulation_coherence
 from .diagnosis import FAMILIES, Diagnosis, DiagnosisRule, diagnose_spectrum, min_band_width
 from .envelope import BandEnvelopes, check_band
 from .kurtogram import Infogram, Kurtogram, band_maps
@@ -469,8 +469,8 @@ def diagnose_fused(
         spectra["drs_info"] = (b_info, ses_rnd.squared_spectrum(b_info))
     skipped = []
     if min_bw <= fs / COHERENCE_MIN_WINDOW:
-        ees = enhanced_envelope_spectrum(rnd, fs, min_bw, carrier_band=band, domain=domain)
-        spectra["csc"] = (whole, ees)
+        csc = cyclic_modulation_coherence(rnd, fs, min_bw, carrier_band=band)
+        spectra["csc"] = (csc.band, csc.enhanced_envelope_spectrum(domain))
     else:  # no window of >= 8 samples passes the highest line: the other views still can
         skipped.append(
             f"csc: not run, the sample rate {fs:.6g} is below {COHERENCE_MIN_WINDOW} x the "
