@@ -176,3 +176,26 @@ def test_a_rate_too_low_for_the_coherence_leaves_four_views():
     assert [v.name for v in d.views] == ["raw", "cpw", "drs_sk", "drs_info"]
     assert d.diagnosis == "none"
     assert any(n.startswith("csc: not run") for n in d.notes), d.notes
+
+
+def test_the_coherence_map_plots_with_units_and_marks():
+    """The map and the enhanced spectrum on one cyclic axis: labelled, with units, no overlaps
+    (``figure_problems``), the marked lines labelled left to right."""
+    import matplotlib.pyplot as plt
+
+    from bearingsim.plotting import figure_problems
+
+    rng = np.random.default_rng(18)
+    t = np.arange(int(4 * FS)) / FS
+    x = rng.standard_normal(t.size) * (1 + 0.5 * np.cos(2 * np.pi * 97.0 * t))
+    c = cyclic_modulation_coherence(x, FS, 500.0)
+    fig = c.plot(lines={"2x": 194.0, "f0": 97.0})
+    try:
+        assert figure_problems(fig) == []
+        a1, a2 = fig.axes[:2]
+        assert a1.get_ylabel() == "carrier [kHz]"
+        assert a2.get_xlabel() == "cyclic frequency [Hz]"
+        texts = [t.get_text() for t in a2.texts]
+        assert texts == ["f0", "2x"]
+    finally:
+        plt.close(fig)

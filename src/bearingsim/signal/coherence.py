@@ -148,6 +148,57 @@ class CyclicCoherence:
         """The mean of ``gamma`` over the carriers (module docstring) [-]."""
         return Spectrum(self.alpha, self.gamma.mean(axis=0), "-", domain, self.resolution)
 
+    def plot(
+        self,
+        title: str = "",
+        lines: dict[str, float] | None = None,
+        domain: Domain | str = Domain.HZ,
+    ):
+        """The coherence map (cyclic frequency × carrier, ``|gamma|`` in colour) above the
+        enhanced envelope spectrum, on one cyclic-frequency axis; returns the Figure. Which
+        carrier bands hold a cyclic line shows on the map (a kurtogram shows one band, the
+        enhanced spectrum none).
+
+        Parameters
+        ----------
+        title : str
+            Figure title.
+        lines : dict, optional
+            Cyclic frequencies to mark, by label [Hz] (orders), e.g. ``{"BPFO": 107.4}``.
+        domain : Domain
+            Abscissa: Hz (carriers in kHz) or orders (carriers in orders).
+        """
+        from ..geometry import parse_enum
+        from ..plotting import FULL_WIDTH, mark_lines, new_figure
+
+        domain = parse_enum(Domain, domain, "domain")
+        hz = domain is Domain.HZ
+        fig, (a1, a2) = new_figure(2, 1, width=FULL_WIDTH, row_height=2.6, sharex=True)
+        scale, cu = (1e-3, "kHz") if hz else (1.0, "orders")
+        au = "Hz" if hz else "orders"
+        a = self.alpha[1:]  # alpha = 0 is 0 by construction (module docstring)
+        g = self.gamma[:, 1:]
+        top = float(np.quantile(g, 0.999)) if g.size else 1.0
+        mesh = a1.pcolormesh(
+            a, self.carrier * scale, g, shading="nearest", cmap="viridis", vmin=0.0,
+            vmax=top if top > 0.0 else None, rasterized=True,
+        )  # fmt: skip
+        fig.colorbar(mesh, ax=a1, label="|coherence| [-]")
+        a1.set_ylabel(f"carrier [{cu}]")
+        a1.set_title(
+            title or f"cyclic spectral coherence: window {self.window} samples, "
+            f"{self.carrier.size} carriers of {self.spacing:.4g} {au}"
+        )
+        a2.plot(a, g.mean(axis=0), lw=0.7, color="C0")
+        a2.set_xlabel(f"cyclic frequency [{au}]")
+        a2.set_ylabel("mean coherence [-]")
+        a2.set_xlim(0.0, float(self.alpha[-1]))
+        a2.set_ylim(bottom=0.0)
+        if lines:
+            marks = sorted(lines.items(), key=lambda kv: kv[1])  # labels left to right
+            mark_lines(a2, [v for _, v in marks], "marked lines", texts=[k for k, _ in marks])
+        return fig
+
 
 def cyclic_modulation_coherence(
     x: ArrayLike,
