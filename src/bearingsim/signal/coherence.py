@@ -186,7 +186,8 @@ class CyclicCoherence:
         fig.colorbar(mesh, ax=a1, label="|coherence| [-]")
         a1.set_ylabel(f"carrier [{cu}]")
         a1.set_title(
-            title or f"cyclic spectral coherence: window {self.window} samples, "
+            title
+            or f"cyclic spectral coherence: window {self.window} samples, "
             f"{self.carrier.size} carriers of {self.spacing:.4g} {au}"
         )
         a2.plot(a, g.mean(axis=0), lw=0.7, color="C0")
