@@ -120,6 +120,12 @@ def test_carrier_band_keeps_its_bins():
         (dict(alpha_max=-1.0), "alpha_max_hz"),
         (dict(alpha_max=500.0, carrier_band=(5000.0, 7000.0)), "carrier_band"),
         (dict(alpha_max=500.0, carrier_band=(3000.0, 2000.0)), "carrier_band"),
+        (dict(alpha_max=500.0, carrier_band=("a", "b")), "carrier_band"),
+        (dict(alpha_max=500.0, carrier_band=(1.0, 2.0, 3.0)), "carrier_band"),
+        (dict(alpha_max=500.0, carrier_band=5.0), "carrier_band"),
+        (dict(alpha_max=500.0, carrier_band=(float("nan"), 3000.0)), "carrier_band"),
+        (dict(alpha_max=1e-4), "alpha_max_hz"),
+        (dict(alpha_max=1e-3), "samples"),
     ],
 )
 def test_bad_input_is_one_line(kwargs, field):
@@ -159,6 +165,13 @@ def test_a_verdict_shown_in_the_coherence_view_is_plotted_as_a_coherence():
     ax = fig.axes[0]
     assert "enhanced envelope spectrum" in ax.get_title()
     assert "coherence" in ax.get_ylabel() and "m/s^2" not in ax.get_ylabel()
+    assert ax.get_xlabel() == "cyclic frequency [Hz]"
+    plt_close = fig
+    fig = d.plot(title="185.mat [DE]: ball", unit="m/s^2")  # a caller's title keeps the view
+    assert "csc: enhanced envelope spectrum, band 375-5625 Hz" in fig.axes[0].get_title()
+    import matplotlib.pyplot as plt
+
+    plt.close(plt_close)
     import matplotlib.pyplot as plt
 
     plt.close(fig)
@@ -175,7 +188,8 @@ def test_a_rate_too_low_for_the_coherence_leaves_four_views():
     d = diagnose_fused(x, 2000.0, "6205-cwru", 1797.0 / 60.0)
     assert [v.name for v in d.views] == ["raw", "cpw", "drs_sk", "drs_info"]
     assert d.diagnosis == "none"
-    assert any(n.startswith("csc: not run") for n in d.notes), d.notes
+    note = next(n for n in d.notes if n.startswith("csc: not run"))
+    assert "2000 Hz" in note and "516.508 Hz" in note and "other views decide" in note
 
 
 def test_the_coherence_map_plots_with_units_and_marks():
@@ -195,7 +209,61 @@ def test_the_coherence_map_plots_with_units_and_marks():
         a1, a2 = fig.axes[:2]
         assert a1.get_ylabel() == "carrier [kHz]"
         assert a2.get_xlabel() == "cyclic frequency [Hz]"
-        texts = [t.get_text() for t in a2.texts]
-        assert texts == ["f0", "2x"]
+        labels = a2.get_legend_handles_labels()[1]
+        assert labels == ["f0", "2x"]  # one entry each, left to right
     finally:
         plt.close(fig)
+
+
+def test_extreme_rates_are_refused_before_any_window_is_built():
+    """A rate 1e300 times the highest line, or a line so low that no window fits the record,
+    is a one-line error within a second (exploratory testing: the window search built windows
+    of ever more samples until the memory ran out)."""
+    import time
+
+    x = np.random.default_rng(19).standard_normal(int(10 * FS))
+    for fs, alpha in ((1e300, 516.0), (FS, 1e-3), (FS, 1e-4)):
+        t0 = time.perf_counter()
+        with pytest.raises(ConfigError):
+            cyclic_modulation_coherence(x, fs, alpha)
+        assert time.perf_counter() - t0 < 1.0
+
+
+def test_a_line_between_bins_keeps_its_coherence():
+    """The frames' transform is zero padded twice: AM noise (m = 1, coherence 2/3) at 107.36 Hz
+    (the 6205's BPFO, between two bins of a 10 s record) within 10 % of 2/3, as on a bin
+    (exploratory testing: 0.43, 36 % low, without the padding)."""
+    t = np.arange(int(10 * FS)) / FS
+    for f0 in (100.0, 100.05, 107.36):
+        x = np.random.default_rng(20).standard_normal(t.size) * (1 + np.cos(2 * np.pi * f0 * t))
+        assert _line(enhanced_envelope_spectrum(x, FS, 516.0), f0) == pytest.approx(
+            2 / 3, rel=0.10
+        ), f0
+
+
+def test_a_silent_signal_has_no_coherence():
+    """All zeros, or a constant: zero everywhere (alpha = 0 included), no NaN."""
+    for x in (np.zeros(int(FS)), np.full(int(FS), 1e5)):
+        e = enhanced_envelope_spectrum(x, FS, 500.0)
+        assert np.all(e.amplitude == 0.0) or np.max(np.abs(e.amplitude)) < 1e-12
+
+
+def test_a_leaderless_verdict_reports_the_kurtogram_band():
+    """A "none" verdict has no family to pick the best view by; it reports the benchmark
+    method's view (DRS, kurtogram band), whatever other views ran (exploratory testing: with
+    the coherence view appended the positional fallback became the infogram's)."""
+    from bearingsim.signal.fused import diagnose_fused
+
+    x = np.random.default_rng(21).standard_normal(int(10 * FS))
+    d = diagnose_fused(x, FS, "6205-cwru", 1797.0 / 60.0)
+    assert d.diagnosis == "none"
+    assert d.best_view.name == "drs_sk"
+
+
+def test_marked_lines_must_be_numbers():
+    x = np.random.default_rng(22).standard_normal(int(2 * FS))
+    c = cyclic_modulation_coherence(x, FS, 500.0)
+    with pytest.raises(ConfigError, match="lines"):
+        c.plot(lines={"b": "x"})
+    with pytest.raises(ConfigError, match="lines"):
+        c.plot(lines={"b": -5.0})
