@@ -267,3 +267,15 @@ def test_marked_lines_must_be_numbers():
         c.plot(lines={"b": "x"})
     with pytest.raises(ConfigError, match="lines"):
         c.plot(lines={"b": -5.0})
+
+
+@pytest.mark.parametrize("band", [("a", 3000.0), 5.0, (1.0, 2.0, 3.0), (float("nan"), 3000.0)])
+def test_a_malformed_band_is_one_line(band):
+    """The fused diagnosis's band: text, a scalar, three values or NaN are one-line errors
+    (exploratory testing: text and a scalar gave Python's ValueError and TypeError)."""
+    from bearingsim.signal.fused import diagnose_fused
+
+    x = np.random.default_rng(23).standard_normal(int(10 * FS))
+    with pytest.raises(ConfigError, match="band_hz") as e:
+        diagnose_fused(x, FS, "6205-cwru", 1797.0 / 60.0, band=band)
+    assert "\n" not in str(e.value)

@@ -32,18 +32,21 @@ EDGE_TAPER = 0.01
 
 def check_band(band: tuple[float, float], fs: float) -> tuple[float, float]:
     """Validate a frequency band ``(lo, hi)`` [Hz] against the Nyquist frequency ``fs/2`` [Hz]."""
-    if len(band) != 2:
+    try:
+        ok = len(band) == 2
+    except TypeError:  # a scalar, None
+        ok = False
+    if not ok:
         raise ConfigError(f"band_hz = {band!r} is invalid; valid: two numbers LO HI")
-    lo, hi = float(band[0]), float(band[1])
+    lo = check_range("band_hz low", band[0], 0.0, unit="Hz")
+    hi = check_range("band_hz high", band[1], unit="Hz")
     nyq = 0.5 * fs
-    check_range("band_hz low", lo, 0.0, unit="Hz")
     if lo >= nyq:
         raise ConfigError(
             f"band_hz low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
             f"fs_hz = {fs:.6g} Hz (fs too low for the requested band); valid range "
             f"[0, {nyq:.6g}) Hz"
         )
-    check_range("band_hz high", hi, unit="Hz")
     if hi > nyq:
         raise ConfigError(
             f"band_hz high = {hi:.6g} Hz is above the Nyquist frequency of fs_hz = {fs:.6g} Hz "
@@ -136,7 +139,7 @@ class BandEnvelopes:
         squared)."""
         from scipy import fft as sfft
 
-        band = check_band(tuple(band), self.fs)
+        band = check_band(band, self.fs)
         lo, hi = np.searchsorted(self._f, band)  # lines with lo <= f < hi, as envelope()
         lo = max(int(lo), 1)
         Z = np.zeros(self.nf, dtype=complex)
