@@ -426,6 +426,7 @@ def analyze_ias_cmd(
         res = IasResult.load(p)
         bearing = bearing or res.params.bearing
         sig = res.angle_signal(skip_s, samples_per_rev, budget=budget)
+        mean_speed = None
     else:
         if not p.is_file():
             raise ConfigError(f"file = {str(p)!r} does not exist")
@@ -438,6 +439,9 @@ def analyze_ias_cmd(
             angle, speed = v, speed_from_angle(t, v)
         else:
             angle, speed = angle_from_speed(t, v), v
+        # total angle over total time: exact, where the samples' derivative amplifies any
+        # timing noise (a mean of d angle/dt over jittered stamps is biased upwards)
+        mean_speed = float((angle[-1] - angle[0]) / (t[-1] - t[0]))
         limit = budget.memory_limit()[0]  # refused before anything is allocated
         sig = resample_to_angle(angle, speed, samples_per_rev,
                                 max_memory=limit if math.isfinite(limit) else None)  # fmt: skip
@@ -451,7 +455,7 @@ def analyze_ias_cmd(
             "outer_raceway_diameter": bearing.outer_raceway_diameter,
             "cage_ratio": kin.ftf_order,
         }
-    summary = analyze_speed_signal(sig, **kw)
+    summary = analyze_speed_signal(sig, mean_speed=mean_speed, **kw)
     if plot:
         from ..report.figures import save_figure
 

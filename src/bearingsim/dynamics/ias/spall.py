@@ -333,7 +333,9 @@ class IasSummary:
     Attributes
     ----------
     mean_speed : float
-        Mean angular speed [rad/s] (angle-domain mean).
+        Mean angular speed [rad/s]: total angle over total time, i.e. the harmonic mean of the
+        angle-uniform samples (the arithmetic mean of those weighs each sample by the time
+        the shaft took to turn through it inversely, and timing noise biases it upwards).
     ripple_rel : float
         ``(max - min) / mean`` of the speed [-].
     peaks : list of SpectralPeak
@@ -382,6 +384,7 @@ def analyze_speed_signal(
     cage_ratio: float | None = None,
     n_peaks: int = 5,
     method: SpallEstimator | str = SpallEstimator.STEPS,
+    mean_speed: float | None = None,
 ) -> IasSummary:
     """Mean speed, ripple, order peaks and (when the bearing is known) spall-width estimate.
 
@@ -403,8 +406,16 @@ def analyze_speed_signal(
         Number of order peaks reported.
     method : SpallEstimator
         Crossing-angle reading.
+    mean_speed : float, optional
+        Total angle over total time of the record [rad/s], when its sample times are known
+        (exact; the samples' own estimate is biased by timing noise that the derivative
+        amplifies); default: the harmonic mean of the angle-uniform samples.
     """
-    mean = float(sig.value.mean())
+    v = np.asarray(sig.value, dtype=float)
+    if mean_speed is not None:
+        mean = check_positive("mean_speed", mean_speed, "rad/s")
+    else:  # total angle over total time: sum(dtheta) / sum(dtheta / omega)
+        mean = float(v.size / np.sum(1.0 / v)) if np.all(v > 0.0) else float(v.mean())
     if not mean > 0:
         raise ConfigError(
             f"mean speed = {mean:.6g} rad/s; valid range (0, inf) rad/s (the shaft must turn)"
