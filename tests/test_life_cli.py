@@ -192,3 +192,17 @@ def test_life_solver_option(run_cli, tmp_path):
     p, d = runs["pcg"], runs["direct"]
     assert_allclose(p["cycles_initiation"], d["cycles_initiation"], rtol=1e-4)
     assert p["steps_initiation"] == d["steps_initiation"]
+
+
+def test_text_output_of_an_initiation_only_run_has_no_nan_and_gives_hours(run_cli, tmp_path):
+    """``--stop initiation`` leaves the spall life uncomputed: the text says so instead of
+    printing 'spall nan cycles (-1 blocks)' and NaN ratios; ``--rpm`` adds the lives in hours
+    to the text as the help says (exploratory testing: only the JSON had them)."""
+    r = run_cli(
+        "life", "6206", "--radial-load-n", "5000", *QUICK, "--rpm", "1500",
+        "-o", tmp_path / "l.nc",
+    )  # fmt: skip
+    assert r.code == 0, r.err
+    assert "nan" not in r.out.lower(), r.out
+    assert "spall not computed (--stop initiation)" in r.out
+    assert "at 1500 r/min: L10 = 653.2 h" in r.out  # ISO 281: 5.878e7 rev / (60 x 1500)
