@@ -130,3 +130,15 @@ def test_reproduce_section_qs5(run_cli, tmp_path):
     assert not bad, bad
     for name in ("outer", "outer_err", "inner", "inner_err"):
         assert (tmp_path / f"qs5_{name}.png").stat().st_size > 1000
+
+
+def test_a_constant_stiffness_lists_no_dominant_orders(run_cli):
+    """A centred axial load loads every ball alike: the stiffness is constant and its spectrum
+    is round-off, which is not listed as 'dominant orders' (exploratory testing: three unlabelled
+    orders with relative amplitude 0 were printed)."""
+    r = run_cli("stiffness", "6205", "--fz-n", "100", "--json")
+    assert r.code == 0, r.err
+    for name in ("radial", "axial", "tilt"):
+        assert r.json()["fluctuation"][name]["components"] == []
+    t = run_cli("stiffness", "6205", "--fz-n", "100")
+    assert "none (constant to 1e-8 of the mean)" in t.out

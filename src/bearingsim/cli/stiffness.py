@@ -238,8 +238,9 @@ def stiffness_cmd(
     fl = d["fluctuation"]
     for name in SERIES:
         f = fl[name]
-        comps = ", ".join(
-            f"{c['order_shaft']:.3f} ({c['label'] or '?'})" for c in f["components"][:3]
+        comps = (
+            ", ".join(f"{c['order_shaft']:.3f} ({c['label'] or '?'})" for c in f["components"][:3])
+            or "none (constant to 1e-8 of the mean)"
         )
         click.echo(
             f"  k_{name:<6} mean {f['mean']:.5g} {f['unit']}"

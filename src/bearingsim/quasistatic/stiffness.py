@@ -154,6 +154,11 @@ def label_order(
     return best
 
 
+#: components smaller than this share of the series' mean are not reported (a constant
+#: stiffness, e.g. under a centred axial load, has only round-off in its spectrum) [-]
+CONSTANT_REL = 1e-8
+
+
 def order_spectrum(
     series: NDArray[np.float64],
     points_per_rev: int,
@@ -171,7 +176,8 @@ def order_spectrum(
     amp, oc = sp.amplitude, sp.freq
     os_ = oc * cage_ratio
     mean = abs(float(x.mean())) or 1.0
-    floor = 1e-9 * max(float(amp.max()), 1e-300)
+    # a component below CONSTANT_REL of the mean is the solver's round-off, not a fluctuation
+    floor = max(1e-9 * max(float(amp.max()), 1e-300), CONSTANT_REL * mean)
     peaks, _ = find_peaks(np.r_[0.0, amp[1:]], height=floor)
     peaks = peaks[np.argsort(amp[peaks])[::-1]][:n_components]
     df = oc[1] - oc[0]
