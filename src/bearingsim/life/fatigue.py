@@ -425,10 +425,12 @@ def contact_fatigue_life(
         raise ConfigError(f"stop = {stop!r} is invalid; valid values 'spall', 'initiation'")
     max_steps = int(check_range("max_steps", max_steps, 1, 10_000_000))
     if dd * max_steps < 1.0:  # the fastest element gains delta_d per block, from D = 0 to 1
+        fix = f"max_steps >= {math.ceil(1.0 / dd - 1e-9):.6g}"
+        if max_steps >= 10:  # else no delta_d <= 0.1 fails an element within max_steps
+            fix = f"delta_d in [{1.0 / max_steps:.6g}, 0.1], or " + fix
         raise ConfigError(
             f"delta_d = {dd:.6g} needs at least {1.0 / dd:.6g} damage blocks to fail an element, "
-            f"more than max_steps = {max_steps}; valid: delta_d * max_steps >= 1 (delta_d in "
-            f"[{1.0 / max_steps:.6g}, 0.1], or max_steps >= {math.ceil(1.0 / dd - 1e-9):.6g})"
+            f"more than max_steps = {max_steps}; valid: delta_d * max_steps >= 1 ({fix})"
         )
     measure = ShearMeasure.parse(measure)
     if solver not in ("pcg", "direct"):
