@@ -65,6 +65,12 @@ def test_reproduce_cli_json(run_cli, tmp_path):
     assert d["sections"] == ["foundation"] and d["counts"]["match"] > 10
     assert d["counts_by_kind"]["standard"]["match"] == 8  # the CWRU bearing table
     assert "foundation" in SECTIONS
+    # a section named twice runs once (exploratory testing: its rows were counted twice)
+    twice = run_cli("reproduce", "--quick", "--section", "foundation", "--section", "foundation",
+                    "-o", tmp_path / "t", "--json")  # fmt: skip
+    assert twice.code == 0, twice.err
+    assert twice.json()["sections"] == ["foundation"]
+    assert twice.json()["counts"] == d["counts"]
 
 
 # ------------------------------------------------------------------------- status rules

@@ -282,7 +282,7 @@ def run_report(
 
     out = check_output(out_dir, "out_dir", directory=True)  # before any section runs
     out.mkdir(parents=True, exist_ok=True)
-    names = sections or SECTIONS
+    names = list(dict.fromkeys(sections or SECTIONS))  # a section given twice runs once
     ctx = Context(out, quick)
     done: list[Section] = []
     bar = tqdm(names, desc="reproduce", unit="section", disable=not progress, leave=False)
