@@ -142,3 +142,16 @@ def test_a_constant_stiffness_lists_no_dominant_orders(run_cli):
         assert r.json()["fluctuation"][name]["components"] == []
     t = run_cli("stiffness", "6205", "--fz-n", "100")
     assert "none (constant to 1e-8 of the mean)" in t.out
+
+
+def test_a_stiffness_run_beyond_the_memory_budget_is_refused_before_any_work(run_cli, tmp_path):
+    """10000 cage revolutions x 3600 points (each option in its range) need ~40 GB: refused in
+    one line naming the estimate and the budget, nothing written (exploratory testing: a
+    traceback from NumPy after allocating). --max-memory-gb sets the budget."""
+    out = tmp_path / "k.nc"
+    r = run_cli("stiffness", "6205", "--fy-n", "500", "--cage-revs", "10000",
+                "--points-per-rev", "3600", "-o", out)  # fmt: skip
+    r.refused("stiffness: 10000 cage revolutions x 3600 points", "exceeds the memory budget")
+    assert not out.exists()
+    r = run_cli("stiffness", "6205", "--fy-n", "500", "--max-memory-gb", "1e-6")
+    r.refused("estimated memory", "max_memory")

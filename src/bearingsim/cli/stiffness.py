@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import click
 
@@ -25,6 +26,7 @@ from .common import (
     output_option,
     rad_to_deg,
 )
+from .limits import budget_options
 
 #: azimuths of the tilt axes: one turn either way [deg]
 AZIMUTH_MAX_DEG = 360.0
@@ -152,6 +154,7 @@ def _parse_errors(text: str | None, n_balls: int) -> list[float] | None:
 )
 @deprecated("--out", "--output")
 @allow_overload_option
+@budget_options(steps=False)
 @json_option
 def stiffness_cmd(
     bearing: Bearing,
@@ -176,6 +179,7 @@ def stiffness_cmd(
     plot: str | None,
     out: str | None,
     allow_overload: bool,
+    budget: Any,
     as_json: bool,
 ) -> None:
     """5x5 stiffness of BEARING at equilibrium and its fluctuation over the cage revolutions.
@@ -217,6 +221,7 @@ def stiffness_cmd(
             cage_revs=cage_revs,
             points_per_rev=points_per_rev,
             method=Method(method),
+            budget=budget,
             **kw,
         )
     if plot:

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks
 
+from ..dynamics.budget import Budget, Estimate, check_budget
 from ..errors import ConfigError, check_range
 from ..geometry import Bearing, parse_enum
 from ..results import Result, json_attr, read_json_attr
@@ -459,6 +460,12 @@ def _build(
 
 
 # (duplicates) the load arguments repeat run_quasi_static's: the same loads, swept in cage angle
+#: memory held per cage position [8-byte words]: the 5x5 stiffness, the equilibrium and the
+#: spectra, and per ball its loads, angles and deflections (measured with tracemalloc: about
+#: 1000 B per position for the 6205, Z = 9, Jones method); BYTES_PER_POINT = 8 [B]
+BASE_PER_POINT, BALL_PER_POINT, BYTES_PER_POINT = 40, 12, 8
+
+
 def stiffness_vs_cage(
     bearing: Bearing,
     fx: float = 0.0,
@@ -471,6 +478,7 @@ def stiffness_vs_cage(
     points_per_rev: int = 360,
     method: Method | str = Method.JONES,
     n_components: int = 5,
+    budget: Budget | None = None,
     **kwargs: object,
 ) -> StiffnessResult:
     """Radial, axial and tilting stiffness over ``cage_revs`` cage revolutions and their order
@@ -492,6 +500,9 @@ def stiffness_vs_cage(
         Load-distribution method.
     n_components : int
         Number of labelled spectral peaks per series [-].
+    budget : Budget, optional
+        Memory the run may use (default: half the available memory); a run estimated above it
+        (:data:`BYTES_PER_POINT`) is refused in one line before any work.
     **kwargs
         ``clearance``, ``misalignment``, ``ball_errors``, ``first_ball_angle``, ``tilt_free``,
         ``speed``, ``stiffness``, ``max_contact_angle`` as :func:`run_quasi_static`;
@@ -508,7 +519,16 @@ def stiffness_vs_cage(
             f"points_per_rev = {points_per_rev!r} is not an integer; valid range [{4 * Z}, 100000]"
         )
     revs, ppr = int(revs), int(ppr)
-    cage = 2.0 * np.pi * np.arange(revs * ppr) / ppr
+    n_pts = revs * ppr
+    check_budget(
+        Estimate(
+            f"stiffness: {revs} cage revolutions x {ppr} points",
+            float(n_pts) * BYTES_PER_POINT * (BASE_PER_POINT + BALL_PER_POINT * Z),
+            0.0,
+        ),
+        budget,
+    )
+    cage = 2.0 * np.pi * np.arange(n_pts) / ppr
     if method is Method.JONES:
         sol = run_quasi_static(bearing, cage, fx, fy, fz, mx, my, **kwargs)
     else:
