@@ -185,6 +185,20 @@ def _axial_start(geom: QSGeometry, fz: float) -> float:
     return math.copysign(hi, fz)
 
 
+def _tilt_start(geom: QSGeometry, F: NDArray[np.float64]) -> tuple[float, float]:
+    """Tilt start ``(theta_x, theta_y)`` [rad] for a moment without forces: with a clearance
+    the untilted ring touches no ball, so Newton starts from a tilt that takes it up — the
+    axial displacement of :func:`_axial_start` under ``2 |M| / r_m`` at the pitch radius
+    ``r_m``, along the moment's direction. With a force the start stays untilted."""
+    mx, my = float(F[3]), float(F[4])
+    m = math.hypot(mx, my)
+    if m == 0.0 or np.any(F[:3] != 0.0):
+        return 0.0, 0.0
+    rm = 0.5 * geom.dm
+    theta = _axial_start(geom, 2.0 * m / rm) / rm
+    return theta * mx / m, theta * my / m
+
+
 def _inertia(geom: QSGeometry, speed: SpeedEffects) -> tuple[float, float, float]:
     """``(F_c [N], 2 J omega_R omega_c / d [N], gamma' = d/d_m)`` from nominal kinematics
     (Harris & Kotzalas 2007 vol. 2 eqs. (3.17), (3.33): ``F_c = m d_m omega_c^2 / 2``,
@@ -318,7 +332,7 @@ def run_quasi_static(
     Z = geom.n_balls
     psi_first = _ball_azimuths(cage[0], case.first_ball_angle, case.ball_errors)
     ux, uy = _radial_start(geom, psi_first, F)
-    u0 = np.array([ux, uy, _axial_start(geom, F[2]), 0.0, 0.0])
+    u0 = np.array([ux, uy, _axial_start(geom, F[2]), *_tilt_start(geom, F)])
     co = p[P_CO]
     V0 = np.zeros((Z, 2))
     V0[:, 1] = co + (fc / geom.k_outer) ** (2.0 / 3.0) if spd.centrifugal else co
