@@ -171,3 +171,17 @@ def test_a_moment_alone_is_solved(run_cli, extra):
     assert 1e-3 < u["theta_x_rad"] < 1e-2
     k = r.json()["fluctuation"]["radial"]["mean"]
     assert math.isfinite(k) and k > 0
+
+
+@pytest.mark.parametrize("method", ["jones", "iso16281"])
+def test_a_moment_that_overloads_a_ball_is_refused(run_cli, method):
+    """1000 N m on a 6205 loads one ball with ~20 kN, 3.9 Q_0 (the ISO 76 element limit,
+    5201 N here): refused in one line naming the largest ball load and the limit, unless
+    --allow-overload, which warns; 200 N m (5.5 kN, just above Q_0) warns and runs
+    (exploratory testing: the moment passed the check of the forces unseen)."""
+    base = ["stiffness", "6205", "--fz-n", "100", "--method", method]
+    run_cli(*base, "--mx-n-m", "1000").refused("largest ball load under the moment", "Q0")
+    r = run_cli(*base, "--mx-n-m", "1000", "--allow-overload", "--json")
+    assert r.code == 0 and "exceeds the element load" in r.err
+    r = run_cli(*base, "--mx-n-m", "200", "--json")
+    assert r.code == 0 and "warning: largest ball load under the moment" in r.err

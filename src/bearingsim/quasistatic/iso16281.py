@@ -419,6 +419,9 @@ def run_iso16281(
             ) / (2 * hs[k])
         U[i], R[i], res[i], its[i] = u, Fq, rel, nfev
         out["Q"][i], out["al"][i], out["dl"][i] = Q, al, dl
+    from .jones import check_moment_ball_load
+
+    check_moment_ball_load(bearing, F, out["Q"], allow_overload)
     amax = np.max(np.abs(out["al"]) * (out["Q"] > 0))
     if amax > geom.max_contact_angle:
         raise SolverError(

@@ -185,6 +185,21 @@ def _axial_start(geom: QSGeometry, fz: float) -> float:
     return math.copysign(hi, fz)
 
 
+def check_moment_ball_load(
+    bearing: Bearing, F: NDArray[np.float64], ball_loads: NDArray[np.float64], allow_overload
+) -> None:
+    """Under a moment the largest ball load is known only after the solve (the check of the
+    forces against C_0 before it does not see the moment): check it against the element limit
+    Q_0 (:func:`~bearingsim.contact.capacity.check_element_load`: a warning above Q_0, a
+    one-line refusal above its static limit unless ``allow_overload``)."""
+    if F[3] == 0.0 and F[4] == 0.0:
+        return
+    check_element_load(
+        bearing, float(np.max(ball_loads)), allow_overload,
+        name=f"largest ball load under the moment ({F[3]:.6g}, {F[4]:.6g}) N m",
+    )  # fmt: skip
+
+
 def _tilt_start(geom: QSGeometry, F: NDArray[np.float64]) -> tuple[float, float]:
     """Tilt start ``(theta_x, theta_y)`` [rad] for a moment without forces: with a clearance
     the untilted ring touches no ball, so Newton starts from a tilt that takes it up — the
@@ -349,7 +364,8 @@ def run_quasi_static(
         # radial solution at that angle, once
         retried = done
         psi_k = _ball_azimuths(cage[done], case.first_ball_angle, case.ball_errors)
-        uk = np.array([*_radial_start(geom, psi_k, F), _axial_start(geom, F[2]), 0.0, 0.0])
+        uk = np.array([*_radial_start(geom, psi_k, F), _axial_start(geom, F[2]),
+                       *_tilt_start(geom, F)])  # fmt: skip
         done += _sweep(
             cage[done:],
             case.ball_errors,
@@ -385,6 +401,7 @@ def run_quasi_static(
             f"(relative residual {out_info[done, I_RES]:.3g}); check the load and clearance"
         )
     out_Q, out_a = out_balls[:, B_Q], out_balls[:, B_ALPHA]
+    check_moment_ball_load(bearing, F, out_Q, allow_overload)
     amax = np.max(np.abs(out_a) * (out_Q > 0))
     if amax > geom.max_contact_angle:
         i, j = np.unravel_index(np.argmax(np.abs(out_a) * (out_Q > 0)), out_a.shape)
