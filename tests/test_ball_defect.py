@@ -133,3 +133,11 @@ def test_healthy_and_race_faults_unchanged_by_the_ball_branch():
     with pytest.raises(ConfigError, match="fault"):
         Scenario(model="vsm", fault="cage")
     np.testing.assert_equal(bl.defect_rate(np.zeros(bl.HEADER)), 0.0)
+
+
+def test_a_ball_defect_deeper_than_the_ball_radius_is_named_once(run_cli, tmp_path):
+    """The refusal names the ball radius (exploratory testing: 'the ball ball radius')."""
+    r = run_cli("simulate", "--model", "vsm", "--fault", "ball", "--defect-depth-m", "0.1",
+                "--duration-s", "0.01", "-o", tmp_path / "b.nc")  # fmt: skip
+    line = r.refused("defect_depth_m = 0.1 m is not less than the ball radius 0.00397 m of 6205")
+    assert "ball ball" not in line

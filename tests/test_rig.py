@@ -413,3 +413,30 @@ def test_cli_simulate_json_reports_the_applied_model_gain(tmp_path):
         gains[model] = json.loads(r.stdout)["rig_model_gain"]
     assert gains["rotor"] == pytest.approx(load_rig("cwru-de-12k").model_gain("rotor").scale)
     assert gains["vsm"] is None
+
+
+@pytest.mark.parametrize(
+    "field, value",
+    [("noise", 1e308), ("tone", 1e300), ("psd", 1e300)],
+)
+def test_accelerations_beyond_any_accelerometer_are_refused(field, value):
+    """Noise, tone amplitude and background PSD are bounded by 1e6 m/s^2 (1e12 (m/s^2)^2/Hz),
+    beyond any accelerometer (exploratory testing: a noise of 1e308 m/s^2 wrote infinite
+    samples and 'rms: null')."""
+    from bearingsim import simulate
+    from bearingsim.errors import ConfigError
+
+    if field == "noise":
+        with pytest.raises(ConfigError, match="noise_rms_m_per_s2"):
+            simulate(dict(model="dem", duration_s=0.01, fs_hz=12000.0, noise_rms_m_per_s2=value))
+        return
+    d = {
+        "name": "x", "description": "x", "provenance": "test",
+        "tone": [{"order": 1.0, "amplitude_m_per_s2": value if field == "tone" else 1.0,
+                   "provenance": "t"}],
+        "background": {"frequency_hz": [10.0, 1000.0],
+                       "psd_m2_per_s4_per_hz": [value if field == "psd" else 1e-6, 1e-6],
+                       "provenance": "t"},
+    }  # fmt: skip
+    with pytest.raises(ConfigError, match="amplitude_m_per_s2" if field == "tone" else "psd"):
+        Rig.from_dict(d)

@@ -38,6 +38,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from .errors import (
+    MAX_ACCELERATION,
     ConfigError,
     DeprecatedKeyWarning,
     check_int,
@@ -733,7 +734,9 @@ class RingScenario(Scenario):
         s(
             self,
             "noise_rms_m_per_s2",
-            check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
+            check_range(
+                "noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, MAX_ACCELERATION, unit="m/s^2"
+            ),
         )
         _pass_jitter(self)
         s(self, "ball_diameter_spread_m", check_ball_spread(self.ball_diameter_spread_m))
@@ -1029,7 +1032,9 @@ class RotorScenario(Scenario):
         s(
             self,
             "noise_rms_m_per_s2",
-            check_range("noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, unit="m/s^2"),
+            check_range(
+                "noise_rms_m_per_s2", self.noise_rms_m_per_s2, 0.0, MAX_ACCELERATION, unit="m/s^2"
+            ),
         )
         if self.disks is not None:
             s(self, "disks", check_int("disks", self.disks, 1))

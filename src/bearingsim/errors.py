@@ -131,6 +131,12 @@ def format_range(
     return f"{lb}{lo_s}, {hi_s}{rb}" + (f" {unit}" if unit else "")
 
 
+#: largest acceleration an input may ask for [m/s^2]: beyond any accelerometer (shock
+#: accelerometers reach ~1e5 g = 1e6 m/s^2); keeps noise, tones and backgrounds finite (a
+#: noise of 1e308 m/s^2 wrote infinite samples)
+MAX_ACCELERATION = 1e6
+
+
 def _is_bool(value: Any) -> bool:
     """True for ``bool`` and NumPy booleans (without importing NumPy)."""
     return isinstance(value, bool) or getattr(getattr(value, "dtype", None), "kind", "") == "b"

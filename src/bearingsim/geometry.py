@@ -818,12 +818,16 @@ def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
     wall = ring_wall(bearing, defect.race)
     known = bearing.bore is not None and bearing.outer_diameter is not None
     if defect.depth >= wall:
-        what = "ring wall" if known else "element diameter (no bore/outer diameter given)"
+        what = (
+            f"{defect.race.value} ring wall"
+            if known
+            else (f"{defect.race.value} element diameter (no bore/outer diameter given)")
+        )
         if defect.race is Race.BALL:
             what = "ball radius"
         raise ConfigError(
-            f"defect_depth_m = {defect.depth:.6g} m is not less than the {defect.race.value} "
-            f"{what} {wall:.6g} m of {bearing.id}; valid range (0, {wall:.6g}) m"
+            f"defect_depth_m = {defect.depth:.6g} m is not less than the {what} {wall:.6g} m "
+            f"of {bearing.id}; valid range (0, {wall:.6g}) m"
         )
     return defect.depth
 

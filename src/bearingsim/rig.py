@@ -82,7 +82,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import ConfigError, check_int, check_range, read_toml
+from .errors import MAX_ACCELERATION, ConfigError, check_int, check_range, read_toml
 
 __all__ = [
     "Background",
@@ -219,8 +219,8 @@ class Background:
             )
         fv = [check_range(f"{where}.frequency_hz[{i}]", v, 0.0, lo_open=True, unit="Hz")
               for i, v in enumerate(f)]  # fmt: skip
-        sv = [check_range(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, lo_open=True,
-                          unit="(m/s^2)^2/Hz") for i, v in enumerate(s)]  # fmt: skip
+        sv = [check_range(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, MAX_ACCELERATION**2,
+                          lo_open=True, unit="(m/s^2)^2/Hz") for i, v in enumerate(s)]  # fmt: skip
         if any(b <= a for a, b in zip(fv, fv[1:], strict=False)):
             k = next(i for i in range(1, len(fv)) if fv[i] <= fv[i - 1])
             raise ConfigError(
@@ -275,7 +275,7 @@ class Tone:
         freq = (check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True,
                             unit="Hz") if "frequency_hz" in d else None)  # fmt: skip
         amp = check_range(f"{where}.amplitude_m_per_s2", d["amplitude_m_per_s2"], 0.0,
-                          unit="m/s^2")  # fmt: skip
+                          MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
         return cls(amp, _provenance(d, where), order, freq)
 
     def frequency(self, shaft_hz: float | None) -> float:
@@ -352,7 +352,7 @@ class Rig:
                 if "noise_rms_m_per_s2" not in s:
                     raise ConfigError("sensor.noise_rms_m_per_s2 is missing")
                 noise = check_range("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
-                                    unit="m/s^2")  # fmt: skip
+                                    MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
                 nprov = _provenance(s, "sensor")
             mg = d.get("model_gain", [])
             if not isinstance(mg, list):
