@@ -391,6 +391,18 @@ def test_unbalance_gives_a_shaft_frequency_line_proportional_to_me():
     assert_allclose(a2 / a1, 2.0, rtol=0.05, err_msg="linear in m e (small unbalance)")
 
 
+@pytest.mark.parametrize("me", [1e-3, 5e-3])
+def test_an_unbalance_larger_than_the_weight_finds_its_static_equilibrium(me):
+    """m e Omega^2 = 34 and 168 N at 1750 r/min against ~20 N of weight: at t = 0 the net load
+    points up and the static guess along the weight alone starts the shaft ends in the
+    clearance (exploratory testing: 'no static equilibrium found', force residual (F_u -
+    W)/2). Now the run starts (the static solve's residual is below 1e-6 of the load, or it
+    raises) and its housing moves."""
+    r = simulate_rotor(cwru_rotor_config(3, unbalance=me), duration=0.05, antialias=False)
+    assert np.all(np.isfinite(r.housing_displacement))
+    assert np.ptp(r.housing_displacement[:, 1]) > 0.0
+
+
 @pytest.mark.parametrize("ball_inertia", [True, False], ids=["ball-masses", "quasi-static"])
 def test_dopri5_agrees_with_rk4(ball_inertia):
     cfg = cwru_rotor_config(1, de_fault=Defect("outer"), ball_inertia=ball_inertia)

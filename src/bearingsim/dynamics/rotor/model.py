@@ -705,49 +705,62 @@ def static_state(model: PackedModel, config: RotorConfig) -> NDArray[np.float64]
         a = dydt[npos:]
         return np.concatenate([(rot.M @ a[:nr])[:4], mh * a[nr : nr + 4]])
 
-    # initial guess: housings on their springs under the bearing loads; each shaft end moved
-    # along its load until the balls carry that load (bisection, the ends taken separately)
-    x0 = np.zeros(8)
-    fb = rot.f_static[:4]
+    def solve(fb: NDArray) -> tuple[float, NDArray, NDArray]:
+        """(largest residual [N], solution, guess) from the guess built for the end loads
+        ``fb`` (DE x, y, FE x, y) [N]."""
+        # initial guess: housings on their springs under the bearing loads; each shaft end
+        # moved along its load until the balls carry that load (bisection, ends separately)
+        x0 = np.zeros(8)
+        for e, h in enumerate(housings):
+            x0[4 + 2 * e] = fb[2 * e] / h.stiffness_x / um
+            x0[5 + 2 * e] = (fb[2 * e + 1] - h.mass * g) / h.stiffness_y / um
+        y[nr : nr + 4] = x0[4:] * um
+        for e in range(2):
+            f = float(np.hypot(fb[2 * e], fb[2 * e + 1]))
+            if f == 0.0:
+                continue
+            d = fb[2 * e : 2 * e + 2] / f
+            z0, z = (0, model.z_de) if e == 0 else (model.z_de, model.z_fe)
+            psi = np.array([pb[int(pb[rk.H_BRG_DE if e == 0 else rk.H_BRG_FE]) + rk.B_PSI0]])
+            psi = psi + 2 * np.pi * np.arange(z) / z
+            lo, hi = 0.0, 1e-4
+            for _ in range(60):
+                u = 0.5 * (lo + hi)
+                y[2 * e : 2 * e + 2] = y[nr + 2 * e : nr + 2 * e + 2] + u * d
+                rk.settle_balls(0.0, y, model.p, dydt, 64)
+                rk.rhs_core(0.0, y, pb, dydt, aux, True)
+                qa = aux[4 + 2 * z0 : 4 + 2 * z0 + z]  # inner contact forces of this bearing
+                carried = float(np.sum(qa * (np.sin(psi) * d[0] + np.cos(psi) * d[1])))
+                lo, hi = (u, hi) if carried < f else (lo, u)
+            x0[2 * e : 2 * e + 2] = y[2 * e : 2 * e + 2] / um
+        sol = root(resid, x0, method="hybr")
+        best = (float(np.max(np.abs(resid(sol.x)))), sol.x)
+        if best[0] > 1e-9 * weight:
+            # Levenberg-Marquardt with a tiny Tikhonov term (1e-6 N per um): it keeps any
+            # neutral direction (e.g. a shaft end resting on a single ball, free sideways within
+            # the clearance) at the initial guess instead of letting the Jacobian go singular
+            ls = least_squares(lambda x: np.concatenate([resid(x), 1e-6 * (x - x0)]), x0,
+                               method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)  # fmt: skip
+            r = float(np.max(np.abs(resid(ls.x))))
+            if r < best[0]:
+                best = (r, ls.x)
+        return best[0], best[1], x0
+
+    fb0 = rot.f_static[:4]
     g = G0 if config.gravity else 0.0
     pb = model.p.copy()
     pb[rk.H_BALL_OUT] = 1.0
     aux = np.zeros(4 + 2 * model.n_balls)
     housings = (config.housing_de, config.housing_fe)
-    for e, h in enumerate(housings):
-        x0[4 + 2 * e] = fb[2 * e] / h.stiffness_x / um
-        x0[5 + 2 * e] = (fb[2 * e + 1] - h.mass * g) / h.stiffness_y / um
-    y[nr : nr + 4] = x0[4:] * um
-    for e in range(2):
-        f = float(np.hypot(fb[2 * e], fb[2 * e + 1]))
-        if f == 0.0:
-            continue
-        d = fb[2 * e : 2 * e + 2] / f
-        z0, z = (0, model.z_de) if e == 0 else (model.z_de, model.z_fe)
-        psi = np.array([pb[int(pb[rk.H_BRG_DE if e == 0 else rk.H_BRG_FE]) + rk.B_PSI0]])
-        psi = psi + 2 * np.pi * np.arange(z) / z
-        lo, hi = 0.0, 1e-4
-        for _ in range(60):
-            u = 0.5 * (lo + hi)
-            y[2 * e : 2 * e + 2] = y[nr + 2 * e : nr + 2 * e + 2] + u * d
-            rk.settle_balls(0.0, y, model.p, dydt, 64)
-            rk.rhs_core(0.0, y, pb, dydt, aux, True)
-            qa = aux[4 + 2 * z0 : 4 + 2 * z0 + z]  # inner contact forces of this bearing
-            carried = float(np.sum(qa * (np.sin(psi) * d[0] + np.cos(psi) * d[1])))
-            lo, hi = (u, hi) if carried < f else (lo, u)
-        x0[2 * e : 2 * e + 2] = y[2 * e : 2 * e + 2] / um
-    weight = float(np.abs(fb).sum()) + 1.0
-    sol = root(resid, x0, method="hybr")
-    best = (float(np.max(np.abs(resid(sol.x)))), sol.x)
-    if best[0] > 1e-9 * weight:
-        # Levenberg-Marquardt with a tiny Tikhonov term (1e-6 N per um): it keeps any neutral
-        # direction (e.g. a shaft end resting on a single ball, free sideways within the
-        # clearance) at the initial guess instead of letting the Jacobian go singular
-        ls = least_squares(lambda x: np.concatenate([resid(x), 1e-6 * (x - x0)]), x0,
-                           method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)  # fmt: skip
-        r = float(np.max(np.abs(resid(ls.x))))
-        if r < best[0]:
-            best = (r, ls.x)
+    weight = float(np.abs(fb0).sum()) + 1.0
+    best = solve(fb0)[:2]
+    if best[0] > 1e-6 * weight and np.any(rot.f_unb_cos[:4] != 0.0):
+        # the unbalance at t = 0 (larger than the weight: the net load points up) moves the
+        # ends the other way; the guess along the static load alone starts them in the
+        # clearance, where no ball carries anything
+        r2, x2, _ = solve(fb0 + rot.f_unb_cos[:4])
+        if r2 < best[0]:
+            best = (r2, x2)
     r, x = best
     if r > 1e-6 * weight:
         raise SolverError(
