@@ -408,3 +408,25 @@ def test_a_step_beyond_the_accuracy_rule_warns():
     sc = dict(model="dem", fault="outer", duration_s=0.02, fs_hz=12000.0, dt_s=8.33e-5)
     with pytest.warns(RuntimeWarning, match=r"dt_s = 8\.33\d*e-05 s gives omega_max dt = 2\.0"):
         simulate(sc)
+
+
+def test_the_adaptive_solver_stops_where_it_would_crawl():
+    """A right-hand side that switches sign across y = 0 (chattering, dy/dt = -sign(y)) makes an
+    explicit adaptive step shrink to nothing without underflowing; the solver stops after
+    MAX_STEPS_PER_SAMPLE steps in one output interval with a one-line SolverError naming rk4
+    (exploratory testing: a VSM with a 30 deg load zone and solver dopri5 ran >200 s for 24
+    samples and could not be interrupted)."""
+    from numba import cfunc
+
+    from bearingsim.dynamics.integrate import MAX_STEPS_PER_SAMPLE, RHS_SIG, run_adaptive
+    from bearingsim.errors import SolverError
+
+    @cfunc(RHS_SIG)
+    def chatter(t, y, p, dydt):
+        dydt[0] = -1.0 if y[0] > 0.0 else 1.0
+
+    t_eval = np.array([0.0, 1.0])
+    msg = f"more than {MAX_STEPS_PER_SAMPLE} steps.*use solver rk4"
+    with pytest.raises(SolverError, match=msg):
+        run_adaptive(chatter, chatter, np.array([0.5]), np.zeros(1), t_eval, n_aux=0,
+                     rtol=1e-9, atol=1e-15, h0=1e-3, bound=10.0)  # fmt: skip

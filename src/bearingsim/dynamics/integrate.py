@@ -56,6 +56,11 @@ STATUS_OK = 0
 STATUS_NONFINITE = 1
 STATUS_BOUND = 2
 STATUS_STEP_UNDERFLOW = 3
+STATUS_TOO_MANY_STEPS = 4
+#: adaptive steps allowed within one output interval (LSODA's ``mxstep`` idea): beyond, the
+#: right-hand side is too stiff or discontinuous for an explicit adaptive step, which would
+#: otherwise crawl on (a VSM with a 30 deg load zone took >200 s for 24 samples) [-]
+MAX_STEPS_PER_SAMPLE = 10_000
 
 
 @njit(cache=True)
@@ -180,7 +185,11 @@ def _dopri(rhs, aux, y0, t_eval, p, n_aux, rtol, atol, h0, hmax, bound, C, A, B5
         return y_out, a_out, status, 1, n_steps
     for i in range(1, n_out):
         t_target = t_eval[i]
+        n_here = 0
         while t < t_target:
+            n_here += 1
+            if n_here > MAX_STEPS_PER_SAMPLE:
+                return y_out, a_out, STATUS_TOO_MANY_STEPS, i, n_steps
             hh = min(h, hmax, t_target - t)
             rhs(t, y, p, K[0])
             for s in range(1, 7):
@@ -252,9 +261,13 @@ def _fail(status: int, t: float, dt: float | None) -> SolverError:
         STATUS_NONFINITE: "the state became non-finite",
         STATUS_BOUND: "the state grew past its bound",
         STATUS_STEP_UNDERFLOW: "the adaptive step size underflowed",
+        STATUS_TOO_MANY_STEPS: f"the adaptive solver took more than {MAX_STEPS_PER_SAMPLE} "
+        "steps (accepted or not) within one output interval: the model is too stiff or "
+        "discontinuous there for it; use solver rk4",
     }[status]
     hint = f" with dt = {dt:.3g} s; the step is probably too large (reduce dt_s)" if dt else ""
-    return SolverError(f"integration diverged at t = {t:.6g} s: {cause}{hint}")
+    what = "stopped" if status == STATUS_TOO_MANY_STEPS else "diverged"
+    return SolverError(f"integration {what} at t = {t:.6g} s: {cause}{hint}")
 
 
 def run_fixed(
