@@ -29,6 +29,8 @@ through the returned status (see :func:`run_fixed`, which raises a clear error).
 from __future__ import annotations
 
 import math
+import signal
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -241,10 +243,36 @@ class Trajectory:
 
 
 def call_compiled(kernel, *args):
-    """``kernel(*args)`` for a compiled (Numba) function, with Ctrl-C seen as itself: a SIGINT
-    that arrives while a ``nogil`` kernel runs leaves Python's ``KeyboardInterrupt`` pending when
-    the kernel returns, which CPython reports as ``SystemError`` ("returned a result with an
-    exception set") with the interrupt as its cause; this raises the ``KeyboardInterrupt``."""
+    """``kernel(*args)`` for a compiled (Numba) function, with Ctrl-C seen as itself.
+
+    In the main thread, SIGINT is only noted while the kernel runs and handed to the handler in
+    place before once the kernel has returned (Python's default raises ``KeyboardInterrupt``;
+    an ignored SIGINT stays ignored): a SIGINT that arrives while a ``nogil`` kernel runs otherwise
+    raises inside Numba's boxing of the returned arrays, which CPython reports as
+    ``SystemError`` ("returned a result with an exception set"), and a rotor run with slip
+    interrupted that way crashed with a segmentation fault (exploratory testing, fifteenth
+    session). Elsewhere that ``SystemError`` is turned into the ``KeyboardInterrupt``."""
+    if threading.current_thread() is not threading.main_thread():
+        return _call(kernel, args)
+    got: list[int] = []
+    try:
+        old = signal.signal(signal.SIGINT, lambda signum, frame: got.append(signum))
+    except (ValueError, OSError):  # signals not available here
+        return _call(kernel, args)
+    try:
+        out = _call(kernel, args)
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if got:
+        if callable(old):  # Python's default raises KeyboardInterrupt; a custom one decides
+            old(signal.SIGINT, None)
+        elif old == signal.SIG_DFL:
+            raise KeyboardInterrupt
+    return out
+
+
+def _call(kernel, args):
+    """:func:`call_compiled`'s call, the ``SystemError`` of a pending interrupt unwrapped."""
     try:
         return kernel(*args)
     except SystemError as exc:
