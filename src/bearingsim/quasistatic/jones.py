@@ -200,6 +200,12 @@ def check_moment_ball_load(
     )  # fmt: skip
 
 
+def _start(geom: QSGeometry, psi: NDArray[np.float64], F: NDArray[np.float64]):
+    """Newton's start ``(x, y, z, theta_x, theta_y)`` [m, rad] for balls at ``psi``: radial
+    along the load line, axial from equal ball loads, tilted for a moment alone."""
+    return np.array([*_radial_start(geom, psi, F), _axial_start(geom, F[2]), *_tilt_start(geom, F)])
+
+
 def _tilt_start(geom: QSGeometry, F: NDArray[np.float64]) -> tuple[float, float]:
     """Tilt start ``(theta_x, theta_y)`` [rad] for a moment without forces: with a clearance
     the untilted ring touches no ball, so Newton starts from a tilt that takes it up — the
@@ -346,8 +352,7 @@ def run_quasi_static(
     # the outer groove (pushed out by the centrifugal force)
     Z = geom.n_balls
     psi_first = _ball_azimuths(cage[0], case.first_ball_angle, case.ball_errors)
-    ux, uy = _radial_start(geom, psi_first, F)
-    u0 = np.array([ux, uy, _axial_start(geom, F[2]), *_tilt_start(geom, F)])
+    u0 = _start(geom, psi_first, F)
     co = p[P_CO]
     V0 = np.zeros((Z, 2))
     V0[:, 1] = co + (fc / geom.k_outer) ** (2.0 / 3.0) if spd.centrifugal else co
@@ -364,8 +369,7 @@ def run_quasi_static(
         # radial solution at that angle, once
         retried = done
         psi_k = _ball_azimuths(cage[done], case.first_ball_angle, case.ball_errors)
-        uk = np.array([*_radial_start(geom, psi_k, F), _axial_start(geom, F[2]),
-                       *_tilt_start(geom, F)])  # fmt: skip
+        uk = _start(geom, psi_k, F)
         done += _sweep(
             cage[done:],
             case.ball_errors,

@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import find_peaks
 
-from ..dynamics.budget import Budget, Estimate, check_budget
+from ..dynamics.budget import F8, Budget, Estimate, check_budget
 from ..errors import ConfigError, check_range
 from ..geometry import Bearing, parse_enum
 from ..results import Result, json_attr, read_json_attr
@@ -460,10 +460,10 @@ def _build(
 
 
 # (duplicates) the load arguments repeat run_quasi_static's: the same loads, swept in cage angle
-#: memory held per cage position [8-byte words]: the 5x5 stiffness, the equilibrium and the
+#: memory held per cage position [float64 words]: the 5x5 stiffness, the equilibrium and the
 #: spectra, and per ball its loads, angles and deflections (measured with tracemalloc: about
-#: 1000 B per position for the 6205, Z = 9, Jones method); BYTES_PER_POINT = 8 [B]
-BASE_PER_POINT, BALL_PER_POINT, BYTES_PER_POINT = 40, 12, 8
+#: 1000 B per position for the 6205, Z = 9, Jones method)
+BASE_PER_POINT, BALL_PER_POINT = 40, 12
 
 
 def stiffness_vs_cage(
@@ -502,7 +502,8 @@ def stiffness_vs_cage(
         Number of labelled spectral peaks per series [-].
     budget : Budget, optional
         Memory the run may use (default: half the available memory); a run estimated above it
-        (:data:`BYTES_PER_POINT`) is refused in one line before any work.
+        (:data:`BASE_PER_POINT`, :data:`BALL_PER_POINT`) is refused in one line before any
+        work.
     **kwargs
         ``clearance``, ``misalignment``, ``ball_errors``, ``first_ball_angle``, ``tilt_free``,
         ``speed``, ``stiffness``, ``max_contact_angle`` as :func:`run_quasi_static`;
@@ -523,7 +524,7 @@ def stiffness_vs_cage(
     check_budget(
         Estimate(
             f"stiffness: {revs} cage revolutions x {ppr} points",
-            float(n_pts) * BYTES_PER_POINT * (BASE_PER_POINT + BALL_PER_POINT * Z),
+            float(n_pts) * F8 * (BASE_PER_POINT + BALL_PER_POINT * Z),
             0.0,
         ),
         budget,

@@ -57,7 +57,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import ConfigError, check_positive
+from ..errors import ConfigError, check_positive, check_range
+from .envelope import check_band
 from .spectrum import Domain, Spectrum, as_signal
 
 __all__ = [
@@ -81,18 +82,12 @@ HALF_RESPONSE = 1.294
 MIN_CYCLIC_RESPONSE = 0.5
 
 
-def _pair(name: str, value) -> tuple[float, float]:
-    """``(lo, hi)`` as two finite floats, or a one-line :class:`ConfigError`."""
-    try:
-        lo, hi = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise ConfigError(
-            f"{name} = {value!r} is not a pair of numbers (lo, hi) [Hz]; valid: two finite "
-            "numbers 0 <= lo < hi <= fs/2"
-        ) from None
-    if not (math.isfinite(lo) and math.isfinite(hi)):
-        raise ConfigError(f"{name} = ({lo}, {hi}) Hz; valid: two finite numbers 0 <= lo < hi")
-    return lo, hi
+def _too_short(n: int, nw: int, alpha_max: float, fs: float) -> None:
+    """The one-line refusal of a signal shorter than 8 windows of ``nw`` samples."""
+    raise ConfigError(
+        f"signal has {n} samples: valid range >= {8 * nw} (8 windows of {nw}) for a cyclic "
+        f"coherence up to {alpha_max:.6g} Hz at {fs:.6g} Hz"
+    )
 
 
 def _hann(n: int) -> NDArray[np.float64]:
@@ -137,10 +132,7 @@ def coherence_window(fs: float, alpha_max: float, n_samples: int | None = None) 
         )
     nw = max(MIN_WINDOW, 2 ** int(math.floor(math.log2(HALF_RESPONSE * ratio))))
     if n_samples is not None and n_samples < 8 * max(MIN_WINDOW, nw // 2):
-        raise ConfigError(
-            f"signal has {n_samples} samples: valid range >= {8 * nw} (8 windows of {nw}) for "
-            f"a cyclic coherence up to {alpha_max:.6g} Hz at {fs:.6g} Hz"
-        )
+        _too_short(n_samples, nw, alpha_max, fs)  # before windows this long are built
 
     def passes(n: int) -> bool:
         w2 = _hann(n) ** 2
@@ -150,6 +142,8 @@ def coherence_window(fs: float, alpha_max: float, n_samples: int | None = None) 
         nw //= 2
     while 2 * nw <= MAX_WINDOW and passes(2 * nw):
         nw *= 2
+    if n_samples is not None and n_samples < 8 * nw:
+        _too_short(n_samples, nw, alpha_max, fs)
     hop = max(1, min(nw // 4, int(math.floor(fs / (2.0 * alpha_max)))))
     return nw, hop
 
@@ -214,7 +208,6 @@ class CyclicCoherence:
         domain : Domain
             Abscissa: Hz (carriers in kHz) or orders (carriers in orders).
         """
-        from ..errors import check_range
         from ..geometry import parse_enum
         from ..plotting import FULL_WIDTH, legend_outside, mark_lines, new_figure
 
@@ -275,15 +268,10 @@ def cyclic_modulation_coherence(
         Band whose carriers are kept [Hz] (orders): the STFT bins within half a bin spacing of
         it, DC and Nyquist left out; default ``[alpha_max, fs/2 - fs/N_w]``.
     """
-    if carrier_band is not None:
-        carrier_band = _pair("carrier_band", carrier_band)
     a = as_signal(x)
     nw, hop = coherence_window(fs, alpha_max, a.size)
-    if a.size < 8 * nw:
-        raise ConfigError(
-            f"signal has {a.size} samples: valid range >= {8 * nw} (8 windows of {nw}) for a "
-            f"cyclic coherence up to {alpha_max:.6g} Hz"
-        )
+    if carrier_band is not None:
+        carrier_band = check_band(carrier_band, fs, "carrier_band")
     w = _hann(nw)
     frames = np.lib.stride_tricks.sliding_window_view(a - a.mean(), nw)[::hop]
     X = np.fft.rfft(frames * w, axis=1).T  # carriers x frames
@@ -294,11 +282,11 @@ def cyclic_modulation_coherence(
     else:
         lo, hi = carrier_band
         keep = (f >= lo - df / 2) & (f <= hi + df / 2) & (f > 0.0) & (f < fs / 2)
-        if not (0.0 <= lo < hi <= fs / 2) or not keep.any():
+        if not keep.any():
             raise ConfigError(
-                f"carrier_band = ({lo:.6g}, {hi:.6g}) Hz: valid range 0 <= lo < hi <= "
-                f"{fs / 2:.6g} Hz (fs/2), holding an STFT bin (spacing {df:.6g} Hz) other "
-                "than DC and Nyquist"
+                f"carrier_band = ({lo:.6g}, {hi:.6g}) Hz holds no STFT bin (spacing "
+                f"{df:.6g} Hz) other than DC and Nyquist; valid: a band reaching within half a "
+                "spacing of one"
             )
     power = np.abs(X[keep]) ** 2
     mean = power.mean(axis=1, keepdims=True)

@@ -30,31 +30,32 @@ __all__ = [
 EDGE_TAPER = 0.01
 
 
-def check_band(band: tuple[float, float], fs: float) -> tuple[float, float]:
-    """Validate a frequency band ``(lo, hi)`` [Hz] against the Nyquist frequency ``fs/2`` [Hz]."""
+def check_band(band: tuple[float, float], fs: float, name: str = "band_hz") -> tuple[float, float]:
+    """Validate a frequency band ``(lo, hi)`` [Hz] against the Nyquist frequency ``fs/2`` [Hz];
+    ``name`` is the field the one-line errors name."""
     try:
         ok = len(band) == 2
     except TypeError:  # a scalar, None
         ok = False
     if not ok:
-        raise ConfigError(f"band_hz = {band!r} is invalid; valid: two numbers LO HI")
-    lo = check_range("band_hz low", band[0], 0.0, unit="Hz")
-    hi = check_range("band_hz high", band[1], unit="Hz")
+        raise ConfigError(f"{name} = {band!r} is invalid; valid: two numbers LO HI")
+    lo = check_range(f"{name} low", band[0], 0.0, unit="Hz")
+    hi = check_range(f"{name} high", band[1], unit="Hz")
     nyq = 0.5 * fs
     if lo >= nyq:
         raise ConfigError(
-            f"band_hz low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
+            f"{name} low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
             f"fs_hz = {fs:.6g} Hz (fs too low for the requested band); valid range "
             f"[0, {nyq:.6g}) Hz"
         )
     if hi > nyq:
         raise ConfigError(
-            f"band_hz high = {hi:.6g} Hz is above the Nyquist frequency of fs_hz = {fs:.6g} Hz "
+            f"{name} high = {hi:.6g} Hz is above the Nyquist frequency of fs_hz = {fs:.6g} Hz "
             f"(fs too low for the requested band); valid range ({lo:.6g}, {nyq:.6g}] Hz"
         )
     if not hi > lo:
         raise ConfigError(
-            f"band_hz = [{lo:.6g}, {hi:.6g}] Hz is empty; valid: LO < HI <= {nyq:.6g} Hz"
+            f"{name} = [{lo:.6g}, {hi:.6g}] Hz is empty; valid: LO < HI <= {nyq:.6g} Hz"
         )
     return lo, hi
 
