@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -156,8 +157,6 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
         decim = max(1, round(min(1.0 / (fs * scenario.dt_s), MAX_DECIM)))
         dt = 1.0 / (fs * decim)
         if w * dt > OMEGA_DT * 1.0001 and w * dt < RK4_STABILITY:  # beyond: refused when run
-            import warnings
-
             warnings.warn(
                 f"dt_s = {dt:.6g} s gives omega_max dt = {w * dt:.2f}, above the {OMEGA_DT} of "
                 f"the automatic step ({1.0 / (fs * math.ceil(w / (OMEGA_DT * fs))):.3g} s): RK4 "
