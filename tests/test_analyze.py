@@ -126,6 +126,21 @@ def test_outer_envelope_strongest_lines_are_bpfo_harmonics(tmp_path, model):
         assert abs(h - round(h)) * kin.bpfo_hz <= 2 * es.resolution, (f[i], h)
 
 
+def test_a_short_outer_race_record_is_not_taken_for_a_ball_fault(run_cli, tmp_path):
+    """0.15 s (4.4 shaft revolutions, 1.7 cage periods: above the 4-revolution minimum): the
+    cage lines FTF and 2xFTF cannot be told from the zero-frequency line, so they are not
+    searched (FTF, 2xFTF and 3xFTF were all "detected" at the first 6.7 Hz line, and the
+    outer-race simulation was diagnosed "ball")."""
+    res = simulate(Scenario(model="vsm", fault="outer", duration_s=0.15, seed=1))
+    path = res.save(tmp_path / "short.nc")
+    r = run_cli("analyze", path, "--json")
+    assert r.code == 0, r.err
+    d = r.json()
+    assert d["diagnosis"] != "ball" and d["leading"] != "ball", d["notes"]
+    labels = {p["label"] for p in d["peaks"]}
+    assert not labels & {"FTF", "2xFTF"}, labels
+
+
 def test_healthy_noise_free_is_not_none_but_honest(tmp_path):
     """Without any background noise the healthy model's ball-passage (varying-compliance)
     transients are BPFO-periodic and infinitely far above the floor: the rule reports them as

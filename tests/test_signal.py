@@ -127,6 +127,24 @@ def test_match_peaks_tolerance_and_snr():
     assert pk2[0].freq_hz != 108.0, "outside a 0.1 % tolerance"
 
 
+def test_match_peaks_leaves_out_targets_whose_window_reaches_zero_frequency():
+    """A 0.15 s record's envelope spectrum (6.7 Hz lines): FTF (11.6 Hz) searched within two
+    lines would reach the zero-frequency line's leakage and be "found" at the first line; it is
+    left out, while f_r (29 Hz, window from 15.8 Hz) is searched."""
+    df = 1.0 / 0.15
+    f = np.arange(0.0, 600.0, df)
+    a = np.full(f.size, 0.01)
+    a[1] = 1.0  # leakage of the zero-frequency line
+    sp = Spectrum(f, a)
+    pk = match_peaks(sp, [("FTF", 11.6), ("2xFTF", 23.2), ("fr", 29.2)], 29.2, tol_rel=0.01)
+    assert [p.label for p in pk] == ["fr"]
+    assert not pk[0].detected, "the window of f_r does not reach the first line"
+    # the same targets in a 10 s record's spectrum (0.1 Hz lines) are all searched
+    f10 = np.arange(0.0, 600.0, 0.1)
+    pk10 = match_peaks(Spectrum(f10, np.full(f10.size, 0.01)), [("FTF", 11.6)], 29.2)
+    assert [p.label for p in pk10] == ["FTF"]
+
+
 @pytest.mark.parametrize(
     ("band", "match"),
     [

@@ -239,6 +239,14 @@ class Peak:
         }
 
 
+#: a target whose search window starts less than this many resolutions ``fs / n`` above 0 Hz is
+#: not searched: the window would reach the spectrum's zero-frequency line and its leakage
+#: (one to two resolutions each side for the tapers used here), which a short record shows
+#: as a strong "line" near 0 Hz (e.g. FTF, 2×FTF and 3×FTF all taken at one 6.7 Hz bin of a
+#: 0.15 s record) [-]
+DC_GUARD = 2.0
+
+
 def match_peaks(
     spectrum: Spectrum,
     targets: list[tuple[str, float]] | list[tuple[str, float, float, float]],
@@ -250,6 +258,9 @@ def match_peaks(
     threshold_db: float = 12.0,
 ) -> list[Peak]:
     """Find the largest line within ``max(tol_rel f, tol_min_bins df)`` of every target.
+
+    A target whose window reaches above the spectrum's last line, or below
+    :data:`DC_GUARD` resolutions of 0 Hz, is left out of the result (not resolvable).
 
     Parameters
     ----------
@@ -286,7 +297,7 @@ def match_peaks(
         # f is ascending: index ranges instead of masks over the whole spectrum
         i0 = int(np.searchsorted(f, lo, side="left"))
         i1 = int(np.searchsorted(f, hi, side="right"))
-        if hi >= f[-1] or i1 <= i0:
+        if hi >= f[-1] or i1 <= i0 or lo < DC_GUARD * spectrum.resolution:
             continue
         k = int(i0 + np.argmax(A[i0:i1]))
         hw = max(noise_rel * ft, 5.0 * tol)
