@@ -116,6 +116,19 @@ def test_tone_and_sensor_noise_levels():
     assert np.std(noisy.apply(np.zeros(n), fs)) == pytest.approx(0.01, rel=0.02)
 
 
+def test_tones_at_or_above_nyquist():
+    """A tone at a fixed frequency at or above the output's Nyquist frequency is refused in one
+    line (as a mode is); one given as an order that a fast shaft puts there is left out of the
+    signal, as a recorder's anti-aliasing filter removes it."""
+    fixed = _rig(tones=(Tone(0.05, "test", frequency_hz=7000.0),))
+    with pytest.raises(ConfigError, match=r"tone\[0\]\.frequency_hz = 7000 Hz is at or above"):
+        fixed.apply(np.zeros(1000), 12000.0)
+    assert np.std(fixed.apply(np.zeros(1000), 48000.0)) > 0.03
+    order = _rig(tones=(Tone(0.05, "test", order=250.0),))
+    assert_array_equal(order.apply(np.zeros(1000), 12000.0, shaft_hz=29.5), np.zeros(1000))
+    assert np.std(order.apply(np.zeros(1000), 48000.0, shaft_hz=29.5)) > 0.03
+
+
 def test_seeded_and_bit_reproducible(rig_file):
     rig = load_rig(rig_file)
     x = np.sin(np.arange(6000) * 0.3)

@@ -441,11 +441,17 @@ class Rig:
         )
 
     def check_rate(self, fs: float) -> None:
-        """Refuse a mode at or above the Nyquist frequency of the output rate ``fs`` [Hz]."""
-        for i, m in enumerate(self.modes):
-            if m.frequency_hz >= 0.5 * fs:
+        """Refuse a mode or a fixed-frequency tone at or above the Nyquist frequency of the
+        output rate ``fs`` [Hz]. (A tone given as an order is left out of a signal whose shaft
+        speed puts it there, as a recorder's anti-aliasing filter removes it: that depends on
+        the signal, not on the rig.)"""
+        items = [(f"mode[{i}]", m.frequency_hz) for i, m in enumerate(self.modes)]
+        items += [(f"tone[{i}]", t.frequency_hz) for i, t in enumerate(self.tones)
+                  if t.frequency_hz is not None]  # fmt: skip
+        for where, f in items:
+            if f >= 0.5 * fs:
                 raise ConfigError(
-                    f"{self.source or self.name}: mode[{i}].frequency_hz = {m.frequency_hz:g} Hz "
+                    f"{self.source or self.name}: {where}.frequency_hz = {f:g} Hz "
                     f"is at or above the Nyquist frequency of the output rate ({0.5 * fs:g} Hz); "
                     f"valid range (0, {0.5 * fs:g}) Hz"
                 )
@@ -472,7 +478,9 @@ class Rig:
     ) -> NDArray[np.float64]:
         """The sensor's signal [m/s^2] for the bearing's acceleration ``signal`` [m/s^2]
         sampled at ``fs`` [Hz] (shaft speed ``shaft_hz`` [Hz] for the tones given as orders;
-        ``seed`` for the background, the tones' phases and the sensor noise)."""
+        ``seed`` for the background, the tones' phases and the sensor noise). A tone given as
+        an order that lies at or above the Nyquist frequency at ``shaft_hz`` is left out (a
+        recorder's anti-aliasing filter removes it)."""
         from scipy.signal import sosfilt
 
         seed = check_int("seed", seed)
