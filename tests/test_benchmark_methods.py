@@ -29,7 +29,7 @@ from bearingsim.signal.benchmark import (
 from bearingsim.signal.fused import diagnose_fused
 from bearingsim.signal.kurtogram import EULER_GAMMA, band_maps
 from bearingsim.signal.peaks import match_peaks
-from bearingsim.signal.spectrum import amplitude_spectrum
+from bearingsim.signal.spectrum import Spectrum, amplitude_spectrum
 
 FS = 12000.0
 SHAFT = 1797.0 / 60.0
@@ -167,6 +167,76 @@ def test_noise_alone_is_none():
     x = np.random.default_rng(5).standard_normal(int(10 * FS))
     d = diagnose_fused(x, FS, BEARING, SHAFT)
     assert d.diagnosis == "none", d.notes
+
+
+def _lines_spectrum(lines: dict[float, float], res: float = 0.005) -> Spectrum:
+    """An order-domain envelope spectrum [orders]: a floor of 1e-3 and the given lines."""
+    f = np.arange(0.0, 40.0, res)
+    a = np.full(f.size, 1e-3)
+    for order, amp in lines.items():
+        a[int(round(order / res))] = amp
+    return Spectrum(f, a, domain="order", resolution=res)
+
+
+@pytest.mark.parametrize("consistent", [False, True])
+def test_kinematic_check_one_cage_speed(consistent):
+    """BPFO + BPFI = Z f_r for any contact angle and cage slip (one cage speed). A view with
+    the BPFO series and a second series near BPFI: placed at 1.5, 3 and 4.5 BPFO (with a shaft
+    sideband) it lies 0.038 orders (7.6 resolutions) off Z f_r - BPFO, so in that view the
+    inner-race lines, a family supported in one view against the outer race's three, are not
+    counted; placed at Z f_r - BPFO and its harmonics, the check keeps them."""
+    from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
+    from bearingsim.signal.fused import KINEMATIC_TOL, View, _kinematic_check, view_scores
+    from bearingsim.signal.spectrum import Domain
+
+    k = characteristic_frequencies(BEARING, 1.0)
+    bpfo = k.bpfo_hz
+    outer = {h * bpfo: 1.0 for h in (1, 2, 3)}
+    fi = (9.0 - bpfo) if consistent else 1.5 * bpfo
+    assert abs(bpfo + fi - 9.0) > KINEMATIC_TOL * 0.005 or consistent
+    inner = {fi: 2.0, 2 * fi: 2.0, 3 * fi: 2.0, fi - 1.0: 0.5}
+    rule = DiagnosisRule(shaft_cursors=True)
+    spectra = {
+        "raw": ((0.0, 40.0), _lines_spectrum(outer | inner)),
+        "cpw": ((0.0, 40.0), _lines_spectrum(outer)),
+        "drs_sk": ((0.0, 40.0), _lines_spectrum(outer)),
+    }
+    views = []
+    for name, (b, es) in spectra.items():
+        d = diagnose_spectrum(es, BEARING, 1.0, b, rule=rule)
+        views.append(View(name, b, d, *view_scores(d, rule)))
+    assert views[0].supported == ["outer", "inner"], views[0].diagnosis.notes
+    notes = _kinematic_check(views, spectra, None, 1.0, BEARING, 1.0, rule, Domain.ORDER)
+    if consistent:
+        assert notes == [] and views[0].supported == ["outer", "inner"]
+    else:
+        assert views[0].supported == ["outer"] and "inner-race lines" in notes[0], notes
+        peaks = {p.label: p for p in views[0].diagnosis.peaks}
+        assert peaks["BPFI"].freq_hz == pytest.approx(fi, abs=0.005), "still reported"
+        assert not peaks["BPFI"].detected
+
+
+def test_kinematic_check_needs_the_measured_speed():
+    """In Hz the check needs f_r measured from the record's shaft harmonics; a record without
+    them (white noise) leaves every view as it is, with a note."""
+    from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
+    from bearingsim.signal.fused import View, _kinematic_check, view_scores
+    from bearingsim.signal.spectrum import Domain
+
+    bpfo = characteristic_frequencies(BEARING, 1.0).bpfo_hz
+    fi = 1.5 * bpfo
+    outer = {h * bpfo: 1.0 for h in (1, 2, 3)}
+    es = _lines_spectrum(outer | {fi: 2.0, 2 * fi: 2.0, 3 * fi: 2.0, fi - 1.0: 0.5})
+    rule = DiagnosisRule(shaft_cursors=True)
+    d = diagnose_spectrum(es, BEARING, 1.0, (0.0, 40.0), rule=rule)
+    views = [View(n, (0.0, 40.0), d, *view_scores(d, rule)) for n in ("raw", "cpw")]
+    views[1] = View("cpw", (0.0, 40.0), d, {"outer": 1.0, "inner": 0.0, "ball": 0.0}, ["outer"],
+                    False)  # fmt: skip
+    x = np.random.default_rng(3).standard_normal(int(2 * FS))
+    spectra = {"raw": ((0.0, 40.0), es), "cpw": ((0.0, 40.0), es)}
+    notes = _kinematic_check(views, spectra, x, FS, BEARING, SHAFT, rule, Domain.HZ)
+    assert notes == ["kinematic check not made: the shaft speed could not be measured"]
+    assert views[0].supported == ["outer", "inner"]
 
 
 # --------------------------------------------------------------------------- properties, errors

@@ -28,11 +28,8 @@ if (CWRU / "manifest.csv").is_file():
 
 #: records where the fused diagnosis misses what the issue asks; each is in the benchmark table
 #: of docs/validation.md with the reason
-KNOWN_MISS_Y = {
-    "12k_Drive_End_OR014@6_0_197.mat": "BPFO series only in the 2.25-4.5 kHz band; the "
-    "coherence view reads outer, the raw view inner (BPFI 22.5 dB against BPFO 13 dB), and "
-    "outer leads at margin -0.03 (p 0.46): verdict uncertain",
-}
+#: (none since the sixteenth session's kinematic check: 197, "uncertain" before, is outer)
+KNOWN_MISS_Y: dict[str, str] = {}
 KNOWN_CONFIDENT_WRONG: dict[str, str] = {}
 
 
@@ -103,7 +100,7 @@ def test_agreement_gate_says_uncertain_when_no_method_reads_the_leading_family(
 @pytest.mark.parametrize(
     "file, leading, verdict",
     [
-        ("12k_Drive_End_OR014@6_0_197.mat", "outer", "uncertain"),
+        ("12k_Drive_End_OR014@6_0_197.mat", "outer", "outer"),
         ("12k_Drive_End_OR014@6_1_198.mat", "inner", "uncertain"),
         ("12k_Drive_End_OR014@6_2_199.mat", "outer", "outer"),
     ],
@@ -111,13 +108,24 @@ def test_agreement_gate_says_uncertain_when_no_method_reads_the_leading_family(
 def test_the_coherence_view_reads_the_weak_outer_race_records(bench, file, leading, verdict):
     """197-199 (outer 0.014 in @6, S&R Y2, P2, P1; measured): no view of the four band-choosing
     ones reads outer on its own; the coherence view, which averages every band by its modulation
-    depth, does (fifteenth session). 199 is then diagnosed outer; 197 leads with outer at
-    p < 0.5 (the raw view reads inner) and 198 with inner (which no method reads): both stay
-    "uncertain"."""
+    depth, does (fifteenth session). 199 is then diagnosed outer; so is 197 since the kinematic
+    check (sixteenth session; it led with outer at p 0.46 before, the raw view reading inner);
+    198 leads with inner (which no method reads) and stays "uncertain"."""
     r = bench[1][file]
     assert r["views"]["csc"].split(" (")[0] == "outer", r["views"]
     assert all(r["views"][v].split(" (")[0] != "outer" for v in ("cpw", "drs_sk", "drs_info"))
     assert (r["leading"], r["verdict"]) == (leading, verdict), r
+
+
+def test_kinematic_check_on_record_197(bench):
+    """197 (outer 0.014 in @6, S&R Y2; measured): its raw view's "BPFI series" lies at 1.5, 3
+    and 4.5 BPFO, five resolutions (0.5 Hz) off Z f_r - BPFO: no cage speed makes it the inner
+    race's. The kinematic check leaves those lines out of the raw view (the inner race is
+    supported in one view, the outer in two), which read inner (22.5 dB against BPFO 13 dB)
+    before; the verdict is outer, by two methods."""
+    r = bench[1]["12k_Drive_End_OR014@6_0_197.mat"]
+    assert "inner" not in r["views"]["raw"], r["views"]
+    assert (r["verdict"], r["named"]) == ("outer", True) and r["confidence"] >= 0.5, r
 
 
 @pytest.mark.parametrize("file", [r["file"] for r in ROWS])
@@ -230,7 +238,7 @@ def test_diagnose_fused_applies_the_agreement_gate():
 @pytest.mark.xfail(
     strict=True,
     reason="issue 17 mismatch: on halves of the records 5 of 68 parts get a wrong fault type "
-    "at p >= 0.5 (120 1/2 inner 0.82; 198 2/2 inner 0.90; 199 1/2 and 2/2 inner 0.76, 0.72; "
+    "at p >= 0.5 (120 1/2 inner 0.82; 198 2/2 inner 0.90; 199 1/2 and 2/2 inner 0.77, 0.73; "
     "174 1/2 ball 0.63): the 0.014 in drive-end outer-race records carry a BPFI series that "
     "the DRS views read on their own (docs/validation.md, 'Parts of the records')",
 )

@@ -585,6 +585,7 @@ def diagnose_spectrum(
     rule: DiagnosisRule | None = None,
     kurtogram: Kurtogram | None = None,
     notes: list[str] | None = None,
+    drop: frozenset[str] = frozenset(),
 ) -> Diagnosis:
     """Steps 3–4 of the rule (module docstring) on an envelope spectrum already computed.
 
@@ -604,6 +605,10 @@ def diagnose_spectrum(
         The kurtogram that chose the band (kept in the result).
     notes : list of str, optional
         Notes so far.
+    drop : frozenset of str
+        Fault families (``"outer"``, ``"inner"``, ``"ball"``) whose lines are found and
+        reported but not counted as detected (the fused diagnosis's kinematic check,
+        :func:`.fused.diagnose_fused`).
     """
     rule = rule or DiagnosisRule()
     domain = es.domain
@@ -620,6 +625,8 @@ def diagnose_spectrum(
             "uncertain", 0.0, band_t, shaft_hz, [], {}, [], kurt, es, kg, notes, domain
         )
     peaks = find_lines(es, bearing, shaft_hz, rule, band_t[1] - band_t[0])
+    if drop:
+        peaks = [replace(p, detected=False) if _family(p.label) in drop else p for p in peaks]
     by = {p.label: p for p in peaks}
     base = {"outer": "BPFO", "inner": "BPFI", "ball": "2xBSF"}
     side = {
