@@ -237,7 +237,8 @@ def test_diagnose_fused_applies_the_agreement_gate():
 
 @pytest.mark.xfail(
     strict=True,
-    reason="issue 17 mismatch: on halves of the records 5 of 68 parts get a wrong fault type "
+    reason="issue 17's criterion applied to halves of the records (its asks are on whole "
+    "records, where it holds), a mismatch: 5 of 68 parts get a wrong fault type "
     "at p >= 0.5 (120 1/2 inner 0.82; 198 2/2 inner 0.90; 199 1/2 and 2/2 inner 0.77, 0.73; "
     "174 1/2 ball 0.63): the 0.014 in drive-end outer-race records carry a BPFI series that "
     "the DRS views read on their own (docs/validation.md, 'Parts of the records')",
@@ -245,9 +246,9 @@ def test_diagnose_fused_applies_the_agreement_gate():
 def test_no_confident_wrong_fault_type_on_halves_of_the_records():
     """Shorter recordings of the same mountings, no new data: each record cut in two, each half
     diagnosed on its own (`bearingsim.signal.cwru_benchmark.parts_check`). Issue 17's criterion
-    (no wrong fault type with confidence >= 0.5) holds on the whole records (27 right, 7
-    none/uncertain); on the halves it does not (`python scripts/segment_robustness.py`: 49
-    right, 5 wrong, 14 none/uncertain)."""
+    (no wrong fault type with confidence >= 0.5) holds on the whole records (28 right, 6
+    none/uncertain); on the halves it does not (`python scripts/segment_robustness.py`: 50
+    right, 5 wrong, 13 none/uncertain)."""
     from bearingsim.signal.cwru_benchmark import parts_check
 
     parts = parts_check(CWRU, 2)

@@ -64,6 +64,23 @@ def test_text_output(run_cli):
     r = run_cli(*BASE, "--rpm", "3000", "--centrifugal", "--gyroscopic")
     assert r.code == 0, r.err
     assert "k_radial" in r.out and "dominant shaft orders" in r.out
+    assert "note:" not in r.err
+
+
+def test_rpm_without_inertia_flags_says_it_applies_no_load(run_cli):
+    """--rpm alone applies no inertia load (its help says it is the speed for inertia loads):
+    the run says so on stderr instead of ignoring the option in silence."""
+    r = run_cli(*BASE, "--rpm", "3000")
+    assert r.code == 0, r.err
+    assert "note: --rpm without --centrifugal or --gyroscopic applies no inertia load" in r.err
+
+
+def test_tilt_azimuth_without_tilt_says_it_has_no_effect(run_cli):
+    r = run_cli(*BASE, "--outer-tilt-azimuth-deg", "30")
+    assert r.code == 0, r.err
+    assert "note: --outer-tilt-azimuth-deg 30 has no effect without --outer-tilt-deg" in r.err
+    r2 = run_cli(*BASE, "--outer-tilt-azimuth-deg", "30", "--outer-tilt-deg", "0.01")
+    assert r2.code == 0 and "note:" not in r2.err, r2.err
 
 
 @pytest.mark.parametrize(

@@ -193,11 +193,25 @@ def stiffness_cmd(
         inner_tilt=math.radians(inner_tilt_deg),
         inner_azimuth=math.radians(inner_tilt_azimuth_deg),
     )
+    for ring, tilt, azimuth in (("outer", outer_tilt_deg, outer_tilt_azimuth_deg),
+                                ("inner", inner_tilt_deg, inner_tilt_azimuth_deg)):  # fmt: skip
+        if tilt == 0.0 and azimuth != 0.0:
+            click.echo(
+                f"note: --{ring}-tilt-azimuth-deg {azimuth:g} has no effect without "
+                f"--{ring}-tilt-deg (the ring is not tilted)",
+                err=True,
+            )
     if (centrifugal or gyroscopic) and rpm is None:
         raise ConfigError(
             "--centrifugal/--gyroscopic need --rpm (shaft speed); valid range (0, inf) r/min"
         )
     w = 0.0 if rpm is None else check_range("rpm", rpm, 0.0, unit="r/min") * 2.0 * math.pi / 60
+    if rpm is not None and not (centrifugal or gyroscopic):
+        click.echo(
+            "note: --rpm without --centrifugal or --gyroscopic applies no inertia load (the "
+            "speed is only checked against the bearing's limit)",
+            err=True,
+        )
     speed = SpeedEffects(shaft_speed=w, centrifugal=centrifugal, gyroscopic=gyroscopic)
     kw: dict[str, object] = dict(
         clearance=clearance_m,
