@@ -220,3 +220,9 @@ def test_read_shaft_signal_errors(tmp_path):
     p.write_text("0,1,2\n1,2,3\n")
     with pytest.raises(ConfigError, match=r"must have two numeric columns \(time \[s\], value\)"):
         read_shaft_signal(p, "angle_rad")
+    p.write_text("time_s,speed_rpm\n0,1\n1,2\n")
+    assert read_shaft_signal(p, "speed_rpm")[2] is ShaftSignalKind.SPEED_RPM
+    with pytest.raises(
+        ConfigError, match="kind = 'angle_rad' contradicts the header .* 'speed_rpm'"
+    ):
+        read_shaft_signal(p, "angle_rad")

@@ -525,7 +525,8 @@ def read_shaft_signal(
     path : str or Path
         The file.
     kind : ShaftSignalKind, optional
-        What the second column is (default: from the header).
+        What the second column is (default: from the header; a kind that contradicts the
+        header's is refused).
 
     Returns
     -------
@@ -542,13 +543,19 @@ def read_shaft_signal(
     rec = read_signal(p, time_column=0)
     if len(rec.columns) != 2:
         raise ConfigError(f"file = {str(p)!r} must have two numeric columns (time [s], value)")
+    kinds = [k.value for k in ShaftSignalKind]
+    named = rec.channel.lower() if rec.channel.lower() in kinds else None
     if kind is None:
-        kinds = [k.value for k in ShaftSignalKind]
-        if rec.channel.lower() not in kinds:
+        if named is None:
             raise ConfigError(
                 f"file = {str(p)!r}: give --kind (one of {', '.join(kinds)}) or name "
                 "the second column in a header line"
             )
-        kind = rec.channel.lower()
+        kind = named
     k = parse_enum(ShaftSignalKind, kind, "kind")
+    if named is not None and k.value != named:
+        raise ConfigError(
+            f"kind = {k.value!r} contradicts the header of file = {str(p)!r}, which names the "
+            f"second column {named!r}; valid: the header's kind, or no --kind"
+        )
     return rec.time, rec.x * k.si_factor, k
