@@ -75,6 +75,25 @@ def test_rpm_without_inertia_flags_says_it_applies_no_load(run_cli):
     assert "note: --rpm without --centrifugal or --gyroscopic applies no inertia load" in r.err
 
 
+def test_a_bearing_files_contact_angle_is_said_to_be_unused(run_cli, tmp_path):
+    """The quasi-static models take the free contact angle from the clearance and the groove
+    radii (7.9 deg for the 6205's 6 um); a bearing file's nominal angle is not used, and the
+    run says so instead of ignoring it in silence."""
+    from pathlib import Path
+
+    import bearingsim
+
+    src = Path(bearingsim.__file__).parent / "catalog" / "6205.toml"
+    text = src.read_text().replace("contact_angle_rad = 0.0", "contact_angle_rad = 0.2618")
+    f = tmp_path / "acbb.toml"
+    f.write_text(text.replace('id = "6205"', 'id = "my-acbb"'))
+    r = run_cli("stiffness", "--bearing-file", f, *BASE[2:])
+    assert r.code == 0, r.err
+    assert "note: the bearing's contact angle (15 deg) is not used here" in r.err
+    assert "(7.88 deg)" in r.err
+    assert "note:" not in run_cli(*BASE).err
+
+
 def test_tilt_azimuth_without_tilt_says_it_has_no_effect(run_cli):
     r = run_cli(*BASE, "--outer-tilt-azimuth-deg", "30")
     assert r.code == 0, r.err

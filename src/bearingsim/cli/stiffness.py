@@ -212,6 +212,16 @@ def stiffness_cmd(
             "speed is only checked against the bearing's limit)",
             err=True,
         )
+    if bearing.contact_angle > 0.0:
+        from ..quasistatic.inputs import qs_geometry
+
+        af = qs_geometry(bearing, clearance_m).free_contact_angle
+        click.echo(
+            f"note: the bearing's contact angle ({math.degrees(bearing.contact_angle):.3g} deg) "
+            f"is not used here: the quasi-static models take the free contact angle from the "
+            f"diametral clearance and the groove radii ({math.degrees(af):.3g} deg)",
+            err=True,
+        )
     speed = SpeedEffects(shaft_speed=w, centrifugal=centrifugal, gyroscopic=gyroscopic)
     kw: dict[str, object] = dict(
         clearance=clearance_m,
