@@ -75,10 +75,10 @@ def test_rpm_without_inertia_flags_says_it_applies_no_load(run_cli):
     assert "note: --rpm without --centrifugal or --gyroscopic applies no inertia load" in r.err
 
 
-def test_a_bearing_files_contact_angle_is_said_to_be_unused(run_cli, tmp_path):
+def test_a_bearing_files_contact_angle_is_said_to_set_only_the_curvatures(run_cli, tmp_path):
     """The quasi-static models take the free contact angle from the clearance and the groove
-    radii (7.9 deg for the 6205's 6 um); a bearing file's nominal angle is not used, and the
-    run says so instead of ignoring it in silence."""
+    radii (7.9 deg for the 6205's 6 um); a bearing file's nominal angle sets only the Hertz
+    curvatures, and the run says so instead of leaving the user to assume it is used."""
     from pathlib import Path
 
     import bearingsim
@@ -89,7 +89,7 @@ def test_a_bearing_files_contact_angle_is_said_to_be_unused(run_cli, tmp_path):
     f.write_text(text.replace('id = "6205"', 'id = "my-acbb"'))
     r = run_cli("stiffness", "--bearing-file", f, *BASE[2:])
     assert r.code == 0, r.err
-    assert "note: the bearing's contact angle (15 deg) is not used here" in r.err
+    assert "note: the bearing's contact angle (15 deg) sets only the Hertz curvatures" in r.err
     assert "(7.88 deg)" in r.err
     assert "note:" not in run_cli(*BASE).err
 

@@ -218,8 +218,9 @@ def stiffness_cmd(
         af = qs_geometry(bearing, clearance_m).free_contact_angle
         click.echo(
             f"note: the bearing's contact angle ({math.degrees(bearing.contact_angle):.3g} deg) "
-            f"is not used here: the quasi-static models take the free contact angle from the "
-            f"diametral clearance and the groove radii ({math.degrees(af):.3g} deg)",
+            f"sets only the Hertz curvatures here: the quasi-static models take the unloaded "
+            f"(free) contact angle from the diametral clearance and the groove radii "
+            f"({math.degrees(af):.3g} deg; docs/models.md, QS5)",
             err=True,
         )
     speed = SpeedEffects(shaft_speed=w, centrifugal=centrifugal, gyroscopic=gyroscopic)
