@@ -90,7 +90,7 @@ def test_a_bearing_files_contact_angle_is_said_to_set_only_the_curvatures(run_cl
     r = run_cli("stiffness", "--bearing-file", f, *BASE[2:])
     assert r.code == 0, r.err
     assert "note: the bearing's contact angle (15 deg) sets only the Hertz curvatures" in r.err
-    assert "(7.88 deg)" in r.err
+    assert "(7.88 deg;" in r.err
     assert "note:" not in run_cli(*BASE).err
 
 
