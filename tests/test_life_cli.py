@@ -148,6 +148,19 @@ def test_life_bad_input(capsys, tmp_path, args, match):
         assert "valid range (0, inf)" in line
 
 
+@pytest.mark.parametrize(
+    "law, rate",
+    [(["--kappa", "1e6"], "= 0 per cycle"), (["--sigma-t-pa", "1e-300"], "= inf per cycle")],
+)
+def test_damage_law_constants_whose_rate_leaves_the_float_range(capsys, tmp_path, law, rate):
+    """Positive constants can still put (delta_tau/sigma_t)^kappa at 0 (kappa = 1e6: the rate
+    underflows) or at inf (sigma_t = 1e-300 Pa): one line naming both constants, the shear range
+    and the rate, where the run used to stop on "no element is being damaged"."""
+    args = ["--radial-load-n", "5000", "--mesh", "coarse", "--stop", "initiation", *law]
+    line = _bad(capsys, args, tmp_path, rate)
+    assert "kappa = " in line and "sigma_t_pa = " in line and "shear range" in line
+
+
 def test_life_overload_error_and_warning(capsys, tmp_path, run_cli):
     c0 = static_capacity(get_bearing("6206")).c0
     line = _bad(capsys, ["--radial-load-n", f"{2.5 * c0:.0f}"], tmp_path, "static capacity")

@@ -468,7 +468,18 @@ def contact_fatigue_life(
     outer[core.elements] = False
     rate_in = float(np.max(dtau_full[core.elements]))
     rate_out = float(np.max(dtau_full[outer])) if np.any(outer) else 0.0
-    outer_ratio = (rate_out / rate_in) ** law.kappa if rate_in > 0 else 0.0
+    with np.errstate(over="ignore", under="ignore"):  # a float's range checked just below
+        outer_ratio = float(np.float64(rate_out / rate_in) ** law.kappa) if rate_in > 0 else 0.0
+        rate0 = float(np.float64(rate_in / law.sigma_t) ** law.kappa)  # seed LIFE eq. (4), D = 0
+    if not 0.0 < rate0 < math.inf:
+        # constants that put the first block's rate outside the float range (kappa = 1e6
+        # underflowed to 0, sigma_t = 1e-300 Pa overflowed to inf: "no element is being damaged")
+        raise ConfigError(
+            f"kappa = {law.kappa:.6g} and sigma_t_pa = {law.sigma_t:.6g} Pa give the most "
+            f"stressed element (shear range {rate_in:.6g} Pa) a damage rate "
+            f"(delta_tau/sigma_t)^kappa = {rate0:.3g} per cycle; valid: constants whose rate is "
+            "finite and > 0 (the defaults: the GCr15 fit, seed LIFE eqs. (5)-(6))"
+        )
     t_setup = time.perf_counter() - t0
 
     n = core.n_elements
