@@ -147,6 +147,29 @@ def test_fan_end_records_default_to_their_fan_end_channel_and_bearing(run_cli, t
     assert (de["channel"], de["bearing"], de["channel_source"]) == ("DE", "6205-cwru", "option")
 
 
+def test_a_text_file_with_a_cwru_fan_end_name_gets_the_fan_end_bearing(run_cli, tmp_path):
+    """A CSV named like a CWRU fan-end record takes, like a .mat file of that name, the fan
+    end's 6203 (it took the drive end's 6205 while its speed came from the name), with --rpm
+    too; a drive-end name keeps the 6205, --bearing still decides."""
+    from bearingsim.io.signal import read_signal
+
+    src = read_signal(cwru_record("313"), channel="FE")
+    n = int(2 * src.fs)
+    rows = np.c_[np.arange(n) / src.fs, src.x[:n]]
+    fe = tmp_path / "12k_Fan_End_OR014@6_0_313.csv"
+    de = tmp_path / "12k_Drive_End_OR014@6_0_313.csv"
+    for f in (fe, de):
+        np.savetxt(f, rows, delimiter=",", header="time_s,acc", comments="")
+    got = _lines(run_cli("analyze", fe, de, "--json"))
+    assert [d["bearing"] for d in got] == ["6203-cwru", "6205-cwru"]
+    assert "bearing from the file name (Fan_End)" in got[0]["channel_source"]
+    assert got[0]["rpm_source"].startswith("name")
+    opt = run_cli("analyze", fe, "--json", "--rpm", "1796").json()
+    assert (opt["bearing"], opt["diagnosis"]) == ("6203-cwru", "outer"), opt["why"]
+    own = run_cli("analyze", fe, "--json", "--bearing", "6205-cwru").json()
+    assert own["bearing"] == "6205-cwru" and "bearing from" not in own["channel_source"]
+
+
 # ------------------------------------------------------------------------- a bad file
 
 

@@ -187,7 +187,6 @@ def test_kinematic_check_one_cage_speed(consistent):
     counted; placed at Z f_r - BPFO and its harmonics, the check keeps them."""
     from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
     from bearingsim.signal.fused import KINEMATIC_TOL, View, _kinematic_check, view_scores
-    from bearingsim.signal.spectrum import Domain
 
     k = characteristic_frequencies(BEARING, 1.0)
     bpfo = k.bpfo_hz
@@ -206,7 +205,7 @@ def test_kinematic_check_one_cage_speed(consistent):
         d = diagnose_spectrum(es, BEARING, 1.0, b, rule=rule)
         views.append(View(name, b, d, *view_scores(d, rule)))
     assert views[0].supported == ["outer", "inner"], views[0].diagnosis.notes
-    notes = _kinematic_check(views, spectra, None, 1.0, BEARING, 1.0, rule, Domain.ORDER)
+    notes = _kinematic_check(views, spectra, 1.0, BEARING, 1.0, rule)
     if consistent:
         assert notes == [] and views[0].supported == ["outer", "inner"]
     else:
@@ -219,9 +218,9 @@ def test_kinematic_check_one_cage_speed(consistent):
 def test_kinematic_check_needs_the_measured_speed():
     """In Hz the check needs f_r measured from the record's shaft harmonics; a record without
     them (white noise) leaves every view as it is, with a note."""
+    from bearingsim.signal.contact_angle import padded_spectrum
     from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
-    from bearingsim.signal.fused import View, _kinematic_check, view_scores
-    from bearingsim.signal.spectrum import Domain
+    from bearingsim.signal.fused import View, _kinematic_check, _measured_speed, view_scores
 
     bpfo = characteristic_frequencies(BEARING, 1.0).bpfo_hz
     fi = 1.5 * bpfo
@@ -234,7 +233,9 @@ def test_kinematic_check_needs_the_measured_speed():
                     False)  # fmt: skip
     x = np.random.default_rng(3).standard_normal(int(2 * FS))
     spectra = {"raw": ((0.0, 40.0), es), "cpw": ((0.0, 40.0), es)}
-    notes = _kinematic_check(views, spectra, x, FS, BEARING, SHAFT, rule, Domain.HZ)
+    assert _measured_speed(padded_spectrum(x, FS), FS, SHAFT) is None
+    assert _measured_speed(None, 1.0, 1.0) == 1.0, "the order domain: exactly 1"
+    notes = _kinematic_check(views, spectra, None, BEARING, SHAFT, rule)
     assert notes == ["kinematic check not made: the shaft speed could not be measured"]
     assert views[0].supported == ["outer", "inner"]
 

@@ -97,7 +97,9 @@ def test_a_bearing_files_contact_angle_is_said_to_set_only_the_curvatures(run_cl
 def test_tilt_azimuth_without_tilt_says_it_has_no_effect(run_cli):
     r = run_cli(*BASE, "--outer-tilt-azimuth-deg", "30")
     assert r.code == 0, r.err
-    assert "note: --outer-tilt-azimuth-deg 30 has no effect without --outer-tilt-deg" in r.err
+    assert "note: --outer-tilt-azimuth-deg 30 has no effect: the outer ring is not tilted" in r.err
+    refused = run_cli(*BASE, "--rpm", "1e9")  # a refused run prints its error line only
+    assert refused.code == 2 and "note:" not in refused.err, refused.err
     r2 = run_cli(*BASE, "--outer-tilt-azimuth-deg", "30", "--outer-tilt-deg", "0.01")
     assert r2.code == 0 and "note:" not in r2.err, r2.err
 

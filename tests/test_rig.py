@@ -116,6 +116,15 @@ def test_tone_and_sensor_noise_levels():
     assert np.std(noisy.apply(np.zeros(n), fs)) == pytest.approx(0.01, rel=0.02)
 
 
+def test_a_zero_gain_mode_contributes_nothing_quietly():
+    """A mode of gain 0 (allowed) is the path without it, without SciPy's warnings about a
+    zero numerator (the test run turns warnings into errors)."""
+    x = np.random.default_rng(4).standard_normal(2000)
+    rig = _rig(gain=1.0, modes=(Mode(3000.0, 0.05, 0.0, "test"),))
+    assert_array_equal(rig.apply(x, 12000.0), x)
+    assert_allclose(np.abs(rig.transfer(np.array([100.0, 3000.0]), 12000.0)), 1.0)
+
+
 def test_tones_at_or_above_nyquist():
     """A tone at a fixed frequency at or above the output's Nyquist frequency is refused in one
     line (as a mode is); one given as an order that a fast shaft puts there is left out of the
@@ -162,6 +171,8 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
     [
         (("name = ", "colour = 1\nname = "), "unknown key 'colour'"),
         (("damping_ratio = 0.05", "damping_ratio = -0.05"), "mode[0].damping_ratio = -0.05"),
+        # far below any structure's damping the resonator's design is ill-conditioned
+        (("damping_ratio = 0.05", "damping_ratio = 1e-17"), "valid range [1e-06, 1)"),
         (("gain = 4.0", "gain = nan"), "mode[0].gain = nan is not finite"),
         (
             ('provenance = "written by hand for tests/test_rig.py"\n', ""),

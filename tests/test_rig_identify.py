@@ -145,6 +145,11 @@ def test_cli_identify_refuses_in_one_line_and_writes_nothing(tmp_path):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and "XX" in lines[0]
     assert not out.exists() and list(tmp_path.iterdir()) == []
+    # one record given twice (it would count twice in every median of the identification)
+    r2 = _cli("rig", "identify", str(rec), str(CWRU / ".." / "cwru" / rec.name), "--name", "x",
+              "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r2.returncode == 2 and "is the same file as" in r2.stderr, r2.stderr
+    assert len(r2.stderr.strip().splitlines()) == 1 and not out.exists()
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")

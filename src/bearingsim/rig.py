@@ -132,10 +132,17 @@ def _keys(
     return table
 
 
+#: smallest damping ratio of a mode [-]: no structure is damped less (a steel tuning fork's
+#: ~1e-5); far below it the digital resonator's poles lie within round-off of the unit
+#: circle and SciPy's design warns of badly conditioned coefficients (1e-17 did)
+MIN_DAMPING = 1e-6
+
+
 @dataclass(frozen=True)
 class Mode:
     """A resonant mode of the transfer path: natural frequency ``frequency_hz`` [Hz], damping
-    ratio ``damping_ratio`` [-] (0 < zeta < 1), gain at resonance ``gain`` [-]."""
+    ratio ``damping_ratio`` [-] (:data:`MIN_DAMPING` <= zeta < 1), gain at resonance ``gain``
+    [-] (0: the mode contributes nothing)."""
 
     frequency_hz: float
     damping_ratio: float
@@ -150,7 +157,7 @@ class Mode:
         return cls(
             check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
             check_range(
-                f"{where}.damping_ratio", d["damping_ratio"], 0.0, 1.0, lo_open=True, hi_open=True
+                f"{where}.damping_ratio", d["damping_ratio"], MIN_DAMPING, 1.0, hi_open=True
             ),  # fmt: skip
             check_range(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
             _provenance(d, where),
@@ -464,6 +471,8 @@ class Rig:
         self.check_rate(fs)
         h = np.full(np.shape(f), self.gain, dtype=complex)
         for m in self.modes:
+            if m.gain == 0.0:  # contributes nothing (its filter would divide by zero)
+                continue
             _, hk = sosfreqz(m.sos(fs), worN=np.asarray(f, dtype=float), fs=fs)
             h += hk
         return h
@@ -495,7 +504,8 @@ class Rig:
         self.check_rate(fs)
         y = self.gain * x
         for m in self.modes:
-            y = y + sosfilt(m.sos(fs), x)
+            if m.gain != 0.0:  # a zero-gain mode contributes nothing
+                y = y + sosfilt(m.sos(fs), x)
         rng = np.random.default_rng(seed)
         if self.background is not None:
             y = y + self.background.synthesize(x.size, fs, rng)

@@ -85,7 +85,7 @@ class _Request:
     "fs_hz",
     type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
-    show_default="from the file; CWRU: 12k/48k in the name, else 48000",
+    show_default="from the file; CWRU .mat: 12k/48k in the name, else read off the shaft lines",
     help="Sample rate of the signal [Hz].",
 )
 @deprecated("--fs", "--fs-hz")
@@ -214,10 +214,14 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     rec, rpm_source, channel_source = _load_record(path, req)
     check_samples(rec)
     check_resolvable(rec)
-    cwru = Path(rec.source).suffix.lower() == ".mat"
-    bearing = (
-        req.bearing or rec.bearing or resolve_bearing(cwru_bearing(rec.channel if cwru else "DE"))
-    )
+    from ..io.cwru import cwru_end
+
+    mat = Path(rec.source).suffix.lower() == ".mat"
+    # a text file named like a CWRU fan-end record gets the fan end's bearing, as a .mat does
+    end = rec.channel if mat else cwru_end(path)
+    bearing = req.bearing or rec.bearing or resolve_bearing(cwru_bearing(end))
+    if not mat and end == "FE" and bearing.id == cwru_bearing("FE"):
+        channel_source = f"{channel_source}; bearing from the file name (Fan_End)"
     # an order-tracked record's angle grid is checked against the memory budget (a speed
     # column in the wrong unit would ask for an unbounded grid)
     from ..dynamics.budget import Budget
@@ -315,6 +319,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         speed += f", fs {out['fs_hz'] / 1000:g} kHz {out['fs_source']}"
     if str(out.get("channel_source", "")).startswith("file name"):  # nor a fan-end default
         speed += f", channel {out['channel']} and {out['bearing']} from the file name"
+    elif "bearing from the file name" in str(out.get("channel_source", "")):
+        speed += f", {out['bearing']} from the file name"
     lead = ""
     if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
         # an "uncertain" with a leading family: say which family led, at what probability
@@ -326,6 +332,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         + lead
         + speed
     )
+    if out.get("why"):  # what made the verdict "uncertain"
+        click.echo(f"  why: {out['why']}")
     if ALIASING_NOTE in out.get("notes", ()):
         click.echo(f"  note: {ALIASING_NOTE}")
     if not detail:

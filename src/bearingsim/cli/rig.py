@@ -105,6 +105,14 @@ def identify_cmd(
 
     if not name.strip():
         raise ConfigError(f"name = {name!r} is empty; valid: a name for the rig (--name)")
+    seen: dict[Path, str] = {}
+    for p in records:  # one record given twice would count twice in every median
+        key = Path(p).resolve()
+        if key in seen:
+            raise ConfigError(
+                f"records: {p!r} is the same file as {seen[key]!r}; valid: each record once"
+            )
+        seen[key] = p
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
     unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]

@@ -193,13 +193,13 @@ def stiffness_cmd(
         inner_tilt=math.radians(inner_tilt_deg),
         inner_azimuth=math.radians(inner_tilt_azimuth_deg),
     )
+    notes = []  # said once the run has succeeded (a refused run prints its error line only)
     for ring, tilt, azimuth in (("outer", outer_tilt_deg, outer_tilt_azimuth_deg),
                                 ("inner", inner_tilt_deg, inner_tilt_azimuth_deg)):  # fmt: skip
         if tilt == 0.0 and azimuth != 0.0:
-            click.echo(
-                f"note: --{ring}-tilt-azimuth-deg {azimuth:g} has no effect without "
-                f"--{ring}-tilt-deg (the ring is not tilted)",
-                err=True,
+            notes.append(
+                f"--{ring}-tilt-azimuth-deg {azimuth:g} has no effect: the {ring} ring is not "
+                f"tilted (--{ring}-tilt-deg 0)"
             )
     if (centrifugal or gyroscopic) and rpm is None:
         raise ConfigError(
@@ -207,21 +207,19 @@ def stiffness_cmd(
         )
     w = 0.0 if rpm is None else check_range("rpm", rpm, 0.0, unit="r/min") * 2.0 * math.pi / 60
     if rpm is not None and not (centrifugal or gyroscopic):
-        click.echo(
-            "note: --rpm without --centrifugal or --gyroscopic applies no inertia load (the "
-            "speed is only checked against the bearing's limit)",
-            err=True,
+        notes.append(
+            "--rpm without --centrifugal or --gyroscopic applies no inertia load (the "
+            "speed is only checked against the bearing's limit)"
         )
     if bearing.contact_angle > 0.0:
         from ..quasistatic.inputs import qs_geometry
 
         af = qs_geometry(bearing, clearance_m).free_contact_angle
-        click.echo(
-            f"note: the bearing's contact angle ({math.degrees(bearing.contact_angle):.3g} deg) "
+        notes.append(
+            f"the bearing's contact angle ({math.degrees(bearing.contact_angle):.3g} deg) "
             f"sets only the Hertz curvatures here: the quasi-static models take the unloaded "
             f"(free) contact angle from the diametral clearance and the groove radii "
-            f"({math.degrees(af):.3g} deg; docs/models.md, QS5)",
-            err=True,
+            f"({math.degrees(af):.3g} deg; docs/models.md, QS5)"
         )
     speed = SpeedEffects(shaft_speed=w, centrifugal=centrifugal, gyroscopic=gyroscopic)
     kw: dict[str, object] = dict(
@@ -249,6 +247,8 @@ def stiffness_cmd(
             budget=budget,
             **kw,
         )
+    for n in notes:
+        click.echo(f"note: {n}", err=True)
     if plot:
         from ..report.figures import save_figure
 

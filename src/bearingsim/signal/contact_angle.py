@@ -35,13 +35,16 @@ from scipy.fft import next_fast_len
 from ..errors import ConfigError, check_positive
 from ..geometry import Bearing, characteristic_frequencies, contact_angle_from_order
 from .peaks import refine_peak
-from .spectrum import amplitude_spectrum
+from .spectrum import Spectrum, amplitude_spectrum
 
 __all__ = [
     "ALPHA_SEARCH_MAX",
     "ContactAngleEstimate",
     "estimate_contact_angle",
     "measured_shaft_hz",
+    "padded_spectrum",
+    "SpeedComb",
+    "shaft_speed_comb",
 ]
 
 #: largest contact angle the fault-line search reaches [rad] (25°: beyond it a deep-groove
@@ -96,6 +99,7 @@ def measured_shaft_hz(
     rel_tol: float = 0.005,
     min_snr_db: float = 20.0,
     min_lines: int = 3,
+    spectrum: Spectrum | None = None,
 ) -> tuple[float, int]:
     """Shaft speed measured from the shaft harmonics of a record (module docstring, step 1).
 
@@ -117,6 +121,9 @@ def measured_shaft_hz(
     min_lines : int
         Harmonics that must count [-]: one line of another source within a window must not set
         the speed (every CWRU record the estimate reads shows 5 or 6).
+    spectrum : Spectrum, optional
+        ``x``'s amplitude spectrum zero padded 4× (:func:`padded_spectrum`), when the caller
+        has it already.
 
     Returns
     -------
@@ -132,8 +139,7 @@ def measured_shaft_hz(
     """
     fs = check_positive("fs_hz", fs, "Hz")
     hint = check_positive("shaft_hz_hint", shaft_hz_hint, "Hz")
-    xa = np.asarray(x, dtype=float)
-    spec = amplitude_spectrum(xa, fs, n_fft=next_fast_len(_PAD * xa.size))
+    spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
     f, A, df = spec.freq, spec.amplitude, spec.bin_width
     est = []
     for k in range(1, harmonics + 1):
@@ -147,6 +153,80 @@ def measured_shaft_hz(
             f"{min_lines}: the shaft speed cannot be measured here"
         )
     return float(np.median(est)), len(est)
+
+
+@dataclass(frozen=True)
+class SpeedComb:
+    """What :func:`shaft_speed_comb` read from a record.
+
+    Attributes
+    ----------
+    shaft_hz : float
+        Speed whose harmonic comb stands highest [Hz].
+    prominence_db : float
+        Mean level of its harmonics over their neighbourhood's median, minus the median of that
+        mean over all speeds searched [dB]: how far the comb stands out.
+    gain_db : float
+        Its mean level minus the best within ±0.5 % of the speed given [dB].
+    """
+
+    shaft_hz: float
+    prominence_db: float
+    gain_db: float
+
+
+def padded_spectrum(x: ArrayLike, fs: float) -> Spectrum:
+    """The amplitude spectrum of ``x`` sampled at ``fs`` [Hz], zero padded 4× to a fast FFT
+    length (what :func:`measured_shaft_hz` and :func:`shaft_speed_comb` read)."""
+    xa = np.asarray(x, dtype=float)
+    return amplitude_spectrum(xa, fs, n_fft=next_fast_len(_PAD * xa.size))
+
+
+def shaft_speed_comb(
+    x: ArrayLike,
+    fs: float,
+    shaft_hz_hint: float,
+    *,
+    rel_tol: float = 0.05,
+    harmonics: int = 10,
+    spectrum: Spectrum | None = None,
+) -> SpeedComb | None:
+    """The shaft speed within ``shaft_hz_hint (1 ± rel_tol)`` [Hz] whose first ``harmonics``
+    harmonics stand highest on average in the record's amplitude spectrum (zero-padded 4×;
+    each harmonic's level in dB over the median within ±10 % of it, the largest line within
+    two padded bins taken): a comb of ten lines, which one fault line near a shaft harmonic (the
+    6203's BPFO at 3.05 orders) cannot carry, unlike the three-line search of
+    :func:`measured_shaft_hz`. On the 34 CWRU records of ``../shared/data/cwru`` it lies
+    within 0.25 % of the stored speed and 20-39 dB over the other speeds (174, without shaft
+    lines, 1 dB). Returns None when fewer than three harmonics lie below the Nyquist frequency.
+    ``spectrum``: :func:`padded_spectrum` of ``x`` when the caller has it already.
+    """
+    fs = check_positive("fs_hz", fs, "Hz")
+    f0 = check_positive("shaft_hz_hint", shaft_hz_hint, "Hz")
+    spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
+    df = spec.bin_width
+    level = 20.0 * np.log10(np.maximum(spec.amplitude, 1e-300))
+    peak = level.copy()  # the largest line within two padded bins
+    for sh in range(1, 5):
+        peak[sh:] = np.maximum(peak[sh:], level[:-sh])
+        peak[:-sh] = np.maximum(peak[:-sh], level[sh:])
+    k = np.arange(1, harmonics + 1)
+    k = k[k * f0 * (1.0 + rel_tol) * 1.1 < spec.freq[-1]]
+    if k.size < 3:
+        return None
+    floors = np.array(
+        [np.median(level[int(h * f0 * 0.9 / df) : int(h * f0 * 1.1 / df) + 1]) for h in k]
+    )
+    grid = np.arange(f0 * (1.0 - rel_tol), f0 * (1.0 + rel_tol), df / k[-1])
+    idx = np.rint(np.outer(grid, k) / df).astype(int)
+    score = np.mean(peak[idx] - floors, axis=1)
+    j = int(np.argmax(score))
+    near = np.abs(grid / f0 - 1.0) <= 0.005
+    return SpeedComb(
+        float(grid[j]),
+        float(score[j] - np.median(score)),
+        float(score[j] - np.max(score[near])),
+    )
 
 
 @dataclass(frozen=True)

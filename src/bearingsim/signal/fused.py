@@ -68,6 +68,17 @@ detected in most views ("looseness or shaft modulation"), and lines at the harmo
 
 **Decision and confidence.**
 
+* a speed the record refutes → ``uncertain`` (0), the leading family and ``p`` kept
+  (sixteenth session): the fault lines are searched within ``tol_rel`` (1 %) of the speed
+  given; when the comb of ten shaft harmonics that stands highest within ±5 % of it
+  (:func:`.contact_angle.shaft_speed_comb`) lies further away and stands
+  :data:`COMB_PROMINENCE_DB` out and :data:`COMB_GAIN_DB` over the comb at the speed given,
+  the lines were searched at the wrong speed (record 132 at ``--rpm 1797`` instead of its
+  1750 r/min read "ball" at 0.90, its 2×BPFO taken for 7 f_r);
+* no candidate family but a family's whole pattern in one view → ``uncertain`` (0), with a
+  note naming the view (sixteenth session; ``none`` before, with confidence 0, e.g. a
+  simulation without slip whose BPFO series at 56 dB only the raw view keeps: DRS removes a
+  strictly periodic impulse train and CPW whitens it);
 * no candidate family and fault lines in at most one view → ``none`` with the confidence of
   :func:`.diagnosis.diagnose` (``clip((12 dB - strongest fault-line SNR) / 10 dB, 0, 1)``);
 * no family supported but isolated fault lines in at least two views → ``uncertain`` (0);
@@ -92,6 +103,8 @@ detected in most views ("looseness or shaft modulation"), and lines at the harmo
   strength in every view — and the verdict is ``uncertain`` (confidence 0), the leading family
   and ``p`` kept. This mirrors Smith & Randall's grading, in which a record is diagnosable when
   at least one of their methods diagnoses it.
+
+Every ``uncertain`` verdict says why in :attr:`FusedDiagnosis.why` (the deciding rule's note).
 
 The rule never looks at the file name or the expected answer.
 """
@@ -310,6 +323,9 @@ class FusedDiagnosis:
         The band maps of the DRS random part (None when the band was given).
     calibration : Calibration or None
         The margin-to-probability map that was used (None: uncalibrated).
+    why : str
+        Why the verdict is ``uncertain`` (the rule that decided it; also among ``notes``),
+        empty otherwise.
     """
 
     diagnosis: str
@@ -326,6 +342,7 @@ class FusedDiagnosis:
     kurtogram: Kurtogram | None = None
     infogram: Infogram | None = None
     calibration: Calibration | None = None
+    why: str = ""
 
     @property
     def methods_agree(self) -> bool:
@@ -382,6 +399,7 @@ class FusedDiagnosis:
                 "fitted_on": self.calibration.fitted_on,
             },
             "domain": self.domain.value,
+            "why": self.why,
             "notes": self.notes,
         }
 
@@ -499,7 +517,13 @@ def diagnose_fused(
     for name, (b, es) in spectra.items():
         d = diagnose_spectrum(es, bearing, shaft_hz, b, rule=rule)
         views.append(View(name, b, d, *view_scores(d, rule)))
-    kin_notes = _kinematic_check(views, spectra, a, fs, bearing, shaft_hz, rule, domain)
+    from .contact_angle import padded_spectrum
+
+    raw_sp = padded_spectrum(a, fs) if domain is Domain.HZ else None  # read twice below
+    kin_notes = _kinematic_check(
+        views, spectra, _measured_speed(raw_sp, fs, shaft_hz), bearing, shaft_hz, rule
+    )
+    refuted = _speed_refuted(raw_sp, fs, shaft_hz, rule)
     cage_views = sum(v.cage for v in views)
     nv = len(views)
     fused = {}
@@ -528,13 +552,46 @@ def diagnose_fused(
     notes += non_bearing.get("notes", [])
 
     def _res(diag, conf, leading=None, prob=None, margin=0.0):
+        why = notes[-1] if diag == "uncertain" else ""  # the deciding rule's note, last
         return FusedDiagnosis(diag, conf, leading, prob, margin, fused, views, shaft_hz,
-                              non_bearing, notes, domain, kg, ig, calibration)  # fmt: skip
+                              non_bearing, notes, domain, kg, ig, calibration, why)  # fmt: skip
 
+    if refuted is not None:
+        # the line search looks within tol_rel of the speed given: at another speed its
+        # windows miss the fault lines and may take others (a record's 2xBPFO read as 7 f_r)
+        top = max(supported, key=lambda f: fused[f]) if supported else None
+        margin = fused[top] - max(fused[f] for f in FAMILIES if f != top) if top else 0.0
+        p = calibration(margin) if top is not None and calibration is not None else None
+        f_rec = refuted.shaft_hz
+        notes.append(
+            f"the record's shaft harmonics put the speed at {60.0 * f_rec:.6g} r/min (a comb of "
+            f"10 stands {refuted.gain_db:.0f} dB over the one at the speed used), "
+            f"{100.0 * (f_rec / shaft_hz - 1.0):+.2f} % from the {60.0 * shaft_hz:.6g} r/min "
+            f"used, beyond the line search's ±{100.0 * rule.tol_rel:g} %: the fault lines were "
+            "searched at the wrong speed (check --rpm)"
+        )
+        return _res("uncertain", 0.0, top, p, margin)
     if not supported:
+        alone = [(v.name, f) for v in views for f in v.supported]
+        if alone:  # a family's whole pattern in one view: not "none", not a candidate either
+            notes.append(
+                "no candidate family: "
+                + ", ".join(f"{f} supported in the {n} view only" for n, f in alone)
+                + f" (a candidate needs {min(MIN_VIEWS, nv)} views)"
+                + (
+                    "; DRS removes and CPW whitens a strictly periodic impulse train (e.g. a "
+                    "simulation without slip), so only the raw view may show it"
+                    if any(n == "raw" for n, _ in alone)
+                    else ""
+                )
+            )
+            return _res("uncertain", 0.0)
         n_det = sum(any(p.detected and _series(p.label) for p in v.diagnosis.peaks) for v in views)
         if n_det >= min(MIN_VIEWS, nv):
-            notes.append(f"isolated fault lines without a harmonic series in {n_det} views")
+            notes.append(
+                f"fault lines in {n_det} views, but no family's whole pattern (fundamental and a "
+                "harmonic; for inner also a shaft sideband) in any"
+            )
             return _res("uncertain", 0.0)
         fault_snr = [
             p.snr_db
@@ -547,6 +604,7 @@ def diagnose_fused(
     top = max(supported, key=lambda f: fused[f])
     margin = fused[top] - max(fused[f] for f in FAMILIES if f != top)
     if calibration is None:
+        notes.append("no calibration: the leading family and its margin, without a verdict")
         return _res("uncertain", 0.0, top, None, margin)
     p = calibration(margin)
     if not _agree(views, top):
@@ -569,15 +627,64 @@ def diagnose_fused(
 KINEMATIC_TOL = 3.0
 
 
-def _kinematic_check(views, spectra, x, fs, bearing, shaft_hz, rule, domain) -> list[str]:
+#: how far the harmonic comb of another speed must stand out (:func:`_speed_refuted`) [dB]:
+#: over the combs of all speeds searched, as far as the weakest shaft comb of the 34 shared
+#: CWRU records does at its own speed (20-39 dB); over the comb at the speed given, ten times
+#: in power. On a quarter of a record a fault comb can pass for a shaft comb (313's quarters,
+#: 6203 outer race: BPFO = 3.05 f_r, a comb at BPFO/3 standing 12-14 dB out and 4-7 dB over
+#: the true speed's); these values, chosen on the shared records and the wrong speeds tried on
+#: them (132 at 1797 and 1700 r/min, 172 at 1797: 21-25 dB out, 10-23 dB over), refute no piece
+#: of a shared record at its stored speed (whole, halves, quarters)
+COMB_PROMINENCE_DB = 20.0
+COMB_GAIN_DB = 10.0
+
+
+def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:
+    """The shaft speed [Hz] measured from the record's shaft harmonics within ±0.5 % of
+    ``shaft_hz`` (:func:`.contact_angle.measured_shaft_hz` on ``raw_sp``, the record's
+    :func:`.contact_angle.padded_spectrum`); exactly 1 in the order domain (``raw_sp`` None),
+    None where no three harmonics stand out (a simulation, most short records)."""
+    from .contact_angle import measured_shaft_hz
+
+    if raw_sp is None:
+        return 1.0
+    try:
+        return measured_shaft_hz(None, fs, shaft_hz, spectrum=raw_sp)[0]
+    except ConfigError:
+        return None
+
+
+def _speed_refuted(raw_sp, fs, shaft_hz, rule):
+    """The record's own speed when its shaft harmonics refute ``shaft_hz`` [Hz]: the comb of
+    ten harmonics that stands highest within ±5 % (:func:`.contact_angle.shaft_speed_comb`)
+    lies more than ``rule.tol_rel`` away, stands :data:`COMB_PROMINENCE_DB` out and
+    :data:`COMB_GAIN_DB` over the comb at the speed given (``raw_sp``: the record's
+    :func:`.contact_angle.padded_spectrum`). Else None (also in the order domain, ``raw_sp``
+    None, and where the record has no shaft lines)."""
+    from .contact_angle import shaft_speed_comb
+
+    if raw_sp is None:
+        return None
+    c = shaft_speed_comb(None, fs, shaft_hz, spectrum=raw_sp)
+    if (
+        c is not None
+        and abs(c.shaft_hz / shaft_hz - 1.0) > rule.tol_rel
+        and c.prominence_db >= COMB_PROMINENCE_DB
+        and c.gain_db >= COMB_GAIN_DB
+    ):
+        return c
+    return None
+
+
+def _kinematic_check(views, spectra, fr, bearing, shaft_hz, rule) -> list[str]:
     """One cage speed (module docstring, "Kinematic check"): in a view where the outer- and
     the inner-race fundamentals are both detected, ``BPFO = Z f_c`` and ``BPFI = Z (f_r -
     f_c)`` must share the cage speed ``f_c``, i.e. ``f_o + f_i = Z f_r`` whatever the contact
     angle and the cage slip. Where they do not (beyond :data:`KINEMATIC_TOL` resolutions), the
     lines of the race family supported in fewer views are not counted in that view (nothing
-    when both are supported in as many). ``views`` is updated in place; returns notes."""
-    from .contact_angle import measured_shaft_hz
-
+    when both are supported in as many). ``views`` is updated in place; returns notes.
+    ``fr`` is the measured shaft speed [Hz or orders] (:func:`_measured_speed`; None: not
+    measured, and the check is not made)."""
     pairs = []
     for i, v in enumerate(views):
         by = {p.label: p for p in v.diagnosis.peaks}
@@ -587,13 +694,8 @@ def _kinematic_check(views, spectra, x, fs, bearing, shaft_hz, rule, domain) -> 
     if not pairs:
         return []
     z = bearing.n_elements
-    if domain is Domain.ORDER:
-        fr = 1.0
-    else:
-        try:
-            fr, _n = measured_shaft_hz(x, fs, shaft_hz)
-        except ConfigError:  # no shaft lines to measure the speed: the check cannot be made
-            return ["kinematic check not made: the shaft speed could not be measured"]
+    if fr is None:  # no shaft lines to measure the speed: the check cannot be made
+        return ["kinematic check not made: the shaft speed could not be measured"]
     support = {f: sum(f in v.supported for v in views) for f in ("outer", "inner")}
     if support["outer"] == support["inner"]:
         return []
