@@ -151,6 +151,8 @@ def test_match_peaks_leaves_out_targets_whose_window_reaches_zero_frequency():
         ((1000.0, 30000.0), "fs too low for the requested band"),
         ((5000.0, 4000.0), "is empty"),
         ((-5.0, 100.0), "band_hz low = -5"),
+        # the range a high edge can have, not "(-inf, inf)"
+        ((1000.0, math.inf), r"band_hz high = inf is not finite; valid range \(1000, "),
     ],
 )
 def test_band_validation(band, match):

@@ -89,8 +89,18 @@ def test_read_signal_text_time_speed_and_channel(tmp_path):
     assert_allclose(rec.speed_hz, 30.0, rtol=1e-15, err_msg="rpm column / 60")
     assert_allclose(rec.time, t, atol=1e-15)
     assert rec.columns == ("time", "acc_a", "acc_b", "rpm") and rec.rpm is None
-    b = read_signal(p, channel="ACC_B", fs_hz=1000.0, rpm=1750.0)
-    assert b.channel == "acc_b" and b.fs == 1000.0 and b.rpm == 1750.0 and b.info == {}
+    b = read_signal(p, channel="ACC_B", fs_hz=2000.0, rpm=1750.0)
+    assert b.channel == "acc_b" and b.fs == 2000.0 and b.rpm == 1750.0 and b.info == {}
+    # an fs_hz that contradicts the time column is refused (it was taken over the times)
+    with pytest.raises(ConfigError, match=r"fs_hz = 1000 Hz contradicts the time column 'time'"):
+        read_signal(p, fs_hz=1000.0)
+    # a time column in ms says so in its name and is read in ms
+    q = tmp_path / "ms.csv"
+    np.savetxt(q, np.column_stack([1e3 * t, np.sin(t)]), delimiter=",", header="time_ms,acc",
+               comments="")  # fmt: skip
+    ms = read_signal(q)
+    assert_allclose(ms.fs, 2000.0, rtol=1e-9)
+    assert_allclose(ms.time, t, atol=1e-15)
     with pytest.raises(ConfigError, match=r"channel = 'z' not in s.csv; valid: acc_a, acc_b"):
         read_signal(p, channel="z")
 

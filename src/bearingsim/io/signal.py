@@ -27,7 +27,9 @@ __all__ = ["CWRU_DEFAULT_FS", "SignalRecord", "read_signal"]
 CWRU_DEFAULT_FS = 48000.0
 
 #: names of a time column [s] in a text file (lower case)
-_TIME_NAMES = ("time_s", "time", "t")
+_TIME_NAMES = ("time_s", "time", "t", "time_ms", "time_us")
+#: a time column's unit from its name's suffix: the factor to seconds
+_TIME_UNITS = {"_ms": 1e-3, "_us": 1e-6}
 
 
 @dataclass(frozen=True)
@@ -96,9 +98,12 @@ def read_signal(
       rotor results also ``x_fe``, ``y_fe``, the fan-end housing; a result simulated through a
       rig also ``sensor``, the rig's output ``acc_sensor``, and that is then the default); fs,
       rpm and bearing from the file (``fs_hz``, ``rpm`` override).
-    * ``.csv``/``.txt`` (:func:`.read_table`): a time column (named ``time_s``, ``time`` or
-      ``t``, or the one at index ``time_column``) gives the sample times and fs (from the median
-      step, unless ``fs_hz`` is given); a ``speed_hz`` or ``rpm`` column gives a per-sample
+    * ``.csv``/``.txt`` (:func:`.read_table`): a time column (named ``time_s``, ``time``,
+      ``t``, ``time_ms`` or ``time_us`` — a name ending in ``_ms``/``_us`` is read in that unit
+      —, or the one at index ``time_column``) gives the sample times and fs (from the median
+      step; an ``fs_hz`` that contradicts it by more than 0.1 % is refused, as for a
+      simulation result, sixteenth session: it was taken over the times, and ``rig identify``
+      put modes at 4× their frequencies); a ``speed_hz`` or ``rpm`` column gives a per-sample
       shaft speed (order tracking); the signal is the column named ``channel`` or the first
       other one. Without a time column ``fs_hz`` is required.
 
@@ -279,6 +284,17 @@ def _read_text(
     else:
         tcol = next((cols[n] for n in _TIME_NAMES if n in cols), None)
     t = None if tcol is None else data[:, tcol]
+    if t is not None:  # a unit in the column's name (time_ms, time_us) is taken, not ignored
+        t = t * next((f for u, f in _TIME_UNITS.items() if header[tcol].lower().endswith(u)), 1.0)
+    if t is not None and fs is not None and t.size > 1:
+        dt = np.diff(t)
+        fs_t = 1.0 / float(np.median(dt)) if np.all(dt > 0) else math.nan
+        if not abs(float(fs) / fs_t - 1.0) <= 1e-3:  # also when the times do not increase
+            raise ConfigError(
+                f"fs_hz = {float(fs):.6g} Hz contradicts the time column {header[tcol]!r} of "
+                f"{p.name!r} ({fs_t:.6g} Hz); valid: no fs_hz for a file with a time column "
+                "(its unit from the name: time_s, time_ms, time_us), or its rate"
+            )
     if t is not None and fs is None:
         dt = np.diff(t)
         if not (dt.size and np.all(dt > 0)):

@@ -10,6 +10,7 @@ of the circular filter).
 from __future__ import annotations
 
 import enum
+import math
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -39,9 +40,13 @@ def check_band(band: tuple[float, float], fs: float, name: str = "band_hz") -> t
         ok = False
     if not ok:
         raise ConfigError(f"{name} = {band!r} is invalid; valid: two numbers LO HI")
-    lo = check_range(f"{name} low", band[0], 0.0, unit="Hz")
-    hi = check_range(f"{name} high", band[1], unit="Hz")
     nyq = 0.5 * fs
+    lo = check_range(f"{name} low", band[0], 0.0, unit="Hz")
+    hi = band[1]
+    if isinstance(hi, float | int) and not isinstance(hi, bool) and not math.isfinite(hi):
+        # "high = inf is not finite", with the range a high edge can have
+        check_range(f"{name} high", hi, lo, nyq, lo_open=True, unit="Hz")
+    hi = check_range(f"{name} high", hi, unit="Hz")
     if lo >= nyq:
         raise ConfigError(
             f"{name} low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
