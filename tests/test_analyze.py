@@ -510,3 +510,24 @@ def test_no_piece_of_a_shared_record_is_refuted_at_its_stored_speed():
                 x = rec.x[q * n : (q + 1) * n]
                 c = _speed_refuted(padded_spectrum(x, rec.fs), rec.fs, rec.rpm / 60.0, rule)
                 assert c is None, (f.name, cuts, q, c)
+
+
+def test_order_tracking_stays_below_the_records_nyquist_frequency():
+    """A 12 kHz record with a per-sample speed is order tracked at 400 samples per revolution
+    at 1797 r/min (the largest even number below fs / f_r = 400.7): every view's band lies
+    below 200 orders, i.e. below the record's 6 kHz (a fixed 512 reached 256 orders, 7.7 kHz,
+    and 188's kurtogram band lay wholly there)."""
+    from bearingsim.io import SignalRecord
+    from bearingsim.signal import analyze_record
+    from bearingsim.signal.diagnosis import load_signal
+
+    src = load_signal(cwru_record("188"), channel="DE")
+    n = int(2 * src.fs)
+    shaft = 1797.0 / 60.0
+    rec = SignalRecord(src.x[:n], src.fs, None, "o.csv", "acc", None, np.full(n, shaft))
+    d = analyze_record(rec, "6205-cwru")
+    assert d.domain.value == "order"
+    nyq = 0.5 * src.fs / shaft
+    for v in d.views:
+        assert v.band[1] <= nyq, (v.name, v.band, nyq)
+    assert max(v.band[1] for v in d.views) == pytest.approx(200.0), "400 samples per rev"

@@ -100,7 +100,8 @@ class _Request:
     "--band-hz",
     "band",
     default="auto",
-    help="Envelope band: 'auto' (fast kurtogram), LO,HI or LO HI [Hz].",
+    help="Envelope band: 'auto' (fast kurtogram), LO,HI or LO HI [Hz; orders for a record "
+    "order tracked from its speed column].",
 )
 @deprecated("--band", "--band-hz")
 @click.option(

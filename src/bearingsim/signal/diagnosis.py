@@ -843,13 +843,19 @@ def load_signal_and_speed(
     return rec, f"name (CWRU nominal speed at load {load} hp)"
 
 
+#: fewest samples per revolution of the default order tracking [1/rev]: 16 orders, the
+#: third harmonic of a 6205's BPFI and its shaft sidebands (a record whose fs over its speed is
+#: lower has no room for the fault lines; the fused diagnosis's band check then says so)
+MIN_SAMPLES_PER_REV = 32
+
+
 def analyze_record(
     rec: SignalRecord,
     bearing: Bearing | str,
     *,
     band: tuple[float, float] | BandSelection | str = BandSelection.KURTOGRAM,
     rule: DiagnosisRule | None = None,
-    samples_per_rev: int = 512,
+    samples_per_rev: int | None = None,
     max_memory: float | None = None,
 ):
     """Diagnose a :class:`SignalRecord` with the fused benchmark methods
@@ -868,8 +874,11 @@ def analyze_record(
         views).
     rule : DiagnosisRule, optional
         Line search (default: the documented one with shaft cursors).
-    samples_per_rev : int
-        Order-tracking density [1/rev].
+    samples_per_rev : int, optional
+        Order-tracking density [1/rev]; default: the largest even number with
+        ``samples_per_rev * max(speed_hz) <= fs``, so that the orders analysed stay below the
+        record's Nyquist frequency at its fastest (a fixed 512 analysed 12 kHz records up to
+        7.7 kHz, beyond their 6 kHz, and 48 kHz records only up to 7.7 kHz).
     max_memory : float, optional
         Memory the order-tracked grid and its spectrum may take [B]
         (:func:`.resample_to_angle`: refused in one line beyond it; ``bearingsim analyze``
@@ -898,6 +907,8 @@ def analyze_record(
                 "speed_hz must be finite, > 0 and as long as the signal; valid range (0, inf) Hz"
             )
         t = np.arange(rec.x.size) / rec.fs
+        if samples_per_rev is None:
+            samples_per_rev = max(2 * int(rec.fs / float(sp.max()) / 2.0), MIN_SAMPLES_PER_REV)
         sig = resample_to_angle(
             angle_from_speed(t, 2.0 * math.pi * sp),
             rec.x,

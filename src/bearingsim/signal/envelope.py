@@ -31,9 +31,14 @@ __all__ = [
 EDGE_TAPER = 0.01
 
 
-def check_band(band: tuple[float, float], fs: float, name: str = "band_hz") -> tuple[float, float]:
+def check_band(
+    band: tuple[float, float], fs: float, name: str = "band_hz", *, orders: bool = False
+) -> tuple[float, float]:
     """Validate a frequency band ``(lo, hi)`` [Hz] against the Nyquist frequency ``fs/2`` [Hz];
-    ``name`` is the field the one-line errors name."""
+    ``name`` is the field the one-line errors name. ``orders``: an order-tracked signal, the
+    band in orders and ``fs`` in samples per revolution (the messages say so)."""
+    u, rate = ("orders", "samples_per_rev") if orders else ("Hz", "fs_hz")
+    ru, what = ("per rev", "order") if orders else ("Hz", "frequency")
     try:
         ok = len(band) == 2
     except TypeError:  # a scalar, None
@@ -41,26 +46,27 @@ def check_band(band: tuple[float, float], fs: float, name: str = "band_hz") -> t
     if not ok:
         raise ConfigError(f"{name} = {band!r} is invalid; valid: two numbers LO HI")
     nyq = 0.5 * fs
-    lo = check_range(f"{name} low", band[0], 0.0, unit="Hz")
+    lo = check_range(f"{name} low", band[0], 0.0, unit=u)
     hi = band[1]
     if isinstance(hi, float | int) and not isinstance(hi, bool) and not math.isfinite(hi):
         # "high = inf is not finite", with the range a high edge can have
-        check_range(f"{name} high", hi, lo, nyq, lo_open=True, unit="Hz")
-    hi = check_range(f"{name} high", hi, unit="Hz")
+        check_range(f"{name} high", hi, lo, nyq, lo_open=True, unit=u)
+    hi = check_range(f"{name} high", hi, unit=u)
     if lo >= nyq:
         raise ConfigError(
-            f"{name} low = {lo:.6g} Hz is not below the Nyquist frequency {nyq:.6g} Hz of "
-            f"fs_hz = {fs:.6g} Hz (fs too low for the requested band); valid range "
-            f"[0, {nyq:.6g}) Hz"
+            f"{name} low = {lo:.6g} {u} is not below the Nyquist {what} "
+            f"{nyq:.6g} {u} of {rate} = {fs:.6g} {ru} (fs too low for the requested band); valid "
+            f"range [0, {nyq:.6g}) {u}"
         )
     if hi > nyq:
         raise ConfigError(
-            f"{name} high = {hi:.6g} Hz is above the Nyquist frequency of fs_hz = {fs:.6g} Hz "
-            f"(fs too low for the requested band); valid range ({lo:.6g}, {nyq:.6g}] Hz"
+            f"{name} high = {hi:.6g} {u} is above the Nyquist {what} "
+            f"of {rate} = {fs:.6g} {ru} (fs too low for the requested band); valid range "
+            f"({lo:.6g}, {nyq:.6g}] {u}"
         )
     if not hi > lo:
         raise ConfigError(
-            f"{name} = [{lo:.6g}, {hi:.6g}] Hz is empty; valid: LO < HI <= {nyq:.6g} Hz"
+            f"{name} = [{lo:.6g}, {hi:.6g}] {u} is empty; valid: LO < HI <= {nyq:.6g} {u}"
         )
     return lo, hi
 

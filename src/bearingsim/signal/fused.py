@@ -477,7 +477,7 @@ def diagnose_fused(
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
     min_bw = min_band_width(bearing, shaft_hz, fs, rule)
     if band is not None:
-        band = check_band(band, fs)
+        band = check_band(band, fs, orders=domain is Domain.ORDER)
         if band[1] - band[0] < min_bw:  # its envelope cannot hold the lines the rule reads
             raise ConfigError(
                 f"band = ({band[0]:.6g}, {band[1]:.6g}) Hz is {band[1] - band[0]:.6g} Hz wide, "
