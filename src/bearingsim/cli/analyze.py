@@ -100,8 +100,8 @@ class _Request:
     "--band-hz",
     "band",
     default="auto",
-    help="Envelope band: 'auto' (fast kurtogram), LO,HI or LO HI [Hz; orders for a record "
-    "order tracked from its speed column].",
+    help="Envelope band: 'auto' (fast kurtogram), LO,HI or LO HI [Hz] (in orders for a record "
+    "order tracked from its speed column).",
 )
 @deprecated("--band", "--band-hz")
 @click.option(
