@@ -150,6 +150,12 @@ def test_cli_identify_refuses_in_one_line_and_writes_nothing(tmp_path):
               "-o", str(out), cwd=tmp_path)  # fmt: skip
     assert r2.returncode == 2 and "is the same file as" in r2.stderr, r2.stderr
     assert len(r2.stderr.strip().splitlines()) == 1 and not out.exists()
+    # an --rpm the record's own shaft harmonics refute (132 runs at 1750 r/min): the tones'
+    # orders would be placed at the wrong speed
+    r3 = _cli("rig", "identify", str(rec), "--rpm", "1797", "--name", "x", "-o", str(out),
+              cwd=tmp_path)  # fmt: skip
+    assert r3.returncode == 2 and "put its speed at 1749" in r3.stderr, r3.stderr
+    assert len(r3.stderr.strip().splitlines()) == 1 and not out.exists()
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")

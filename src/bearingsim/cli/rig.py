@@ -115,6 +115,18 @@ def identify_cmd(
         seen[key] = p
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
+    if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
+        from ..signal.contact_angle import refuted_speed
+
+        for r in recs:
+            c = refuted_speed(r.x, r.fs, rpm / 60.0)
+            if c is not None:
+                off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
+                raise ConfigError(
+                    f"rpm = {rpm:.6g} r/min: the shaft harmonics of {Path(r.source).name!r} put "
+                    f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} %); valid: the "
+                    "records' speed (or no --rpm, to take each file's)"
+                )
     unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]
     if unknown:
         click.echo(

@@ -72,7 +72,8 @@ detected in most views ("looseness or shaft modulation"), and lines at the harmo
   (sixteenth session): the fault lines are searched within ``tol_rel`` (1 %) of the speed
   given; when the comb of ten shaft harmonics that stands highest within ±5 % of it
   (:func:`.contact_angle.shaft_speed_comb`) lies further away and stands
-  :data:`COMB_PROMINENCE_DB` out and :data:`COMB_GAIN_DB` over the comb at the speed given,
+  :data:`.contact_angle.COMB_PROMINENCE_DB` out and :data:`.contact_angle.COMB_GAIN_DB` over
+  the comb at the speed given,
   the lines were searched at the wrong speed (record 132 at ``--rpm 1797`` instead of its
   1750 r/min read "ball" at 0.90, its 2×BPFO taken for 7 f_r);
 * no candidate family but a family's whole pattern in one view → ``uncertain`` (0), with a
@@ -627,18 +628,6 @@ def diagnose_fused(
 KINEMATIC_TOL = 3.0
 
 
-#: how far the harmonic comb of another speed must stand out (:func:`_speed_refuted`) [dB]:
-#: over the combs of all speeds searched, as far as the weakest shaft comb of the 34 shared
-#: CWRU records does at its own speed (20-39 dB); over the comb at the speed given, ten times
-#: in power. On a quarter of a record a fault comb can pass for a shaft comb (313's quarters,
-#: 6203 outer race: BPFO = 3.05 f_r, a comb at BPFO/3 standing 12-14 dB out and 4-7 dB over
-#: the true speed's); these values, chosen on the shared records and the wrong speeds tried on
-#: them (132 at 1797 and 1700 r/min, 172 at 1797: 21-25 dB out, 10-23 dB over), refute no piece
-#: of a shared record at its stored speed (whole, halves, quarters)
-COMB_PROMINENCE_DB = 20.0
-COMB_GAIN_DB = 10.0
-
-
 def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:
     """The shaft speed [Hz] measured from the record's shaft harmonics within ±0.5 % of
     ``shaft_hz`` (:func:`.contact_angle.measured_shaft_hz` on ``raw_sp``, the record's
@@ -655,25 +644,14 @@ def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:
 
 
 def _speed_refuted(raw_sp, fs, shaft_hz, rule):
-    """The record's own speed when its shaft harmonics refute ``shaft_hz`` [Hz]: the comb of
-    ten harmonics that stands highest within ±5 % (:func:`.contact_angle.shaft_speed_comb`)
-    lies more than ``rule.tol_rel`` away, stands :data:`COMB_PROMINENCE_DB` out and
-    :data:`COMB_GAIN_DB` over the comb at the speed given (``raw_sp``: the record's
-    :func:`.contact_angle.padded_spectrum`). Else None (also in the order domain, ``raw_sp``
-    None, and where the record has no shaft lines)."""
-    from .contact_angle import shaft_speed_comb
+    """:func:`.contact_angle.refuted_speed` of the record (``raw_sp``, its
+    :func:`.contact_angle.padded_spectrum`) beyond ``rule.tol_rel``; None in the order domain
+    (``raw_sp`` None)."""
+    from .contact_angle import refuted_speed
 
     if raw_sp is None:
         return None
-    c = shaft_speed_comb(None, fs, shaft_hz, spectrum=raw_sp)
-    if (
-        c is not None
-        and abs(c.shaft_hz / shaft_hz - 1.0) > rule.tol_rel
-        and c.prominence_db >= COMB_PROMINENCE_DB
-        and c.gain_db >= COMB_GAIN_DB
-    ):
-        return c
-    return None
+    return refuted_speed(None, fs, shaft_hz, tol_rel=rule.tol_rel, spectrum=raw_sp)
 
 
 def _kinematic_check(views, spectra, fr, bearing, shaft_hz, rule) -> list[str]:
