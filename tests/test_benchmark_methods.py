@@ -13,6 +13,8 @@ What each method must do is its published behaviour:
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -289,3 +291,19 @@ def test_drs_too_short_and_cpw_constant():
         cepstral_prewhitening(np.full(100, 2.0))
     with pytest.raises(ConfigError, match="non-finite"):
         cepstral_prewhitening(np.array([1.0, np.nan] * 20))
+
+
+@pytest.mark.parametrize("scale", [1e-44, 1e44])
+def test_fused_diagnosis_is_scale_free_within_its_peak_range(synthetic, scale):
+    """The verdict does not depend on the signal's unit inside the fused diagnosis's peak range
+    (1e-45 to 1e45: its squared envelopes square the signal); beyond it, one line with the
+    signal's own peak (a peak of 2.9e-59 was refused as "8.8e-118", one of 1e80 as
+    "non-finite values")."""
+    x = synthetic["bearing"] + synthetic["tones"] + synthetic["noise"]
+    ref = diagnose_fused(x, FS, BEARING, SHAFT)
+    d = diagnose_fused(x * (scale / np.max(np.abs(x))), FS, BEARING, SHAFT)
+    assert (d.diagnosis, d.leading) == (ref.diagnosis, ref.leading)
+    assert d.margin == pytest.approx(ref.margin, abs=1e-6)
+    out = 100.0 * scale if scale > 1.0 else 0.01 * scale  # beyond the range's end
+    with pytest.raises(ConfigError, match=re.escape(f"peak magnitude of {out:.3g}; valid range")):
+        diagnose_fused(x * (out / np.max(np.abs(x))), FS, BEARING, SHAFT)

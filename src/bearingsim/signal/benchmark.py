@@ -151,7 +151,9 @@ def discrete_random_separation(
     s_dd = np.mean(P.real**2 + P.imag**2, axis=0)
     s_nn = np.mean(N.real**2 + N.imag**2, axis=0)
     f = np.arange(s_dx.size) / window  # [cycles/sample]
-    tiny = 1e-30 * float(max(s_dd.max(), s_nn.max())) + 1e-300
+    # a floor relative to the product it guards (it was relative to one spectrum: a signal at
+    # 1e-44 then had its floor above every product, and the diagnosis depended on the unit)
+    tiny = 1e-30 * float(s_dd.max()) * float(s_nn.max()) + 1e-300
     coh = np.clip(np.abs(s_dx) ** 2 / np.maximum(s_dd * s_nn, tiny), 0.0, 1.0)
     nf = sfft.next_fast_len(n, real=True)
     X = sfft.rfft(xm, nf)

@@ -474,6 +474,13 @@ def diagnose_fused(
     rule = rule or DiagnosisRule(shaft_cursors=True)
     domain = parse_enum(Domain, domain, "domain")
     a = as_signal(x)
+    peak = float(np.max(np.abs(a)))
+    if peak != 0.0 and not PEAK_RANGE[0] <= peak <= PEAK_RANGE[1]:
+        raise ConfigError(
+            f"signal has a peak magnitude of {peak:.3g}; valid range [{PEAK_RANGE[0]:g}, "
+            f"{PEAK_RANGE[1]:g}] in any unit for the diagnosis, whose squared envelopes square "
+            "it (rescale the signal)"
+        )
     fs = check_positive("fs_hz", fs, "Hz")
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
     min_bw = min_band_width(bearing, shaft_hz, fs, rule)
@@ -621,6 +628,13 @@ def diagnose_fused(
         f"leading family {top} (margin {margin:.3f}) has calibrated probability {p:.2f} < 0.5"
     )
     return _res("uncertain", 0.0, top, p, margin)
+
+
+#: the range of a signal's peak magnitude the fused diagnosis takes [-]: the square root of the
+#: signal functions' (:data:`.spectrum.PEAK_RANGE`), since its squared envelopes square the
+#: signal (a peak of 2.9e-59 was refused as "a peak magnitude of 8.8e-118", one of 1e80 as
+#: "non-finite values"; both lie inside 1e-100-1e100)
+PEAK_RANGE = (1e-45, 1e45)
 
 
 #: tolerance of the kinematic check [spectral resolutions]: each found line is the bin of
