@@ -207,7 +207,7 @@ def _analyze_or_error(path: str, req: _Request) -> dict[str, Any]:
 def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     """Load, check and diagnose one file: the JSON object of ``analyze --json``."""
     from ..catalog import resolve_bearing
-    from ..io.cwru import cwru_bearing
+    from ..io.cwru import cwru_bearing, cwru_end
     from ..io.jsonable import to_jsonable
     from ..signal import analyze_record
     from ..signal.diagnosis import check_resolvable, check_samples
@@ -215,8 +215,6 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     rec, rpm_source, channel_source = _load_record(path, req)
     check_samples(rec)
     check_resolvable(rec)
-    from ..io.cwru import cwru_end
-
     mat = Path(rec.source).suffix.lower() == ".mat"
     # a text file named like a CWRU fan-end record gets the fan end's bearing, as a .mat does
     end = rec.channel if mat else cwru_end(path)

@@ -284,26 +284,26 @@ def _read_text(
     else:
         tcol = next((cols[n] for n in _TIME_NAMES if n in cols), None)
     t = None if tcol is None else data[:, tcol]
-    if t is not None:  # a unit in the column's name (time_ms, time_us) is taken, not ignored
+    if t is not None:
+        # a unit in the column's name (time_ms, time_us) is taken, not ignored
         t = t * next((f for u, f in _TIME_UNITS.items() if header[tcol].lower().endswith(u)), 1.0)
-    if t is not None and fs is not None and t.size > 1:
         dt = np.diff(t)
-        fs_t = 1.0 / float(np.median(dt)) if np.all(dt > 0) else math.nan
-        if not abs(float(fs) / fs_t - 1.0) <= 1e-3:  # also when the times do not increase
+        increasing = bool(dt.size and np.all(dt > 0))
+        fs_t = 1.0 / float(np.median(dt)) if increasing else math.nan
+        if fs is None:
+            if not increasing:
+                raise ConfigError(
+                    f"file = {str(p)!r}: the time column must increase; valid: strictly "
+                    "increasing times [s]"
+                )
+            fs = fs_t
+            info["fs_source"] = "time column"
+        elif t.size > 1 and not abs(float(fs) / fs_t - 1.0) <= 1e-3:  # also when not increasing
             raise ConfigError(
                 f"fs_hz = {float(fs):.6g} Hz contradicts the time column {header[tcol]!r} of "
                 f"{p.name!r} ({fs_t:.6g} Hz); valid: no fs_hz for a file with a time column "
                 "(its unit from the name: time_s, time_ms, time_us), or its rate"
             )
-    if t is not None and fs is None:
-        dt = np.diff(t)
-        if not (dt.size and np.all(dt > 0)):
-            raise ConfigError(
-                f"file = {str(p)!r}: the time column must increase; valid: strictly increasing "
-                "times [s]"
-            )
-        fs = 1.0 / float(np.median(dt))
-        info["fs_source"] = "time column"
     if fs is None:
         raise ConfigError(
             f"file = {str(p)!r} has no time column; give fs_hz, its sample rate [Hz] (> 0; "

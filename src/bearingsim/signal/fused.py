@@ -473,14 +473,7 @@ def diagnose_fused(
     bearing = as_bearing(bearing)
     rule = rule or DiagnosisRule(shaft_cursors=True)
     domain = parse_enum(Domain, domain, "domain")
-    a = as_signal(x)
-    peak = float(np.max(np.abs(a)))
-    if peak != 0.0 and not PEAK_RANGE[0] <= peak <= PEAK_RANGE[1]:
-        raise ConfigError(
-            f"signal has a peak magnitude of {peak:.3g}; valid range [{PEAK_RANGE[0]:g}, "
-            f"{PEAK_RANGE[1]:g}] in any unit for the diagnosis, whose squared envelopes square "
-            "it (rescale the signal)"
-        )
+    a = as_signal(x, peak_range=PEAK_RANGE)
     fs = check_positive("fs_hz", fs, "Hz")
     shaft_hz = check_positive("shaft_hz", shaft_hz, "Hz")
     min_bw = min_band_width(bearing, shaft_hz, fs, rule)
@@ -564,11 +557,11 @@ def diagnose_fused(
         return FusedDiagnosis(diag, conf, leading, prob, margin, fused, views, shaft_hz,
                               non_bearing, notes, domain, kg, ig, calibration, why)  # fmt: skip
 
+    top = max(supported, key=lambda f: fused[f]) if supported else None
+    margin = fused[top] - max(fused[f] for f in FAMILIES if f != top) if top else 0.0
     if refuted is not None:
         # the line search looks within tol_rel of the speed given: at another speed its
         # windows miss the fault lines and may take others (a record's 2xBPFO read as 7 f_r)
-        top = max(supported, key=lambda f: fused[f]) if supported else None
-        margin = fused[top] - max(fused[f] for f in FAMILIES if f != top) if top else 0.0
         p = calibration(margin) if top is not None and calibration is not None else None
         f_rec = refuted.shaft_hz
         notes.append(
@@ -609,8 +602,6 @@ def diagnose_fused(
         ]
         best = max(fault_snr, default=-math.inf)
         return _res("none", float(min(max((rule.threshold_db - best) / 10.0, 0.0), 1.0)))
-    top = max(supported, key=lambda f: fused[f])
-    margin = fused[top] - max(fused[f] for f in FAMILIES if f != top)
     if calibration is None:
         notes.append("no calibration: the leading family and its margin, without a verdict")
         return _res("uncertain", 0.0, top, None, margin)

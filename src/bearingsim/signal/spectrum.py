@@ -53,10 +53,14 @@ PEAK_RANGE = (1e-100, 1e100)
 
 
 def as_signal(
-    x: ArrayLike, name: str = "signal", min_samples: int = MIN_SAMPLES
+    x: ArrayLike,
+    name: str = "signal",
+    min_samples: int = MIN_SAMPLES,
+    peak_range: tuple[float, float] = PEAK_RANGE,
 ) -> NDArray[np.float64]:
     """``x`` as a finite one-dimensional float array (a column or row vector is flattened) of at
-    least ``min_samples`` samples whose peak magnitude, unless 0, lies in :data:`PEAK_RANGE`;
+    least ``min_samples`` samples whose peak magnitude, unless 0, lies in ``peak_range``
+    (default :data:`PEAK_RANGE`; a caller that squares the signal asks for a narrower one);
     anything else (complex, text, dates, masked samples) raises a one-line
     :class:`ConfigError` naming ``name``."""
     if np.ma.isMaskedArray(x) and np.ma.getmaskarray(x).any():
@@ -86,7 +90,7 @@ def as_signal(
     if not np.all(np.isfinite(a)):
         raise ConfigError(f"{name} contains non-finite values; valid: finite numbers")
     peak = float(np.max(np.abs(a)))
-    lo, hi = PEAK_RANGE
+    lo, hi = peak_range
     if peak != 0.0 and not lo <= peak <= hi:
         raise ConfigError(
             f"{name} has a peak magnitude of {peak:.3g}; valid range [{lo:g}, {hi:g}] in any "
