@@ -195,6 +195,8 @@ def test_the_fan_end_profile_reads_the_rotors_fan_end_housing(tmp_path):
     through the drive end. analyze reads that sensor with the fan-end bearing (6203)."""
     from bearingsim import simulate
     from bearingsim.io.signal import read_signal
+    from bearingsim.rig import Rig, load_rig
+    from bearingsim.rig_identify import rig_to_toml
 
     sc = dict(model="rotor", fe_fault="outer", duration_s=0.1, fs_hz=12000.0, rig="cwru-fe-12k")
     r = simulate(sc)
@@ -203,6 +205,12 @@ def test_the_fan_end_profile_reads_the_rotors_fan_end_housing(tmp_path):
     assert read_signal(tmp_path / "fe.nc").bearing.id == "6203-cwru"
     de = simulate({**sc, "rig": "cwru-de-12k"})
     assert de.meta["rig"]["input_channel"] == "acc_y"
+    # a fan-end rig reading the horizontal direction reads the fan end's too (it read acc_x,
+    # the drive end's housing)
+    fe_x = load_rig("cwru-fe-12k").to_dict() | {"input_channel": "acc_x"}
+    (tmp_path / "fex.toml").write_text(rig_to_toml(Rig.from_dict(fe_x)), encoding="utf-8")
+    rx = simulate({**sc, "rig": str(tmp_path / "fex.toml")})
+    assert rx.meta["rig"]["input_channel"] == "acc_x_fe"
 
 
 def test_simulate_options_that_contradict_each_other(run_cli, tmp_path, capsys):

@@ -8,6 +8,8 @@ from __future__ import annotations
 import threading
 import warnings
 
+import pytest
+
 from bearingsim.errors import collect_warnings
 from bearingsim.rig import RigRateWarning
 
@@ -67,3 +69,23 @@ def test_nested_blocks_and_the_users_filters():
         ["UserWarning: inner one"],
         "refused",
     )
+
+
+@pytest.mark.parametrize(
+    ("value", "lo", "hi", "lo_open", "text"),
+    [
+        (1.0000001, 0.0, 1.0, False, "x = 1.0000001 Hz is out of range; valid range [0, 1] Hz"),
+        (0.19999999, 0.2, 1.0, True, "x = 0.19999999 Hz is out of range; valid range (0.2, 1] Hz"),
+        (5.0, 0.0, 1.0, False, "x = 5 Hz is out of range; valid range [0, 1] Hz"),
+        (0.2, 0.2, 1.0, True, "x = 0.2 Hz is out of range; valid range (0.2, 1] Hz"),
+    ],
+)
+def test_out_of_range_value_reads_unlike_its_bound(value, lo, hi, lo_open, text):
+    """A value just beyond a bound is printed with the digits that tell it from the bound (it
+    printed as ``1 Hz is out of range; valid range [0, 1]``); the bound itself, when the value
+    sits on an open bound, and values far out keep six digits."""
+    from bearingsim.errors import ConfigError, check_range
+
+    with pytest.raises(ConfigError) as e:
+        check_range("x", value, lo, hi, lo_open=lo_open, unit="Hz")
+    assert str(e.value) == text

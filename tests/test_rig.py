@@ -138,6 +138,17 @@ def test_tones_at_or_above_nyquist():
     assert np.std(order.apply(np.zeros(1000), 48000.0, shaft_hz=29.5)) > 0.03
 
 
+def test_background_wholly_above_nyquist():
+    """A background table that starts at or above the output's Nyquist frequency would add
+    nothing: refused in one line naming the field; one reaching below it is kept."""
+    high = _rig(background=Background((7000.0, 9000.0), (1e-3, 1e-3), "test"))
+    with pytest.raises(ConfigError, match=r"background\.frequency_hz\[0\] = 7000 Hz"):
+        high.apply(np.zeros(1000), 12000.0)
+    assert np.std(high.apply(np.zeros(4000), 48000.0)) > 0.0
+    low = _rig(background=Background((5000.0, 9000.0), (1e-3, 1e-3), "test"))
+    assert np.std(low.apply(np.zeros(4000), 12000.0)) > 0.0
+
+
 def test_seeded_and_bit_reproducible(rig_file):
     rig = load_rig(rig_file)
     x = np.sin(np.arange(6000) * 0.3)

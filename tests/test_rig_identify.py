@@ -133,6 +133,20 @@ def test_cli_identify_a_users_csv_records(tmp_path):
     rig = load_rig(out)
     assert any(abs(m.frequency_hz - 3000.0) < 150.0 for m in rig.modes), rig.modes
     assert "--fs-hz 12000" in rig.provenance
+    # without a speed the rig gets no shaft-order tones: said after the rig is written ...
+    out.unlink()
+    r = _cli("rig", "identify", *paths, "--name", "mine", "--fs-hz", "12000", "-o", str(out),
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0 and out.exists(), r.stderr
+    assert r.stderr.startswith("warning: no shaft speed for m0.csv, m1.csv"), r.stderr
+    # ... and not at all when the run ends in an error (here: no impulsive content)
+    quiet = tmp_path / "q.csv"
+    noise = np.random.default_rng(3).standard_normal(60000)
+    np.savetxt(quiet, noise, header="acc_m_per_s2", comments="")
+    r = _cli("rig", "identify", quiet.name, "--name", "q", "--fs-hz", "12000", "-o", "q.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and r.stderr.startswith("error: "), r.stderr
+    assert r.stderr.count("\n") == 1 and not (tmp_path / "q.toml").exists()
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")

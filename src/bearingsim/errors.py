@@ -193,8 +193,28 @@ def check_range(
         hi is not None and (x > hi or (hi_open and x == hi))
     )
     if bad:
-        raise ConfigError(f"{name} = {_fmt(x)}{u} is out of range; valid range {rng}")
+        xs, rng = _fmt_apart(x, lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+        raise ConfigError(f"{name} = {xs}{u} is out of range; valid range {rng}")
     return x
+
+
+def _fmt_apart(x: float, lo: float | None, hi: float | None, **kw: Any) -> tuple[str, str]:
+    """``x`` and the interval printed with as many significant digits (6, 10, then 17) as it
+    takes for ``x`` to read unlike the bounds: ``0.2000001`` against a bound of ``0.2`` must not
+    print as ``0.2 is out of range; valid range (0.2, ...``."""
+    bounds = [float(b) for b in (lo, hi) if b is not None and float(b) != x]
+    for digits in (6, 10, 17):
+        xs = f"{x:.{digits}g}"
+        if all(xs != f"{b:.{digits}g}" for b in bounds):
+            break
+    if digits == 6:
+        return xs, format_range(lo, hi, **kw)
+    lb = "(" if (kw.get("lo_open") or lo is None) else "["
+    rb = ")" if (kw.get("hi_open") or hi is None) else "]"
+    lo_s = "-inf" if lo is None else f"{float(lo):.{digits}g}"
+    hi_s = "inf" if hi is None else f"{float(hi):.{digits}g}"
+    unit = kw.get("unit", "")
+    return xs, f"{lb}{lo_s}, {hi_s}{rb}" + (f" {unit}" if unit else "")
 
 
 #: largest TOML file read [bytes]: bearing, scenario and sweep files are a few kB; a larger file

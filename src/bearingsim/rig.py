@@ -449,7 +449,8 @@ class Rig:
 
     def check_rate(self, fs: float) -> None:
         """Refuse a mode or a fixed-frequency tone at or above the Nyquist frequency of the
-        output rate ``fs`` [Hz]. (A tone given as an order is left out of a signal whose shaft
+        output rate ``fs`` [Hz], and a background table lying wholly there (it would add
+        nothing). (A tone given as an order is left out of a signal whose shaft
         speed puts it there, as a recorder's anti-aliasing filter removes it: that depends on
         the signal, not on the rig.)"""
         items = [(f"mode[{i}]", m.frequency_hz) for i, m in enumerate(self.modes)]
@@ -462,6 +463,14 @@ class Rig:
                     f"is at or above the Nyquist frequency of the output rate ({0.5 * fs:g} Hz); "
                     f"valid range (0, {0.5 * fs:g}) Hz"
                 )
+        bg = self.background
+        if bg is not None and bg.frequency_hz[0] >= 0.5 * fs:
+            raise ConfigError(
+                f"{self.source or self.name}: background.frequency_hz[0] = {bg.frequency_hz[0]:g}"
+                f" Hz: the whole background table lies at or above the Nyquist frequency of the "
+                f"output rate ({0.5 * fs:g} Hz) and would add nothing; valid: a table that "
+                f"starts below {0.5 * fs:g} Hz"
+            )
 
     def transfer(self, f: NDArray[np.float64], fs: float) -> NDArray[np.complex128]:
         """Frequency response of the path (direct gain plus modes, as discretised at ``fs``)

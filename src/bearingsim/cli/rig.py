@@ -127,13 +127,8 @@ def identify_cmd(
                     f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} %); valid: the "
                     "records' speed (or no --rpm, to take each file's)"
                 )
+    # printed after the rig is written: a run that ends in an error prints the error alone
     unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]
-    if unknown:
-        click.echo(
-            f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file): "
-            "the rig gets no shaft-order tones from them",
-            err=True,
-        )
     faulty: list[Path] = []
     user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
     if conditions is not None and not model_gains:
@@ -193,6 +188,12 @@ def identify_cmd(
         from ..report.figures import save_figure
 
         save_figure(ir.plot(), plot)
+    if unknown:
+        click.echo(
+            f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file): "
+            "the rig got no shaft-order tones from them",
+            err=True,
+        )
     out = {
         "output": str(output),
         "name": name,

@@ -237,7 +237,7 @@ def run_rotor(
         from ...rig import apply_rig, load_rig
 
         rig = load_rig(scenario.rig)
-        if rig.end == "FE" and rig.input_channel == "acc_y":  # a fan-end sensor: its housing
-            rig = dataclasses.replace(rig, input_channel="acc_y_fe")
+        if rig.end == "FE" and rig.input_channel in ("acc_x", "acc_y"):  # a fan-end sensor:
+            rig = dataclasses.replace(rig, input_channel=f"{rig.input_channel}_fe")  # its housing
         res = apply_rig(res, rig)
     return res
