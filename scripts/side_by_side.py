@@ -6,7 +6,7 @@ these records). Prints a Markdown table and the share of records within issue 16
     python scripts/side_by_side.py [--model vsm|dem|tvsm|rotor] [--duration-s 2]
         [--slip-percent 1.5]
         [--defect-profile geometric] [--contact-roughness-m 1e-7] [--model-gain]
-        [--direct-gain G] [--json OUT.json]
+        [--direct-gain G] [--split size|load] [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -31,6 +31,7 @@ from bearingsim.side_by_side import (
     DEFECT_PROFILE,
     SLIP_PERCENT,
     lomo_rig,
+    rig_other_loads,
     side_by_side,
     within_bounds,
 )
@@ -67,6 +68,14 @@ def main() -> int:
         help="scale each rig's path so that the model carries the identification records' "
         "power above the rig's background (bearingsim.side_by_side.model_path_scale)",
     )
+    ap.add_argument(
+        "--split",
+        choices=["size", "load"],
+        default="size",
+        help="size: the rig identified on the records with another fault size (leave-one-"
+        "mounting-out, issue 16's split); load: on the same mounting's records at the other "
+        "loads (leave-one-load-out)",
+    )
     a = ap.parse_args()
     realism = {
         "slip_percent": a.slip_percent,
@@ -78,7 +87,9 @@ def main() -> int:
     rigs: dict[tuple, object] = {}
     out = []
     for name, r in sorted(faults.items(), key=lambda kv: (kv[1]["end"], kv[1]["fs_hz"], kv[0])):
-        key = (r["end"], r["fs_hz"], r["fault_diameter_in"])
+        key = (r["end"], r["fs_hz"], r["fault_diameter_in"]) if a.split == "size" else name
+        make_rig = lomo_rig if a.split == "size" else rig_other_loads
+        missing = "no other fault size" if a.split == "size" else "no other load"
         fault = r["fault"].split()[0]
         base = {
             "record": name,
@@ -90,7 +101,7 @@ def main() -> int:
         }
         if key not in rigs:
             try:
-                rigs[key] = lomo_rig(
+                rigs[key] = make_rig(
                     a.data,
                     name,
                     model_gain=a.model if a.model_gain else None,
@@ -109,7 +120,7 @@ def main() -> int:
                 gain_provenance=f"{rig.gain_provenance}; set to {a.direct_gain:g} (--direct-gain)",
             )
         if rig is None:
-            out.append(base | {"status": "no rig: no other fault size of this mounting here"})
+            out.append(base | {"status": f"no rig: {missing} of this mounting here"})
             continue
         try:
             s = side_by_side(

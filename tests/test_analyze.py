@@ -380,6 +380,24 @@ def test_a_race_fault_verdict_carries_the_contact_angle_read_from_the_record(run
         assert run_cli("analyze", str(_cwru(num)), "--json").json()["contact_angle"] is None
 
 
+def test_a_contact_angle_read_as_zero_from_beyond_the_alpha0_order_says_so(capsys):
+    """A line within the search's padding on the far side of its alpha = 0 order reads
+    alpha = 0 (ContactAngleEstimate); the text says so instead of printing 0.0 deg alone. A
+    line on the near side (a positive angle) gets no note."""
+    from bearingsim.cli.analyze import _echo_text
+
+    ca = dict(family="outer", shaft_hz=29.2, shaft_lines=10, harmonic=1, order=3.5800,
+              order_alpha0=3.5848, snr_db=30.0, contact_angle_rad=0.0,
+              contact_angle_deg=0.0)  # fmt: skip
+    out = dict(file="r.mat", band_hz=[0.0, 6000.0], rpm_source="file", channel="DE",
+               diagnosis="outer", confidence=0.9, peaks=[], contact_angle=ca)  # fmt: skip
+    _echo_text(out, detail=True)
+    text = capsys.readouterr().out
+    assert "note: the line lies 0.13 % on the far side of its alpha = 0 order" in text, text
+    _echo_text(out | {"contact_angle": ca | dict(order=3.5972, contact_angle_deg=9.4)}, True)
+    assert "far side" not in capsys.readouterr().out
+
+
 def test_a_simulation_s_contact_angle_is_read_at_its_exact_speed(run_cli, tmp_path):
     """A simulated result's speed is exact and a model without unbalance has no shaft line to
     measure it from: analyze reads its fault line at the file's speed. The rotor model with

@@ -184,15 +184,22 @@ def test_model_path_scale_scales_a_model_below_the_background():
 
 @needs_data
 def test_model_path_scale_refuses_records_the_background_explains():
-    """Records quieter than the rig's background (the 0.014 in outer-race records, 0.8-1.0
-    m/s^2 RMS, against the cwru-de-12k background's 1.08 m/s^2) leave no power for the path:
-    a one-line error instead of a zero or imaginary gain."""
+    """Records quieter than the rig's background (a 0.014 in outer-race record, 0.91 m/s^2
+    RMS, against the cwru-de-12k background made 4x as strong in power, 1.6 m/s^2) leave no
+    power for the path: a one-line error instead of a zero or imaginary gain. (With the shipped
+    background, 0.81 m/s^2 since the seventeenth session, the record leaves some.)"""
+    from dataclasses import replace
+
     from bearingsim.rig import load_rig
     from bearingsim.side_by_side import model_path_scale
 
+    rig = load_rig("cwru-de-12k")
+    loud = replace(rig, background=replace(
+        rig.background, psd=tuple(4.0 * v for v in rig.background.psd)))  # fmt: skip
     rec = CWRU / "12k_Drive_End_OR014@6_1_198.mat"
     with pytest.raises(ConfigError, match="background alone carries their power"):
-        model_path_scale(load_rig("cwru-de-12k"), [rec], duration_s=0.2)
+        model_path_scale(loud, [rec], duration_s=0.2)
+    assert model_path_scale(rig, [rec], duration_s=0.2)[1] > 0.0
 
 
 @needs_data
@@ -251,3 +258,38 @@ def test_model_path_scale_conditions_skips_healthy_records_and_checks_its_condit
         model_path_scale(rig, recs, duration_s=0.2)[1]
         == model_path_scale(rig, recs[:1], duration_s=0.2)[1]
     )
+
+
+@needs_data
+def test_the_outer_race_pair_spans_more_than_two_bounds():
+    """The measured fact behind docs/validation.md "What leave-one-mounting-out allows": at the
+    drive end, 12 kHz, the 0.007 in outer-race record (132) carries more than 4x the RMS of every
+    0.014 in one (197-200), the widest ratio two x2 bounds span. So a simulation whose level does
+    not fall as the defect grows (the next test), through a rig identified on the other size's
+    records, misses the RMS bound on both 132 and 197."""
+    rms = {}
+    for n in ("OR007@6_2_132", "OR014@6_0_197", "OR014@6_1_198", "OR014@6_2_199",
+              "OR014@6_3_200"):  # fmt: skip
+        x = read_signal(CWRU / f"12k_Drive_End_{n}.mat", channel="DE").x[:24000]
+        rms[n[-3:]] = float(np.sqrt(np.mean((x - x.mean()) ** 2)))
+    quiet = max(v for k, v in rms.items() if k != "132")
+    assert rms["132"] / quiet > 4.0, rms
+    assert rms["132"] == pytest.approx(5.54, rel=0.01)  # the side-by-side table's measured RMS
+
+
+@pytest.mark.parametrize("fault", ["outer", "inner"])
+def test_the_models_level_grows_with_the_defect(fault):
+    """The other half of that argument, for the VSM as the side-by-side runs it (the realism a
+    rig brings, record 132's speed): the bare output's RMS at 0.014 in is above that at
+    0.007 in (the geometric drop grows with the width squared)."""
+    from bearingsim import simulate
+    from bearingsim.side_by_side import CWRU_DEPTH_M, REALISM
+
+    def rms(size_in: float) -> float:
+        sc = dict(model="vsm", bearing="6205-cwru", fault=fault, **REALISM, rpm=1750.0,
+                  defect_width_m=size_in * 0.0254, defect_depth_m=CWRU_DEPTH_M,
+                  duration_s=0.3, fs_hz=12000.0, antialias=True, seed=0)  # fmt: skip
+        y = np.asarray(simulate(sc)["acc_y"])
+        return float(np.sqrt(np.mean((y - y.mean()) ** 2)))
+
+    assert rms(0.014) > 2.0 * rms(0.007)

@@ -458,11 +458,17 @@ def test_ctrl_c_during_a_compiled_kernel_is_raised_after_it_returns():
 
     spin(10)  # compile first
     n = 300_000_000  # ~1 s
-    timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
-    timer.start()
-    with pytest.raises(KeyboardInterrupt):
-        call_compiled(spin, n)
-    timer.join()
+    # Python's own handler, whatever the test run inherited: a suite started as a background
+    # job of a non-interactive shell starts with SIGINT ignored (POSIX), and Python keeps that
+    first = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            call_compiled(spin, n)
+        timer.join()
+    finally:
+        signal.signal(signal.SIGINT, first)
     old = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))

@@ -9,6 +9,7 @@ Most tests build their dataset with ``create_dataset`` and ``RunWriter`` directl
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import warnings
 from pathlib import Path
@@ -329,5 +330,8 @@ def test_an_edited_rig_file_is_a_changed_spec(tmp_path, monkeypatch):
     )
     before = SweepSpec.from_toml(p).spec_hash
     text = (tmp_path / "myrig.toml").read_text(encoding="utf-8")
-    (tmp_path / "myrig.toml").write_text(text.replace("scale = 6.8", "scale = 60.8"), "utf-8")
+    edited = re.sub(r"scale = ([0-9.e+-]+)", lambda m: f"scale = {10 * float(m[1])!r}", text,
+                    count=1)  # fmt: skip
+    assert edited != text
+    (tmp_path / "myrig.toml").write_text(edited, "utf-8")
     assert SweepSpec.from_toml(p).spec_hash != before

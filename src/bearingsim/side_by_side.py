@@ -48,6 +48,7 @@ __all__ = [
     "SLIP_PERCENT",
     "SignalMetrics",
     "lomo_rig",
+    "rig_other_loads",
     "model_path_scale",
     "model_path_scale_conditions",
     "cwru_row",
@@ -623,6 +624,72 @@ def lomo_rig(
             [data_dir / f for f in others],
             model=model_gain,
             realism=realism,
+        )
+    return rig
+
+
+def _same_mounting_records(data_dir: Path, record: str) -> list[str]:
+    """File names of the CWRU records of ``record``'s mounting at the other motor loads: the
+    same end, sample rate, fault (race and position) and size, another load; sorted."""
+    rows = cwru_manifest(data_dir)
+    r = rows[record]
+    same = ("end", "fs_hz", "fault", "or_position", "fault_diameter_in")
+    return sorted(
+        f
+        for f, q in rows.items()
+        if f != record and all(q[k] == r[k] for k in same) and q["load_hp"] != r["load_hp"]
+    )
+
+
+def rig_other_loads(
+    data_dir: Path,
+    record: str,
+    *,
+    model_gain: str | None = None,
+    realism: dict | None = None,
+):
+    """The rig of ``record``'s own mounting identified from that mounting's records at the
+    **other** motor loads (output-only, :func:`bearingsim.rig_identify.identify_rig`; with
+    ``model_gain``, also :func:`model_path_scale` on the same records), or None when the
+    folder holds no other load of it (the 0.007 in mountings: one record each).
+
+    The split a user's own machine has: a rig identified on some records of the machine,
+    judged on another record of it (leave-one-load-out). CWRU replaced the bearing for every
+    fault, so each fault record set (race, position, size) is its own mounting (Smith &
+    Randall 2015); :func:`lomo_rig` judges across mountings instead.
+
+    Parameters
+    ----------
+    data_dir : Path
+        A CWRU folder with its ``manifest.csv``.
+    record : str
+        The judged record's file name (never among the identification records).
+    model_gain : {"vsm", "dem", "tvsm", "rotor"}, optional
+        Also scale the path so that this model carries the identification records' power
+        above the background.
+    realism : dict, optional
+        Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
+    """
+    from .io.signal import read_signal
+    from .rig_identify import identify_rig
+
+    data_dir = Path(data_dir)
+    rows = cwru_manifest(data_dir)
+    if record not in rows:
+        raise ConfigError(f"record {record!r} is not in {data_dir / 'manifest.csv'}")
+    others = _same_mounting_records(data_dir, record)
+    if not others:
+        return None
+    end = rows[record]["end"]
+    recs = [read_signal(data_dir / f, channel=end) for f in others]
+    rig = identify_rig(
+        recs,
+        name=f"mounting-of-{Path(record).stem}-other-loads",
+        provenance="bearingsim.side_by_side.rig_other_loads: identified from " + ", ".join(others),
+    ).rig
+    if model_gain:
+        rig, _k = model_path_scale(
+            rig, [data_dir / f for f in others], model=model_gain, realism=realism
         )
     return rig
 

@@ -347,6 +347,13 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
             + f" {ca['shaft_hz'] * 60:.1f} r/min ({ca['harmonic']}x line, SNR "
             f"{ca['snr_db']:.0f} dB)"
         )
+        if ca["contact_angle_deg"] == 0.0 and ca["order"] != ca["order_alpha0"]:
+            # BPFO's order rises with the angle, BPFI's falls: a line on the other side of
+            # its alpha = 0 order (within the search's padding) is read as alpha = 0
+            click.echo(
+                f"  note: the line lies {100 * abs(ca['order'] / ca['order_alpha0'] - 1):.2f} % "
+                "on the far side of its alpha = 0 order (speed or line precision): read as 0 deg"
+            )
     for p in out["peaks"]:
         if p["detected"]:
             click.echo(
