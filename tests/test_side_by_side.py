@@ -293,3 +293,19 @@ def test_the_models_level_grows_with_the_defect(fault):
         return float(np.sqrt(np.mean((y - y.mean()) ** 2)))
 
     assert rms(0.014) > 2.0 * rms(0.007)
+
+
+@needs_data
+def test_rig_other_loads_is_identified_on_the_mountings_other_loads_only(tmp_path):
+    """Leave-one-load-out (scripts/side_by_side.py --split load): the rig of 170 (inner 0.014
+    in, load 1) comes from 169, 171 and 172 (the same mounting's other loads), never from 170
+    itself nor from another mounting; a mounting with one record here (107) has none; a record
+    not in the manifest is refused in one line."""
+    from bearingsim.side_by_side import rig_other_loads
+
+    rig = rig_other_loads(CWRU, "12k_Drive_End_IR014_1_170.mat")
+    used = re.findall(r"12k_\w+?_\d+\.mat", rig.provenance)
+    assert sorted(used) == [f"12k_Drive_End_IR014_{k}.mat" for k in ("0_169", "2_171", "3_172")]
+    assert rig_other_loads(CWRU, "12k_Drive_End_IR007_2_107.mat") is None
+    with pytest.raises(ConfigError, match="is not in"):
+        rig_other_loads(CWRU, "nothing.mat")
