@@ -70,6 +70,14 @@ def test_scenario_rpm_true_is_refused_not_one_rpm(run_cli, tmp_path):
     assert not out.exists()
 
 
+def test_bearing_file_number_as_text():
+    """A number in quotes (``pitch_diameter_m = "0.039"``) was read as the number; refused in
+    one line naming the key (the id and source stay text)."""
+    with pytest.raises(ConfigError, match=r"user.toml: pitch_diameter_m = '0.039' is text"):
+        bearing_from_dict({**GOOD, "pitch_diameter_m": "0.039"}, "user.toml")
+    bearing_from_dict({**GOOD, "id": "mine", "source": "a catalogue"}, "user.toml")
+
+
 def test_bearing_file_boolean(tmp_path):
     with pytest.raises(ConfigError, match="pitch_diameter_m = True is not a number"):
         bearing_from_dict({**GOOD, "pitch_diameter_m": True})

@@ -475,3 +475,25 @@ def test_accelerations_beyond_any_accelerometer_are_refused(field, value):
     }  # fmt: skip
     with pytest.raises(ConfigError, match="amplitude_m_per_s2" if field == "tone" else "psd"):
         Rig.from_dict(d)
+
+
+@pytest.mark.parametrize(
+    ("table", "key", "index"),
+    [
+        ("path", "gain", None),
+        ("mode", "frequency_hz", 0),
+        ("background", "psd_m2_per_s4_per_hz", 3),
+    ],
+)
+def test_a_number_written_as_text_is_refused(table, key, index):
+    """A rig file's number in quotes (``gain = "2"``) was read as the number; it is refused in
+    one line naming the field, as the file's other wrong types are."""
+    d = load_rig("cwru-de-12k").to_dict()
+    t = d[table][index] if table == "mode" else d[table]
+    if table == "background":
+        t[key][index] = "1e-6"
+    else:
+        t[key] = "2"
+    with pytest.raises(ConfigError, match=r"is text; valid: a number without quotes") as e:
+        Rig.from_dict(d)
+    assert "\n" not in str(e.value) and key in str(e.value)

@@ -82,7 +82,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import MAX_ACCELERATION, ConfigError, check_int, check_range, read_toml
+from .errors import (
+    MAX_ACCELERATION,
+    ConfigError,
+    check_int,
+    check_range,
+    format_range,
+    read_toml,
+)
 
 __all__ = [
     "Background",
@@ -107,6 +114,19 @@ PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 #: other units, and keeps the filters and signals finite (a scale of 1e308 overflowed the mode
 #: filters with a traceback; 1e200 wrote an infinite RMS)
 MAX_GAIN = 1e6
+
+
+def _check(name: str, value: Any, *args: Any, **kw: Any) -> float:
+    """:func:`check_range` for a number read from a rig file: a number written as text
+    (``gain = "2"``) is refused, as the file's other types are, instead of being read."""
+    if isinstance(value, str):
+        raise ConfigError(
+            f"{name} = {value!r} is text; valid: a number without quotes "
+            f"({format_range(*args[:2], **{k: v for k, v in kw.items() if k != 'unit'})}"
+            + (f" {kw['unit']}" if kw.get("unit") else "")
+            + ")"
+        )
+    return check_range(name, value, *args, **kw)
 
 
 def _provenance(table: dict[str, Any], where: str) -> str:
@@ -155,11 +175,11 @@ class Mode:
     def from_dict(cls, d: Any, where: str) -> Mode:
         d = _keys(d, cls.KEYS, where, required=cls.KEYS[:3])
         return cls(
-            check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
-            check_range(
+            _check(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
+            _check(
                 f"{where}.damping_ratio", d["damping_ratio"], MIN_DAMPING, 1.0, hi_open=True
             ),  # fmt: skip
-            check_range(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
+            _check(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
             _provenance(d, where),
         )
 
@@ -199,7 +219,7 @@ class ModelGain:
             )
         return cls(
             d["model"],
-            check_range(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
+            _check(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
             _provenance(d, where),
         )
 
@@ -224,9 +244,9 @@ class Background:
                 f"{where}: frequency_hz and psd_m2_per_s4_per_hz must be lists of the same "
                 "length, at least 2 points"
             )
-        fv = [check_range(f"{where}.frequency_hz[{i}]", v, 0.0, lo_open=True, unit="Hz")
+        fv = [_check(f"{where}.frequency_hz[{i}]", v, 0.0, lo_open=True, unit="Hz")
               for i, v in enumerate(f)]  # fmt: skip
-        sv = [check_range(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, MAX_ACCELERATION**2,
+        sv = [_check(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, MAX_ACCELERATION**2,
                           lo_open=True, unit="(m/s^2)^2/Hz") for i, v in enumerate(s)]  # fmt: skip
         if any(b <= a for a, b in zip(fv, fv[1:], strict=False)):
             k = next(i for i in range(1, len(fv)) if fv[i] <= fv[i - 1])
@@ -277,11 +297,11 @@ class Tone:
             raise ConfigError(f"{where}: give exactly one of order and frequency_hz")
         if "amplitude_m_per_s2" not in d:
             raise ConfigError(f"{where}.amplitude_m_per_s2 is missing")
-        order = (check_range(f"{where}.order", d["order"], 0.0, lo_open=True)
+        order = (_check(f"{where}.order", d["order"], 0.0, lo_open=True)
                  if "order" in d else None)  # fmt: skip
-        freq = (check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True,
+        freq = (_check(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True,
                             unit="Hz") if "frequency_hz" in d else None)  # fmt: skip
-        amp = check_range(f"{where}.amplitude_m_per_s2", d["amplitude_m_per_s2"], 0.0,
+        amp = _check(f"{where}.amplitude_m_per_s2", d["amplitude_m_per_s2"], 0.0,
                           MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
         return cls(amp, _provenance(d, where), order, freq)
 
@@ -345,7 +365,7 @@ class Rig:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
                 if "gain" not in p:
                     raise ConfigError("path.gain is missing")
-                gain = check_range("path.gain", p["gain"], 0.0, MAX_GAIN)
+                gain = _check("path.gain", p["gain"], 0.0, MAX_GAIN)
                 gprov = _provenance(p, "path")
             modes = d.get("mode", [])
             if not isinstance(modes, list):
@@ -358,7 +378,7 @@ class Rig:
                 s = _keys(d["sensor"], ("noise_rms_m_per_s2", "provenance"), "sensor")
                 if "noise_rms_m_per_s2" not in s:
                     raise ConfigError("sensor.noise_rms_m_per_s2 is missing")
-                noise = check_range("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
+                noise = _check("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
                                     MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
                 nprov = _provenance(s, "sensor")
             mg = d.get("model_gain", [])

@@ -116,6 +116,11 @@ def bearing_from_dict(data: dict[str, Any], origin: str = "<dict>") -> Bearing:
     missing = sorted(_REQUIRED[btype] - set(data))
     if missing:
         raise ConfigError(f"{origin}: missing required key {missing[0]!r} for type {btype!r}")
+    text = [k for k, v in data.items() if k not in ("id", "type", "source") and isinstance(v, str)]
+    if text:  # a number in quotes was read as the number
+        raise ConfigError(
+            f"{origin}: {text[0]} = {data[text[0]]!r} is text; valid: a number without quotes"
+        )
     if not isinstance(data.get("source", ""), str):
         raise ConfigError(
             f"{origin}: source = {data['source']!r} is not a text; valid: where the values "
