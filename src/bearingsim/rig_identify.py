@@ -157,10 +157,14 @@ def _spectral_kurtosis(x, fs, nperseg):
     share = np.where(m2 > 0, share, 1.0)
     m4 = (P * P).mean(axis=1)
     sk = np.where(m2 > 0, m4 / np.maximum(m2, 1e-300) ** 2 - 2.0, 0.0)
-    # the DC and Nyquist bins are real: a Gaussian gives SK = 1 there, not 0
+    # the DC and Nyquist bins are real: a Gaussian gives SK = 1 there, not 0, and a
+    # median/mean of 0.455 (chi-squared with one degree of freedom), not ln 2: both bins take
+    # their neighbour's values
     sk[0] = 0.0
+    share[0] = share[1]
     if nperseg % 2 == 0:
         sk[-1] = 0.0
+        share[-1] = share[-2]
     return f, sk, m2, share
 
 
