@@ -497,3 +497,12 @@ def test_a_number_written_as_text_is_refused(table, key, index):
     with pytest.raises(ConfigError, match=r"is text; valid: a number without quotes") as e:
         Rig.from_dict(d)
     assert "\n" not in str(e.value) and key in str(e.value)
+
+
+def test_background_rms_is_the_tables_integral():
+    """``Background.rms``: a flat PSD S over [f1, f2] has RMS sqrt(S (f2 - f1)) (within the
+    2000-point quadrature); cut at f_hi, the part below it; a table wholly above f_hi, 0."""
+    bg = Background((100.0, 5100.0), (2e-4, 2e-4), "test")
+    assert bg.rms() == pytest.approx(np.sqrt(2e-4 * 5000.0), rel=1e-4)
+    assert bg.rms(2600.0) == pytest.approx(np.sqrt(2e-4 * 2500.0), rel=1e-4)
+    assert bg.rms(50.0) == 0.0

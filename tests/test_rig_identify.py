@@ -161,6 +161,7 @@ def test_cli_identify_a_users_csv_records(tmp_path):
     assert r.returncode == 0, r.stderr
     rig = load_rig(out)
     assert any(abs(m.frequency_hz - 3000.0) < 150.0 for m in rig.modes), rig.modes
+    assert f"background {rig.background.rms():.3g} m/s^2 RMS" in r.stdout, r.stdout
     assert "--fs-hz 12000" in rig.provenance
     # without a speed the rig gets no shaft-order tones: said after the rig is written ...
     out.unlink()

@@ -185,9 +185,9 @@ def test_model_path_scale_scales_a_model_below_the_background():
 @needs_data
 def test_model_path_scale_refuses_records_the_background_explains():
     """Records quieter than the rig's background (a 0.014 in outer-race record, 0.91 m/s^2
-    RMS, against the cwru-de-12k background made 4x as strong in power, 1.6 m/s^2) leave no
+    RMS, against the cwru-de-12k background made 4x as strong in power, 1.5 m/s^2) leave no
     power for the path: a one-line error instead of a zero or imaginary gain. (With the shipped
-    background, 0.81 m/s^2 since the seventeenth session, the record leaves some.)"""
+    background, 0.75 m/s^2 since the seventeenth session, the record leaves some.)"""
     from dataclasses import replace
 
     from bearingsim.rig import load_rig

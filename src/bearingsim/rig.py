@@ -265,6 +265,16 @@ class Background:
         out[inside] = np.exp(np.interp(np.log(f[inside]), fp, sp_))
         return out
 
+    def rms(self, f_hi: float | None = None) -> float:
+        """RMS of the background [m/s^2]: the square root of the table's PSD integrated over
+        its frequencies (log-log interpolation, 2000 log-spaced points), up to ``f_hi`` [Hz]
+        if given (e.g. the Nyquist frequency of an output)."""
+        hi = self.frequency_hz[-1] if f_hi is None else min(f_hi, self.frequency_hz[-1])
+        if hi <= self.frequency_hz[0]:
+            return 0.0
+        f = np.geomspace(self.frequency_hz[0], hi, 2000)
+        return float(np.sqrt(np.trapezoid(self.psd_at(f), f)))
+
     def synthesize(self, n: int, fs: float, rng: np.random.Generator) -> NDArray[np.float64]:
         """``n`` samples at ``fs`` [Hz] of Gaussian noise with this PSD [m/s^2]: each Fourier
         coefficient complex normal with ``E|X_k|^2 = S(f_k) fs n / 2``, so the periodogram

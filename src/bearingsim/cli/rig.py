@@ -206,6 +206,7 @@ def identify_cmd(
             {"order": t.order, "amplitude_m_per_s2": t.amplitude_m_per_s2} for t in ir.rig.tones
         ],
         "model_gains": {g.model: g.scale for g in rig.model_gains},
+        "background_rms_m_per_s2": rig.background.rms() if rig.background else 0.0,
     }
     if as_json:
         emit_json(out)
@@ -215,7 +216,10 @@ def identify_cmd(
         for m in ir.rig.modes
     )
     gains = "".join(f"; {g.model} path gain {g.scale:.3g}" for g in rig.model_gains)
-    click.echo(f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}{gains}")
+    click.echo(
+        f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}; background "
+        f"{out['background_rms_m_per_s2']:.3g} m/s^2 RMS{gains}"
+    )
 
 
 @rig_group.command("show")
