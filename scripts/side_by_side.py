@@ -84,12 +84,12 @@ def main() -> int:
     }
     rows = cwru_manifest(a.data)
     faults = {f: r for f, r in rows.items() if r["fault_diameter_in"]}
-    rigs: dict[tuple, object] = {}
+    rigs: dict[object, object] = {}  # by mounting set (size split) or by record (load split)
+    make_rig = lomo_rig if a.split == "size" else rig_other_loads
+    missing = "no other fault size" if a.split == "size" else "no other load"
     out = []
     for name, r in sorted(faults.items(), key=lambda kv: (kv[1]["end"], kv[1]["fs_hz"], kv[0])):
         key = (r["end"], r["fs_hz"], r["fault_diameter_in"]) if a.split == "size" else name
-        make_rig = lomo_rig if a.split == "size" else rig_other_loads
-        missing = "no other fault size" if a.split == "size" else "no other load"
         fault = r["fault"].split()[0]
         base = {
             "record": name,
