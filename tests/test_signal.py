@@ -267,3 +267,19 @@ def test_tukey_window_is_scipys(n, alpha):
     ref = tukey(n, alpha)
     assert w.shape == ref.shape
     assert np.array_equal(w, ref)
+
+
+def test_one_supply_frequency_is_reported():
+    """A machine has one supply: envelope lines at 50 and 100 Hz (strong) and a weak chance
+    line at 60 Hz are reported as the 50 Hz supply alone (both were listed before)."""
+    from bearingsim.catalog import get_bearing
+    from bearingsim.signal.fused import diagnose_fused
+
+    fs = 12000.0
+    t = np.arange(int(4 * fs)) / fs
+    carrier = np.random.default_rng(0).standard_normal(t.size)
+    mod = 1 + 0.8 * np.sin(2 * np.pi * 50 * t) + 0.3 * np.sin(2 * np.pi * 100 * t)
+    mod += 0.08 * np.sin(2 * np.pi * 60 * t) + 0.05 * np.sin(2 * np.pi * 120 * t)
+    d = diagnose_fused(carrier * mod, fs, get_bearing("6205-cwru"), 29.1)
+    labels = [s["label"] for s in d.non_bearing["supply_lines"]]
+    assert labels == ["1x50Hz", "2x50Hz"], labels

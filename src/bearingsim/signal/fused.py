@@ -64,7 +64,8 @@ minus the largest score of the other two families.
 
 What is not a bearing fault is reported, not diagnosed: shaft harmonics f_r, 2f_r, 3f_r
 detected in most views ("looseness or shaft modulation"), and lines at the harmonics of 50 or
-60 Hz supply frequency in the raw view ("electrical").
+60 Hz supply frequency in the raw view ("electrical"; where both stand, the frequency whose
+lines are stronger in sum: a machine has one supply).
 
 **Decision and confidence.**
 
@@ -749,6 +750,17 @@ def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
                 line = es.amplitude[k] >= es.amplitude[max(k - 1, 0) : k + 2].max()
                 if p.detected and line:
                     out["supply_lines"].append({"label": p.label, "snr_db": p.snr_db})
+        # a machine has one supply: where lines of both frequencies stand, the one whose
+        # lines are stronger in sum (the other's are chance lines of the envelope)
+        by_f0: dict[str, float] = {}
+        for d in out["supply_lines"]:
+            f0 = d["label"].split("x", 1)[1]
+            by_f0[f0] = by_f0.get(f0, 0.0) + d["snr_db"]
+        if len(by_f0) > 1:
+            keep = max(by_f0, key=by_f0.__getitem__)
+            out["supply_lines"] = [
+                d for d in out["supply_lines"] if d["label"].split("x", 1)[1] == keep
+            ]
         if out["supply_lines"]:
             notes.append(
                 "supply-frequency lines in the raw envelope: "
