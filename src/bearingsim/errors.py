@@ -121,13 +121,14 @@ def format_range(
     lo_open: bool = False,
     hi_open: bool = False,
     unit: str = "",
+    digits: int = 6,
 ) -> str:
     """The interval as the messages write it: ``(0, inf) N``, ``[-90, 90] deg``, ``[1, 10000]``
-    (``None`` = unbounded, always open)."""
+    (``None`` = unbounded, always open), its bounds with ``digits`` significant digits."""
     lb = "(" if (lo_open or lo is None) else "["
     rb = ")" if (hi_open or hi is None) else "]"
-    lo_s = "-inf" if lo is None else _fmt(float(lo))
-    hi_s = "inf" if hi is None else _fmt(float(hi))
+    lo_s = "-inf" if lo is None else f"{float(lo):.{digits}g}"
+    hi_s = "inf" if hi is None else f"{float(hi):.{digits}g}"
     return f"{lb}{lo_s}, {hi_s}{rb}" + (f" {unit}" if unit else "")
 
 
@@ -207,14 +208,7 @@ def _fmt_apart(x: float, lo: float | None, hi: float | None, **kw: Any) -> tuple
         xs = f"{x:.{digits}g}"
         if all(xs != f"{b:.{digits}g}" for b in bounds):
             break
-    if digits == 6:
-        return xs, format_range(lo, hi, **kw)
-    lb = "(" if (kw.get("lo_open") or lo is None) else "["
-    rb = ")" if (kw.get("hi_open") or hi is None) else "]"
-    lo_s = "-inf" if lo is None else f"{float(lo):.{digits}g}"
-    hi_s = "inf" if hi is None else f"{float(hi):.{digits}g}"
-    unit = kw.get("unit", "")
-    return xs, f"{lb}{lo_s}, {hi_s}{rb}" + (f" {unit}" if unit else "")
+    return xs, format_range(lo, hi, digits=digits, **kw)
 
 
 #: largest TOML file read [bytes]: bearing, scenario and sweep files are a few kB; a larger file

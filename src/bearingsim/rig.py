@@ -122,9 +122,7 @@ def _check(name: str, value: Any, *args: Any, **kw: Any) -> float:
     if isinstance(value, str):
         raise ConfigError(
             f"{name} = {value!r} is text; valid: a number without quotes "
-            f"({format_range(*args[:2], **{k: v for k, v in kw.items() if k != 'unit'})}"
-            + (f" {kw['unit']}" if kw.get("unit") else "")
-            + ")"
+            f"({format_range(*args[:2], **kw)})"
         )
     return check_range(name, value, *args, **kw)
 

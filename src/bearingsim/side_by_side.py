@@ -628,10 +628,10 @@ def lomo_rig(
     return rig
 
 
-def _same_mounting_records(data_dir: Path, record: str) -> list[str]:
+def _same_mounting_records(rows: dict[str, dict[str, str]], record: str) -> list[str]:
     """File names of the CWRU records of ``record``'s mounting at the other motor loads: the
-    same end, sample rate, fault (race and position) and size, another load; sorted."""
-    rows = cwru_manifest(data_dir)
+    same end, sample rate, fault (race and position) and size, another load; sorted.
+    ``rows``: the folder's manifest (:func:`~bearingsim.io.cwru.cwru_manifest`)."""
     r = rows[record]
     same = ("end", "fs_hz", "fault", "or_position", "fault_diameter_in")
     return sorted(
@@ -677,7 +677,7 @@ def rig_other_loads(
     rows = cwru_manifest(data_dir)
     if record not in rows:
         raise ConfigError(f"record {record!r} is not in {data_dir / 'manifest.csv'}")
-    others = _same_mounting_records(data_dir, record)
+    others = _same_mounting_records(rows, record)
     if not others:
         return None
     end = rows[record]["end"]

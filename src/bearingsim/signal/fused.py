@@ -735,7 +735,9 @@ def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
         )
     if domain is Domain.HZ:
         es = views[0].diagnosis.spectrum
+        by_f0: list[list[dict[str, Any]]] = []  # the lines of each supply frequency
         for f0 in SUPPLY_HZ:
+            found: list[dict[str, Any]] = []
             tg = [(f"{h}x{f0:g}Hz", h * f0) for h in (1, 2) if h * f0 < es.freq[-1]]
             # a supply line is only told apart from a shaft harmonic when it is > 1 % away
             tg = [t for t in tg if abs(t[1] / shaft_hz - round(t[1] / shaft_hz)) * shaft_hz
@@ -749,18 +751,13 @@ def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
                 k = int(np.argmin(np.abs(es.freq - p.freq_hz)))
                 line = es.amplitude[k] >= es.amplitude[max(k - 1, 0) : k + 2].max()
                 if p.detected and line:
-                    out["supply_lines"].append({"label": p.label, "snr_db": p.snr_db})
+                    found.append({"label": p.label, "snr_db": p.snr_db})
+            if found:
+                by_f0.append(found)
         # a machine has one supply: where lines of both frequencies stand, the one whose
         # lines are stronger in sum (the other's are chance lines of the envelope)
-        by_f0: dict[str, float] = {}
-        for d in out["supply_lines"]:
-            f0 = d["label"].split("x", 1)[1]
-            by_f0[f0] = by_f0.get(f0, 0.0) + d["snr_db"]
-        if len(by_f0) > 1:
-            keep = max(by_f0, key=by_f0.__getitem__)
-            out["supply_lines"] = [
-                d for d in out["supply_lines"] if d["label"].split("x", 1)[1] == keep
-            ]
+        if by_f0:
+            out["supply_lines"] = max(by_f0, key=lambda ls: sum(d["snr_db"] for d in ls))
         if out["supply_lines"]:
             notes.append(
                 "supply-frequency lines in the raw envelope: "
