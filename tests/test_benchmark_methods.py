@@ -217,6 +217,35 @@ def test_kinematic_check_one_cage_speed(consistent):
         assert not peaks["BPFI"].detected
 
 
+def test_a_fault_line_nearer_a_shaft_harmonic_goes_to_the_shaft():
+    """A 6203 on a 1 s record (1 Hz lines, f_r 29.5 Hz): BPFO = 3.053 f_r = 90.07 Hz lies 1.6 Hz
+    above 3 f_r = 88.5 Hz. The 3 f_r search (+/-3 bins, the harmonic rule) takes the stronger
+    BPFI - 2 f_r sideband at 87 Hz; the shaft's own line at 89 Hz then falls in BPFO's window.
+    It is 0.5 Hz from 3 f_r and 1.07 Hz from BPFO, so it goes to the shaft: no outer-race
+    line is counted (before the fix it was, and an inner-race simulation of the rotor's fan
+    end read "uncertain", docs/validation.md "Simulations through the rig, diagnosed")."""
+    from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
+
+    bearing = get_bearing("6203-cwru")
+    fr = 29.5
+    k = characteristic_frequencies(bearing, fr)
+    f = np.arange(0.0, 1500.0, 1.0)
+    a = np.full(f.size, 1e-3)
+    lines = {fr: 1.0, 2 * fr: 1.0, 89.0: 1.0}  # the shaft; its third harmonic's line at 89 Hz
+    lines |= {h * k.bpfi_hz: 3.0 for h in (1, 2, 3)}
+    lines |= {k.bpfi_hz - fr: 1.5, k.bpfi_hz + fr: 1.5, k.bpfi_hz - 2 * fr: 2.0}
+    for fl, amp in lines.items():
+        a[int(round(fl))] = amp
+    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    assert 89.0 - 3 * fr < k.bpfo_hz - 89.0, "the premise: 89 Hz nearer 3 f_r than BPFO"
+    d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=DiagnosisRule(shaft_cursors=True))
+    peaks = {p.label: p for p in d.peaks}
+    assert peaks["3xfr"].freq_hz == 87.0 and peaks["3xfr"].detected, "3 f_r took the sideband"
+    assert peaks["BPFO"].freq_hz == 89.0, "BPFO's window found the shaft's line"
+    assert not peaks["BPFO"].detected, "... which goes to the shaft"
+    assert d.supported == ["inner"], (d.supported, d.notes)
+
+
 def test_kinematic_check_needs_the_measured_speed():
     """In Hz the check needs f_r measured from the record's shaft harmonics; a record without
     them (white noise) leaves every view as it is, with a note."""

@@ -457,6 +457,7 @@ def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> li
         own_nom = abs(p.freq_hz - nominal.get(p.label, p.target_hz))
         return abs(d - own) <= tie and abs(p.freq_hz - nominal.get(q.label, q.target_hz)) < own_nom
 
+    shaft = [q for q in peaks if _family(q.label) == "shaft"]
     out = []
     for p in peaks:
         fam = _family(p.label)
@@ -467,6 +468,11 @@ def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> li
             for q in peaks
             if q is not p
         )
+        # a fault line nearer to a shaft harmonic's target than to its own goes to the shaft,
+        # whichever line that harmonic's own search took (on a short record the 6203's BPFO,
+        # 3.05 f_r, lies within a bin or two of 3 f_r; the 3 f_r search, +/-3 bins, may take a
+        # stronger neighbour, BPFI - 2 f_r, and leave the shaft line to BPFO)
+        stolen = stolen or (p.detected and fam != "shaft" and any(_beats(p, q) for q in shaft))
         out.append(
             Peak(
                 p.label,
