@@ -6,7 +6,8 @@ these records). Prints a Markdown table and the share of records within issue 16
     python scripts/side_by_side.py [--model vsm|dem|tvsm|rotor] [--duration-s 2]
         [--slip-percent 1.5]
         [--defect-profile geometric] [--contact-roughness-m 1e-7] [--model-gain]
-        [--direct-gain G] [--split size|load] [--json OUT.json]
+        [--gain-method power|spectral|whittle] [--direct-gain G] [--split size|load]
+        [--json OUT.json]
 
 The rig for a record is identified (bearingsim.rig_identify) from the records of the same
 end and sample rate with another fault size; a mounting with no other size in the folder (the
@@ -69,6 +70,16 @@ def main() -> int:
         "power above the rig's background (bearingsim.side_by_side.model_path_scale)",
     )
     ap.add_argument(
+        "--gain-method",
+        choices=["power", "spectral", "whittle"],
+        default="power",
+        help="with --model-gain: power: one scale of the output-only path "
+        "(model_path_scale); spectral: the direct gain and every mode's gain fitted to the "
+        "identification records' spectra with the model's output as the known input (the "
+        "shape in dB, the level by the power balance); whittle: the same by Whittle's "
+        "likelihood (bearingsim.side_by_side.model_path_fit)",
+    )
+    ap.add_argument(
         "--split",
         choices=["size", "load"],
         default="size",
@@ -77,6 +88,8 @@ def main() -> int:
         "loads (leave-one-load-out)",
     )
     a = ap.parse_args()
+    if a.gain_method != "power" and not a.model_gain:
+        ap.error("--gain-method needs --model-gain")
     realism = {
         "slip_percent": a.slip_percent,
         "defect_profile": a.defect_profile,
@@ -106,6 +119,7 @@ def main() -> int:
                     name,
                     model_gain=a.model if a.model_gain else None,
                     realism=realism,
+                    gain_method=a.gain_method,
                 )
             except ConfigError as exc:  # e.g. no power above the background to scale to
                 rigs[key] = exc

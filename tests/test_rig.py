@@ -125,6 +125,20 @@ def test_a_zero_gain_mode_contributes_nothing_quietly():
     assert_allclose(np.abs(rig.transfer(np.array([100.0, 3000.0]), 12000.0)), 1.0)
 
 
+def test_a_tiny_mode_gain_scales_its_mode():
+    """A mode gain of 1e-20 (a fitted gain the fit drove to its bound) filters like gain 1
+    scaled by 1e-20, without SciPy's BadCoefficients (its gain-times-numerator read as leading
+    zeros below ~3e-13 and stopped apply); an ordinary gain gives the coefficients it gave."""
+    from scipy.signal import iirpeak, tf2sos
+
+    x = np.random.default_rng(5).standard_normal(2000)
+    unit = _rig(gain=0.0, modes=(Mode(3000.0, 0.05, 1.0, "test"),)).apply(x, 12000.0)
+    tiny = _rig(gain=0.0, modes=(Mode(3000.0, 0.05, 1e-20, "test"),)).apply(x, 12000.0)
+    assert_allclose(tiny, 1e-20 * unit, rtol=1e-12, atol=0.0)
+    b, a = iirpeak(3000.0, 1.0 / 0.1, fs=12000.0)
+    assert_array_equal(Mode(3000.0, 0.05, 4.13, "test").sos(12000.0), tf2sos(4.13 * b, a))
+
+
 def test_tones_at_or_above_nyquist():
     """A tone at a fixed frequency at or above the output's Nyquist frequency is refused in one
     line (as a mode is); one given as an order that a fast shaft puts there is left out of the

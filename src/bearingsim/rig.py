@@ -190,7 +190,12 @@ class Mode:
         from scipy.signal import iirpeak, tf2sos
 
         b, a = iirpeak(self.frequency_hz, 1.0 / (2.0 * self.damping_ratio), fs=fs)
-        return tf2sos(self.gain * b, a)
+        # the gain on the section's numerator after the conversion: the same coefficients,
+        # and a gain below ~3e-13 no longer reads as a numerator of leading zeros
+        # (scipy's BadCoefficients; a fitted mode gain of 1e-20 stopped apply with it)
+        sos = tf2sos(b, a)
+        sos[0, :3] *= self.gain
+        return sos
 
 
 #: the models a rig can carry a model-based path gain for (``[[model_gain]]``)

@@ -55,7 +55,7 @@ from numpy.typing import NDArray
 from .errors import ConfigError
 from .rig import Background, Mode, Rig, Tone
 
-__all__ = ["IdentifiedRig", "identify_rig"]
+__all__ = ["PATH_FIT_OBJECTIVES", "IdentifiedRig", "PathFit", "fit_path_gains", "identify_rig"]
 
 #: shortest record [s]
 MIN_DURATION_S = 1.0
@@ -405,6 +405,234 @@ def identify_rig(
         sources=[str(r.source) for r in records],
         decay=decay,
     )
+
+
+#: resolution of the path fit's Welch spectra [Hz] (the segment is the nearest power of two):
+#: fine enough for the modes' half-power bands (2 zeta f_n >= 100 Hz for the CWRU modes), coarse
+#: enough to average 40 segments per second of record
+PATH_FIT_RESOLUTION_HZ = 25.0
+#: band of the path fit [Hz, fraction of fs]: above the shaft tones' lowest harmonics, below
+#: a recorder's anti-aliasing roll-off
+PATH_FIT_LOW_HZ = 20.0
+PATH_FIT_HIGH_FS = 0.45
+
+
+#: the objectives of :func:`fit_path_gains`
+PATH_FIT_OBJECTIVES = ("spectral", "whittle")
+
+
+@dataclass(frozen=True)
+class PathFit:
+    """Result of :func:`fit_path_gains`.
+
+    Attributes
+    ----------
+    rig : Rig
+        The rig with its direct gain and mode gains replaced by the fitted ones (everything
+        else as given).
+    gains : tuple of float
+        The fitted direct gain and the gain of each mode, in the rig's order [-].
+    start_gains : tuple of float
+        The rig's gains before the fit [-].
+    objective : str
+        ``"spectral"`` or ``"whittle"`` (:func:`fit_path_gains`).
+    power_ratio : float
+        Fitted over measured power in the fit band, summed over the records [-] (1 for the
+        ``"spectral"`` objective by construction).
+    """
+
+    rig: Rig
+    gains: tuple[float, ...]
+    start_gains: tuple[float, ...]
+    objective: str
+    power_ratio: float
+
+
+def fit_path_gains(
+    rig: Rig,
+    pairs: list[tuple[NDArray[np.float64], NDArray[np.float64]]],
+    fs: float,
+    *,
+    objective: str = "spectral",
+    provenance: str = "",
+) -> PathFit:
+    """Model-based gains of the path: the direct gain and every mode's gain of ``rig`` fitted so
+    that the model's output through the path, plus the rig's background, has the measured
+    records' power spectra (the known-input part an output-only identification cannot give;
+    the modes' frequencies and damping ratios are kept).
+
+    For each pair (measured ``y``, the model's output ``x`` for the same condition, both
+    [m/s^2] at ``fs``) the Welch spectra ``P_y`` and ``P_x`` (Hann, 50 % overlap, about
+    :data:`PATH_FIT_RESOLUTION_HZ`) over [:data:`PATH_FIT_LOW_HZ`, :data:`PATH_FIT_HIGH_FS`
+    fs] are compared with
+
+    ``S(f) = P_bg(f) + |g_0 + sum_k g_k R_k(f)|^2 P_x(f)``
+
+    (``R_k`` the mode's resonator at unit gain, :meth:`bearingsim.rig.Mode.sos`; ``P_bg`` the
+    rig's background table). Objectives:
+
+    * ``"spectral"`` (default) -- the **shape** by least squares of ``ln S - ln P_y`` over
+      every Welch ordinate of every pair (a fit in decibels, as transfer-function magnitudes are
+      fitted: an ordinate ten times too high weighs as one ten times too low), then the
+      **level** by the power balance of :func:`bearingsim.side_by_side.model_path_scale`
+      over the band, every gain times ``k`` with
+      ``k^2 = sum (P_y - P_bg) / sum |H|^2 P_x``: the fitted path carries the records' power
+      above the background.
+    * ``"whittle"`` -- Whittle's negative log-likelihood ``sum (ln S + P_y / S)``, the
+      maximum-likelihood estimate for averaged periodograms (Whittle 1953). It is exact when
+      the model's spectrum has the records' shape; where it has not, the likelihood punishes
+      an ordinate too low far more than one too high, and the fit overshoots the power (1.9x
+      on CWRU record 132 with the VSM, docs/validation.md).
+
+    The gains are bounded to [0, :data:`~bearingsim.rig.MAX_GAIN`] and started from the
+    rig's own gains scaled by 1e-3 ... 1 (the best of the four starts). The phases of the
+    model's output are not used: a power-spectral fit cannot tell a mode's sign, so gains are
+    >= 0.
+
+    Parameters
+    ----------
+    rig : Rig
+        The output-only rig (:func:`identify_rig`) whose modes and background are kept.
+    pairs : list of (ndarray, ndarray)
+        ``(measured, model output)`` per record [m/s^2], each pair of one length (>= 1 s);
+        the model output without the rig (no background).
+    fs : float
+        Sample rate of every signal [Hz].
+    objective : {"spectral", "whittle"}
+        See above.
+    provenance : str
+        Where the pairs come from (the records and the model), put in the gains' provenance.
+
+    Returns
+    -------
+    PathFit
+
+    Raises
+    ------
+    ConfigError
+        ``pairs`` empty, a pair of unequal lengths, shorter than :data:`MIN_DURATION_S`, or
+        not finite; a model output that is zero in the fit band; records whose power in the
+        band the background alone carries (``"spectral"``).
+    """
+    from dataclasses import replace as dc_replace
+
+    from scipy.optimize import least_squares, minimize
+    from scipy.signal import sosfreqz, welch
+
+    from .errors import check_range
+    from .rig import MAX_GAIN
+
+    fs = check_range("fs_hz", fs, 0.0, lo_open=True, unit="Hz")
+    if objective not in PATH_FIT_OBJECTIVES:
+        raise ConfigError(
+            f"objective = {objective!r} is invalid; valid: " + ", ".join(PATH_FIT_OBJECTIVES)
+        )
+    if not pairs:
+        raise ConfigError("pairs is empty; valid: at least one (measured, model output) pair")
+    nperseg = 2 ** int(round(math.log2(fs / PATH_FIT_RESOLUTION_HZ)))
+    data = []
+    for i, pair in enumerate(pairs):
+        y, x = (np.asarray(v, dtype=float) for v in pair)
+        if y.ndim != 1 or y.shape != x.shape:
+            raise ConfigError(
+                f"pairs[{i}]: measured {y.shape} and model output {x.shape} samples; valid: "
+                "two 1-D signals of one length"
+            )
+        if y.size < MIN_DURATION_S * fs:
+            raise ConfigError(
+                f"pairs[{i}]: {y.size / fs:.3g} s is too short; valid: at least "
+                f"{MIN_DURATION_S:g} s"
+            )
+        if not (np.all(np.isfinite(y)) and np.all(np.isfinite(x))):
+            raise ConfigError(f"pairs[{i}]: a signal has non-finite samples")
+        f, py = welch(y - y.mean(), fs, nperseg=nperseg)
+        _, px = welch(x - x.mean(), fs, nperseg=nperseg)
+        band = (f >= PATH_FIT_LOW_HZ) & (f <= PATH_FIT_HIGH_FS * fs)
+        if not np.any(px[band] > 0.0):
+            raise ConfigError(
+                f"pairs[{i}]: the model output is zero in {PATH_FIT_LOW_HZ:g}-"
+                f"{PATH_FIT_HIGH_FS * fs:g} Hz; no path gain can be fitted to it"
+            )
+        fb = f[band]
+        pb = rig.background.psd_at(fb) if rig.background is not None else np.zeros(fb.size)
+        resp = [sosfreqz(dc_replace(m, gain=1.0).sos(fs), worN=fb, fs=fs)[1] for m in rig.modes]
+        data.append((py[band], px[band], pb, np.array(resp).reshape(len(rig.modes), fb.size)))
+    # a floor for S and P_y where a Welch ordinate is exactly 0 (not a spectrum): 1e-12 of the
+    # records' mean PSD
+    floor = 1e-12 * float(np.mean([d[0].mean() for d in data]))
+
+    def path_power(g, px, resp):
+        h = g[0] + np.asarray(g[1:]) @ resp
+        return (h.real**2 + h.imag**2) * px
+
+    def log_residual(g):
+        return np.concatenate(
+            [
+                np.log(pb + path_power(g, px, resp) + floor) - np.log(py + floor)
+                for py, px, pb, resp in data
+            ]  # fmt: skip
+        )
+
+    def nll(g):
+        tot = 0.0
+        for py, px, pb, resp in data:
+            s_ = pb + path_power(g, px, resp) + floor
+            tot += float(np.sum(np.log(s_) + py / s_))
+        return tot
+
+    start = np.array([rig.gain, *(m.gain for m in rig.modes)], dtype=float)
+    bounds = [(0.0, MAX_GAIN)] * start.size
+    best, best_cost = None, math.inf
+    for scale in (1e-3, 1e-2, 1e-1, 1.0):
+        if objective == "spectral":
+            r = least_squares(log_residual, start * scale, bounds=(0.0, MAX_GAIN))
+            cost = float(r.cost)
+        else:
+            r = minimize(nll, start * scale, method="L-BFGS-B", bounds=bounds)
+            cost = float(r.fun)
+        if cost < best_cost:
+            best, best_cost = r, cost
+    g = np.asarray(best.x, dtype=float)
+    g[g < 1e-9 * g.max()] = 0.0  # at the bound in all but rounding (1e-14 in a fit): none
+    excess = sum(float(np.sum(py - pb)) for py, _, pb, _ in data)
+    carried = sum(float(np.sum(path_power(g, px, resp))) for _, px, _, resp in data)
+    if objective == "spectral":
+        if excess <= 0.0:
+            raise ConfigError(
+                "pairs: the rig's background alone carries the records' power in the fit band; "
+                "no path gain can be fitted; valid: records whose power exceeds the background"
+            )
+        if carried <= 0.0:
+            raise ConfigError("pairs: the fitted path carries none of the model's output")
+        g = g * math.sqrt(excess / carried)
+        carried = excess
+    measured = sum(float(np.sum(py)) for py, *_ in data)
+    background = sum(float(np.sum(pb)) for _, _, pb, _ in data)
+    how = {
+        "spectral": "least squares of the log Welch spectra for the shape, the power balance "
+        "for the level",
+        "whittle": "Whittle likelihood of the Welch spectra",
+    }[objective]
+    why = (
+        f"model-based fit (bearingsim.rig_identify.fit_path_gains: {how}, {PATH_FIT_LOW_HZ:g} Hz"
+        f" to {PATH_FIT_HIGH_FS:g} fs" + (f"; {provenance}" if provenance else "") + ")"
+    )
+    fitted = dc_replace(
+        rig,
+        gain=float(g[0]),
+        gain_provenance=f"{why}; output-only it was {rig.gain:.6g}",
+        modes=tuple(
+            dc_replace(
+                m,
+                gain=float(gk),
+                provenance=f"{m.provenance}; gain {why}, output-only {m.gain:.6g}",
+            )  # fmt: skip
+            for m, gk in zip(rig.modes, g[1:], strict=True)
+        ),
+        model_gains=(),
+    )
+    return PathFit(fitted, tuple(float(v) for v in g), tuple(float(v) for v in start), objective,
+                   (background + carried) / measured)  # fmt: skip
 
 
 def rig_to_toml(rig: Rig) -> str:

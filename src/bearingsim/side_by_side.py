@@ -49,6 +49,7 @@ __all__ = [
     "SignalMetrics",
     "lomo_rig",
     "rig_other_loads",
+    "model_path_fit",
     "model_path_scale",
     "model_path_scale_conditions",
     "cwru_row",
@@ -324,15 +325,8 @@ def model_path_scale(
         ``records`` is empty, or the rig's background alone carries as much power as the
         records (nothing left for the path to explain).
     """
-    if not records:
-        raise ConfigError("records is empty; valid: at least one CWRU fault record")
     rig = _without_gain(rig, model)
-    records = [r for r in records if _has_fault(Path(r))]  # healthy ones: no fault power
-    if not records:
-        raise ConfigError(
-            "records: none has a bearing fault; valid: at least one CWRU outer-race, inner-race "
-            "or ball fault record"
-        )
+    records = _fault_records(records)
     from tqdm import tqdm
 
     powers = []
@@ -347,6 +341,69 @@ def model_path_scale(
         )
         powers.append(_powers(c["measured"], c["simulated"], c["background"]))
     return _with_gain(rig, model, powers, [Path(r).name for r in records], duration_s)
+
+
+def model_path_fit(
+    rig,
+    records: list[Path],
+    *,
+    model: str = "vsm",
+    duration_s: float = 1.0,
+    realism: dict | None = None,
+    objective: str = "spectral",
+    progress: bool = False,
+):
+    """The rig with its direct gain and every mode's gain fitted, with the model's output as
+    the known input, so that the model through the path plus the rig's background has the
+    power spectra of ``records`` (:func:`bearingsim.rig_identify.fit_path_gains`, its
+    ``objective``: ``"spectral"``, the shape in decibels and the level by the power balance,
+    or ``"whittle"``). Where :func:`model_path_scale` scales the output-only path as a whole (its
+    direct gain of 1 kept relative to the modes: the structure output-only data cannot tell),
+    this fit weighs the direct path against the modes from the model: what the sensor sees of
+    the model's own broadband output.
+
+    The fitted rig is the path **for this model** (another model's output has another
+    spectrum); its provenance says so. Parameters as :func:`model_path_scale`.
+
+    Returns
+    -------
+    (Rig, PathFit)
+        The fitted rig (no model gains) and the fit's details.
+
+    Raises
+    ------
+    ConfigError
+        ``records`` is empty or holds no fault record; a record shorter than 1 s.
+    """
+    from tqdm import tqdm
+
+    from .rig import Rig
+    from .rig_identify import fit_path_gains
+
+    rig = _without_gain(rig, model)
+    records = _fault_records(records)
+    bare = Rig(name="bare", description="", provenance="the model's output itself",
+               input_channel=rig.input_channel)  # fmt: skip
+    pairs, rates = [], set()
+    bar = tqdm(records, desc=f"{model} path fit", unit="record", disable=not progress,
+               leave=False)  # fmt: skip
+    for rec in bar:
+        c = simulate_record(rec, bare, model=model, duration_s=duration_s, realism=realism)
+        pairs.append((c["measured"], c["simulated"]))
+        rates.add(c["fs_hz"])
+    if len(rates) != 1:
+        raise ConfigError(
+            f"records: sample rates {sorted(rates)} Hz; valid: records of one rate (one rig)"
+        )
+    names = ", ".join(Path(r).name for r in records)
+    fit = fit_path_gains(
+        rig,
+        pairs,
+        rates.pop(),
+        objective=objective,
+        provenance=f"the {model} model's output for {names}, {duration_s:g} s each",
+    )
+    return fit.rig, fit
 
 
 def model_path_scale_conditions(
@@ -476,6 +533,20 @@ def cwru_row(record: str | Path) -> dict[str, str] | None:
     return cwru_manifest(p.parent).get(p.name)
 
 
+def _fault_records(records: list) -> list:
+    """The fault records among CWRU ``records`` (healthy ones carry no fault power to match);
+    a one-line error when there are none."""
+    if not records:
+        raise ConfigError("records is empty; valid: at least one CWRU fault record")
+    kept = [r for r in records if _has_fault(Path(r))]
+    if not kept:
+        raise ConfigError(
+            "records: none has a bearing fault; valid: at least one CWRU outer-race, inner-race "
+            "or ball fault record"
+        )
+    return kept
+
+
 def _has_fault(record: Path) -> bool:
     """Whether a CWRU record's manifest row names one of :data:`FAULT_FAMILIES` (a record
     outside the manifest passes, for :func:`simulate_record`'s error)."""
@@ -594,6 +665,7 @@ def lomo_rig(
     *,
     model_gain: str | None = None,
     realism: dict | None = None,
+    gain_method: str = "power",
 ):
     """The rig of ``record``'s mounting identified WITHOUT its fault size (leave-one-mounting-
     out: :func:`rig_without_size` for the record's end, sample rate and size), or None when the
@@ -611,6 +683,10 @@ def lomo_rig(
         (:func:`model_path_scale`; the same leave-one-mounting-out split).
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
+    gain_method : {"power", "spectral", "whittle"}
+        How ``model_gain`` is identified: one scale of the output-only path
+        (:func:`model_path_scale`) or every gain of the path fitted to the records' spectra
+        with that objective (:func:`model_path_fit`).
     """
     rows = cwru_manifest(data_dir)
     r = rows[record]
@@ -619,13 +695,21 @@ def lomo_rig(
         return None
     if model_gain:
         others = _other_size_records(data_dir, r["end"], float(r["fs_hz"]), r["fault_diameter_in"])
-        rig, _k = model_path_scale(
-            rig,
-            [data_dir / f for f in others],
-            model=model_gain,
-            realism=realism,
-        )
+        rig = _model_gain(rig, [data_dir / f for f in others], model_gain, realism, gain_method)
     return rig
+
+
+#: how a model's path gain is identified (:func:`lomo_rig`, :func:`rig_other_loads`)
+GAIN_METHODS = ("power", "spectral", "whittle")
+
+
+def _model_gain(rig, records: list[Path], model: str, realism, method: str):
+    """``rig`` with ``model``'s path gain identified on ``records`` by ``method``."""
+    if method not in GAIN_METHODS:
+        raise ConfigError(f"gain_method = {method!r} is invalid; valid: " + ", ".join(GAIN_METHODS))
+    if method == "power":
+        return model_path_scale(rig, records, model=model, realism=realism)[0]
+    return model_path_fit(rig, records, model=model, realism=realism, objective=method)[0]
 
 
 def _same_mounting_records(rows: dict[str, dict[str, str]], record: str) -> list[str]:
@@ -647,6 +731,7 @@ def rig_other_loads(
     *,
     model_gain: str | None = None,
     realism: dict | None = None,
+    gain_method: str = "power",
 ):
     """The rig of ``record``'s own mounting identified from that mounting's records at the
     **other** motor loads (output-only, :func:`bearingsim.rig_identify.identify_rig`; with
@@ -669,6 +754,8 @@ def rig_other_loads(
         above the background.
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
+    gain_method : {"power", "spectral", "whittle"}
+        As :func:`lomo_rig`.
     """
     from .io.signal import read_signal
     from .rig_identify import identify_rig
@@ -688,9 +775,7 @@ def rig_other_loads(
         provenance="bearingsim.side_by_side.rig_other_loads: identified from " + ", ".join(others),
     ).rig
     if model_gain:
-        rig, _k = model_path_scale(
-            rig, [data_dir / f for f in others], model=model_gain, realism=realism
-        )
+        rig = _model_gain(rig, [data_dir / f for f in others], model_gain, realism, gain_method)
     return rig
 
 
