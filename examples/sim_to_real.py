@@ -3,7 +3,7 @@
 
     python examples/sim_to_real.py --predict FILE... [--json] [--cache DIR] [--rpm R]
         [--fs-hz F] [--channel CH]
-    python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru]
+    python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru] [--path-fit]
 
 1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): DEM simulations of
    every condition of a grid -- healthy, inner and outer race (at CWRU's @6, @3 and @12: in
@@ -210,25 +210,59 @@ def _end(bearing: str) -> str:
     return "FE" if bearing.startswith("6203") else "DE"
 
 
-def rig_set(name: str, data: Path | None = None) -> dict:
+def rig_set(name: str, data: Path | None = None, path_fit: bool = False) -> dict:
     """The rigs of one set by profile name: ``"shipped"`` (:func:`bearingsim.rig.load_rig`) or
     ``"without-<size>"`` (each profile's mounting identified from the records of ``data``
-    without that fault size; None where it has none)."""
+    without that fault size; None where it has none). ``path_fit``: each rig's gains fitted
+    with the :data:`MODEL`'s output as the known input on the fault records it was identified
+    from (:func:`bearingsim.side_by_side.model_path_fit`; an experiment, off by default,
+    docs/validation.md "Sim-to-real")."""
     from bearingsim.rig import load_rig
     from bearingsim.side_by_side import rig_without_size
 
     if name == "shipped":
-        return {p: load_rig(p) for p in PROFILES}
-    size = name.removeprefix("without-")
-    if size == name or size not in HELD_OUT:
-        valid = ", ".join(["shipped", *(f"without-{s}" for s in HELD_OUT)])
-        raise ValueError(f"rig set {name!r} is unknown; valid: {valid}")
+        rigs = {p: load_rig(p) for p in PROFILES}
+    else:
+        size = name.removeprefix("without-")
+        if size == name or size not in HELD_OUT:
+            valid = ", ".join(["shipped", *(f"without-{s}" for s in HELD_OUT)])
+            raise ValueError(f"rig set {name!r} is unknown; valid: {valid}")
+        if data is None or not (Path(data) / "manifest.csv").is_file():
+            raise FileNotFoundError(f"rig set {name!r} needs the CWRU folder (--data): {data}")
+        rigs = {
+            p: rig_without_size(Path(data), _end(bearing), fs, size)
+            for p, (bearing, fs) in PROFILES.items()
+        }
+    return _fit_paths(rigs, name, data) if path_fit else rigs
+
+
+def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
+    """``rigs`` with each path fitted to the :data:`MODEL` on its identification records: the
+    CWRU fault records of its end and rate (the shipped profiles were identified from all of
+    them; a held-out set's from those of the other size)."""
+    from bearingsim.io.cwru import cwru_manifest
+    from bearingsim.side_by_side import model_path_fit
+
     if data is None or not (Path(data) / "manifest.csv").is_file():
-        raise FileNotFoundError(f"rig set {name!r} needs the CWRU folder (--data): {data}")
-    return {
-        p: rig_without_size(Path(data), _end(bearing), fs, size)
-        for p, (bearing, fs) in PROFILES.items()
-    }
+        raise FileNotFoundError(f"--path-fit needs the CWRU folder (--data): {data}")
+    rows = cwru_manifest(Path(data))
+    left_out = name.removeprefix("without-") if name != "shipped" else None
+    out = {}
+    for p, rig in rigs.items():
+        if rig is None:
+            out[p] = None
+            continue
+        bearing, fs = PROFILES[p]
+        recs = [
+            Path(data) / f
+            for f, r in rows.items()
+            if r["end"] == _end(bearing)
+            and float(r["fs_hz"]) == fs
+            and r["fault_diameter_in"]
+            and r["fault_diameter_in"] != left_out
+        ]
+        out[p] = model_path_fit(rig, recs, model=MODEL)[0]
+    return out
 
 
 def _set_key(grid_key: str, rigs: dict) -> str:
@@ -249,8 +283,11 @@ def build_dataset(cache: Path, progress: bool = True):
     return X, y, meta
 
 
-def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, progress=True):
-    """The features of the grid through each rig set of ``names`` (:func:`rig_set`): each run
+def build_datasets(
+    cache: Path, names=("shipped",), data: Path | None = None, progress=True, path_fit=False
+):
+    """The features of the grid through each rig set of ``names`` (:func:`rig_set`, with
+    ``path_fit``): each run
     is simulated once and passed through every set's rig of its profile. Cached (Zarr, one
     array per set, keyed by the grid and the rigs' tables); a set without a rig for a profile
     drops that profile's runs. A damaged cache (:func:`read_cache`) is rebuilt, with a warning
@@ -267,7 +304,7 @@ def build_datasets(cache: Path, names=("shipped",), data: Path | None = None, pr
     grid += [DURATION_S, FEATURES, "antialias", "geometric"]
     grid_key = json.dumps(grid)
     names = list(dict.fromkeys(["shipped", *names]))
-    rigs = {n: rig_set(n, data) for n in names}
+    rigs = {n: rig_set(n, data, path_fit) for n in names}
     keys = {n: _set_key(grid_key, rigs[n]) for n in names}
     runs = list(_grid())
     try:
@@ -736,6 +773,10 @@ def main() -> int:
                     help="channel of --predict files: DE, FE or BA (.mat; default the fault's "
                     "end in the name), a column (CSV/TXT), x, y or sensor (.nc; default sensor "
                     "if present, else y)")  # fmt: skip
+    ap.add_argument("--path-fit", action="store_true",
+                    help="an experiment: fit each rig's gains with the DEM's output as the "
+                    "known input (bearingsim.side_by_side.model_path_fit) on the CWRU records "
+                    "it was identified from (needs --data)")  # fmt: skip
     a = ap.parse_args()
     if not a.predict and not a.evaluate:
         ap.error("give --predict FILE... or --evaluate")
@@ -745,7 +786,9 @@ def main() -> int:
         ap.error(f"--fs-hz = {a.fs_hz:g} Hz; valid range (0, 1e8] Hz")
     names = ["shipped", *(f"without-{s}" for s in HELD_OUT)] if a.evaluate else ["shipped"]
     try:
-        sets, meta = build_datasets(a.cache, names, data=a.data, progress=not a.json)
+        sets, meta = build_datasets(
+            a.cache, names, data=a.data, progress=not a.json, path_fit=a.path_fit
+        )
     except (CacheLocationError, ValueError, FileNotFoundError) as exc:
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2

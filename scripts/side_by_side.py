@@ -90,6 +90,10 @@ def main() -> int:
     a = ap.parse_args()
     if a.gain_method != "power" and not a.model_gain:
         ap.error("--gain-method needs --model-gain")
+    if a.gain_method != "power" and a.direct_gain is not None:
+        ap.error(
+            "--direct-gain replaces the output-only path's direct gain; a fitted path has its own"
+        )
     realism = {
         "slip_percent": a.slip_percent,
         "defect_profile": a.defect_profile,

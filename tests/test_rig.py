@@ -55,6 +55,11 @@ provenance = "test value"
 #: a model-based path gain table (rig.ModelGain)
 _MG = '\n[[model_gain]]\nmodel = "rotor"\nscale = 6.5\nprovenance = "test gain"\n'
 RIG_TOML += _MG
+#: the fitted form of a model gain (a second table, for the VSM)
+_FIT = (
+    '\n[[model_gain]]\nmodel = "vsm"\npath_gain = 0.01\nmode_gains = [0.5]\n'
+    'provenance = "test fit"\n'
+)
 
 
 @pytest.fixture()
@@ -225,7 +230,33 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
         ),
         ((_MG, _MG + _MG), "model 'rotor' is given twice"),
         ((_MG, _MG.replace("scale", "gain")), "model_gain[0]: unknown key 'gain'"),
-    ],
+        # the fitted form (path_gain with one mode gain per [[mode]])
+        (
+            (_MG, _MG + _FIT.replace("[0.5]", "[0.5, 1.0]")),
+            "model_gain[1].mode_gains has 2 gains; valid: one per [[mode]] (1)",
+        ),
+        (
+            (_MG, _MG + _FIT.replace("path_gain = 0.01\n", "")),
+            "model_gain[1].path_gain is missing (path_gain and mode_gains go together)",
+        ),
+        (
+            (_MG, _MG + _FIT.replace("[0.5]", "0.5")),
+            "model_gain[1].mode_gains = 0.5 is invalid; valid: a list of gains",
+        ),
+        ((_MG, _MG + _FIT.replace("[0.5]", "[-0.5]")), "model_gain[1].mode_gains[0] = -0.5"),
+        (
+            (_MG, _MG + _FIT.replace("path_gain = 0.01", "path_gain = nan")),
+            "model_gain[1].path_gain = nan is not finite",
+        ),
+        (
+            (_MG, _MG.replace("scale = 6.5", "scale = 6.5\npath_gain = 1.0\nmode_gains = [1.0]")),
+            "model_gain[0]: give either scale or path_gain with mode_gains",
+        ),
+        (
+            (_MG, _MG.replace("scale = 6.5\n", "")),
+            "model_gain[0]: give either scale or path_gain with mode_gains",
+        ),
+    ],  # fmt: skip
 )
 def test_bad_rig_files_are_refused_in_one_line(tmp_path, edit, message):
     old, new = edit
@@ -369,6 +400,40 @@ def test_a_model_gain_scales_only_its_models_path(rig_file):
     assert m["applied_model_gain"] == {"model": "rotor", "scale": 6.5}
     assert "model_gain" not in m and m["path"]["gain"] == pytest.approx(0.5 * 6.5)
     assert "x 6.5 for the rotor model (test gain)" in m["path"]["provenance"]
+
+
+def test_a_fitted_model_path_replaces_the_path_for_its_model_only(tmp_path):
+    """The fitted form of ``[[model_gain]]`` (path_gain, mode_gains): the VSM's output passes
+    the path with those gains (sensor minus what the rig adds on its own equals the output
+    through gain 0.01 and the mode at 0.5); the rotor keeps its scale; the table round-trips
+    through TOML and the applied gain is recorded without its provenance."""
+    import tomllib
+    from dataclasses import replace
+
+    from bearingsim.rig_identify import rig_to_toml
+
+    p = tmp_path / "fit.toml"
+    p.write_text(RIG_TOML + _FIT, encoding="utf-8")
+    rig = load_rig(p)
+    g = rig.model_gain("vsm")
+    assert (g.scale, g.path_gain, g.mode_gains) == (None, 0.01, (0.5,))
+    assert g.describe() == "fitted path: direct gain 0.01, mode gains 0.5"
+    applied = rig.for_model("vsm")
+    assert applied.gain == 0.01 and applied.modes[0].gain == 0.5 and not applied.model_gains
+    assert applied.modes[0].frequency_hz == rig.modes[0].frequency_hz
+    assert rig.for_model("rotor").gain == pytest.approx(0.5 * 6.5)
+    vsm = simulate(dict(model="vsm", fault="outer", duration_s=0.05, fs_hz=12000.0, seed=0))
+    out = apply_rig(vsm, rig)
+    silent = replace(rig, gain=0.0, modes=(), model_gains=())
+    bg = apply_rig(vsm, silent)["acc_sensor"]
+    by_hand = replace(rig, gain=0.01, modes=(replace(rig.modes[0], gain=0.5),), model_gains=())
+    want = apply_rig(vsm, by_hand)["acc_sensor"] - bg
+    assert_allclose(out["acc_sensor"] - bg, want, atol=1e-12)
+    assert out.meta["rig"]["applied_model_gain"] == {
+        "model": "vsm", "path_gain": 0.01, "mode_gains": [0.5]
+    }  # fmt: skip
+    again = Rig.from_dict(tomllib.loads(rig_to_toml(rig)))
+    assert again.model_gains == rig.model_gains
 
 
 def test_a_model_gain_round_trips_through_toml(rig_file):

@@ -3,6 +3,7 @@ background and tones; bad records refused in one line, nothing written."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -436,3 +437,57 @@ def test_shipped_profiles_load_and_carry_their_command():
         assert "--model-gain rotor" in rig.provenance
         assert [g.model for g in rig.model_gains] == ["rotor"]
         assert rig.model_gain("rotor").scale > 1.0
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_cli_identify_gain_method_spectral_writes_the_fitted_path(tmp_path):
+    """`rig identify --model-gain vsm --gain-method spectral`: the VSM's path fitted with its
+    output as the known input, written as path_gain and mode_gains (one per mode) with the
+    output-only path kept for other models; the --conditions route for a user's copy of the
+    records gives the same gains; `rig show` and `simulate --rig` name the fitted path;
+    --gain-method without --model-gain is a one-line error writing nothing."""
+    rec, healthy = CWRU / "48k_Drive_End_OR007@6_0_135.mat", CWRU / "normal_0_97.mat"
+    out = tmp_path / "rig.toml"
+    r = _cli("rig", "identify", str(rec), str(healthy), "--channel", "DE", "--name", "g",
+             "--model-gain", "vsm", "--gain-method", "spectral", "--json", "-o", str(out),
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    rig = load_rig(out)
+    (g,) = rig.model_gains
+    assert g.scale is None and len(g.mode_gains) == len(rig.modes) and g.path_gain >= 0.0
+    assert rig.gain == 1.0, "the output-only path stays for the other models"
+    assert "log Welch spectra" in g.provenance and rec.name in g.provenance
+    assert "model_path_fit" in rig.provenance and "--gain-method spectral" in rig.provenance
+    got = json.loads(r.stdout)
+    assert got["model_paths"]["vsm"]["mode_gains"] == list(g.mode_gains)
+    assert got["model_gains"] == {"vsm": None}
+    show = _cli("rig", "show", str(out), cwd=tmp_path)
+    assert f"fitted path: direct gain {g.path_gain:.4g}" in show.stdout, show.stdout
+    sim = _cli("simulate", "--model", "vsm", "--fault", "outer", "--duration-s", "0.1",
+               "--fs-hz", "48000", "--rig", str(out), "-o", str(tmp_path / "s.nc"),
+               cwd=tmp_path)  # fmt: skip
+    assert sim.returncode == 0 and "fitted path: direct gain" in sim.stdout, sim.stderr
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "run1.mat").write_bytes(rec.read_bytes())
+    (mine / "run0.mat").write_bytes(healthy.read_bytes())
+    (mine / "c.csv").write_text(
+        "file,fault,bearing,defect_width_m,defect_depth_m\n"
+        f"run1.mat,outer,6205-cwru,{0.007 * 0.0254!r},{0.011 * 0.0254!r}\n"
+        "run0.mat,none,,,\n",
+        encoding="utf-8",
+    )
+    r = _cli("rig", "identify", "run1.mat", "run0.mat", "--channel", "DE", "--fs-hz", "48000",
+             "--name", "g", "--model-gain", "vsm", "--gain-method", "spectral", "--conditions",
+             "c.csv", "-o", "rig.toml", cwd=mine)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    mg = load_rig(mine / "rig.toml").model_gain("vsm")
+    assert (mg.path_gain, *mg.mode_gains) == pytest.approx((g.path_gain, *g.mode_gains),
+                                                           rel=1e-6, abs=1e-12)  # fmt: skip
+    bad = tmp_path / "bad.toml"
+    r = _cli("rig", "identify", str(rec), "--channel", "DE", "--name", "g", "--gain-method",
+             "spectral", "-o", str(bad), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "--gain-method spectral is only read with --model-gain" in (
+        r.stderr
+    )
+    assert r.stderr.count("\n") == 1 and not bad.exists()

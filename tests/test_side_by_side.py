@@ -328,10 +328,14 @@ def test_model_path_fit_gives_the_records_spectrum_and_weighs_the_direct_path():
     fitted, fit = model_path_fit(rig, [rec], duration_s=1.0)
     assert fit.start_gains == (rig.gain, *(m.gain for m in rig.modes))
     assert fit.gains != pytest.approx(fit.start_gains, rel=0.1)
-    assert fitted.model_gains == () and fitted.background == rig.background
-    assert "log Welch spectra" in fitted.gain_provenance and "vsm" in fitted.gain_provenance
-    assert fit.power_ratio == pytest.approx(1.0)
-    assert rec.name in fitted.modes[0].provenance
+    g = fitted.model_gain("vsm")  # the fitted form, for the VSM only
+    assert g.scale is None and (g.path_gain, *g.mode_gains) == fit.gains
+    assert fitted.model_gain("rotor") == rig.model_gain("rotor"), "the other model's kept"
+    assert (fitted.gain, fitted.modes, fitted.background) == (rig.gain, rig.modes, rig.background)
+    assert "log Welch spectra" in g.provenance and "vsm" in g.provenance
+    assert rec.name in g.provenance and fit.power_ratio == pytest.approx(1.0)
+    applied = fitted.for_model("vsm")
+    assert (applied.gain, *(m.gain for m in applied.modes)) == fit.gains
     c = simulate_record(rec, fitted, duration_s=1.0)
     rms = [float(np.std(c[w])) for w in ("measured", "simulated")]
     assert rms[1] / rms[0] == pytest.approx(1.0, rel=0.03)

@@ -184,6 +184,18 @@ def test_held_out_rig_sets_never_use_the_judged_size(small, tmp_path, monkeypatc
     assert "007" not in other["cwru-fe-12k"].provenance
     with pytest.raises(ValueError, match="without-0.021"):
         small.rig_set("without-0.021", CWRU)
+    # --path-fit (an experiment): the held-out rig's gains fitted to the DEM on the same
+    # records it was identified from, never the judged size
+    fitted = small.rig_set("without-0.014", CWRU, path_fit=True)
+    assert fitted["cwru-fe-12k"] is None
+    prov = fitted["cwru-de-12k"].model_gain("dem").provenance
+    assert "log Welch spectra" in prov and "the dem model's output" in prov
+    assert "014" not in prov and "IR007_2_107" in prov
+    assert [m.frequency_hz for m in fitted["cwru-de-12k"].modes] == [
+        m.frequency_hz for m in held["cwru-de-12k"].modes
+    ]
+    with pytest.raises(FileNotFoundError, match="--path-fit needs the CWRU folder"):
+        small.rig_set("shipped", None, path_fit=True)
 
     sets, meta = small.build_datasets(tmp_path, ["without-0.014"], data=CWRU, progress=False)
     assert set(sets) == {"shipped", "without-0.014"}

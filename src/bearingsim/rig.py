@@ -63,12 +63,23 @@ TOML layout (SI units in the key names)::
     scale = 6.8
     provenance = "..."
 
-A ``[[model_gain]]`` scales the whole path (``g_0`` and every ``g_k``) for the output of one
-model. An output-only identification cannot tell the path's gain from the excitation's size
-(it takes ``g_0 = 1``); a model-based one simulates the records' conditions with that model
-and matches the power they carry above the background
-(:func:`bearingsim.side_by_side.model_path_scale`; ``bearingsim rig identify --model-gain``).
-:func:`apply_rig` applies the gain of the result's own model and no other.
+    [[model_gain]]                   # or the fitted form: the path's gains replaced
+    model = "vsm"
+    path_gain = 0.01
+    mode_gains = [0.08, 0.28]        # one per [[mode]], in their order
+    provenance = "..."
+
+A ``[[model_gain]]`` sets the path for the output of one model. An output-only
+identification cannot tell the path's gain from the excitation's size (it takes
+``g_0 = 1``); a model-based one simulates the records' conditions with that model. Its
+``scale`` form multiplies the whole path (``g_0`` and every ``g_k``) so that the model
+carries the power the records have above the background
+(:func:`bearingsim.side_by_side.model_path_scale`); its fitted form replaces ``g_0`` and
+every ``g_k`` by gains fitted to the records' spectra with the model's output as the known
+input (:func:`bearingsim.side_by_side.model_path_fit`), which also weighs the direct path
+against the modes. ``bearingsim rig identify --model-gain MODEL [--gain-method
+power|spectral]`` writes either. :func:`apply_rig` applies the gain of the result's own model
+and no other.
 """
 
 from __future__ import annotations
@@ -204,27 +215,74 @@ GAIN_MODELS = ("vsm", "dem", "tvsm", "rotor")
 
 @dataclass(frozen=True)
 class ModelGain:
-    """A model-based scale of the path [-] for the output of one ``model`` (one of
-    :data:`GAIN_MODELS`), with its provenance (module docstring)."""
+    """A model-based path for the output of one ``model`` (one of :data:`GAIN_MODELS`), with
+    its provenance (module docstring), in one of two forms:
+
+    * ``scale`` [-] -- the whole path (direct gain and every mode's gain) times it
+      (:func:`bearingsim.side_by_side.model_path_scale`);
+    * ``path_gain`` [-] and ``mode_gains`` [-] (one per ``[[mode]]``, in their order) -- the
+      path's gains replaced by these, the modes' frequencies and damping kept
+      (:func:`bearingsim.side_by_side.model_path_fit`).
+    """
 
     model: str
-    scale: float
+    scale: float | None
     provenance: str
+    path_gain: float | None = None
+    mode_gains: tuple[float, ...] | None = None
 
-    KEYS = ("model", "scale", "provenance")
+    KEYS = ("model", "scale", "path_gain", "mode_gains", "provenance")
 
     @classmethod
     def from_dict(cls, d: Any, where: str) -> ModelGain:
-        d = _keys(d, cls.KEYS, where, required=cls.KEYS[:2])
+        d = _keys(d, cls.KEYS, where, required=("model",))
         if d["model"] not in GAIN_MODELS:
             raise ConfigError(
                 f"{where}.model = {d['model']!r} is invalid; valid: " + ", ".join(GAIN_MODELS)
             )
+        fitted = "path_gain" in d or "mode_gains" in d
+        if ("scale" in d) == fitted:
+            raise ConfigError(
+                f"{where}: give either scale or path_gain with mode_gains; valid: one of the "
+                "two forms"
+            )
+        if not fitted:
+            return cls(
+                d["model"],
+                _check(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
+                _provenance(d, where),
+            )
+        for k in ("path_gain", "mode_gains"):
+            if k not in d:
+                raise ConfigError(f"{where}.{k} is missing (path_gain and mode_gains go together)")
+        mg = d["mode_gains"]
+        if not isinstance(mg, list):
+            raise ConfigError(f"{where}.mode_gains = {mg!r} is invalid; valid: a list of gains")
         return cls(
             d["model"],
-            _check(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
+            None,
             _provenance(d, where),
+            _check(f"{where}.path_gain", d["path_gain"], 0.0, MAX_GAIN),
+            tuple(_check(f"{where}.mode_gains[{i}]", v, 0.0, MAX_GAIN) for i, v in enumerate(mg)),
         )
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``[[model_gain]]`` table (only the keys of its form)."""
+        out: dict[str, Any] = {"model": self.model}
+        if self.scale is not None:
+            out["scale"] = self.scale
+        else:
+            out["path_gain"] = self.path_gain
+            out["mode_gains"] = list(self.mode_gains or ())
+        out["provenance"] = self.provenance
+        return out
+
+    def describe(self) -> str:
+        """One phrase: what the gain does to the path."""
+        if self.scale is not None:
+            return f"path x {self.scale:.4g}"
+        modes = ", ".join(f"{g:.4g}" for g in self.mode_gains or ())
+        return f"fitted path: direct gain {self.path_gain:.4g}, mode gains {modes or '-'}"
 
 
 @dataclass(frozen=True)
@@ -348,7 +406,7 @@ class Rig:
     tones: tuple[Tone, ...] = ()
     noise_rms_m_per_s2: float = 0.0
     noise_provenance: str = "default: no sensor noise"
-    #: model-based scales of the path, one per model at most (:meth:`for_model`)
+    #: model-based paths, one per model at most (:meth:`for_model`)
     model_gains: tuple[ModelGain, ...] = ()
     source: str = field(default="", compare=False)
 
@@ -398,6 +456,13 @@ class Rig:
             if not isinstance(mg, list):
                 raise ConfigError("model_gain must be an array of tables ([[model_gain]])")
             gains = tuple(ModelGain.from_dict(g, f"model_gain[{i}]") for i, g in enumerate(mg))
+            n_modes = len(modes)
+            for i, g in enumerate(gains):
+                if g.mode_gains is not None and len(g.mode_gains) != n_modes:
+                    raise ConfigError(
+                        f"model_gain[{i}].mode_gains has {len(g.mode_gains)} gains; valid: one "
+                        f"per [[mode]] ({n_modes})"
+                    )
             seen = [g.model for g in gains]
             twice = sorted({m for m in seen if seen.count(m) > 1})
             if twice:
@@ -457,7 +522,7 @@ class Rig:
             "provenance": self.noise_provenance,
         }
         if self.model_gains:
-            out["model_gain"] = [dataclasses.asdict(g) for g in self.model_gains]
+            out["model_gain"] = [g.to_dict() for g in self.model_gains]
         return out
 
     def model_gain(self, model: str | None) -> ModelGain | None:
@@ -466,11 +531,30 @@ class Rig:
 
     def for_model(self, model: str | None) -> Rig:
         """The rig as applied to the output of ``model``: its path (direct gain and every
-        mode) scaled by that model's ``[[model_gain]]``, with no model gains left; the rig
-        itself, without its model gains, when it has none for ``model``."""
+        mode) scaled by that model's ``[[model_gain]]`` (or, in its fitted form, those gains
+        replaced by the fitted ones), with no model gains left; the rig itself, without its
+        model gains, when it has none for ``model``."""
         g = self.model_gain(model)
         if g is None:
             return dataclasses.replace(self, model_gains=()) if self.model_gains else self
+        if g.scale is None:  # the fitted form: the path's gains replaced
+            if len(g.mode_gains or ()) != len(self.modes):
+                raise ConfigError(
+                    f"rig {self.name!r}: the {g.model} model's mode_gains has "
+                    f"{len(g.mode_gains or ())} gains for {len(self.modes)} modes; valid: one "
+                    "per mode"
+                )
+            why = f"for the {g.model} model ({g.provenance})"
+            return dataclasses.replace(
+                self,
+                gain=g.path_gain,
+                gain_provenance=f"{g.path_gain:.6g} {why}; output-only {self.gain:.6g}",
+                modes=tuple(
+                    dataclasses.replace(m, gain=gk)
+                    for m, gk in zip(self.modes, g.mode_gains or (), strict=True)
+                ),
+                model_gains=(),
+            )
         return dataclasses.replace(
             self,
             gain=self.gain * g.scale,
@@ -644,7 +728,7 @@ def apply_rig(
     """A copy of a :class:`~bearingsim.results.SimulationResult` with the sensor's signal as
     channel ``channel`` [m/s^2]: the rig applied to its ``input_channel``. ``seed`` defaults to
     the scenario's ``seed`` (0 if it has none). A rig with a ``[[model_gain]]`` for the
-    result's model scales its path by it (:meth:`Rig.for_model`). The rig as applied (its
+    result's model sets its path (:meth:`Rig.for_model`). The rig as applied (its
     table, the model gain already in its path), the seed and the model gain are recorded in
     ``meta["rig"]``."""
     from .results import SimulationResult
@@ -674,7 +758,7 @@ def apply_rig(
     units = dict(result.units) | {channel: "m/s^2"}
     applied = r.to_dict() | {"seed": sd, "output_channel": channel}
     if mg is not None:
-        applied["applied_model_gain"] = {"model": mg.model, "scale": mg.scale}
+        applied["applied_model_gain"] = {k: v for k, v in mg.to_dict().items() if k != "provenance"}
     meta = dict(result.meta) | {"rig": applied}
     return SimulationResult(
         time=result.time,

@@ -439,6 +439,8 @@ class PathFit:
     power_ratio : float
         Fitted over measured power in the fit band, summed over the records [-] (1 for the
         ``"spectral"`` objective by construction).
+    provenance : str
+        How the gains were fitted, and on what (the gains' provenance).
     """
 
     rig: Rig
@@ -446,6 +448,7 @@ class PathFit:
     start_gains: tuple[float, ...]
     objective: str
     power_ratio: float
+    provenance: str
 
 
 def fit_path_gains(
@@ -632,7 +635,7 @@ def fit_path_gains(
         model_gains=(),
     )
     return PathFit(fitted, tuple(float(v) for v in g), tuple(float(v) for v in start), objective,
-                   (background + carried) / measured)  # fmt: skip
+                   (background + carried) / measured, why)  # fmt: skip
 
 
 def rig_to_toml(rig: Rig) -> str:

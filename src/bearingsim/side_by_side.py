@@ -50,6 +50,7 @@ __all__ = [
     "lomo_rig",
     "rig_other_loads",
     "model_path_fit",
+    "model_path_fit_conditions",
     "model_path_scale",
     "model_path_scale_conditions",
     "cwru_row",
@@ -362,13 +363,16 @@ def model_path_fit(
     this fit weighs the direct path against the modes from the model: what the sensor sees of
     the model's own broadband output.
 
-    The fitted rig is the path **for this model** (another model's output has another
-    spectrum); its provenance says so. Parameters as :func:`model_path_scale`.
+    The fitted path is the path **for this model** (another model's output has another
+    spectrum): it goes in the rig as the model's ``[[model_gain]]`` in its fitted form
+    (``path_gain``, ``mode_gains``; :meth:`bearingsim.rig.Rig.for_model` applies it to that
+    model's output only), replacing one it had; the output-only path stays for the others.
+    Parameters as :func:`model_path_scale`.
 
     Returns
     -------
     (Rig, PathFit)
-        The fitted rig (no model gains) and the fit's details.
+        The rig with the fitted ``[[model_gain]]`` and the fit's details.
 
     Raises
     ------
@@ -378,7 +382,6 @@ def model_path_fit(
     from tqdm import tqdm
 
     from .rig import Rig
-    from .rig_identify import fit_path_gains
 
     rig = _without_gain(rig, model)
     records = _fault_records(records)
@@ -395,15 +398,21 @@ def model_path_fit(
         raise ConfigError(
             f"records: sample rates {sorted(rates)} Hz; valid: records of one rate (one rig)"
         )
-    names = ", ".join(Path(r).name for r in records)
-    fit = fit_path_gains(
-        rig,
-        pairs,
-        rates.pop(),
-        objective=objective,
-        provenance=f"the {model} model's output for {names}, {duration_s:g} s each",
-    )
-    return fit.rig, fit
+    names = [Path(r).name for r in records]
+    return _with_path(rig, model, pairs, rates.pop(), names, duration_s, objective)
+
+
+def _with_path(rig, model: str, pairs, fs: float, names: list[str], duration_s: float,
+               objective: str):  # fmt: skip
+    """The rig with the path fitted on ``pairs`` (measured, model output) as its fitted
+    ``[[model_gain]]`` for ``model``, and the :class:`~bearingsim.rig_identify.PathFit`."""
+    from .rig import ModelGain
+    from .rig_identify import fit_path_gains
+
+    why = f"the {model} model's output for {', '.join(names)}, {duration_s:g} s each"
+    fit = fit_path_gains(rig, pairs, fs, objective=objective, provenance=why)
+    gain = ModelGain(model, None, fit.provenance, fit.gains[0], tuple(fit.gains[1:]))
+    return replace(rig, model_gains=(*rig.model_gains, gain)), fit
 
 
 def model_path_scale_conditions(
@@ -450,6 +459,52 @@ def model_path_scale_conditions(
     (Rig, float)
         As :func:`model_path_scale`.
     """
+    rig = _without_gain(rig, model)
+    powers, names = [], []
+    for name, measured, bare in _user_simulations(
+        records, conditions, model, duration_s, realism, seed, progress
+    ):
+        sim, bg = _through_rig(bare, rig, seed)
+        powers.append(_powers(measured[: sim.size], sim, bg))
+        names.append(name)
+    return _with_gain(rig, model, powers, names, duration_s)
+
+
+def model_path_fit_conditions(
+    rig,
+    records: list,
+    conditions: list[dict],
+    *,
+    model: str = "vsm",
+    duration_s: float = 1.0,
+    realism: dict | None = None,
+    seed: int = 0,
+    objective: str = "spectral",
+    progress: bool = False,
+):
+    """:func:`model_path_fit` for a user's own machine: the records and their conditions as
+    in :func:`model_path_scale_conditions` (one sample rate). Returns ``(Rig, PathFit)``."""
+    from .rig import _result_fs
+
+    rig = _without_gain(rig, model)
+    pairs, names, rates = [], [], set()
+    for name, measured, bare in _user_simulations(
+        records, conditions, model, duration_s, realism, seed, progress
+    ):
+        x = np.asarray(bare.channels[rig.input_channel], dtype=float)
+        pairs.append((measured[: x.size], x))
+        names.append(name)
+        rates.add(_result_fs(bare))
+    if len(rates) != 1:
+        raise ConfigError(
+            f"records: sample rates {sorted(rates)} Hz; valid: records of one rate (one rig)"
+        )
+    return _with_path(rig, model, pairs, rates.pop(), names, duration_s, objective)
+
+
+def _user_simulations(records, conditions, model, duration_s, realism, seed, progress):
+    """Check a user's records and conditions (:func:`model_path_scale_conditions`) and yield,
+    per fault record, ``(file name, measured signal [m/s^2], the model's bare result)``."""
     from tqdm import tqdm
 
     from . import simulate
@@ -486,14 +541,9 @@ def model_path_scale_conditions(
             "conditions: no record has a bearing fault; valid: at least one outer, inner or ball "
             "condition (a model gain is matched to a fault's power)"
         )
-    records, conditions = [r for r, _ in kept], [c for _, c in kept]
-    rig = _without_gain(rig, model)
     keys = {**REALISM, **(realism or {})}
-    powers, names = [], []
-    bar = tqdm(range(len(records)), desc=f"{model} gain", unit="record", disable=not progress,
-               leave=False)  # fmt: skip
-    for i in bar:
-        rec, cond = records[i], conditions[i]
+    bar = tqdm(kept, desc=f"{model} gain", unit="record", disable=not progress, leave=False)
+    for rec, cond in bar:
         rpm = cond.get("rpm") or rec.rpm
         if rpm is None and rec.speed_hz is not None:  # a speed column: its median
             rpm = 60.0 * float(np.median(rec.speed_hz))
@@ -518,10 +568,7 @@ def model_path_scale_conditions(
             antialias=True,
             **keys,
         )
-        sim, bg = _through_rig(simulate(sc), rig, seed)
-        powers.append(_powers(np.asarray(rec.x[: sim.size], dtype=float), sim, bg))
-        names.append(Path(rec.source).name)
-    return _with_gain(rig, model, powers, names, duration_s)
+        yield Path(rec.source).name, np.asarray(rec.x, dtype=float), simulate(sc)
 
 
 def cwru_row(record: str | Path) -> dict[str, str] | None:

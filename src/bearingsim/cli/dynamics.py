@@ -373,8 +373,16 @@ def simulate_cmd(
             out["rig"] = res.meta["rig"]["name"]
             out["rms_acc_sensor"] = res.rms("acc_sensor")
             mg = res.meta["rig"].get("applied_model_gain")
-            out["rig_model_gain"] = None if mg is None else mg["scale"]
-            gain = "" if mg is None else f" (path x {mg['scale']:.4g} for this model)"
+            out["rig_model_gain"] = None if mg is None else mg.get("scale")
+            gain = ""
+            if mg is not None:
+                from ..rig import ModelGain
+
+                g = ModelGain(mg["model"], mg.get("scale"), "", mg.get("path_gain"),
+                              mg.get("mode_gains"))  # fmt: skip
+                gain = f" ({g.describe()} for this model)"
+                if g.scale is None:  # the fitted form
+                    out["rig_model_path"] = {k: mg[k] for k in ("path_gain", "mode_gains")}
             what += f", through rig {out['rig']}{gain}: RMS {out['rms_acc_sensor']:.4g} m/s^2"
             real = sc.realism_defaults
             if real:  # the keys the rig chose (docs/models.md "Realistic defaults with a rig")

@@ -63,6 +63,16 @@ def rig_group() -> None:
     "skipped). The records must be CWRU records listed in a manifest.csv beside them.",
 )
 @click.option(
+    "--gain-method",
+    type=click.Choice(("power", "spectral")),
+    default="power",
+    show_default=True,
+    help="How --model-gain is identified: power, one scale of the output-only path (the fault "
+    "records' power above the background); spectral, every gain of the path (direct and each "
+    "mode's) fitted to the records' spectra with the model's output as the known input, the "
+    "level by the same power balance (written as path_gain and mode_gains).",
+)
+@click.option(
     "--conditions",
     default=None,
     type=click.Path(dir_okay=False),
@@ -88,6 +98,7 @@ def identify_cmd(
     fs_hz: float | None,
     max_modes: int,
     model_gains: tuple[str, ...],
+    gain_method: str,
     conditions: str | None,
     plot: str | None,
     output: str,
@@ -133,6 +144,10 @@ def identify_cmd(
     user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
     if conditions is not None and not model_gains:
         raise ConfigError("--conditions is only read with --model-gain; give both or neither")
+    if gain_method != "power" and not model_gains:
+        raise ConfigError(
+            f"--gain-method {gain_method} is only read with --model-gain; give both or neither"
+        )
     if conditions is not None:
         user = _user_conditions(conditions, records, recs, model_gains)
     elif model_gains:  # before any work: is every record's condition known?
@@ -154,6 +169,7 @@ def identify_cmd(
                 "inner-race or ball fault record (a model gain is matched to a fault's power; "
                 "healthy records are skipped)"
             )
+    how = "model_path_scale" if gain_method == "power" else "model_path_fit"
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
     ir = identify_rig(
@@ -161,7 +177,7 @@ def identify_cmd(
         name=name,
         description=description,
         provenance=f"identified by `{command}` (bearingsim.rig_identify, output-only"
-        + ("; the [[model_gain]] entries model-based: bearingsim.side_by_side.model_path_scale)"
+        + (f"; the [[model_gain]] entries model-based: bearingsim.side_by_side.{how})"
            if model_gains else ")"),  # fmt: skip
         max_modes=int(max_modes),
         # a CWRU sensor's end: the rotor model reads that end's housing through the rig
@@ -170,16 +186,18 @@ def identify_cmd(
     )  # fmt: skip
     rig = ir.rig
     if model_gains:
-        from ..side_by_side import model_path_scale, model_path_scale_conditions
+        from .. import side_by_side as sbs
 
+        bar = sys.stderr.isatty()
+        fit = {"spectral": {"objective": "spectral"}}.get(gain_method, {})
         for m in dict.fromkeys(model_gains):
             if user:
-                rig, _k = model_path_scale_conditions(
-                    rig, [r for r, _ in user], [c for _, c in user], model=m,
-                    progress=sys.stderr.isatty(),
-                )  # fmt: skip
+                f = sbs.model_path_fit_conditions if fit else sbs.model_path_scale_conditions
+                rig, _ = f(rig, [r for r, _ in user], [c for _, c in user], model=m,
+                           progress=bar, **fit)  # fmt: skip
             else:
-                rig, _k = model_path_scale(rig, faulty, model=m, progress=sys.stderr.isatty())
+                f = sbs.model_path_fit if fit else sbs.model_path_scale
+                rig, _ = f(rig, faulty, model=m, progress=bar, **fit)
     text = rig_to_toml(rig)
     Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
@@ -206,6 +224,11 @@ def identify_cmd(
             {"order": t.order, "amplitude_m_per_s2": t.amplitude_m_per_s2} for t in ir.rig.tones
         ],
         "model_gains": {g.model: g.scale for g in rig.model_gains},
+        "model_paths": {
+            g.model: {"path_gain": g.path_gain, "mode_gains": list(g.mode_gains or ())}
+            for g in rig.model_gains
+            if g.scale is None
+        },
         "background_rms_m_per_s2": rig.background.rms() if rig.background else 0.0,
     }
     if as_json:
@@ -215,7 +238,7 @@ def identify_cmd(
         f"{m.frequency_hz:.0f} Hz (zeta {m.damping_ratio:.3f}, gain {m.gain:.2f})"
         for m in ir.rig.modes
     )
-    gains = "".join(f"; {g.model} path gain {g.scale:.3g}" for g in rig.model_gains)
+    gains = "".join(f"; {g.model}: {g.describe()}" for g in rig.model_gains)
     click.echo(
         f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}; background "
         f"{out['background_rms_m_per_s2']:.3g} m/s^2 RMS{gains}"
@@ -250,7 +273,7 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
         )
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
     for g in r.model_gains:
-        click.echo(f"  path x {g.scale:.4g} for the {g.model} model's output (model-based)")
+        click.echo(f"  {g.describe()} for the {g.model} model's output (model-based)")
 
 
 #: columns of a --conditions file: required, then optional
