@@ -283,3 +283,37 @@ def test_one_supply_frequency_is_reported():
     d = diagnose_fused(carrier * mod, fs, get_bearing("6205-cwru"), 29.1)
     labels = [s["label"] for s in d.non_bearing["supply_lines"]]
     assert labels == ["1x50Hz", "2x50Hz"], labels
+
+
+def test_a_simulation_has_a_supply_only_where_its_rig_adds_one(tmp_path):
+    """A simulated result has no electrical supply: read through its rig's sensor it gets no
+    supply frequencies to search (`info["supply_hz"]` empty), so `analyze` notes none (the
+    rotor's inner-race fault through cwru-de-12k was told of "2x50Hz (electrical)" lines). A
+    rig that adds a fixed 100 Hz tone gives the 50 Hz supply; a measured record keeps the
+    default 50 and 60 Hz, and the search notes a 50 Hz line only where it is searched."""
+    from bearingsim import simulate
+    from bearingsim.catalog import get_bearing
+    from bearingsim.io.signal import read_signal
+    from bearingsim.rig import Rig, Tone
+    from bearingsim.rig_identify import rig_to_toml
+    from bearingsim.signal.fused import diagnose_fused
+
+    fs = 12000.0
+    sc = dict(model="vsm", fault="none", duration_s=1.0, fs_hz=fs, seed=0, rpm=1746.0)
+    plain = Rig(name="plain", description="", provenance="test")
+    mains = Rig(name="mains", description="", provenance="test",
+                tones=(Tone(2.0, "test", frequency_hz=100.0),))  # fmt: skip
+    infos = {}
+    for rig in (plain, mains):
+        p = tmp_path / f"{rig.name}.nc"
+        (tmp_path / f"{rig.name}.toml").write_text(rig_to_toml(rig), encoding="utf-8")
+        simulate({**sc, "rig": str(tmp_path / f"{rig.name}.toml")}).save(p)
+        infos[rig.name] = read_signal(p).info["supply_hz"]
+    assert infos == {"plain": (), "mains": (50.0,)}
+    assert read_signal(tmp_path / "plain.nc", channel="y").info["supply_hz"] == ()
+    # the search itself: a 50 Hz line in the envelope is noted only where a supply is searched
+    t = np.arange(int(4 * fs)) / fs
+    x = np.random.default_rng(0).standard_normal(t.size) * (1 + 0.8 * np.sin(2 * np.pi * 50 * t))
+    b = get_bearing("6205-cwru")
+    assert diagnose_fused(x, fs, b, 29.1).non_bearing["supply_lines"] != []
+    assert diagnose_fused(x, fs, b, 29.1, supply_hz=()).non_bearing["supply_lines"] == []

@@ -926,4 +926,14 @@ def analyze_record(
             sig.value, float(samples_per_rev), bearing, 1.0, band=band_v, rule=rule,
             domain=Domain.ORDER,
         )  # fmt: skip
-    return diagnose_fused(rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band_v, rule=rule)
+    return diagnose_fused(
+        rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band_v, rule=rule, **_supply(rec)
+    )
+
+
+def _supply(rec: SignalRecord) -> dict:
+    """The supply frequencies to note for ``rec``: a simulation has a supply only where its
+    rig adds a 50 or 60 Hz tone (``info["supply_hz"]``, :func:`bearingsim.io.signal.
+    read_signal`); a measured record, the default 50 and 60 Hz."""
+    got = (rec.info or {}).get("supply_hz")
+    return {} if got is None else {"supply_hz": tuple(got)}

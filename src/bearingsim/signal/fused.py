@@ -443,6 +443,7 @@ def diagnose_fused(
     rule: DiagnosisRule | None = None,
     domain: Domain | str = Domain.HZ,
     calibration: Calibration | None = CALIBRATION,
+    supply_hz: tuple[float, ...] = SUPPLY_HZ,
 ) -> FusedDiagnosis:
     """Fused diagnosis of ``x`` (module docstring).
 
@@ -467,6 +468,9 @@ def diagnose_fused(
     calibration : Calibration or None
         Margin-to-probability map; ``None`` leaves ``probability`` unset and gives the leading
         family with confidence 0 (used to fit the calibration).
+    supply_hz : tuple of float
+        Supply frequencies whose lines are searched and noted [Hz] (default 50 and 60 Hz; a
+        simulation's: those its rig adds as fixed tones, usually none).
     """
     from ..catalog import as_bearing
     from ..geometry import parse_enum
@@ -536,7 +540,7 @@ def diagnose_fused(
             supported.append(fam)
     if "ball" not in supported and cage_views >= min(MIN_VIEWS, nv):
         supported.append("ball")
-    non_bearing = _non_bearing(views, ses_raw, shaft_hz, domain, rule)
+    non_bearing = _non_bearing(views, ses_raw, shaft_hz, domain, rule, supply_hz)
     notes = (
         [
             f"{v.name}: band {v.band[0]:.6g}-{v.band[1]:.6g}, supported "
@@ -719,7 +723,7 @@ def _series(label: str) -> bool:
     return label.endswith(("BPFO", "BPFI", "2xBSF"))
 
 
-def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
+def _non_bearing(views, ses_raw, shaft_hz, domain, rule, supply_hz=SUPPLY_HZ) -> dict[str, Any]:
     """Shaft harmonics and supply-frequency lines (module docstring)."""
     shaft_views = 0
     for v in views:
@@ -736,7 +740,7 @@ def _non_bearing(views, ses_raw, shaft_hz, domain, rule) -> dict[str, Any]:
     if domain is Domain.HZ:
         es = views[0].diagnosis.spectrum
         by_f0: list[list[dict[str, Any]]] = []  # the lines of each supply frequency
-        for f0 in SUPPLY_HZ:
+        for f0 in supply_hz:
             found: list[dict[str, Any]] = []
             tg = [(f"{h}x{f0:g}Hz", h * f0) for h in (1, 2) if h * f0 < es.freq[-1]]
             # a supply line is only told apart from a shaft harmonic when it is > 1 % away
