@@ -162,6 +162,27 @@ def test_the_path_fit_refuses_bad_pairs_in_one_line():
         fit_path_gains(loud, [(x, x)], 12000.0)
 
 
+def test_the_plot_draws_each_models_path_beside_the_output_only_one():
+    """`rig identify --plot` with model gains: the path panel holds the output-only path and
+    one curve per ``[[model_gain]]`` (scaled or fitted), named by its model; a modes-only path
+    (0 at Nyquist) does not stretch the axis beyond 8 decades below the top."""
+    from bearingsim.rig import ModelGain
+
+    recs = [_impacts(seed=s) for s in range(2)]
+    ir = identify_rig(recs, name="synthetic", max_modes=1)
+    rig = replace(ir.rig, model_gains=(ModelGain("vsm", None, "test", 0.0, (0.5,)),
+                                       ModelGain("rotor", 20.0, "test")))  # fmt: skip
+    fig = ir.plot(rig)
+    panel = fig.axes[1]
+    labels = [ln.get_label() for ln in panel.get_lines()][:3]
+    assert labels[0].startswith("path power gain") and labels[1].startswith("vsm model's path")
+    assert labels[2] == "rotor model's path (path x 20)"
+    top = max(float(np.max(ln.get_ydata())) for ln in panel.get_lines()[:3])
+    lo = panel.get_ylim()[0]
+    assert lo >= 0.99e-8 * top, (lo, top)  # without the floor: ~1e-37 (the modes-only path)
+    assert len(ir.plot().axes[1].get_lines()) < len(panel.get_lines())
+
+
 def test_a_record_without_impacts_is_refused():
     rng = np.random.default_rng(1)
     rec = SignalRecord(x=rng.standard_normal(24000), fs=12000.0, rpm=1750.0, source="noise",

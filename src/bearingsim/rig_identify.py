@@ -97,10 +97,11 @@ class IdentifiedRig:
     sources: list[str]
     decay: list[dict]
 
-    def plot(self):
+    def plot(self, rig: Rig | None = None):
         """Measured PSDs and the identified background (sensor side), the identified path's
         power gain ``|H(f)|^2`` with its modes, and the impulsive spectrum the modes were found
-        in; returns the Figure."""
+        in; returns the Figure. ``rig``: the rig as written, whose ``[[model_gain]]`` paths
+        (scaled or fitted, one per model) are drawn beside the output-only one."""
         from .plotting import FULL_WIDTH, legend_outside, new_figure
 
         fs = 2.0 * float(self.freq[-1])
@@ -115,8 +116,16 @@ class IdentifiedRig:
             a.loglog(fb, bg.psd, "b.-", lw=1.2, ms=3, label="identified background (table)")
         a.set_ylabel("PSD [(m/s²)²/Hz]")
         a.set_title(f"rig {self.rig.name}: measured spectra, identified background and path")
-        b.loglog(f, np.abs(self.rig.transfer(f, fs)) ** 2, "r-", lw=1.0,
-                 label="path power gain |H(f)|² (direct gain + modes)")  # fmt: skip
+        h2 = np.abs(self.rig.transfer(f, fs)) ** 2
+        b.loglog(f, h2, "r-", lw=1.0, label="path power gain |H(f)|² (direct gain + modes)")
+        top = float(h2.max())
+        for g in rig.model_gains if rig is not None else ():
+            h2 = np.abs(rig.for_model(g.model).transfer(f, fs)) ** 2
+            top = max(top, float(h2.max()))
+            b.loglog(f, h2, lw=1.0, ls="--",
+                     label=f"{g.model} model's path ({g.describe()})")  # fmt: skip
+        # a path without a direct gain falls to 0 at Nyquist: keep 8 decades below the top
+        b.set_ylim(bottom=max(b.get_ylim()[0], 1e-8 * top))
         b.set_ylabel("|H(f)|² [-]")
         c.semilogx(self.freq_sk[1:], self.impulsive[1:], "k.-", lw=1.0, ms=3,
                    label="impulsive spectrum E(f)")  # fmt: skip

@@ -205,7 +205,7 @@ def identify_cmd(
     if plot:
         from ..report.figures import save_figure
 
-        save_figure(ir.plot(), plot)
+        save_figure(ir.plot(rig), plot)
     if unknown:
         click.echo(
             f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file): "
