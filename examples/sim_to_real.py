@@ -261,7 +261,7 @@ def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
             and r["fault_diameter_in"]
             and r["fault_diameter_in"] != left_out
         ]
-        out[p] = model_path_fit(rig, recs, model=MODEL)[0]
+        out[p] = model_path_fit(rig, recs, model=MODEL, progress=sys.stderr.isatty())[0]
     return out
 
 
