@@ -147,6 +147,7 @@ def test_the_path_fit_refuses_bad_pairs_in_one_line():
         ([(x[:6000], x[:6000])], "pairs[0]: 0.5 s is too short"),
         ([(x, np.where(np.arange(x.size) == 5, np.nan, x))], "pairs[0]: a signal has non-fin"),
         ([(x, np.zeros(x.size))], "pairs[0]: the model output is zero in 20-5400 Hz"),
+        ([(np.zeros(x.size), x)], "pairs[0]: the measured signal is zero in 20-5400 Hz"),
     ]
     loud = Rig(name="r", description="", provenance="test",
                background=Background((10.0, 6000.0), (1.0, 1.0), "test"))  # fmt: skip

@@ -560,11 +560,12 @@ def fit_path_gains(
         f, py = welch(y - y.mean(), fs, nperseg=nperseg)
         _, px = welch(x - x.mean(), fs, nperseg=nperseg)
         band = (f >= PATH_FIT_LOW_HZ) & (f <= PATH_FIT_HIGH_FS * fs)
-        if not np.any(px[band] > 0.0):
-            raise ConfigError(
-                f"pairs[{i}]: the model output is zero in {PATH_FIT_LOW_HZ:g}-"
-                f"{PATH_FIT_HIGH_FS * fs:g} Hz; no path gain can be fitted to it"
-            )
+        for what, p in (("measured signal", py), ("model output", px)):
+            if not np.any(p[band] > 0.0):
+                raise ConfigError(
+                    f"pairs[{i}]: the {what} is zero in {PATH_FIT_LOW_HZ:g}-"
+                    f"{PATH_FIT_HIGH_FS * fs:g} Hz; no path gain can be fitted to it"
+                )
         fb = f[band]
         pb = rig.background.psd_at(fb) if rig.background is not None else np.zeros(fb.size)
         resp = [sosfreqz(dc_replace(m, gain=1.0).sos(fs), worN=fb, fs=fs)[1] for m in rig.modes]
