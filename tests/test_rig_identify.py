@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import bearingsim
 from bearingsim.errors import ConfigError
@@ -513,3 +515,25 @@ def test_cli_identify_gain_method_spectral_writes_the_fitted_path(tmp_path):
         r.stderr
     )
     assert r.stderr.count("\n") == 1 and not bad.exists()
+
+
+@settings(max_examples=6, deadline=None)
+@given(st.floats(0.1, 10.0))
+def test_the_path_fit_scales_with_the_records(c):
+    """A property of the fit (both objectives are homogeneous): records and background c times
+    louder in amplitude (c² in power) give gains c times larger, to the optimiser's
+    tolerance."""
+    from bearingsim.rig import Background, Mode, Rig
+    from bearingsim.rig_identify import fit_path_gains
+
+    modes = (Mode(2000.0, 0.02, 3.0, "test"), Mode(4500.0, 0.015, 1.0, "test"))
+    bg = Background((10.0, 6000.0), (1e-4, 1e-4), "test")
+    true = Rig(name="true", description="", provenance="test", gain=0.1, modes=modes,
+               background=bg)  # fmt: skip
+    pairs = _path_pairs(true, n_rec=1)
+    loud_bg = Background((10.0, 6000.0), (c * c * 1e-4, c * c * 1e-4), "test")
+    one = fit_path_gains(replace(true, background=bg), pairs, 12000.0)
+    many = fit_path_gains(
+        replace(true, background=loud_bg), [(c * y, x) for y, x in pairs], 12000.0
+    )
+    assert many.gains == pytest.approx(tuple(c * g for g in one.gains), rel=2e-3, abs=1e-9)
