@@ -287,7 +287,7 @@ def test_one_supply_frequency_is_reported():
 
 def test_a_simulation_has_a_supply_only_where_its_rig_adds_one(tmp_path):
     """A simulated result has no electrical supply: read through its rig's sensor it gets no
-    supply frequencies to search (`info["supply_hz"]` empty), so `analyze` notes none (the
+    supply frequencies to search (`supply_hz` empty), so `analyze` notes none (the
     rotor's inner-race fault through cwru-de-12k was told of "2x50Hz (electrical)" lines). A
     rig that adds a fixed 100 Hz tone gives the 50 Hz supply; a measured record keeps the
     default 50 and 60 Hz, and the search notes a 50 Hz line only where it is searched."""
@@ -296,6 +296,7 @@ def test_a_simulation_has_a_supply_only_where_its_rig_adds_one(tmp_path):
     from bearingsim.io.signal import read_signal
     from bearingsim.rig import Rig, Tone
     from bearingsim.rig_identify import rig_to_toml
+    from bearingsim.signal.diagnosis import _supply
     from bearingsim.signal.fused import diagnose_fused
 
     fs = 12000.0
@@ -308,9 +309,9 @@ def test_a_simulation_has_a_supply_only_where_its_rig_adds_one(tmp_path):
         p = tmp_path / f"{rig.name}.nc"
         (tmp_path / f"{rig.name}.toml").write_text(rig_to_toml(rig), encoding="utf-8")
         simulate({**sc, "rig": str(tmp_path / f"{rig.name}.toml")}).save(p)
-        infos[rig.name] = read_signal(p).info["supply_hz"]
+        infos[rig.name] = _supply(read_signal(p))["supply_hz"]
     assert infos == {"plain": (), "mains": (50.0,)}
-    assert read_signal(tmp_path / "plain.nc", channel="y").info["supply_hz"] == ()
+    assert _supply(read_signal(tmp_path / "plain.nc", channel="y"))["supply_hz"] == ()
     # the search itself: a 50 Hz line in the envelope is noted only where a supply is searched
     t = np.arange(int(4 * fs)) / fs
     x = np.random.default_rng(0).standard_normal(t.size) * (1 + 0.8 * np.sin(2 * np.pi * 50 * t))

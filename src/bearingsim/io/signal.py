@@ -243,14 +243,11 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
             "finite samples"
         )
     info: dict[str, Any] = {"fs_source": "file", "rpm_source": "file" if rpm is None else "option"}
-    # a simulation has no electrical supply: only a rig's fixed tone at a supply frequency
-    # (50 or 60 Hz, or a multiple) puts one in its sensor signal
+    # a simulation's discrete lines at fixed frequencies are those its rig adds (none on a bare
+    # model channel): the diagnosis reads a supply only there (signal.diagnosis._supply)
     tones = (res.meta.get("rig") or {}).get("tone", []) if ch == "sensor" else []
-    fixed = [float(t["frequency_hz"]) for t in tones if t.get("frequency_hz") is not None]
-    from ..signal.fused import SUPPLY_HZ
-
-    info["supply_hz"] = tuple(
-        f0 for f0 in SUPPLY_HZ if any(abs(f / f0 - round(f / f0)) < 1e-6 for f in fixed)
+    info["fixed_tones_hz"] = tuple(
+        float(t["frequency_hz"]) for t in tones if t.get("frequency_hz") is not None
     )
     if "oversampling" in res.meta:
         # 1: the ring models' default (the seeds'): each output sample is the mean of the

@@ -932,8 +932,17 @@ def analyze_record(
 
 
 def _supply(rec: SignalRecord) -> dict:
-    """The supply frequencies to note for ``rec``: a simulation has a supply only where its
-    rig adds a 50 or 60 Hz tone (``info["supply_hz"]``, :func:`bearingsim.io.signal.
-    read_signal`); a measured record, the default 50 and 60 Hz."""
-    got = (rec.info or {}).get("supply_hz")
-    return {} if got is None else {"supply_hz": tuple(got)}
+    """The supply frequencies to note for ``rec``: a simulation has no electrical supply, so
+    only those of :data:`.fused.SUPPLY_HZ` whose multiple its rig adds as a fixed tone
+    (``info["fixed_tones_hz"]``, :func:`bearingsim.io.signal.read_signal`); a measured record,
+    all of them (the default)."""
+    from .fused import SUPPLY_HZ
+
+    fixed = (rec.info or {}).get("fixed_tones_hz")
+    if fixed is None:
+        return {}
+    return {
+        "supply_hz": tuple(
+            f0 for f0 in SUPPLY_HZ if any(abs(f / f0 - round(f / f0)) < 1e-6 for f in fixed)
+        )
+    }
