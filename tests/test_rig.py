@@ -434,6 +434,11 @@ def test_a_fitted_model_path_replaces_the_path_for_its_model_only(tmp_path):
     }  # fmt: skip
     again = Rig.from_dict(tomllib.loads(rig_to_toml(rig)))
     assert again.model_gains == rig.model_gains
+    # a rig built in code is held to the file's rule: one gain per mode
+    from bearingsim.rig import ModelGain
+
+    with pytest.raises(ConfigError, match=r"model_gain\[0\].mode_gains has 2 gains; valid: one"):
+        replace(rig, model_gains=(ModelGain("vsm", None, "t", 0.1, (1.0, 2.0)),))
 
 
 def test_a_model_gain_round_trips_through_toml(rig_file):

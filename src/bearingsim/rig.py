@@ -413,6 +413,16 @@ class Rig:
     KEYS = ("name", "description", "provenance", "input_channel", "end", "path", "mode",
             "background", "tone", "sensor", "model_gain")  # fmt: skip
 
+    def __post_init__(self) -> None:
+        # a fitted model path replaces every mode's gain: one gain per mode (a file's
+        # [[model_gain]] and a rig built in code alike)
+        for i, g in enumerate(self.model_gains):
+            if g.mode_gains is not None and len(g.mode_gains) != len(self.modes):
+                raise ConfigError(
+                    f"model_gain[{i}].mode_gains has {len(g.mode_gains)} gains; valid: one "
+                    f"per [[mode]] ({len(self.modes)})"
+                )
+
     @classmethod
     def from_dict(cls, d: Any, source: str = "<rig>") -> Rig:
         """Build and validate from a table (the TOML layout of the module docstring)."""
@@ -456,13 +466,6 @@ class Rig:
             if not isinstance(mg, list):
                 raise ConfigError("model_gain must be an array of tables ([[model_gain]])")
             gains = tuple(ModelGain.from_dict(g, f"model_gain[{i}]") for i, g in enumerate(mg))
-            n_modes = len(modes)
-            for i, g in enumerate(gains):
-                if g.mode_gains is not None and len(g.mode_gains) != n_modes:
-                    raise ConfigError(
-                        f"model_gain[{i}].mode_gains has {len(g.mode_gains)} gains; valid: one "
-                        f"per [[mode]] ({n_modes})"
-                    )
             seen = [g.model for g in gains]
             twice = sorted({m for m in seen if seen.count(m) > 1})
             if twice:
@@ -538,23 +541,11 @@ class Rig:
         if g is None:
             return dataclasses.replace(self, model_gains=()) if self.model_gains else self
         if g.scale is None:  # the fitted form: the path's gains replaced
-            if len(g.mode_gains or ()) != len(self.modes):
-                raise ConfigError(
-                    f"rig {self.name!r}: the {g.model} model's mode_gains has "
-                    f"{len(g.mode_gains or ())} gains for {len(self.modes)} modes; valid: one "
-                    "per mode"
-                )
-            why = f"for the {g.model} model ({g.provenance})"
             return dataclasses.replace(
-                self,
-                gain=g.path_gain,
-                gain_provenance=f"{g.path_gain:.6g} {why}; output-only {self.gain:.6g}",
-                modes=tuple(
-                    dataclasses.replace(m, gain=gk)
-                    for m, gk in zip(self.modes, g.mode_gains or (), strict=True)
-                ),
+                self.with_gains(g.path_gain, g.mode_gains, f"for the {g.model} model "
+                                f"({g.provenance})"),
                 model_gains=(),
-            )
+            )  # fmt: skip
         return dataclasses.replace(
             self,
             gain=self.gain * g.scale,
@@ -562,6 +553,24 @@ class Rig:
             f"({g.provenance})",
             modes=tuple(dataclasses.replace(m, gain=m.gain * g.scale) for m in self.modes),
             model_gains=(),
+        )
+
+    def with_gains(self, gain: float, mode_gains, why: str) -> Rig:
+        """The rig with its direct gain and every mode's gain replaced (``mode_gains`` in the
+        modes' order; frequencies and damping kept), each provenance saying ``why`` and the
+        gain it replaces."""
+        return dataclasses.replace(
+            self,
+            gain=float(gain),
+            gain_provenance=f"{why}; output-only {self.gain:.6g}",
+            modes=tuple(
+                dataclasses.replace(
+                    m,
+                    gain=float(gk),
+                    provenance=f"{m.provenance}; gain {why}, output-only {m.gain:.6g}",
+                )  # fmt: skip
+                for m, gk in zip(self.modes, mode_gains, strict=True)
+            ),
         )
 
     def check_rate(self, fs: float) -> None:

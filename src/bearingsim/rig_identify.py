@@ -630,20 +630,7 @@ def fit_path_gains(
         f"model-based fit (bearingsim.rig_identify.fit_path_gains: {how}, {PATH_FIT_LOW_HZ:g} Hz"
         f" to {PATH_FIT_HIGH_FS:g} fs" + (f"; {provenance}" if provenance else "") + ")"
     )
-    fitted = dc_replace(
-        rig,
-        gain=float(g[0]),
-        gain_provenance=f"{why}; output-only it was {rig.gain:.6g}",
-        modes=tuple(
-            dc_replace(
-                m,
-                gain=float(gk),
-                provenance=f"{m.provenance}; gain {why}, output-only {m.gain:.6g}",
-            )  # fmt: skip
-            for m, gk in zip(rig.modes, g[1:], strict=True)
-        ),
-        model_gains=(),
-    )
+    fitted = dc_replace(rig.with_gains(g[0], g[1:], why), model_gains=())
     return PathFit(fitted, tuple(float(v) for v in g), tuple(float(v) for v in start), objective,
                    (background + carried) / measured, why)  # fmt: skip
 
