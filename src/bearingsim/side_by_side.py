@@ -394,21 +394,23 @@ def model_path_fit(
         c = simulate_record(rec, bare, model=model, duration_s=duration_s, realism=realism)
         pairs.append((c["measured"], c["simulated"]))
         rates.add(c["fs_hz"])
+    names = [Path(r).name for r in records]
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective)
+
+
+def _with_path(rig, model: str, pairs, rates: set, names: list[str], duration_s: float,
+               objective: str):  # fmt: skip
+    """The rig with the path fitted on ``pairs`` (measured, model output; their sample
+    ``rates`` [Hz], one rate) as its fitted ``[[model_gain]]`` for ``model``, and the
+    :class:`~bearingsim.rig_identify.PathFit`."""
+    from .rig import ModelGain
+    from .rig_identify import fit_path_gains
+
     if len(rates) != 1:
         raise ConfigError(
             f"records: sample rates {sorted(rates)} Hz; valid: records of one rate (one rig)"
         )
-    names = [Path(r).name for r in records]
-    return _with_path(rig, model, pairs, rates.pop(), names, duration_s, objective)
-
-
-def _with_path(rig, model: str, pairs, fs: float, names: list[str], duration_s: float,
-               objective: str):  # fmt: skip
-    """The rig with the path fitted on ``pairs`` (measured, model output) as its fitted
-    ``[[model_gain]]`` for ``model``, and the :class:`~bearingsim.rig_identify.PathFit`."""
-    from .rig import ModelGain
-    from .rig_identify import fit_path_gains
-
+    fs = next(iter(rates))
     why = f"the {model} model's output for {', '.join(names)}, {duration_s:g} s each"
     fit = fit_path_gains(rig, pairs, fs, objective=objective, provenance=why)
     gain = ModelGain(model, None, fit.provenance, fit.gains[0], tuple(fit.gains[1:]))
@@ -495,11 +497,7 @@ def model_path_fit_conditions(
         pairs.append((measured[: x.size], x))
         names.append(name)
         rates.add(_result_fs(bare))
-    if len(rates) != 1:
-        raise ConfigError(
-            f"records: sample rates {sorted(rates)} Hz; valid: records of one rate (one rig)"
-        )
-    return _with_path(rig, model, pairs, rates.pop(), names, duration_s, objective)
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective)
 
 
 def _user_simulations(records, conditions, model, duration_s, realism, seed, progress):
@@ -725,9 +723,8 @@ def lomo_rig(
     record : str
         The record's file name.
     model_gain : {"vsm", "dem", "tvsm", "rotor"}, optional
-        Also scale the path so that this model carries the power of those other records above
-        the background
-        (:func:`model_path_scale`; the same leave-one-mounting-out split).
+        Also identify this model's path gain on those other records (by ``gain_method``; the
+        same leave-one-mounting-out split).
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
     gain_method : {"power", "spectral", "whittle"}
@@ -782,7 +779,8 @@ def rig_other_loads(
 ):
     """The rig of ``record``'s own mounting identified from that mounting's records at the
     **other** motor loads (output-only, :func:`bearingsim.rig_identify.identify_rig`; with
-    ``model_gain``, also :func:`model_path_scale` on the same records), or None when the
+    ``model_gain``, also that model's path gain on the same records, by ``gain_method``), or
+    None when the
     folder holds no other load of it (the 0.007 in mountings: one record each).
 
     The split a user's own machine has: a rig identified on some records of the machine,
@@ -797,8 +795,8 @@ def rig_other_loads(
     record : str
         The judged record's file name (never among the identification records).
     model_gain : {"vsm", "dem", "tvsm", "rotor"}, optional
-        Also scale the path so that this model carries the identification records' power
-        above the background.
+        Also identify this model's path gain on the identification records (by
+        ``gain_method``).
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` for ``model_gain``.
     gain_method : {"power", "spectral", "whittle"}
