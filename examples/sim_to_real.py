@@ -240,12 +240,10 @@ def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
     """``rigs`` with each path fitted to the :data:`MODEL` on its identification records: the
     CWRU fault records of its end and rate (the shipped profiles were identified from all of
     them; a held-out set's from those of the other size)."""
-    from bearingsim.io.cwru import cwru_manifest
-    from bearingsim.side_by_side import model_path_fit
+    from bearingsim.side_by_side import _other_size_records, model_path_fit
 
     if data is None or not (Path(data) / "manifest.csv").is_file():
         raise FileNotFoundError(f"--path-fit needs the CWRU folder (--data): {data}")
-    rows = cwru_manifest(Path(data))
     left_out = name.removeprefix("without-") if name != "shipped" else None
     out = {}
     for p, rig in rigs.items():
@@ -253,14 +251,8 @@ def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
             out[p] = None
             continue
         bearing, fs = PROFILES[p]
-        recs = [
-            Path(data) / f
-            for f, r in rows.items()
-            if r["end"] == _end(bearing)
-            and float(r["fs_hz"]) == fs
-            and r["fault_diameter_in"]
-            and r["fault_diameter_in"] != left_out
-        ]
+        names = _other_size_records(Path(data), _end(bearing), fs, left_out)
+        recs = [Path(data) / f for f in names]
         out[p] = model_path_fit(rig, recs, model=MODEL, progress=sys.stderr.isatty())[0]
     return out
 

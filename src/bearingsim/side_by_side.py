@@ -657,9 +657,9 @@ def _with_gain(rig, model: str, powers, names: list[str], duration_s: float):
     return replace(rig, model_gains=(*rig.model_gains, gain)), k
 
 
-def _other_size_records(data_dir: Path, end: str, fs_hz: float, size_in: str) -> list[str]:
+def _other_size_records(data_dir: Path, end: str, fs_hz: float, size_in: str | None) -> list[str]:
     """File names of the CWRU fault records of ``end`` at ``fs_hz`` [Hz] with a fault size
-    other than ``size_in`` (the healthy record has none), sorted."""
+    other than ``size_in`` (None: every size; the healthy record has none), sorted."""
     return sorted(
         f
         for f, q in cwru_manifest(data_dir).items()
