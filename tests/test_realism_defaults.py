@@ -109,6 +109,24 @@ def test_cli_rig_option_on_a_scenario_file_without_one(tmp_path):
     assert "(rig defaults: defect_profile = geometric, contact_roughness_m = 1e-07)" in r.stdout
 
 
+@pytest.mark.parametrize("model", ["vsm", "dem", "tvsm", "rotor"])
+def test_an_unset_rate_is_the_rigs(model):
+    """A scenario with a rig and no ``fs_hz`` is sampled at the rate of the records the rig was
+    identified from (the shipped profiles: 12 or 48 kHz); without a rig, 48 kHz as before; a
+    rate given is kept. The resolved rate is stored as a number and listed among the rig's
+    defaults."""
+    assert Scenario(model=model).fs_hz == 48000.0
+    sc = Scenario(model=model, rig=RIG)
+    assert sc.fs_hz == 12000.0 and "fs_hz" in sc.auto_keys
+    assert sc.realism_defaults["fs_hz"] == 12000.0
+    assert sc.to_dict()["fs_hz"] == 12000.0 and Scenario.from_dict(sc.to_dict()).fs_hz == 12000.0
+    assert sc.replace(rig=None).fs_hz == 48000.0
+    assert sc.replace(rig="cwru-de-48k").fs_hz == 48000.0
+    given = Scenario(model=model, rig=RIG, fs_hz=24000.0)
+    assert given.fs_hz == 24000.0 and "fs_hz" not in given.realism_defaults
+    assert Scenario(model=model, fs_hz=12000.0).replace(rig=RIG).fs_hz == 12000.0
+
+
 def test_a_12_khz_profile_on_a_48_khz_output_warns():
     """A rig's background table ends where its records' band ends (5.4 kHz for the 12 kHz CWRU
     profiles): on a 48 kHz output the sensor signal above it is the model's alone, said in one
@@ -123,3 +141,18 @@ def test_a_12_khz_profile_on_a_48_khz_output_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         simulate({**sc, "rig": "cwru-de-48k"})
+
+
+def test_cli_simulate_with_a_shipped_rig_writes_its_rate(tmp_path):
+    """`simulate --rig cwru-de-12k` without --fs-hz writes a 12 kHz signal (48 kHz before, whose
+    band above the profile's 5.4 kHz was the model's output alone, with a RigRateWarning) and
+    says it chose the rate."""
+    out = tmp_path / "s.nc"
+    r = _cli("simulate", "--fault", "outer", "--duration-s", "0.05", "--rig", RIG, "-o",
+             str(out), "--json", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "RigRateWarning" not in r.stderr and "background is defined" not in r.stderr
+    rep = json.loads(r.stdout)
+    assert rep["fs_hz"] == 12000.0 and rep["realism_defaults"]["fs_hz"] == 12000.0
+    res = load_result(out)
+    assert res.fs_hz == 12000.0 and res.scenario["fs_hz"] == 12000.0 and res.time.size == 600

@@ -220,6 +220,20 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
         ((_MG, _MG.replace('"rotor"', '"fem"')), "model_gain[0].model = 'fem' is invalid"),
         ((_MG, _MG.replace("6.5", "0.0")), "model_gain[0].scale = 0"),
         ((_MG, _MG.replace("6.5", "nan")), "model_gain[0].scale = nan is not finite"),
+        # the identification rate: a positive number, and above twice every mode
+        (
+            ('input_channel = "acc_y"', 'input_channel = "acc_y"\nfs_hz = -12000.0'),
+            "rig.fs_hz = -12000 Hz is out of range",
+        ),
+        (
+            ('input_channel = "acc_y"', 'input_channel = "acc_y"\nfs_hz = "12000"'),
+            "rig.fs_hz = '12000' is text",
+        ),
+        (
+            ('input_channel = "acc_y"', 'input_channel = "acc_y"\nfs_hz = 6000.0'),
+            "mode[0].frequency_hz = 3350 Hz is at or above the Nyquist frequency of the rig's "
+            "fs_hz (3000 Hz)",
+        ),
         # exploratory testing (fourteenth session): 1e308 overflowed the mode filters with a
         # traceback, 1e200 wrote an infinite RMS
         ((_MG, _MG.replace("6.5", "1e308")), "model_gain[0].scale = 1e+308 is out of range"),
@@ -267,6 +281,21 @@ def test_bad_rig_files_are_refused_in_one_line(tmp_path, edit, message):
         load_rig(p)
     text = str(exc.value)
     assert message in text and "\n" not in text and text.startswith("bad.toml: ")
+
+
+def test_the_identification_rate_round_trips_and_the_shipped_profiles_carry_theirs(rig_file):
+    """``fs_hz``: the rate of the records a rig was identified from [Hz]; optional (a rig
+    written by hand may leave it out), kept through TOML, and written by ``rig identify``
+    (the shipped profiles: the rate in their names)."""
+    assert load_rig(rig_file).fs_hz is None
+    p = rig_file.with_name("rate.toml")
+    p.write_text(RIG_TOML.replace('input_channel = "acc_y"', 'input_channel = "acc_y"\nfs_hz = '
+                                  "12000.0"), encoding="utf-8")  # fmt: skip
+    rig = load_rig(p)
+    assert rig.fs_hz == 12000.0 and rig.to_dict()["fs_hz"] == 12000.0
+    assert Rig.from_dict(rig.to_dict(), source="again") == rig
+    rates = {n: load_rig(n).fs_hz for n in ("cwru-de-12k", "cwru-fe-12k", "cwru-de-48k")}
+    assert rates == {"cwru-de-12k": 12000.0, "cwru-fe-12k": 12000.0, "cwru-de-48k": 48000.0}
 
 
 def test_mode_above_nyquist_is_refused(rig_file):
@@ -515,6 +544,7 @@ def test_cli_rig_show_states_the_background_band(tmp_path):
     assert "background: 40 PSD points, 10-5400 Hz" in r.stdout
     assert "above 21600 Hz gets a RigRateWarning" in r.stdout
     assert "for the rotor model's output (model-based)" in r.stdout
+    assert "identified from records at 12000 Hz: a scenario with this rig and no" in r.stdout
 
 
 def test_cli_simulate_json_reports_the_applied_model_gain(tmp_path):

@@ -48,6 +48,7 @@ def test_a_known_mode_is_recovered():
     assert m.frequency_hz == pytest.approx(3000.0, rel=0.02)
     assert m.damping_ratio == pytest.approx(0.03, rel=0.3)
     assert m.gain > 1.0  # a resonance stands well above its shoulders
+    assert ir.rig.fs_hz == recs[0].fs  # the rate of the records, for a scenario that sets none
     back = load_rig_text(rig_to_toml(ir.rig))
     assert back == ir.rig
 

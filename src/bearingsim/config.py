@@ -284,9 +284,14 @@ class Scenario:
     #: whether ``dt_s`` must not exceed the output interval ``1/fs_hz``
     DT_WITHIN_OUTPUT: ClassVar[bool] = True
 
+    #: the output rate a scenario takes when it sets none and its rig (if any) gives none [Hz]
+    FS_DEFAULT_HZ: ClassVar[float] = 48000.0
+
     model: Model = Model.VSM
     duration_s: float = 1.0
-    fs_hz: float = 48000.0
+    #: None: the rig's ``fs_hz`` (the rate it was identified at) when the scenario has a rig
+    #: that gives one, else :attr:`FS_DEFAULT_HZ`
+    fs_hz: float | None = None
     dt_s: float | None = None
     solver: Solver = Solver.RK4
 
@@ -307,6 +312,11 @@ class Scenario:
             )
         s(self, "solver", parse_enum(Solver, self.solver, "solver"))
         s(self, "duration_s", check_positive("duration_s", self.duration_s, "s"))
+        auto = []
+        if self.fs_hz is None:
+            s(self, "fs_hz", self._default_fs_hz())
+            auto.append("fs_hz")
+        self.__dict__["auto_keys"] = tuple(auto)
         s(self, "fs_hz", check_positive("fs_hz", self.fs_hz, "Hz"))
         n = self.duration_s * self.fs_hz
         if not 2 <= round(n) <= MAX_SAMPLES:
@@ -330,6 +340,19 @@ class Scenario:
     #: the seeds' values of the realism keys (:data:`REALISM`) of families that take them
     SEED_REALISM: ClassVar[dict[str, Any]] = {}
 
+    def _default_fs_hz(self) -> float:
+        """The output rate of a scenario that sets none [Hz]: its rig's ``fs_hz`` (the rate the
+        rig was identified at: a profile of 12 kHz records gives 12 kHz signals), else
+        :attr:`FS_DEFAULT_HZ`."""
+        rig = getattr(self, "rig", None)
+        if isinstance(rig, str) and rig:  # anything else: _check_rig says what is wrong
+            from .rig import load_rig
+
+            fs = load_rig(rig).fs_hz
+            if fs is not None:
+                return fs
+        return self.FS_DEFAULT_HZ
+
     def _validate(self) -> None:
         """Family checks (subclasses)."""
 
@@ -347,7 +370,8 @@ class Scenario:
             if isinstance(v, enum.Enum):
                 out[k] = v.value
         for k in self.auto_keys:  # resolved from the rig: the default again
-            out[k] = None
+            if k != "fs_hz":  # the output's rate stays a number (readers take it from here)
+                out[k] = None
         return out
 
     @property
@@ -362,7 +386,7 @@ class Scenario:
         ``rig``, at a value other than the seeds', with their values (empty without a rig)."""
         if getattr(self, "rig", None) is None:
             return {}
-        seed = self.SEED_REALISM
+        seed = self.SEED_REALISM | {"fs_hz": self.FS_DEFAULT_HZ}
         return {
             k: getattr(self, k) for k in self.auto_keys if k in seed and getattr(self, k) != seed[k]
         }
@@ -510,7 +534,7 @@ def _resolve_realism(sc: Any) -> None:
             v = 0.0
         object.__setattr__(sc, name, v)
         auto.append(name)
-    sc.__dict__["auto_keys"] = tuple(auto)
+    sc.__dict__["auto_keys"] = (*sc.auto_keys, *auto)
 
 
 def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
@@ -562,7 +586,9 @@ class RingScenario(Scenario):
     ``rpm``                         1750.0          shaft speed [r/min] (seed table 1)
     ``fx_n``, ``fy_n``              10.0, 50.0      radial force on the inner ring [N] (table 1)
     ``duration_s``                  1.0             simulated time [s]
-    ``fs_hz``                       48000.0         output sample rate [Hz] (CWRU rate)
+    ``fs_hz``                       48000.0 (the    output sample rate [Hz] (CWRU rate; a rig's
+                                    rig's with      ``fs_hz`` is the rate of the records it was
+                                    ``rig``)        identified from)
     ``seed``                        0               seed of the measurement noise (integer >= 0)
     ``noise_rms_m_per_s2``          0.0             RMS of white measurement noise on the
                                                     accelerations [m/s^2]
@@ -849,6 +875,9 @@ class RotorScenario(Scenario):
                                                         outer race)
     ``rpm``                             1750.0          shaft speed [r/min]
     ``duration_s``, ``fs_hz``           1.0, 48000.0    simulated time [s], output sample rate [Hz]
+                                        (``fs_hz``:     (a rig's ``fs_hz``: the rate of the records
+                                        the rig's with  it was identified from)
+                                        ``rig``)
     ``seed``, ``noise_rms_m_per_s2``    0, 0.0          white measurement noise on the accelerations
     ``disks``                           9 (one per      number of equal disks carrying the rotor
                                         position)       mass; with ``disk_positions_mm`` it must
@@ -1202,7 +1231,8 @@ class IasScenario(Scenario):
     fx_n: float = 0.0
     fy_n: float = SEED_IAS_FY_N
     duration_s: float = SEED_IAS_DURATION_S
-    fs_hz: float = IAS_FS_HZ
+    FS_DEFAULT_HZ: ClassVar[float] = IAS_FS_HZ
+    fs_hz: float | None = IAS_FS_HZ
     dt_s: float | None = SEED_IAS_DT_S
     contact_law: str = "seed"
     spall_load: str = "stribeck"

@@ -33,6 +33,9 @@ TOML layout (SI units in the key names)::
     input_channel = "acc_y"          # the model channel that enters the chain
     end = "FE"                       # optional: the machine end whose housing the sensor is on
                                      # (DE|FE; the rotor model then reads that housing)
+    fs_hz = 12000.0                  # optional: the sampling rate of the records it was
+                                     # identified from [Hz]; a scenario with this rig and no
+                                     # fs_hz of its own is sampled at it
 
     [path]
     gain = 1.0
@@ -125,6 +128,8 @@ PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 #: other units, and keeps the filters and signals finite (a scale of 1e308 overflowed the mode
 #: filters with a traceback; 1e200 wrote an infinite RMS)
 MAX_GAIN = 1e6
+#: largest identification rate a rig file takes [Hz] (a rate a recorder has; 10 MHz)
+MAX_RIG_RATE_HZ = 1e7
 
 
 def _check(name: str, value: Any, *args: Any, **kw: Any) -> float:
@@ -399,6 +404,9 @@ class Rig:
     #: housing of that end into the chain (acc_y at DE, acc_y_fe at FE) when ``input_channel``
     #: is the default acc_y
     end: str | None = None
+    #: the sampling rate of the records the rig was identified from [Hz] (None: not said); a
+    #: scenario with this rig and no ``fs_hz`` of its own is sampled at it
+    fs_hz: float | None = None
     gain: float = 1.0
     gain_provenance: str = "default: the model's output passes unchanged"
     modes: tuple[Mode, ...] = ()
@@ -410,10 +418,18 @@ class Rig:
     model_gains: tuple[ModelGain, ...] = ()
     source: str = field(default="", compare=False)
 
-    KEYS = ("name", "description", "provenance", "input_channel", "end", "path", "mode",
-            "background", "tone", "sensor", "model_gain")  # fmt: skip
+    KEYS = ("name", "description", "provenance", "input_channel", "end", "fs_hz", "path",
+            "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
 
     def __post_init__(self) -> None:
+        if self.fs_hz is not None:  # its own modes lie below the Nyquist frequency of its rate
+            for i, m in enumerate(self.modes):
+                if m.frequency_hz >= 0.5 * self.fs_hz:
+                    raise ConfigError(
+                        f"mode[{i}].frequency_hz = {m.frequency_hz:g} Hz is at or above the "
+                        f"Nyquist frequency of the rig's fs_hz ({0.5 * self.fs_hz:g} Hz); valid "
+                        f"range (0, {0.5 * self.fs_hz:g}) Hz"
+                    )
         # a fitted model path replaces every mode's gain: one gain per mode (a file's
         # [[model_gain]] and a rig built in code alike)
         for i, g in enumerate(self.model_gains):
@@ -441,6 +457,9 @@ class Rig:
             end = d.get("end")
             if end is not None and end not in ("DE", "FE"):
                 raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")
+            fs = d.get("fs_hz")
+            if fs is not None:
+                fs = _check("rig.fs_hz", fs, 0.0, MAX_RIG_RATE_HZ, lo_open=True, unit="Hz")
             gain, gprov = 1.0, cls.gain_provenance
             if "path" in d:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
@@ -478,6 +497,7 @@ class Rig:
                 provenance=prov,
                 input_channel=ch,
                 end=end,
+                fs_hz=fs,
                 gain=gain,
                 gain_provenance=gprov,
                 modes=tuple(Mode.from_dict(m, f"mode[{i}]") for i, m in enumerate(modes)),
@@ -506,6 +526,8 @@ class Rig:
         }
         if self.end is not None:
             out["end"] = self.end
+        if self.fs_hz is not None:
+            out["fs_hz"] = self.fs_hz
         if self.modes:
             out["mode"] = [dataclasses.asdict(m) for m in self.modes]
         if self.background is not None:

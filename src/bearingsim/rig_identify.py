@@ -396,6 +396,7 @@ def identify_rig(
         provenance=provenance or "bearingsim.rig_identify.identify_rig",
         input_channel="acc_y",
         end=end,
+        fs_hz=float(fs),
         gain=1.0,
         gain_provenance="output-only identification: the path's direct gain is taken as 1 and "
         "each mode's gain is relative to it (bearingsim.rig_identify, item 3)",
@@ -648,8 +649,8 @@ def rig_to_toml(rig: Rig) -> str:
             return "[" + ", ".join(val(x) for x in v) + "]"
         return repr(float(v)) if isinstance(v, float) else str(v)
 
-    keys = ("name", "description", "provenance", "input_channel", "end")
-    lines = [f"{k} = {val(d[k])}" for k in keys if k in d]
+    # every top-level value before the tables (a key added to Rig.to_dict is written too)
+    lines = [f"{k} = {val(v)}" for k, v in d.items() if not isinstance(v, dict | list)]
     for table in ("path", "background", "sensor"):
         if table in d:
             lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]

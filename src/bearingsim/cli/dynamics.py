@@ -223,7 +223,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "fs_hz",
     type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
-    show_default=_d("fs_hz"),
+    show_default="48000; with --rig: the rate its records had",
     help="Output sample rate [Hz].",
 )
 @deprecated("--fs", "--fs-hz")

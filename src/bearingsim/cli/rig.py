@@ -260,6 +260,11 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     click.echo(f"  provenance: {r.provenance}")
     end = f"; sensor at the {r.end} end" if r.end else ""
     click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}{end}")
+    if r.fs_hz is not None:
+        click.echo(
+            f"  identified from records at {r.fs_hz:g} Hz: a scenario with this rig and no "
+            "fs_hz of its own is sampled at it"
+        )
     for m in r.modes:
         click.echo(f"  mode {m.frequency_hz:.1f} Hz, zeta {m.damping_ratio:.4f}, gain {m.gain:.3g}")
     for t in r.tones:
