@@ -197,8 +197,27 @@ def test_a_record_without_impacts_is_refused():
 
 def test_a_short_record_is_refused():
     rec = _impacts(dur=0.5)
-    with pytest.raises(ConfigError, match=r"synthetic0 is 0.5 s long; at least 1 s is needed"):
+    msg = r"synthetic0 is 0.5 s long \(6000 samples at 12000 Hz\); at least 1 s is needed"
+    with pytest.raises(ConfigError, match=msg):
         identify_rig([rec], name="x")
+
+
+def test_a_one_second_csv_with_a_decimal_time_column_is_long_enough(tmp_path):
+    """Exploratory testing (nineteenth session): a 1 s record written as CSV with a time column
+    (what `numpy.savetxt` writes for a 12 kHz result) was refused as "1 s long; at least 1 s is
+    needed": its rate read from the time column was 12000.000000001 Hz, so 12000 samples came
+    to 0.99999999 s. The rate is now read to 10 significant digits, and the length is counted
+    in samples."""
+    from bearingsim.io.signal import read_signal
+
+    rec = _impacts(dur=1.0)
+    t = np.arange(rec.x.size) / rec.fs
+    p = tmp_path / "one_second.csv"
+    np.savetxt(p, np.c_[t, rec.x], delimiter=",", header="time,acc", comments="")
+    r = read_signal(p)
+    assert r.fs == 12000.0 and r.x.size == 12000
+    ir = identify_rig([r], name="csv", max_modes=1)
+    assert ir.rig.fs_hz == 12000.0 and len(ir.rig.modes) == 1
 
 
 def test_mixed_sample_rates_are_refused():

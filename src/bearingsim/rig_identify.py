@@ -262,10 +262,10 @@ def identify_rig(
                 f"at {fs:g} Hz; identify one sample rate at a time"
             )
         dur = r.x.size / fs
-        if dur < MIN_DURATION_S:
+        if r.x.size < round(MIN_DURATION_S * fs):  # in samples: a 1 s record at fs passes
             raise ConfigError(
-                f"rig identify: {Path(r.source).name} is {dur:.3g} s long; at least "
-                f"{MIN_DURATION_S:g} s is needed"
+                f"rig identify: {Path(r.source).name} is {dur:.6g} s long ({r.x.size} samples "
+                f"at {fs:g} Hz); at least {MIN_DURATION_S:g} s is needed"
             )
     nps = nperseg_sk or int(2 ** round(math.log2(0.0025 * fs)))
     if nps < MIN_SEGMENT:

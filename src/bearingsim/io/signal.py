@@ -295,7 +295,10 @@ def _read_text(
         t = t * next((f for u, f in _TIME_UNITS.items() if header[tcol].lower().endswith(u)), 1.0)
         dt = np.diff(t)
         increasing = bool(dt.size and np.all(dt > 0))
-        fs_t = 1.0 / float(np.median(dt)) if increasing else math.nan
+        # to 10 significant digits: a time column written in decimals gives its rate with
+        # round-off (12000.000000001 Hz for 1/12000 s printed to 18 digits), which a rate does
+        # not have and which made a 1 s file 0.99999999 s long
+        fs_t = float(f"{1.0 / float(np.median(dt)):.10g}") if increasing else math.nan
         if fs is None:
             if not increasing:
                 raise ConfigError(
