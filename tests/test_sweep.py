@@ -685,3 +685,31 @@ def test_each_run_records_its_own_warnings(client, tmp_path):
     assert warned[2][0].startswith("RigRateWarning: rig 'cwru-de-12k': its background")
     assert rep.warnings == {warned[2][0]: 2}
     assert ds.summary()["warnings"] == {warned[2][0]: [2, 3]}
+
+
+def test_a_rig_axis_samples_each_run_at_its_rigs_rate_and_stores_the_sensor(client, tmp_path):
+    """Exploratory testing (nineteenth session): a sweep with a ``rig`` axis and no ``fs_hz``
+    ran every run at 48 kHz (its canonical base pinned the default) and stored only acc_x and
+    acc_y, so a labelled dataset of sensor signals had none unless ``channels`` named it. Each
+    run now takes its own rig's rate, and a rig in the base or the axes adds acc_sensor to the
+    default channels; without a rig they are as before."""
+    spec = SweepSpec.from_dict(
+        {"base": {"model": "vsm", "duration_s": 0.02, "fault": "outer"},
+         "axes": {"rig": ["cwru-de-12k", "cwru-de-48k"]}},
+        origin="rigs.toml",
+    )  # fmt: skip
+    assert spec.channels == ("acc_x", "acc_y", "acc_sensor")
+    assert [sc.fs_hz for sc in spec.scenarios()] == [12000.0, 48000.0]
+    out = tmp_path / "rigs.zarr"
+    assert run_sweep(spec, out, client=client).n_ok == 2
+    ds = open_dataset(out)
+    for i, n in enumerate((240, 960)):
+        r = ds.result(i)
+        assert r["acc_sensor"].size == n and ds.scenario(i)["fs_hz"] == n / 0.02
+        assert_array_equal(r["acc_sensor"], simulate(spec.scenario(i))["acc_sensor"])
+    plain = make_spec({"fault": ["none", "outer"]})
+    assert plain.channels == ("acc_x", "acc_y") and plain.base["fs_hz"] == BASE["fs_hz"]
+    based = SweepSpec.from_dict(
+        {"base": {"model": "vsm", "rig": "cwru-de-12k"}, "axes": {"seed": [0, 1]}}, origin="b"
+    )
+    assert based.channels == ("acc_x", "acc_y", "acc_sensor") and based.base["fs_hz"] == 12000.0

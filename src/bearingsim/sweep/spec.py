@@ -6,7 +6,8 @@ A sweep file is TOML with three tables::
     combine = "cartesian"        # "cartesian" (every combination) | "zip" (axes side by side)
     zip = [["rpm", "fy_n"]]      # groups of axes taken side by side inside a cartesian sweep
     seed = 0                     # seed of the random axes (integer >= 0)
-    channels = ["acc_x", "acc_y"]  # channels stored per run, or "all" (IAS default: ["omega"])
+    channels = ["acc_x", "acc_y"]  # channels stored per run, or "all" (IAS default: ["omega"];
+                                 # with a rig in [base] or [axes] also "acc_sensor")
     label = "fault"              # scenario key(s) used as the class label (summary, ML loader;
                                  # default: fault, de_fault (rotor), spall_width_m (IAS))
     per_run_seed = false         # true: noise seed of run i = base seed + i
@@ -627,6 +628,8 @@ class SweepSpec:
                 f"{origin}: sweep.zip = {zips!r} is invalid; valid: a list of lists of axis names"
             )
         default_label, default_channels = _FAMILY_DEFAULTS[type(base_sc)]
+        if "rig" in axes_t or getattr(base_sc, "rig", None) is not None:
+            default_channels += ("acc_sensor",)  # what the sensor records, beside the model's
         channels = sw.get("channels", list(default_channels))
         if channels == "all":
             chans = None
@@ -665,8 +668,11 @@ class SweepSpec:
             if key == "model":
                 _one_family(base_sc, ax.values, origin)
             axes.append(ax)
+        base = base_sc.to_dict()
+        if "fs_hz" in base_sc.auto_keys and any(a.name == "rig" for a in axes):
+            base["fs_hz"] = None  # unset: each run takes its own rig's rate (config.Scenario)
         return cls(
-            base=base_sc.to_dict(),
+            base=base,
             axes=tuple(axes),
             combine=combine,
             zip_groups=tuple(tuple(g) for g in zips),
