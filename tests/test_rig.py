@@ -296,6 +296,8 @@ def test_the_identification_rate_round_trips_and_the_shipped_profiles_carry_thei
     assert Rig.from_dict(rig.to_dict(), source="again") == rig
     rates = {n: load_rig(n).fs_hz for n in ("cwru-de-12k", "cwru-fe-12k", "cwru-de-48k")}
     assert rates == {"cwru-de-12k": 12000.0, "cwru-fe-12k": 12000.0, "cwru-de-48k": 48000.0}
+    with pytest.raises(ConfigError, match=r"rig.fs_hz = -1 Hz is out of range"):
+        _rig(fs_hz=-1.0)  # a rig built in code is held to it as well
 
 
 def test_mode_above_nyquist_is_refused(rig_file):

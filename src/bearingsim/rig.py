@@ -423,6 +423,9 @@ class Rig:
 
     def __post_init__(self) -> None:
         if self.fs_hz is not None:  # its own modes lie below the Nyquist frequency of its rate
+            rate = check_range("rig.fs_hz", self.fs_hz, 0.0, MAX_RIG_RATE_HZ, lo_open=True,
+                               unit="Hz")  # fmt: skip
+            object.__setattr__(self, "fs_hz", rate)
             for i, m in enumerate(self.modes):
                 if m.frequency_hz >= 0.5 * self.fs_hz:
                     raise ConfigError(
