@@ -128,7 +128,7 @@ def test_an_unset_rate_is_the_rigs(model):
 
 
 def test_a_12_khz_profile_on_a_48_khz_output_warns():
-    """A rig's background table ends where its records' band ends (5.4 kHz for the 12 kHz CWRU
+    """A rig's background table ends at its records' Nyquist frequency (6 kHz for the 12 kHz CWRU
     profiles): on a 48 kHz output the sensor signal above it is the model's alone, said in one
     warning (RigRateWarning); the 48 kHz profile on the same output says nothing."""
     import warnings
@@ -136,7 +136,7 @@ def test_a_12_khz_profile_on_a_48_khz_output_warns():
     from bearingsim.rig import RigRateWarning
 
     sc = dict(model="vsm", duration_s=0.02, fs_hz=48000.0)
-    with pytest.warns(RigRateWarning, match="background is defined up to 5400 Hz"):
+    with pytest.warns(RigRateWarning, match="background is defined up to 6000 Hz"):
         simulate({**sc, "rig": RIG})
     with warnings.catch_warnings():
         warnings.simplefilter("error")

@@ -502,6 +502,27 @@ def test_healthy_with_slip_and_rough_contacts_through_the_rig_is_none(tmp_path):
     assert got == ["none", "none", "none", "outer"], got
 
 
+def test_healthy_through_each_shipped_profile_at_its_own_rate_is_none(tmp_path):
+    """Exploratory testing (nineteenth session): a healthy VSM through cwru-de-48k at its
+    48 kHz read "uncertain" (2 x BPFO in 23.25-24 kHz). The profile's background table ended
+    at 0.45 fs, so above 21.6 kHz the sensor signal was the model's output alone (1e-16
+    (m/s^2)^2 of near-silent ball-pass content, no floor) and the kurtogram picked that band.
+    The tables now reach the Nyquist frequency with the records' roll-off. Each ring model,
+    healthy, 1 s at each profile's own rate (the default with a rig), reads "none"."""
+    files = []
+    for rig, bearing in (("cwru-de-12k", "6205-cwru"), ("cwru-fe-12k", "6203-cwru"),
+                         ("cwru-de-48k", "6205-cwru")):  # fmt: skip
+        for model in ("vsm", "dem"):
+            out = tmp_path / f"{rig}_{model}.nc"
+            simulate(dict(model=model, bearing=bearing, fault="none", rig=rig)).save(out)
+            files.append(out)
+    got = [d["diagnosis"] for d in _analyze_json(files)]
+    assert got == ["none"] * 6, got
+    for name in ("cwru-de-12k", "cwru-fe-12k", "cwru-de-48k"):
+        r = load_rig(name)
+        assert r.background.frequency_hz[-1] == 0.5 * r.fs_hz
+
+
 @pytest.mark.parametrize("size_in", [0.021, 0.028])
 def test_fused_diagnosis_of_simulated_faults_of_sizes_the_shared_records_lack(size_in):
     """The CWRU benchmark also has 0.021 and 0.028 in faults, which the shared records do not
@@ -543,8 +564,8 @@ def test_cli_rig_show_states_the_background_band(tmp_path):
     `apply_rig` warns (RigRateWarning: the table ends below a quarter of the rate)."""
     r = _cli("rig", "show", "cwru-de-12k", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
-    assert "background: 40 PSD points, 10-5400 Hz" in r.stdout
-    assert "above 21600 Hz gets a RigRateWarning" in r.stdout
+    assert "background: 45 PSD points, 10-6000 Hz" in r.stdout
+    assert "above 24000 Hz gets a RigRateWarning" in r.stdout
     assert "for the rotor model's output (model-based)" in r.stdout
     assert "identified from records at 12000 Hz: a scenario with this rig and no" in r.stdout
 

@@ -53,6 +53,27 @@ def test_a_known_mode_is_recovered():
     assert back == ir.rig
 
 
+def test_the_background_reaches_the_nyquist_frequency_with_the_records_roll_off():
+    """Above 0.45 fs a recorder's anti-aliasing filter rolls the records off (CWRU: 3-5
+    decades to fs/2). The table follows it in narrow bands up to fs/2, so a signal at the
+    rig's own rate has the records' floor there (before, the table ended at 0.45 fs and the
+    band above was the model's output alone): white noise low-passed at 0.46 fs comes out
+    at its level below 0.45 fs and orders of magnitude under it at 0.49-0.5 fs."""
+    from scipy.signal import butter, sosfiltfilt
+
+    recs = []
+    for s in range(3):
+        rec = _impacts(seed=s)
+        sos = butter(12, 0.46 * rec.fs, fs=rec.fs, output="sos")
+        recs.append(replace(rec, x=sosfiltfilt(sos, rec.x)))
+    bg = identify_rig(recs, name="roll", max_modes=1).rig.background
+    f, p = np.array(bg.frequency_hz), np.array(bg.psd)
+    assert f[-1] == 0.5 * recs[0].fs and np.all(np.diff(f) > 0)
+    low = np.median(p[(f > 1000.0) & (f < 2000.0)])
+    assert p[-1] < 1e-3 * low and p[-2] < 1e-3 * low  # 0.49 and 0.5 fs: the filter's floor
+    assert 0.3 * low < p[np.argmin(np.abs(f - 0.45 * recs[0].fs))] < 3.0 * low
+
+
 def test_the_background_is_the_records_non_impulsive_part():
     """The background table is the part of the records between the impacts (issue 16, item 4:
     "from the non-impulsive part of faulty ones"): impacts at 107 Hz ringing at 3 kHz over white

@@ -65,6 +65,13 @@ MIN_DURATION_S = 1.0
 MIN_SEGMENT = 16
 #: smallest mode gain kept [-]: a PSD peak 1.21 x its shoulders (0.8 dB) is within the scatter
 MIN_GAIN = 0.1
+#: the background table's points above its log-spaced ones [fraction of fs], up to the Nyquist
+#: frequency: where a recorder's anti-aliasing filter rolls the records off (CWRU: 3-5
+#: decades between 0.45 and 0.5 fs), each the mean over +/- ROLL_OFF_HALF_BAND fs (a sixth of
+#: an octave would blur the roll-off). Without them the table ended at 0.45 fs and a signal at
+#: the rig's own rate was the model's output alone above it, with no floor
+ROLL_OFF_POINTS = (0.46, 0.47, 0.48, 0.49, 0.5)
+ROLL_OFF_HALF_BAND = 0.005
 
 
 @dataclass
@@ -356,15 +363,25 @@ def identify_rig(
             "rig identify: no mode could be identified (no impact ringing found around the "
             "impulsive frequencies); give records with a fault"
         )
-    # background table at log-spaced points from 10 Hz to 0.45 fs
+    # background table at log-spaced points from 10 Hz to 0.45 fs, then the roll-off to fs/2
     fb = np.geomspace(10.0, 0.45 * fs, n_background)
     pb = np.exp(np.interp(np.log(fb), np.log(f[1:]), np.log(np.maximum(bg_t[1:], 1e-30))))
+    bg_raw = np.median(np.array(psd_bg), axis=0)
+    top = []
+    for q in ROLL_OFF_POINTS:  # the Nyquist bin itself left out (Welch halves it)
+        w = (f >= (q - ROLL_OFF_HALF_BAND) * fs) & (f <= (q + ROLL_OFF_HALF_BAND) * fs)
+        w[-1] = False
+        top.append(max(float(np.mean(bg_raw[w])), 1e-30))
+    fb = np.concatenate([fb, np.array(ROLL_OFF_POINTS) * fs])
+    pb = np.concatenate([pb, top])
     bg = Background(
         tuple(float(v) for v in fb),
         tuple(float(v) for v in pb),
         f"non-impulsive PSD of each record (Welch, nperseg {nwelch}, times the share "
         f"median/(ln 2 mean) <= 1 of STFT power in segments of {nps} samples), median over "
-        f"{len(records)} records, mean over 1/6 octave, at {n_background} log-spaced points",
+        f"{len(records)} records, mean over 1/6 octave, at {n_background} log-spaced points "
+        f"to 0.45 fs; above, the recorder's roll-off: the mean over +/- {ROLL_OFF_HALF_BAND:g} "
+        f"fs at {', '.join(f'{q:g}' for q in ROLL_OFF_POINTS)} fs",
     )
     # tones at shaft orders: each record's amplitude spectrum (Hann), computed once
     from .signal.spectrum import amplitude_spectrum
