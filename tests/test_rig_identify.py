@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from dataclasses import replace
@@ -214,6 +215,23 @@ def test_a_record_without_impacts_is_refused():
                        channel="y")  # fmt: skip
     with pytest.raises(ConfigError, match="no impulsive content"):
         identify_rig([rec], name="x")
+
+
+def test_a_refusal_without_modes_names_each_band_tried(monkeypatch):
+    """When no impulsive band passes as a mode, the refusal names each band tried and why
+    (exploratory testing, nineteenth session: a DEM outer-race fault through a rig's direct
+    gain, kurtosis 15, was refused with "give records with a fault"). Here every band fails
+    the gain test (the threshold raised out of reach)."""
+    import bearingsim.rig_identify as ri
+
+    monkeypatch.setattr(ri, "MIN_GAIN", 1e9)
+    with pytest.raises(ConfigError) as exc:
+        identify_rig([_impacts()], name="x", max_modes=1)
+    msg = str(exc.value)
+    assert "no mode could be identified" in msg and "\n" not in msg
+    m = re.search(r"\((\d+) Hz \(gain [0-9.e+-]+ over its shoulders, below 1e\+09\)\)", msg)
+    assert m and abs(int(m.group(1)) - 3000) < 100, msg
+    assert "a model's output through a rig's direct gain" in msg
 
 
 def test_a_short_record_is_refused():

@@ -326,7 +326,7 @@ def identify_rig(
     bg_t = _smooth_octave(f, np.median(np.array(psd_bg), axis=0), 1.0 / 6.0)
     mean_psd = np.median(np.array(psd_mean), axis=0)
     mean_psd_s = _smooth_octave(f, mean_psd, 1 / 24)
-    modes, decay = [], []
+    modes, decay, rejected = [], [], []
     for c in sorted(chosen, key=lambda k: f_sk[k]):
         # refine the frequency on the fine Welch grid: the PSD maximum within +/- 1/12 octave
         fc = float(f_sk[c])
@@ -335,6 +335,7 @@ def identify_rig(
         sig = [_decay_rate(x, fs, fn, 0.05 * fn) for x in xs]
         rates = [s for s, n in sig if np.isfinite(s)]
         if not rates:
+            rejected.append(f"{fn:.0f} Hz (no ringing decay after the impacts)")
             continue
         sigma = float(np.median(rates))
         zeta = min(max(sigma / (2 * math.pi * fn), 0.005), 0.5)
@@ -344,12 +345,14 @@ def identify_rig(
             (f > fn + 3 * bwn) & (f < min(2 * fn, 0.45 * fs))
         )
         if np.count_nonzero(sh) < 4:
+            rejected.append(f"{fn:.0f} Hz (no shoulders to measure a resonance against)")
             continue
         coef = np.polyfit(np.log(f[sh]), np.log(bg_s[sh]), 1)
         shoulder = float(np.exp(np.polyval(coef, np.log(fn))))
         peak = float(mean_psd_s[np.argmin(np.abs(f - fn))])
         gain = math.sqrt(peak / shoulder) - 1.0
         if gain < MIN_GAIN:  # no resonance stands out of the shoulders: not a mode of the path
+            rejected.append(f"{fn:.0f} Hz (gain {gain:.2g} over its shoulders, below {MIN_GAIN:g})")
             continue
         modes.append(
             Mode(fn, zeta, gain,
@@ -360,8 +363,10 @@ def identify_rig(
         decay.append({"frequency_hz": fn, "sigma_per_s": sigma, "impacts": sum(n for _, n in sig)})
     if not modes:
         raise ConfigError(
-            "rig identify: no mode could be identified (no impact ringing found around the "
-            "impulsive frequencies); give records with a fault"
+            "rig identify: no mode could be identified: no resonance rings after the impacts "
+            "in the impulsive bands (" + "; ".join(rejected or ["none above 100 Hz"]) + "); give "
+            "records whose faults ring the structure (a model's output through a rig's direct "
+            "gain is broadband spikes, not ringing)"
         )
     # background table at log-spaced points from 10 Hz to 0.45 fs, then the roll-off to fs/2
     fb = np.geomspace(10.0, 0.45 * fs, n_background)
