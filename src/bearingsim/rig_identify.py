@@ -354,6 +354,17 @@ def identify_rig(
         if gain < MIN_GAIN:  # no resonance stands out of the shoulders: not a mode of the path
             rejected.append(f"{fn:.0f} Hz (gain {gain:.2g} over its shoulders, below {MIN_GAIN:g})")
             continue
+        # a resonance holds its level across its half-power band (fn +/- zeta fn, from the
+        # decay); a line of the fault's own harmonic comb is narrower, and averaged over that
+        # band falls to the shoulders
+        held = (f >= fn * (1.0 - zeta)) & (f <= fn * (1.0 + zeta))
+        gain_held = math.sqrt(float(np.mean(mean_psd[held])) / shoulder) - 1.0
+        if gain_held < MIN_GAIN:
+            rejected.append(
+                f"{fn:.0f} Hz (a line, not a resonance: gain {gain_held:.2g} over its shoulders "
+                f"across its half-power band {2 * zeta * fn:.0f} Hz, below {MIN_GAIN:g})"
+            )
+            continue
         modes.append(
             Mode(fn, zeta, gain,
                  f"impulsive-spectrum peak at {fc:.0f} Hz refined on the PSD; zeta from the median "
