@@ -348,9 +348,9 @@ class Scenario:
         if isinstance(rig, str) and rig:  # anything else: _check_rig says what is wrong
             from .rig import load_rig
 
-            fs = load_rig(rig).fs_hz
-            if fs is not None:
-                return fs
+            r = self.__dict__["loaded_rig"] = load_rig(rig)  # _check_rig validates this one
+            if r.fs_hz is not None:
+                return r.fs_hz
         return self.FS_DEFAULT_HZ
 
     def _validate(self) -> None:
@@ -546,7 +546,7 @@ def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
         raise ConfigError(f"rig = {sc.rig!r} is invalid; valid: a rig profile name or TOML file")
     from .rig import load_rig
 
-    r = load_rig(sc.rig)
+    r = sc.__dict__.get("loaded_rig") or load_rig(sc.rig)  # loaded once when it set fs_hz
     r.check_rate(sc.fs_hz)
     if r.input_channel not in channels:
         raise ConfigError(

@@ -422,9 +422,9 @@ class Rig:
             "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
 
     def __post_init__(self) -> None:
-        if self.fs_hz is not None:  # its own modes lie below the Nyquist frequency of its rate
-            rate = check_range("rig.fs_hz", self.fs_hz, 0.0, MAX_RIG_RATE_HZ, lo_open=True,
-                               unit="Hz")  # fmt: skip
+        if self.fs_hz is not None:  # checked here for a file and a rig built in code alike;
+            # its own modes lie below the Nyquist frequency of its rate
+            rate = _check("rig.fs_hz", self.fs_hz, 0.0, MAX_RIG_RATE_HZ, lo_open=True, unit="Hz")
             object.__setattr__(self, "fs_hz", rate)
             for i, m in enumerate(self.modes):
                 if m.frequency_hz >= 0.5 * self.fs_hz:
@@ -460,9 +460,6 @@ class Rig:
             end = d.get("end")
             if end is not None and end not in ("DE", "FE"):
                 raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")
-            fs = d.get("fs_hz")
-            if fs is not None:
-                fs = _check("rig.fs_hz", fs, 0.0, MAX_RIG_RATE_HZ, lo_open=True, unit="Hz")
             gain, gprov = 1.0, cls.gain_provenance
             if "path" in d:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
@@ -500,7 +497,7 @@ class Rig:
                 provenance=prov,
                 input_channel=ch,
                 end=end,
-                fs_hz=fs,
+                fs_hz=d.get("fs_hz"),  # checked in __post_init__
                 gain=gain,
                 gain_provenance=gprov,
                 modes=tuple(Mode.from_dict(m, f"mode[{i}]") for i, m in enumerate(modes)),

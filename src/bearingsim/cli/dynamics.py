@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..config import DEFECT_PROFILES, Model, Solver
+from ..config import DEFECT_PROFILES, Model, Scenario, Solver
 from ..errors import ConfigError, check_range
 from .common import (
     CLEARANCE,
@@ -175,8 +175,6 @@ def _parse_set(items: tuple[str, ...]) -> dict[str, Any]:
 
 
 def _scenario(path: str | None, overrides: dict[str, Any]):
-    from ..config import Scenario
-
     base = Scenario.from_toml(path).to_dict() if path else {}
     extra = _parse_set(overrides.pop("set_keys", ()) or ())
     given = {k: v for k, v in overrides.items() if v is not None}
@@ -223,7 +221,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "fs_hz",
     type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
-    show_default="48000; with --rig: the rate its records had",
+    show_default=f"{Scenario.FS_DEFAULT_HZ:g}; with --rig: the rate its records had",
     help="Output sample rate [Hz].",
 )
 @deprecated("--fs", "--fs-hz")

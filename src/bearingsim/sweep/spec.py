@@ -628,7 +628,8 @@ class SweepSpec:
                 f"{origin}: sweep.zip = {zips!r} is invalid; valid: a list of lists of axis names"
             )
         default_label, default_channels = _FAMILY_DEFAULTS[type(base_sc)]
-        if "rig" in axes_t or getattr(base_sc, "rig", None) is not None:
+        rig_axis = "rig" in axes_t
+        if rig_axis or getattr(base_sc, "rig", None) is not None:
             default_channels += ("acc_sensor",)  # what the sensor records, beside the model's
         channels = sw.get("channels", list(default_channels))
         if channels == "all":
@@ -669,7 +670,7 @@ class SweepSpec:
                 _one_family(base_sc, ax.values, origin)
             axes.append(ax)
         base = base_sc.to_dict()
-        if "fs_hz" in base_sc.auto_keys and any(a.name == "rig" for a in axes):
+        if "fs_hz" in base_sc.auto_keys and rig_axis:
             base["fs_hz"] = None  # unset: each run takes its own rig's rate (config.Scenario)
         return cls(
             base=base,
