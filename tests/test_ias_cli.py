@@ -183,7 +183,7 @@ def test_ias_bad_scenario(capsys, tmp_path):
     sc.write_text("spall_widht_m = 1e-3\n")
     _bad(capsys, ["ias", sc, "-o", tmp_path / "r.nc"], "unknown key 'spall_widht_m'", "valid keys")
     sc.write_text("dt_s = 'fast'\n")
-    _bad(capsys, ["ias", sc, "-o", tmp_path / "r.nc"], "dt_s = 'fast'", "is not a number")
+    _bad(capsys, ["ias", sc, "-o", tmp_path / "r.nc"], "dt_s = 'fast'", "is text")
 
 
 def test_analyze_bad_input(capsys, tmp_path):

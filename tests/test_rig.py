@@ -306,6 +306,40 @@ def test_mode_above_nyquist_is_refused(rig_file):
         rig.apply(np.zeros(100), 6000.0)
 
 
+def test_a_mode_whose_half_power_band_reaches_nyquist_is_refused(tmp_path):
+    """A mode at 3450 Hz with zeta = 0.87 (inside the file's range [1e-6, 1)) at 12 kHz made a
+    digital resonator with a pole outside the unit circle: `simulate` wrote a sensor signal
+    of RMS 3e4 m/s^2 growing without bound, exit 0. Its half-power band reaches
+    f_n (sqrt(1 + z^2) + z) = 7574 Hz, above 6 kHz: refused in one line with the damping
+    range this rate allows, ((r^2 - 1) / 2r, r = 6000/3450: 0.582), before any work; the same
+    mode at 48 kHz runs, and the rig's own fs_hz is held to it."""
+    m = Mode(3450.0, 0.87, 3.0, "test")
+    with pytest.raises(ConfigError) as e:
+        _rig(modes=(m,)).apply(np.zeros(100), 12000.0)
+    msg = str(e.value)
+    assert "\n" not in msg and "mode[0].damping_ratio = 0.87" in msg
+    assert "reaches 7574.41 Hz" in msg and "valid range [1e-06, 0.582065) at this rate" in msg
+    with pytest.raises(ConfigError, match=r"mode\[0\].damping_ratio = 0.87: .* rig's fs_hz"):
+        _rig(modes=(m,), fs_hz=12000.0)
+    # just inside the bound the resonator is stable; at 48 kHz the mode is far from Nyquist
+    zmax = ((6000.0 / 3450.0) ** 2 - 1.0) / (2.0 * 6000.0 / 3450.0)
+    for z, fs in ((0.999 * zmax, 12000.0), (0.87, 48000.0), (0.99, 48000.0)):
+        sos = Mode(3450.0, z, 3.0, "test").sos(fs)
+        assert np.all(np.abs(np.roots(sos[0, 3:])) < 1.0), (z, fs)
+        y = _rig(modes=(Mode(3450.0, z, 3.0, "t"),)).apply(np.r_[1.0, np.zeros(4095)], fs)
+        assert np.all(np.isfinite(y)) and np.abs(y[-100:]).max() < 1e-6 * np.abs(y).max()
+    f = tmp_path / "u.toml"
+    f.write_text(
+        'name = "u"\nprovenance = "p"\n[[mode]]\nfrequency_hz = 3450.0\n'
+        'damping_ratio = 0.87\ngain = 3.0\nprovenance = "p"\n'
+    )
+    out = tmp_path / "u.nc"
+    r = _cli("simulate", "--model", "vsm", "--duration-s", "0.05", "--fs-hz", "12000",
+             "--rig", str(f), "-o", str(out), cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert "damping_ratio = 0.87" in r.stderr and not out.exists()
+
+
 def test_unknown_profile_name_lists_the_shipped_ones():
     with pytest.raises(ConfigError, match="neither a file nor a shipped profile; shipped: "):
         load_rig("no-such-rig")

@@ -164,6 +164,7 @@ def check_range(
     """Validate a finite real number against an interval and return it as ``float``.
 
     A boolean is not a number: ``rpm = true`` in a TOML file is refused, not read as 1 r/min.
+    Nor is text: ``fs_hz = "12000"`` is refused, as rig and bearing files refuse it, not read.
 
     Parameters
     ----------
@@ -182,6 +183,8 @@ def check_range(
     rng = format_range(lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
     if _is_bool(value):
         raise ConfigError(f"{name} = {_fmt(value)} is not a number; valid range {rng}")
+    if isinstance(value, str):  # a number written as text ("12000" in a TOML file)
+        raise ConfigError(f"{name} = {value!r} is text; valid: a number without quotes, {rng}")
     try:
         x = float(value)
     except OverflowError:  # an integer beyond the float range: out of any range

@@ -101,7 +101,6 @@ from .errors import (
     ConfigError,
     check_int,
     check_range,
-    format_range,
     read_toml,
 )
 
@@ -130,17 +129,6 @@ PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 MAX_GAIN = 1e6
 #: largest identification rate a rig file takes [Hz] (a rate a recorder has; 10 MHz)
 MAX_RIG_RATE_HZ = 1e7
-
-
-def _check(name: str, value: Any, *args: Any, **kw: Any) -> float:
-    """:func:`check_range` for a number read from a rig file: a number written as text
-    (``gain = "2"``) is refused, as the file's other types are, instead of being read."""
-    if isinstance(value, str):
-        raise ConfigError(
-            f"{name} = {value!r} is text; valid: a number without quotes "
-            f"({format_range(*args[:2], **kw)})"
-        )
-    return check_range(name, value, *args, **kw)
 
 
 def _provenance(table: dict[str, Any], where: str) -> str:
@@ -189,13 +177,40 @@ class Mode:
     def from_dict(cls, d: Any, where: str) -> Mode:
         d = _keys(d, cls.KEYS, where, required=cls.KEYS[:3])
         return cls(
-            _check(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
-            _check(
+            check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True, unit="Hz"),
+            check_range(
                 f"{where}.damping_ratio", d["damping_ratio"], MIN_DAMPING, 1.0, hi_open=True
             ),  # fmt: skip
-            _check(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
+            check_range(f"{where}.gain", d["gain"], 0.0, MAX_GAIN),
             _provenance(d, where),
         )
+
+    @property
+    def upper_half_power_hz(self) -> float:
+        """Upper half-power frequency of the mode, ``f_n (sqrt(1 + zeta^2) + zeta)`` [Hz] (the
+        band-pass's half-power band is ``2 zeta f_n`` wide, centred geometrically on ``f_n``)."""
+        z = self.damping_ratio
+        return self.frequency_hz * (np.sqrt(1.0 + z * z) + z)
+
+    def check_rate(self, fs: float, where: str) -> None:
+        """Refuse an output rate ``fs`` [Hz] whose Nyquist frequency the mode or its half-power
+        band reaches: the digital resonator of :meth:`sos` has no such band (its poles leave
+        the unit circle once the band is as wide as the Nyquist band, and the signal grows
+        without bound). ``where`` names the mode in the message."""
+        ny = 0.5 * fs
+        if self.frequency_hz >= ny:
+            raise ConfigError(
+                f"{where}.frequency_hz = {self.frequency_hz:g} Hz is at or above the Nyquist "
+                f"frequency of the output rate ({ny:g} Hz); valid range (0, {ny:g}) Hz"
+            )
+        if self.upper_half_power_hz >= ny:
+            r = ny / self.frequency_hz  # f_n (sqrt(1 + z^2) + z) = ny  <=>  z = (r^2 - 1) / 2r
+            raise ConfigError(
+                f"{where}.damping_ratio = {self.damping_ratio:.6g}: the half-power band of the "
+                f"mode at {self.frequency_hz:g} Hz reaches {self.upper_half_power_hz:.6g} Hz, at "
+                f"or above the Nyquist frequency of the output rate ({ny:g} Hz); valid range "
+                f"[{MIN_DAMPING:g}, {(r * r - 1.0) / (2.0 * r):.6g}) at this rate"
+            )
 
     def sos(self, fs: float) -> NDArray[np.float64]:
         """Second-order section of the mode at sample rate ``fs`` [Hz]: the digital resonator
@@ -205,6 +220,7 @@ class Mode:
         narrow the band, by 0.56 at ``f_n = 0.28 fs`` (a ringing decaying too slowly)."""
         from scipy.signal import iirpeak, tf2sos
 
+        self.check_rate(fs, "mode")
         b, a = iirpeak(self.frequency_hz, 1.0 / (2.0 * self.damping_ratio), fs=fs)
         # the gain on the section's numerator after the conversion: the same coefficients,
         # and a gain below ~3e-13 no longer reads as a numerator of leading zeros
@@ -254,7 +270,7 @@ class ModelGain:
         if not fitted:
             return cls(
                 d["model"],
-                _check(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
+                check_range(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
                 _provenance(d, where),
             )
         for k in ("path_gain", "mode_gains"):
@@ -267,8 +283,10 @@ class ModelGain:
             d["model"],
             None,
             _provenance(d, where),
-            _check(f"{where}.path_gain", d["path_gain"], 0.0, MAX_GAIN),
-            tuple(_check(f"{where}.mode_gains[{i}]", v, 0.0, MAX_GAIN) for i, v in enumerate(mg)),
+            check_range(f"{where}.path_gain", d["path_gain"], 0.0, MAX_GAIN),
+            tuple(
+                check_range(f"{where}.mode_gains[{i}]", v, 0.0, MAX_GAIN) for i, v in enumerate(mg)
+            ),
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -310,9 +328,9 @@ class Background:
                 f"{where}: frequency_hz and psd_m2_per_s4_per_hz must be lists of the same "
                 "length, at least 2 points"
             )
-        fv = [_check(f"{where}.frequency_hz[{i}]", v, 0.0, lo_open=True, unit="Hz")
+        fv = [check_range(f"{where}.frequency_hz[{i}]", v, 0.0, lo_open=True, unit="Hz")
               for i, v in enumerate(f)]  # fmt: skip
-        sv = [_check(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, MAX_ACCELERATION**2,
+        sv = [check_range(f"{where}.psd_m2_per_s4_per_hz[{i}]", v, 0.0, MAX_ACCELERATION**2,
                           lo_open=True, unit="(m/s^2)^2/Hz") for i, v in enumerate(s)]  # fmt: skip
         if any(b <= a for a, b in zip(fv, fv[1:], strict=False)):
             k = next(i for i in range(1, len(fv)) if fv[i] <= fv[i - 1])
@@ -373,11 +391,11 @@ class Tone:
             raise ConfigError(f"{where}: give exactly one of order and frequency_hz")
         if "amplitude_m_per_s2" not in d:
             raise ConfigError(f"{where}.amplitude_m_per_s2 is missing")
-        order = (_check(f"{where}.order", d["order"], 0.0, lo_open=True)
+        order = (check_range(f"{where}.order", d["order"], 0.0, lo_open=True)
                  if "order" in d else None)  # fmt: skip
-        freq = (_check(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True,
+        freq = (check_range(f"{where}.frequency_hz", d["frequency_hz"], 0.0, lo_open=True,
                             unit="Hz") if "frequency_hz" in d else None)  # fmt: skip
-        amp = _check(f"{where}.amplitude_m_per_s2", d["amplitude_m_per_s2"], 0.0,
+        amp = check_range(f"{where}.amplitude_m_per_s2", d["amplitude_m_per_s2"], 0.0,
                           MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
         return cls(amp, _provenance(d, where), order, freq)
 
@@ -424,15 +442,17 @@ class Rig:
     def __post_init__(self) -> None:
         if self.fs_hz is not None:  # checked here for a file and a rig built in code alike;
             # its own modes lie below the Nyquist frequency of its rate
-            rate = _check("rig.fs_hz", self.fs_hz, 0.0, MAX_RIG_RATE_HZ, lo_open=True, unit="Hz")
+            rate = check_range(
+                "rig.fs_hz", self.fs_hz, 0.0, MAX_RIG_RATE_HZ, lo_open=True, unit="Hz"
+            )
             object.__setattr__(self, "fs_hz", rate)
             for i, m in enumerate(self.modes):
-                if m.frequency_hz >= 0.5 * self.fs_hz:
+                try:
+                    m.check_rate(self.fs_hz, f"mode[{i}]")
+                except ConfigError as e:
                     raise ConfigError(
-                        f"mode[{i}].frequency_hz = {m.frequency_hz:g} Hz is at or above the "
-                        f"Nyquist frequency of the rig's fs_hz ({0.5 * self.fs_hz:g} Hz); valid "
-                        f"range (0, {0.5 * self.fs_hz:g}) Hz"
-                    )
+                        str(e).replace("the output rate", "the rig's fs_hz")
+                    ) from None
         # a fitted model path replaces every mode's gain: one gain per mode (a file's
         # [[model_gain]] and a rig built in code alike)
         for i, g in enumerate(self.model_gains):
@@ -465,7 +485,7 @@ class Rig:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
                 if "gain" not in p:
                     raise ConfigError("path.gain is missing")
-                gain = _check("path.gain", p["gain"], 0.0, MAX_GAIN)
+                gain = check_range("path.gain", p["gain"], 0.0, MAX_GAIN)
                 gprov = _provenance(p, "path")
             modes = d.get("mode", [])
             if not isinstance(modes, list):
@@ -478,7 +498,7 @@ class Rig:
                 s = _keys(d["sensor"], ("noise_rms_m_per_s2", "provenance"), "sensor")
                 if "noise_rms_m_per_s2" not in s:
                     raise ConfigError("sensor.noise_rms_m_per_s2 is missing")
-                noise = _check("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
+                noise = check_range("sensor.noise_rms_m_per_s2", s["noise_rms_m_per_s2"], 0.0,
                                     MAX_ACCELERATION, unit="m/s^2")  # fmt: skip
                 nprov = _provenance(s, "sensor")
             mg = d.get("model_gain", [])
@@ -596,14 +616,18 @@ class Rig:
         )
 
     def check_rate(self, fs: float) -> None:
-        """Refuse a mode or a fixed-frequency tone at or above the Nyquist frequency of the
-        output rate ``fs`` [Hz], and a background table lying wholly there (it would add
-        nothing). (A tone given as an order is left out of a signal whose shaft
-        speed puts it there, as a recorder's anti-aliasing filter removes it: that depends on
-        the signal, not on the rig.)"""
-        items = [(f"mode[{i}]", m.frequency_hz) for i, m in enumerate(self.modes)]
-        items += [(f"tone[{i}]", t.frequency_hz) for i, t in enumerate(self.tones)
-                  if t.frequency_hz is not None]  # fmt: skip
+        """Refuse a mode (or its half-power band, :meth:`Mode.check_rate`) or a fixed-frequency
+        tone at or above the Nyquist frequency of the output rate ``fs`` [Hz], and a background
+        table lying wholly there (it would add nothing). (A tone given as an order is left out
+        of a signal whose shaft speed puts it there, as a recorder's anti-aliasing filter
+        removes it: that depends on the signal, not on the rig.)"""
+        for i, m in enumerate(self.modes):
+            try:
+                m.check_rate(fs, f"mode[{i}]")
+            except ConfigError as e:
+                raise ConfigError(f"{self.source or self.name}: {e}") from None
+        items = [(f"tone[{i}]", t.frequency_hz) for i, t in enumerate(self.tones)
+                 if t.frequency_hz is not None]  # fmt: skip
         for where, f in items:
             if f >= 0.5 * fs:
                 raise ConfigError(
