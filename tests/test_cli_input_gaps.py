@@ -270,3 +270,28 @@ def test_the_speed_range_quoted_is_the_one_the_run_accepts(run_cli, tmp_path):
         "simulate", "--rpm", "1e6", "--duration-s", "0.01", "-o", tmp_path / "q.nc"
     ).refused()
     assert "valid range (0, 256410] r/min at this fs_hz (above that the rings burst)" in line
+
+
+def test_rig_identify_never_writes_over_a_record_and_writes_toml_only(run_cli, tmp_path):
+    """`rig identify rec.mat -o rec.mat` replaced the measured record with TOML (exit 0), and
+    `-o out.nc` wrote a rig file that `--rig out.nc` would look up as a profile name. Both are
+    refused in one line before any work; the record is left as it was."""
+    import shutil
+
+    rec = tmp_path / "rec.mat"
+    shutil.copy(cwru_record(R132), rec)
+    before = rec.read_bytes()
+    line = run_cli("rig", "identify", rec, "--name", "x", "-o", rec).refused()
+    assert "names no TOML file; valid: a name ending in .toml" in line
+    line = run_cli("rig", "identify", rec, "--name", "x", "-o", tmp_path / "r.nc").refused()
+    assert "-o/--output" in line and "names no TOML file" in line
+    twin = tmp_path / "rec.toml"  # a record that happens to end in .toml
+    shutil.copy(rec, twin)
+    line = run_cli("rig", "identify", twin, "--name", "x", "-o", twin).refused()
+    assert "is the record" in line and "valid: an output apart from the records" in line
+    line = run_cli(
+        "rig", "identify", rec, "--name", "x", "-o", tmp_path / "ok.toml", "--plot", rec
+    ).refused()
+    assert "--plot" in line
+    assert rec.read_bytes() == before and twin.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rec.mat", "rec.toml"]

@@ -105,6 +105,35 @@ def test_read_signal_text_time_speed_and_channel(tmp_path):
         read_signal(p, channel="z")
 
 
+def test_a_time_column_with_a_gap_or_two_rates_is_refused(tmp_path):
+    """A time column jumping 5 s halfway, or at 6 kHz after 12 kHz, was read as one rate from
+    its median step (rig identify wrote fs_hz = 12000 and spectra of the spliced signal, exit
+    0). It is refused in one line naming the column and where; times printed to the
+    microsecond (round-off up to half a step of 83 us) and an fs_hz given beside them read."""
+    rng = np.random.default_rng(0)
+    x = rng.standard_normal(2400)
+    t = np.arange(x.size) / 12000.0
+
+    def csv(name, tt, fmt="%.9f"):
+        f = tmp_path / name
+        np.savetxt(f, np.c_[tt, x], delimiter=",", header="time_s,de", comments="", fmt=fmt)
+        return f
+
+    rec = read_signal(csv("ok.csv", t, "%.6f"))
+    assert rec.fs == pytest.approx(12000.0, rel=1e-3)
+    gap = t.copy()
+    gap[1200:] += 5.0
+    two = t.copy()
+    two[1400:] = t[1400] + np.arange(1000) / 6000.0
+    for name, tt, at in (("gap.csv", gap, "t = 0.0999166"), ("two.csv", two, "t = 0.116833")):
+        for kw in ({}, {"fs_hz": 12000.0}):
+            with pytest.raises(ConfigError) as e:
+                read_signal(csv(name, tt), **kw)
+            msg = str(e.value)
+            assert "\n" not in msg and "the time column 'time_s' is not evenly spaced" in msg
+            assert at in msg and "valid: evenly sampled times at one rate" in msg
+
+
 def test_read_signal_text_needs_fs_or_a_time_column(tmp_path):
     p = tmp_path / "x.txt"
     np.savetxt(p, np.column_stack([np.arange(20.0), np.ones(20)]))

@@ -108,6 +108,18 @@ def identify_cmd(
     from the impulsive spectrum and the ringing decay, background, shaft-order tones; with
     --model-gain, a model-based path gain per model)."""
     check_outputs(("-o/--output", output), ("--plot", plot))
+    if Path(output).suffix.lower() != ".toml":  # `--rig FILE` reads it as a rig file by name
+        raise ConfigError(
+            f"-o/--output = {output!r} names no TOML file; valid: a name ending in .toml (a rig "
+            "file, read back by --rig FILE and rig show)"
+        )
+    inputs = {Path(p).expanduser().resolve(): p for p in records}
+    for option, path in (("-o/--output", output), ("--plot", plot)):
+        if path is not None and Path(path).expanduser().resolve() in inputs:
+            raise ConfigError(
+                f"{option} = {path!r} is the record {inputs[Path(path).expanduser().resolve()]!r}"
+                "; valid: an output apart from the records (writing it would replace one)"
+            )
     from ..io.atomic import atomic_open
     from ..io.signal import read_signal
     from ..rig import Rig

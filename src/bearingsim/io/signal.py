@@ -81,6 +81,33 @@ def _cwru_fs_from_name(name: str) -> float | None:
     return float(m.group(1)) * 1000.0 if m else None
 
 
+#: how far a time column's sample may lie from the even grid through its first and last
+#: samples [sample steps]: a time printed with round-off stays well within it; a gap or a
+#: second rate puts samples whole steps off
+EVEN_TIME_TOL_STEPS = 0.5
+
+
+def _check_even(t: NDArray[np.float64], name: str, file: str) -> None:
+    """Refuse a time column [s] (strictly increasing) that is not evenly spaced: a gap or a
+    change of rate would be read as one rate, so every frequency after it is wrong without a
+    word."""
+    n = t.size - 1
+    if n < 2:
+        return
+    step = (t[-1] - t[0]) / n
+    off = np.abs(t - (t[0] + step * np.arange(t.size))) / step
+    if float(off.max()) > EVEN_TIME_TOL_STEPS:
+        dt = np.diff(t)
+        med = float(np.median(dt))
+        k = int(np.argmax(np.abs(dt - med)))
+        raise ConfigError(
+            f"file = {file!r}: the time column {name!r} is not evenly spaced: the step from "
+            f"t = {t[k]:.9g} s is {dt[k]:.6g} s against a median {med:.6g} s (a gap or a "
+            f"second rate; samples up to {float(off.max()):.3g} steps off an even grid); "
+            "valid: evenly sampled times at one rate"
+        )
+
+
 def read_signal(
     path: str | Path,
     *,
@@ -100,10 +127,11 @@ def read_signal(
       rpm and bearing from the file (``fs_hz``, ``rpm`` override).
     * ``.csv``/``.txt`` (:func:`.read_table`): a time column (named ``time_s``, ``time``,
       ``t``, ``time_ms`` or ``time_us`` — a name ending in ``_ms``/``_us`` is read in that unit
-      —, or the one at index ``time_column``) gives the sample times and fs (from the median
-      step; an ``fs_hz`` that contradicts it by more than 0.1 % is refused, as for a
-      simulation result, sixteenth session: it was taken over the times, and ``rig identify``
-      put modes at 4× their frequencies); a ``speed_hz`` or ``rpm`` column gives a per-sample
+      —, or the one at index ``time_column``) gives the sample times and fs (from the whole
+      span; times not evenly spaced, a gap or a second rate, are refused; an ``fs_hz`` that
+      contradicts it by more than 0.1 % is refused, as for a simulation result, sixteenth
+      session: it was taken over the times, and ``rig identify`` put modes at 4× their
+      frequencies); a ``speed_hz`` or ``rpm`` column gives a per-sample
       shaft speed (order tracking); the signal is the column named ``channel`` or the first
       other one. Without a time column ``fs_hz`` is required.
 
@@ -298,7 +326,11 @@ def _read_text(
         # to 10 significant digits: a time column written in decimals gives its rate with
         # round-off (12000.000000001 Hz for 1/12000 s printed to 18 digits), which a rate does
         # not have and which made a 1 s file 0.99999999 s long
-        fs_t = float(f"{1.0 / float(np.median(dt)):.10g}") if increasing else math.nan
+        # the rate over the whole span, not the median step: times printed to the
+        # microsecond have steps of 83 and 84 us at 12 kHz, whose median read 12048 Hz
+        fs_t = float(f"{(t.size - 1) / float(t[-1] - t[0]):.10g}") if increasing else math.nan
+        if increasing:
+            _check_even(t, header[tcol], p.name)
         if fs is None:
             if not increasing:
                 raise ConfigError(
