@@ -397,6 +397,30 @@ def _analyze_json(files, *extra) -> list[dict]:
     return [json.loads(line) for line in r.stdout.splitlines()]
 
 
+def test_a_scenario_files_unset_rate_follows_the_rig_in_force(tmp_path):
+    """A scenario file's rig gives its rate as a listed default, and a --rig option over the
+    file gives its own: the file's rig (48 kHz profile) pinned 48 kHz under --rig cwru-de-12k,
+    and `simulate s.toml --json` left fs_hz out of realism_defaults (it listed it with the
+    option). A rate the file gives is kept."""
+    import json
+
+    base = 'model = "vsm"\nfault = "ball"\nduration_s = 0.05\nrig = "cwru-de-48k"\n'
+    (tmp_path / "s.toml").write_text(base)
+    (tmp_path / "t.toml").write_text(base.replace("cwru-de-48k", "cwru-de-12k"))
+    (tmp_path / "f.toml").write_text(base + "fs_hz = 24000.0\n")
+    # (48 kHz is also the default without a rig: not listed as a rig's default)
+    twelve = ("--rig", "cwru-de-12k")
+    cases = (("s.toml", (), 48000.0, False), ("s.toml", twelve, 12000.0, True),
+             ("t.toml", (), 12000.0, True), ("f.toml", twelve, 24000.0, False))  # fmt: skip
+    for name, extra, fs, listed in cases:
+        out = tmp_path / "o.nc"
+        r = _cli("simulate", name, *extra, "--json", "-o", str(out), cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        real = json.loads(r.stdout).get("realism_defaults", {})
+        assert ("fs_hz" in real) is listed and real.get("fs_hz", fs) == fs, (name, extra, real)
+        assert load_result(out).fs_hz == fs, (name, extra)
+
+
 def test_through_the_shipped_rig_analyze_reads_the_sensor(tmp_path):
     """Issue 16: a healthy simulation through the rig is diagnosed "none", a ball defect
     "ball" (ring models, 2 s at 12 kHz through cwru-de-12k, the profile identified from the

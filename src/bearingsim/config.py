@@ -362,15 +362,21 @@ class Scenario:
         """Number of output samples ``round(duration_s * fs_hz)`` [-]."""
         return int(round(self.duration_s * self.fs_hz))
 
-    def to_dict(self) -> dict[str, Any]:
-        """Every key as a plain TOML/JSON value, in documentation order (``None`` = default)."""
+    def to_dict(self, rate: bool = True) -> dict[str, Any]:
+        """Every key as a plain TOML/JSON value, in documentation order (``None`` = default).
+
+        Keys the scenario resolved itself (:attr:`auto_keys`) are written ``None``, except the
+        output rate ``fs_hz``, which stays a number (result and sweep readers take it from
+        here) unless ``rate`` is false: the unset form, for a scenario to be completed and
+        resolved again (a scenario file under command-line options, a sweep's base under a
+        ``rig`` axis), where another rig may give another rate."""
         d = dataclasses.asdict(self)
         out = {k: d[k] for k in self.KEYS}
         for k, v in out.items():
             if isinstance(v, enum.Enum):
                 out[k] = v.value
         for k in self.auto_keys:  # resolved from the rig: the default again
-            if k != "fs_hz":  # the output's rate stays a number (readers take it from here)
+            if k != "fs_hz" or not rate:
                 out[k] = None
         return out
 

@@ -175,7 +175,8 @@ def _parse_set(items: tuple[str, ...]) -> dict[str, Any]:
 
 
 def _scenario(path: str | None, overrides: dict[str, Any]):
-    base = Scenario.from_toml(path).to_dict() if path else {}
+    # unset keys stay unset (the rate too): an option's rig gives its own rate and defaults
+    base = Scenario.from_toml(path).to_dict(rate=False) if path else {}
     extra = _parse_set(overrides.pop("set_keys", ()) or ())
     given = {k: v for k, v in overrides.items() if v is not None}
     clash = sorted(set(extra) & set(given))

@@ -669,9 +669,7 @@ class SweepSpec:
             if key == "model":
                 _one_family(base_sc, ax.values, origin)
             axes.append(ax)
-        base = base_sc.to_dict()
-        if "fs_hz" in base_sc.auto_keys and rig_axis:
-            base["fs_hz"] = None  # unset: each run takes its own rig's rate (config.Scenario)
+        base = base_sc.to_dict(rate=not rig_axis)  # a rig axis: each run takes its rig's rate
         return cls(
             base=base,
             axes=tuple(axes),
