@@ -184,6 +184,25 @@ def _spectral_kurtosis(x, fs, nperseg):
     return f, sk, m2, share
 
 
+def _psd_peak(f, psd, fc):
+    """The frequency [Hz] of the resonance an impulsive band at ``fc`` [Hz] points to: the
+    maximum of the smoothed PSD ``psd`` on the grid ``f`` within +/- 1/12 octave when it lies
+    inside that window; when it lies on the window's edge the PSD still climbs there and the
+    window holds no peak (the band sits between two resonances, or on one's flank): then the
+    highest local maximum within +/- 1/6 octave, or None if there is none."""
+    from scipy.signal import find_peaks
+
+    idx = np.flatnonzero((f >= fc * 2 ** (-1 / 12)) & (f <= fc * 2 ** (1 / 12)))
+    k = int(idx[np.argmax(psd[idx])])
+    if idx[0] < k < idx[-1]:
+        return float(f[k])
+    wide = np.flatnonzero((f >= fc * 2 ** (-1 / 6)) & (f <= fc * 2 ** (1 / 6)))
+    peaks, _ = find_peaks(psd[wide])
+    if peaks.size == 0:
+        return None
+    return float(f[wide[peaks[np.argmax(psd[wide][peaks])]]])
+
+
 def _smooth_octave(f, y, frac):
     """Mean over ``[f 2^(-frac/2), f 2^(frac/2)]`` at each frequency."""
     out = np.empty_like(y)
@@ -330,8 +349,13 @@ def identify_rig(
     for c in sorted(chosen, key=lambda k: f_sk[k]):
         # refine the frequency on the fine Welch grid: the PSD maximum within +/- 1/12 octave
         fc = float(f_sk[c])
-        band = (f >= fc * 2 ** (-1 / 12)) & (f <= fc * 2 ** (1 / 12))
-        fn = float(f[band][np.argmax(mean_psd_s[band])])
+        fn = _psd_peak(f, mean_psd_s, fc)
+        if fn is None:
+            rejected.append(
+                f"{fc:.0f} Hz (no PSD peak within 1/6 octave: an impulsive band between "
+                "resonances)"
+            )
+            continue
         sig = [_decay_rate(x, fs, fn, 0.05 * fn) for x in xs]
         rates = [s for s, n in sig if np.isfinite(s)]
         if not rates:
