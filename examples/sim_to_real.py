@@ -307,7 +307,7 @@ def build_datasets(
     if got is not None:
         out, attrs = got
         return out, attrs | {"rigs": rigs}
-    check_cache_location(Path(cache))  # before minutes of simulation, not after them
+    check_cache_location(Path(cache), path)  # before minutes of simulation, not after them
     print(
         f"building the training set: {len(runs)} simulations through {len(names)} rig set(s) "
         f"(minutes; cached at {path})",
@@ -325,12 +325,12 @@ def build_datasets(
     tmp = Path(tempfile.mkdtemp(dir=cache, prefix=".sim_to_real."))
     try:
         g = zarr.open_group(str(tmp / "g.zarr"), mode="w")
-        g.create_array("y", data=y)
-        for n in names:
-            g.create_array(f"X_{n}", data=X[n])
-            g.create_array(f"mask_{n}", data=mask[n])
+        arrays = {"y": y} | {f"X_{n}": X[n] for n in names} | {f"mask_{n}": mask[n] for n in names}
+        for k, a in arrays.items():
+            g.create_array(k, data=a)
         g.attrs.update(
             {
+                "sha256": _digest(arrays),
                 "grid": grid_key,
                 "keys": keys,
                 "sets": names,
@@ -345,9 +345,17 @@ def build_datasets(
         elif path.exists():
             shutil.rmtree(path)
         (tmp / "g.zarr").rename(path)
+    except OSError as exc:  # the dataset is made: use it uncached rather than lose it
+        from bearingsim.errors import exception_text
+
+        print(
+            f"warning: cache {path} could not be written ({exception_text(exc)}); the dataset "
+            "is used without caching",
+            file=sys.stderr,
+        )
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
+    size = sum(p.stat().st_size for p in path.rglob("*") if p.is_file()) if path.is_dir() else 0
     print(
         f"dataset: {len(runs)} simulations through {len(names)} rig set(s) "
         f"({', '.join(names)}) in {gen_s:.1f} s, {size / 1e3:.0f} kB at {path}",
@@ -413,9 +421,23 @@ class CacheLocationError(Exception):
     """The cache location cannot hold the dataset (one line naming it)."""
 
 
-def check_cache_location(cache: Path) -> None:
+def _digest(arrays: dict) -> str:
+    """SHA-256 of the named arrays (name, dtype, shape and bytes, in name order): a changed
+    byte of a chunk (the store's compressor keeps no checksum) must not train silently."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for k in sorted(arrays):
+        a = np.ascontiguousarray(arrays[k])
+        h.update(f"{k}|{a.dtype.str}|{a.shape}|".encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def check_cache_location(cache: Path, store: Path | None = None) -> None:
     """Raise :class:`CacheLocationError` unless ``cache`` is, or can be created as, a writable
-    folder (checked before any simulation: the failure would otherwise come minutes later)."""
+    folder, in which a folder can be made, and an old ``store`` there can be replaced (checked
+    before any simulation: the failure would otherwise come minutes later). Creates ``cache``."""
     cache = Path(cache)
     probe = cache
     while not probe.exists():  # the nearest existing ancestor must be a writable folder
@@ -432,6 +454,25 @@ def check_cache_location(cache: Path) -> None:
             f"--cache = {str(cache)!r} is not writable ({str(probe)!r} denies it); valid: a "
             "writable folder (or one that can be created)"
         )
+    from bearingsim.errors import exception_text
+
+    try:  # what the write will do: a folder (e.g. /sys passes the access test, refuses this)
+        cache.mkdir(parents=True, exist_ok=True)
+        Path(tempfile.mkdtemp(dir=cache, prefix=".sim_to_real.probe.")).rmdir()
+    except OSError as exc:
+        raise CacheLocationError(
+            f"--cache = {str(cache)!r} is not writable ({exception_text(exc)}); valid: a "
+            "writable folder (or one that can be created)"
+        ) from None
+    if store is not None and store.is_dir() and not store.is_symlink():
+        locked = [q for q in (store, *store.rglob("*")) if q.is_dir()
+                  and not os.access(q, os.W_OK | os.X_OK)]  # fmt: skip
+        if locked:
+            raise CacheLocationError(
+                f"--cache = {str(cache)!r}: the old dataset {str(store)!r} cannot be replaced "
+                f"({str(locked[0])!r} is not writable); valid: a cache whose dataset this user "
+                "may replace (or another --cache)"
+            )
 
 
 def read_cache(path: Path, names: list, keys: dict, n_runs: int):
@@ -453,8 +494,11 @@ def read_cache(path: Path, names: list, keys: dict, n_runs: int):
             raise CacheDamaged(f"attribute keys = {type(stored).__name__}; valid: a mapping")
         if not all(stored.get(n) == keys[n] for n in names):
             return None  # another grid or other rigs: rebuilt silently, as always
+        sets = g.attrs.get("sets", names)  # every set written: the digest covers them all
+        if not isinstance(sets, list) or not set(names) <= set(sets):
+            raise CacheDamaged(f"attribute sets = {sets!r}; valid: a list naming {names}")
         arrays = {}
-        for name in ["y", *(f"{k}_{n}" for n in names for k in ("X", "mask"))]:
+        for name in ["y", *(f"{k}_{n}" for n in sets for k in ("X", "mask"))]:
             if name not in g:
                 raise CacheDamaged(f"array {name!r} is missing")
             a = g[name]
@@ -469,6 +513,11 @@ def read_cache(path: Path, names: list, keys: dict, n_runs: int):
     except Exception as exc:  # whatever the reader raises on a damaged store is one line
         why = " ".join(str(exc).split())[:200] or type(exc).__name__
         raise CacheDamaged(f"{type(exc).__name__}: {why}") from None
+    if attrs.get("sha256") != _digest(arrays):
+        raise CacheDamaged(
+            "its arrays do not match their SHA-256 digest" if "sha256" in attrs
+            else "it has no SHA-256 digest (written before the cache carried one)"
+        )  # fmt: skip
     y = arrays["y"]
     if y.shape != (n_runs,) or y.dtype.kind not in "iu":
         raise CacheDamaged(f"y has shape {y.shape}, {y.dtype}; valid: ({n_runs},) integers")
@@ -620,6 +669,7 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
             x, fs, rpm_used, source, bearing = _record(
                 p, rpm, channel=channel, fs_hz=fs_hz, info=info
             )
+            warn = _length_warning(x, fs) + _speed_warning(x, fs, rpm_used, rpm)
             segs = segments(x, fs)
             feats = []
             for k, seg in enumerate(segs):
@@ -646,11 +696,45 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
              "rpm_source": source, "fs_hz": fs,
              "fs_source": info["fs_source"]}  # fmt: skip
         if not (lo * (1.0 - RPM_MARGIN) <= rpm_used <= hi * (1.0 + RPM_MARGIN)):
-            o["warning"] = (
+            warn.append(
                 f"rpm = {rpm_used:g} r/min is outside the trained speeds ({lo:g}-{hi:g} r/min, "
                 f"+/- {100 * RPM_MARGIN:g} %); the label is an extrapolation"
             )
+        if warn:
+            o["warning"] = "; ".join(warn)
         yield o
+
+
+def _length_warning(x, fs: float) -> list[str]:
+    """A warning for a record shorter than the simulations (:data:`DURATION_S`): its lines
+    stand lower over the envelope spectrum's floor than the training set's (:func:`segments`),
+    so a fault reads weaker (CWRU records cut to 0.25 s: 13 of 34 right, against 25 whole)."""
+    t = np.asarray(x).size / fs
+    if t >= DURATION_S * (1.0 - 1e-9):
+        return []
+    return [
+        f"the record is {t:.3g} s long, shorter than the {DURATION_S:g} s the classifier was "
+        "trained on: its fault lines stand lower over the floor, the label is less reliable"
+    ]
+
+
+def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> list[str]:
+    """A warning when a speed given (``--rpm``) is refuted by the record's own shaft harmonics
+    (:func:`bearingsim.signal.contact_angle.refuted_speed`): the features read the fault lines
+    at the wrong speed (record 109 at --rpm 1730 instead of its 1796 r/min read "outer")."""
+    if rpm_option is None:
+        return []
+    from bearingsim.signal.contact_angle import refuted_speed
+
+    c = refuted_speed(x, fs, rpm_used / 60.0)
+    if c is None:
+        return []
+    own = 60.0 * c.shaft_hz
+    return [
+        f"rpm = {rpm_used:g} r/min: the record's shaft harmonics put its speed at {own:.6g} "
+        f"r/min ({100.0 * (own / rpm_used - 1.0):+.2f} %); the fault lines were read at the "
+        "wrong speed (check --rpm)"
+    ]
 
 
 def _profile(end: str, fs: float) -> str | None:

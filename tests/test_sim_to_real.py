@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -262,7 +263,22 @@ def _damage_cases():
         "one class": lambda z: write(z, "y", np.zeros_like),
         "labels out of range": lambda z: write(z, "y", lambda v: v + 7),
         "mask cleared": lambda z: write(z, "mask_shipped", np.zeros_like),
+        # exploratory testing, twentieth session: a flipped byte decoded to other labels (12 of
+        # 544: five CWRU verdicts changed) or features, which every check above let through
+        "a label changed": lambda z: write(z, "y", lambda v: np.r_[(v[0] + 1) % 4, v[1:]]),
+        "a feature changed": lambda z: write(z, "X_shipped", lambda v: v + (v == v[0, 0]) * 1e-3),
+        "digest removed": lambda z: _drop_attr(z, "sha256"),
     }
+
+
+def _drop_attr(z, key):
+    import zarr
+
+    g = zarr.open_group(str(z), mode="r+")
+    attrs = dict(g.attrs)
+    attrs.pop(key)
+    g.attrs.clear()
+    g.attrs.update(attrs)
 
 
 @pytest.mark.parametrize("case", list(_damage_cases()))
@@ -315,6 +331,40 @@ def test_an_unwritable_cache_location_fails_before_simulating(small, tmp_path, m
     )  # fmt: skip
     assert r.returncode == 2 and r.stdout == ""
     assert r.stderr.startswith("error: --cache = ") and r.stderr.count("\n") == 1
+
+
+def test_a_cache_whose_old_dataset_cannot_be_replaced_fails_before_simulating(
+    small, tmp_path, monkeypatch
+):
+    """Exploratory testing (twentieth session): a damaged dataset this user may not remove was
+    found only at the write, after minutes of simulation (a PermissionError traceback, no
+    label). Now a one-line error first; and a write that still fails keeps the dataset for
+    this call, with a warning, instead of losing it."""
+    monkeypatch.setattr(small, "simulate_runs", _fake_runs)
+    X, y, _ = small.build_dataset(tmp_path, progress=False)
+    store = tmp_path / "sim_to_real.zarr"
+    (store / "y" / "c" / "0").unlink()  # damaged: to be rebuilt and replaced
+    real = os.access
+    monkeypatch.setattr(
+        small.os, "access", lambda q, m: False if Path(q) == store / "y" else real(q, m)
+    )
+
+    def boom(*a, **k):
+        raise AssertionError("simulated before the location was checked")
+
+    with monkeypatch.context() as m:
+        m.setattr(small, "simulate_runs", boom)
+        with pytest.raises(small.CacheLocationError, match="the old dataset .* cannot be replaced"):
+            small.build_dataset(tmp_path, progress=False)
+    monkeypatch.setattr(small.os, "access", real)
+
+    def no_rmtree(p, ignore_errors=False):
+        if not ignore_errors:
+            raise PermissionError(13, "Permission denied", str(p))
+
+    monkeypatch.setattr(small.shutil, "rmtree", no_rmtree)
+    X2, y2, _ = small.build_dataset(tmp_path, progress=False)
+    assert np.array_equal(X, X2) and np.array_equal(y, y2)
 
 
 def _signal(seconds=1.0, fs=12000.0):
@@ -386,6 +436,37 @@ def test_a_speed_outside_the_trained_ones_carries_a_warning(small, tmp_path):
     (o,) = small.predict(_Stub(), [path], 600.0)
     assert o["predicted"] and "outside the trained speeds" in o["warning"]
     assert "1750-1797" in o["warning"]  # the small grid's speeds
+
+
+def test_the_readers_options_cannot_overrule_what_the_record_confirms(small, tmp_path):
+    """Exploratory testing (twentieth session), each silent before, exit 0:
+    * --rpm 1730 on the 48 kHz record 109 (1796 r/min in the file) switched its rate to
+      12 kHz ("inferred from the shaft lines", checked at the wrong speed) and read "none";
+      the name's rate is now checked at the file's own speed, and the label carries a warning
+      that the record's shaft harmonics refute the speed given;
+    * --fs-hz 48000 on a record named 12k that its shaft lines confirm read "none": refused;
+    * --channel time_s read the time column as the signal: refused, naming the columns;
+    * a record shorter than the training length is labelled with a warning."""
+    (o,) = small.predict(_Stub(), [CWRU / "48k_Drive_End_IR007_0_109.mat"], 1730.0)
+    assert o["fs_hz"] == 48000.0 and o["fs_source"] == "file name"
+    assert "shaft harmonics put its speed at 1797" in o["warning"]
+    (o,) = small.predict(_Stub(), [CWRU / "48k_Drive_End_IR007_0_109.mat"])
+    assert "warning" not in o
+    (o,) = small.predict(_Stub(), [CWRU / "12k_Drive_End_IR007_2_107.mat"], fs_hz=48000.0)
+    assert o["predicted"] is None and "contradicts the rate in the name" in o["error"]
+    (o,) = small.predict(_Stub(), [CWRU / "12k_Drive_End_IR007_2_107.mat"], fs_hz=12000.0)
+    assert o["predicted"] and "warning" not in o
+    y = _signal(0.25)["acc_y"]
+    f = tmp_path / "two.csv"
+    t = np.arange(y.size) / 12000.0
+    np.savetxt(f, np.c_[t, y], delimiter=",", header="time_s,de", comments="")
+    (o,) = small.predict(_Stub(), [f], 1750.0, channel="time_s")
+    assert "'time_s' is the time or speed column of two.csv; valid: de" in o["error"]
+    (o,) = small.predict(_Stub(), [f], 1750.0)
+    assert (
+        o["predicted"]
+        and f"is 0.25 s long, shorter than the {small.DURATION_S:g} s" in o["warning"]
+    )
 
 
 def test_a_piece_that_fails_is_named(small, tmp_path, monkeypatch):

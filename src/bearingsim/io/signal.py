@@ -186,12 +186,17 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
     if r is not None:
         info["rpm_source"] = "option" if rpm is not None else "file"
         r = check_positive("rpm", r, "r/min")
+    named = _cwru_fs_from_name(p.name)
     if fs is None:
-        fs = _cwru_fs_from_name(p.name)
+        fs = named
         info["fs_source"] = "file name"
     else:
         info["fs_source"] = "option"
     x = rec.acceleration(ch)
+    # the speed a named rate is checked at: the file's own (X###RPM), else the name's nominal
+    # one, else the option (a wrong --rpm must not overrule a rate the record confirms)
+    nominal = cwru_nominal_rpm(p.name)
+    check_speed = rec.rpm if rec.rpm is not None else (nominal[1] if nominal else r)
 
     def flat() -> None:  # no shaft line to read a rate off: say what the record is
         if x.size and np.all(x == x[0]):
@@ -211,13 +216,19 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
         fs, why = infer_cwru_fs(x, r)
         info["fs_source"] = f"inferred from the shaft lines ({why})"
     elif info["fs_source"] == "file name":  # the name's rate, unless the shaft lines refute it
-        nominal = cwru_nominal_rpm(p.name)
-        speed = r if r is not None else (nominal[1] if nominal else None)
-        if speed is not None:
+        if check_speed is not None:
             flat()
-            fs, why = check_cwru_name_rate(x, fs, speed)
+            fs, why = check_cwru_name_rate(x, fs, check_speed)
             if why is not None:
                 info["fs_source"] = f"inferred from the shaft lines ({why})"
+    elif named is not None and float(fs) != named:  # an option against the name's rate
+        refuted = check_speed is not None and check_cwru_name_rate(x, named, check_speed)[1]
+        if not refuted:
+            raise ConfigError(
+                f"fs_hz = {float(fs):.6g} Hz contradicts the rate in the name of {p.name!r} "
+                f"({named / 1000.0:g}k), which its shaft lines do not refute; valid: no "
+                "--fs-hz for a CWRU file whose name gives its rate, or that rate"
+            )
     return SignalRecord(
         x,
         check_positive("fs_hz", fs, "Hz"),
@@ -359,9 +370,11 @@ def _read_text(
         speed = data[:, rcol] / 60.0
     skip = {c for c in (tcol, scol, rcol) if c is not None}
     if channel is not None:
-        if channel.lower() not in cols:
+        # the time and speed columns are read as such, not as a signal
+        if channel.lower() not in cols or cols[channel.lower()] in skip:
+            what = "not in" if channel.lower() not in cols else "is the time or speed column of"
             raise ConfigError(
-                f"channel = {channel!r} not in {p.name}; valid: "
+                f"channel = {channel!r} {what} {p.name}; valid: "
                 + ", ".join(h for i, h in enumerate(header) if i not in skip)
             )
         xcol = cols[channel.lower()]
