@@ -352,8 +352,7 @@ def identify_rig(
         fn = _psd_peak(f, mean_psd_s, fc)
         if fn is None:
             rejected.append(
-                f"{fc:.0f} Hz (no PSD peak within 1/6 octave: an impulsive band between "
-                "resonances)"
+                f"{fc:.0f} Hz (no PSD peak within 1/6 octave: an impulsive band between resonances)"
             )
             continue
         sig = [_decay_rate(x, fs, fn, 0.05 * fn) for x in xs]
