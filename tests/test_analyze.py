@@ -3,6 +3,8 @@ three models; bad input."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from conftest import cwru_record
@@ -239,14 +241,19 @@ def test_empty_bearing_and_channel_refused(tmp_path, capsys):
     assert "channel = '' not in x_12k.mat" in _run_bad(capsys, [mat, "--channel", ""])
 
 
-def test_bad_band_and_options(capsys):
+def test_bad_band_and_options(capsys, tmp_path):
     f = _cwru("109")
     msg = _run_bad(capsys, [f, "--band-hz", "1000", "30000"])
     assert "band_hz high = 30000 Hz is above the Nyquist frequency" in msg
     assert "fs too low for the requested band" in msg
     assert "band" in _run_bad(capsys, [f, "--band-hz", "low"])
     assert "rpm = -3 r/min is out of range" in _run_bad(capsys, [f, "--rpm", "-3"])
+    # --fs-hz against the 48k its name gives (and its shaft lines confirm) is refused as such
     msg = _run_bad(capsys, [f, "--fs-hz", "1000"])
+    assert "fs_hz = 1000 Hz contradicts the rate in the name of" in msg and "(48k)" in msg
+    unnamed = tmp_path / "109.mat"  # the CWRU site's own name: no rate in it
+    unnamed.write_bytes(Path(f).read_bytes())
+    msg = _run_bad(capsys, [unnamed, "--fs-hz", "1000"])
     assert "fs_hz = 1000 Hz is too low for an envelope band" in msg
 
 

@@ -9,7 +9,8 @@ not known. What can be identified from them, and how:
    2006, MSSP 20) marks those frequencies; the impulsive part of the power spectrum is taken as
    ``E(f) = max(SK(f), 0) PSD(f)``, averaged over the records (each normalised to its total).
    The largest peaks of the smoothed ``E`` are the modes (``max_modes``, at least a factor
-   ``min_separation`` apart in frequency).
+   ``min_separation`` apart in frequency), each refined to a peak of the PSD
+   (:func:`_psd_peak`).
 2. **Damping** -- from the decay of the ringing after each impact: the signal is band-passed
    around the mode (zero-phase Butterworth, the band at least 5 half-power bandwidths wide so
    the filter's own ringing is short), its envelope (Hilbert) is cut after each impact (the
