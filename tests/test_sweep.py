@@ -712,4 +712,52 @@ def test_a_rig_axis_samples_each_run_at_its_rigs_rate_and_stores_the_sensor(clie
     based = SweepSpec.from_dict(
         {"base": {"model": "vsm", "rig": "cwru-de-12k"}, "axes": {"seed": [0, 1]}}, origin="b"
     )
-    assert based.channels == ("acc_x", "acc_y", "acc_sensor") and based.base["fs_hz"] == 12000.0
+    assert based.channels == ("acc_x", "acc_y", "acc_sensor") and based.base["fs_hz"] is None
+    assert [sc.fs_hz for sc in based.scenarios()] == [12000.0, 12000.0]
+
+
+def test_a_sweeps_rig_gives_its_rate_from_a_base_file_and_beside_the_sweep_file(
+    tmp_path, monkeypatch
+):
+    """Exploratory testing (twentieth session), each written silently before:
+    * a base_file without fs_hz pinned 48 kHz, so a rig axis (or a rig in [base]) over it ran
+      at 48 kHz with a RigRateWarning; now each run takes its rig's rate;
+    * a rig file named in the sweep was looked up from the working directory (a decoy there
+      was used); it is now taken beside the sweep file, as bearing_file is;
+    * a folder named like a shipped profile (a sweep's own -o cwru-de-12k) hid the profile;
+    * with a rig in [base] the runs' recorded defaults left the rate out."""
+    import shutil
+
+    from bearingsim.rig import PROFILES_DIR
+
+    (tmp_path / "plain.toml").write_text('model = "vsm"\nduration_s = 0.1\nfault = "outer"\n')
+    (tmp_path / "axis.toml").write_text(
+        '[sweep]\nbase_file = "plain.toml"\n[axes]\nrig = ["cwru-de-12k", "cwru-de-48k"]\n'
+    )
+    (tmp_path / "based.toml").write_text(
+        '[sweep]\nbase_file = "plain.toml"\n[base]\nrig = "cwru-de-12k"\n[axes]\nseed = [0]\n'
+    )
+    assert [sc.fs_hz for sc in SweepSpec.from_toml(tmp_path / "axis.toml").scenarios()] == [
+        12000.0, 48000.0
+    ]  # fmt: skip
+    (sc,) = SweepSpec.from_toml(tmp_path / "based.toml").scenarios()
+    assert sc.fs_hz == 12000.0 and sc.defaults_record["keys"]["fs_hz"] == 12000.0
+    rel = tmp_path / "rel"
+    rel.mkdir()
+    shutil.copy(PROFILES_DIR / "cwru-fe-12k.toml", rel / "myrig.toml")
+    shutil.copy(PROFILES_DIR / "cwru-de-48k.toml", tmp_path / "myrig.toml")  # the decoy
+    (rel / "s.toml").write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.1\nrig = "myrig.toml"\n[axes]\nseed = [0]\n\n'
+    )
+    (rel / "a.toml").write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.1\n[axes]\nrig = ["myrig.toml"]\n'
+    )
+    monkeypatch.chdir(tmp_path)
+    for name in ("s.toml", "a.toml"):
+        (sc,) = SweepSpec.from_toml(rel / name).scenarios()
+        assert sc.fs_hz == 12000.0 and sc.rig == str(rel / "myrig.toml"), name
+    (tmp_path / "cwru-de-12k").mkdir()  # e.g. a sweep's output folder of that name
+    spec = SweepSpec.from_dict(
+        {"base": {"model": "vsm", "duration_s": 0.1, "rig": "cwru-de-12k"}}, origin="x"
+    )
+    assert spec.scenario(0).fs_hz == 12000.0

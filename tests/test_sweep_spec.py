@@ -260,3 +260,25 @@ def test_bad_spec_files(tmp_path):
     bad.write_text("[axes\nrpm = 1")
     with pytest.raises(ConfigError, match=r"sweep file '.*bad.toml' is not valid TOML"):
         SweepSpec.from_toml(bad)
+
+
+def test_repeated_axis_values_are_refused_unless_each_run_has_its_own_seed():
+    """Exploratory testing (twentieth session): ``fault = ["outer", "outer"]`` (or ``fs_hz =
+    [12000, 12000.0]``) planned two identical runs, bit for bit, which a random split put on
+    both sides. Refused in one line naming the axis and the positions; a zip group repeats a
+    value legitimately as long as its rows differ; with per_run_seed each run differs."""
+    base = {"model": "vsm", "duration_s": 0.05}
+    for axes, pos in (({"fault": ["outer", "outer"]}, "(values 0 and 1)"),
+                      ({"fs_hz": [12000, 24000.0, 12000.0]}, "(values 0 and 2)")):  # fmt: skip
+        with pytest.raises(ConfigError) as e:
+            SweepSpec.from_dict({"base": base, "axes": axes}, origin="t.toml")
+        msg = str(e.value)
+        assert "\n" not in msg and pos in msg and "valid: distinct values" in msg
+    zipped = {"sweep": {"zip": [["fault", "rpm"]]}, "base": base,
+              "axes": {"fault": ["outer", "outer"], "rpm": [1700.0, 1750.0]}}  # fmt: skip
+    assert SweepSpec.from_dict(zipped, origin="z").n_runs == 2
+    zipped["axes"]["rpm"] = [1700.0, 1700]
+    with pytest.raises(ConfigError, match=r"axis fault and rpm repeats 'outer', 1700"):
+        SweepSpec.from_dict(zipped, origin="z")
+    seeded = {"sweep": {"per_run_seed": True}, "base": base, "axes": {"fault": ["outer"] * 2}}
+    assert SweepSpec.from_dict(seeded, origin="s").n_runs == 2

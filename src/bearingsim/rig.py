@@ -714,9 +714,11 @@ def available_rigs() -> list[str]:
 
 
 def load_rig(name_or_path: str | Path) -> Rig:
-    """A rig from a shipped profile name or a TOML file (validated; one-line errors)."""
+    """A rig from a shipped profile name or a TOML file (validated; one-line errors). A name
+    without ``.toml`` is a file where one exists, else a shipped profile; a folder of that
+    name (e.g. a sweep's output ``-o cwru-de-12k``) does not hide the profile."""
     p = Path(name_or_path)
-    if p.suffix.lower() != ".toml" and not p.exists():
+    if p.suffix.lower() != ".toml" and not p.is_file():
         shipped = PROFILES_DIR / f"{name_or_path}.toml"
         if not shipped.exists():
             names = available_rigs()

@@ -328,6 +328,25 @@ def _random_values(name: str, d: dict[str, Any], seed: int, origin: str) -> list
     return np.exp(rng.uniform(math.log(lo), math.log(hi), size=n)).tolist()
 
 
+def _same(v: Any) -> Any:
+    """A hashable key under which equal axis values are equal (``12000`` and ``12000.0``)."""
+    if isinstance(v, bool) or v is None or isinstance(v, str):
+        return (type(v).__name__, v)
+    if isinstance(v, int | float):
+        return ("num", float(v))
+    if isinstance(v, list | tuple):
+        return ("seq", tuple(_same(x) for x in v))
+    if isinstance(v, dict):
+        return ("map", tuple(sorted((k, _same(x)) for k, x in v.items())))
+    return ("other", repr(v))
+
+
+def _rig_file(v: Any) -> bool:
+    """A ``rig`` value naming a rig file by a relative path (``*.toml``), which a sweep or
+    scenario file takes relative to itself (a profile name or an absolute path is kept)."""
+    return isinstance(v, str) and v.lower().endswith(".toml") and not Path(v).is_absolute()
+
+
 @dataclass(frozen=True)
 class SweepSpec:
     """A validated sweep: base scenario, axes and how they combine.
@@ -417,6 +436,21 @@ class SweepSpec:
             raise ConfigError(
                 f"{o}: number of runs = {n} is too large; valid range [1, {MAX_RUNS}]"
             )
+        if not self.per_run_seed:  # equal values give equal runs, bit for bit
+            for f in self.factors:
+                seen_rows: dict[Any, int] = {}
+                for i in range(len(f[0])):
+                    row = tuple(_same(a.values[i]) for a in f)
+                    if row in seen_rows:
+                        what = " and ".join(a.name for a in f)
+                        vals = ", ".join(repr(a.values[i]) for a in f)
+                        raise ConfigError(
+                            f"{o}: axis {what} repeats {vals} (values {seen_rows[row]} and {i}); "
+                            "valid: distinct values (equal runs are identical, bit for bit, "
+                            "and a split would put one on each side: to repeat a condition, "
+                            "use a seed axis or sweep.per_run_seed = true)"
+                        )
+                    seen_rows[row] = i
 
     # ----------------------------------------------------------------- structure
     @property
@@ -602,8 +636,11 @@ class SweepSpec:
             bf = sw["base_file"]
             if not isinstance(bf, str):
                 raise ConfigError(f"{origin}: sweep.base_file = {bf!r} is not a path")
-            base = Scenario.from_toml(rel(bf)).to_dict()
+            # its unset keys stay unset (the rate too): a rig the sweep sets gives its own
+            base = Scenario.from_toml(rel(bf)).to_dict(rate=False)
         base_t = dict(base_t)
+        if _rig_file(base_t.get("rig")):  # a rig file beside the sweep file, as a scenario's
+            base_t["rig"] = rel(base_t["rig"])
         if isinstance(base_t.get("bearing_file"), str):
             base_t["bearing_file"] = rel(base_t["bearing_file"])
             base["bearing"] = None
@@ -666,10 +703,14 @@ class SweepSpec:
             ax = expand_axis(key, desc, seed, origin)
             if key == "bearing_file":
                 ax = Axis(key, tuple(rel(v) if isinstance(v, str) else v for v in ax.values))
+            if key == "rig":
+                ax = Axis(key, tuple(rel(v) if _rig_file(v) else v for v in ax.values))
             if key == "model":
                 _one_family(base_sc, ax.values, origin)
             axes.append(ax)
-        base = base_sc.to_dict(rate=not rig_axis)  # a rig axis: each run takes its rig's rate
+        # with a rig an unset rate stays unset: each run takes its own rig's (and records it
+        # among the rig's defaults)
+        base = base_sc.to_dict(rate=not (rig_axis or getattr(base_sc, "rig", None) is not None))
         return cls(
             base=base,
             axes=tuple(axes),
