@@ -74,6 +74,9 @@ def test_run_summary_resume(run_cli, spec_file, tmp_path):
     assert s["by_axis"]["rpm"]["1797.0"]["ok"] == 2 and s["complete"] and s["failures"] == []
     r = run_cli("sweep", "summary", out, "--label", "rpm")
     assert r.code == 0 and "4 runs: 4 ok, 0 failed, 0 pending" in r.out and "1730.0" in r.out
+    # the text lists the counts by axis value too, as its help says (only --json had them)
+    r = run_cli("sweep", "summary", out)
+    assert "  by rpm:" in r.out and "  by fault:" in r.out and r.out.count("2 ok") == 4
     r = run_cli("sweep", "run", spec_file, "-o", out)
     assert r.code == 0 and "4 already committed, 0 computed" in r.out
     # the same spec file, reformatted, is the same sweep

@@ -265,6 +265,12 @@ def summary_cmd(dataset: str, label: str | None, max_failures: int, as_json: boo
         click.echo(f"  by {'|'.join(s['label'])}:")
         for v, c in s["by_label"].items():
             click.echo(f"    {v:<24} {_counts(c)}")
+    for key, by in s["by_axis"].items():  # as promised: by axis value too (--json had them)
+        if list(s["label"]) == [key]:
+            continue  # already listed as the label
+        click.echo(f"  by {key}:")
+        for v, c in by.items():
+            click.echo(f"    {v:<24} {_counts(c)}")
     for w, runs in s["warnings"].items():
         shown = ", ".join(str(r) for r in runs[:max_failures])
         more = f", ... {len(runs) - max_failures} more" if len(runs) > max_failures else ""
