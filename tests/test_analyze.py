@@ -556,3 +556,33 @@ def test_order_tracking_stays_below_the_records_nyquist_frequency():
     for v in d.views:
         assert v.band[1] <= nyq, (v.name, v.band, nyq)
     assert max(v.band[1] for v in d.views) == pytest.approx(200.0), "400 samples per rev"
+
+
+def test_a_results_rpm_override_is_noted_and_its_plot_is_in_m_per_s2(run_cli, tmp_path):
+    """Exploratory testing (twentieth session): `analyze RESULT.nc --rpm 1797` of a result
+    simulated at 1750 r/min read "outer" with a 19.7 deg "contact angle" of "the file's speed
+    1797 r/min", without a word; and the plot of a result's channel (sensor, x, y) was labelled
+    "[signal unit]". The override is now a note (JSON and text), the speed is called the speed
+    given, and a result's samples are m/s^2."""
+    from bearingsim import simulate
+    from bearingsim.cli.analyze import signal_unit
+    from bearingsim.io.signal import read_signal
+
+    sc = dict(model="vsm", fault="outer", duration_s=1.0, fs_hz=12000.0, rig="cwru-de-12k")
+    path = simulate(sc).save(tmp_path / "o.nc")
+    d = run_cli("analyze", path, "--rpm", "1797", "--json").json()
+    assert d["rpm_source"] == "option" and d["rpm_file"] == 1750.0
+    assert any(n.startswith("rpm = 1797 r/min overrides the 1750 r/min") for n in d["notes"])
+    r = run_cli("analyze", path, "--rpm", "1797")
+    assert "  note: rpm = 1797 r/min overrides" in r.out and "file's speed" not in r.out
+    d = run_cli("analyze", path, "--rpm", "1755", "--json").json()  # within the 1 %: no note
+    assert not any("overrides" in n for n in d.get("notes", []))
+    assert "notes" not in run_cli("analyze", path, "--json").json() or not any(
+        "overrides" in n for n in run_cli("analyze", path, "--json").json()["notes"]
+    )
+    assert signal_unit(read_signal(path)) == "m/s^2"
+    assert signal_unit(read_signal(_cwru("135"))) == "m/s^2"
+    csv = tmp_path / "c.csv"
+    np.savetxt(csv, np.c_[np.arange(100) / 1e3, np.ones(100)], delimiter=",",
+               header="time_s,v", comments="")  # fmt: skip
+    assert signal_unit(read_signal(csv)) is None

@@ -34,6 +34,23 @@ def test_inverse_of_the_kinematic_frequencies(alpha_deg, line):
     )
 
 
+@pytest.mark.parametrize("bid", ["6203-cwru", "6205", "6205-cwru", "6206"])
+def test_a_line_at_the_alpha_zero_order_reads_zero_on_every_ball_bearing(bid):
+    """Exploratory testing (twentieth session): a simulated 6203-cwru inner-race fault put its
+    BPFI exactly at the alpha = 0 order, and the estimate refused it as "outside ... valid
+    range [4, 4.94688]", the value its own bound (a rounding of 2 o / Z - 1 above d/D). The
+    ends of each line's range read 0 and 90 deg on every catalogue ball bearing."""
+    b = replace(resolve_bearing(bid), contact_angle=0.0)
+    k = characteristic_frequencies(b, 1.0)
+    for line, order in (("bpfo", k.bpfo_order), ("bpfi", k.bpfi_order), ("ftf", k.ftf_order)):
+        assert math.degrees(contact_angle_from_order(b, line, order)) == pytest.approx(
+            0.0, abs=1e-3
+        )
+    z = b.n_elements
+    assert contact_angle_from_order(b, "bpfo", z / 2) == pytest.approx(math.pi / 2)
+    assert contact_angle_from_order(b, "bpfi", z / 2) == pytest.approx(math.pi / 2)
+
+
 def test_the_cwru_table_orders_are_alpha_zero():
     """The CWRU bearing table's drive-end orders (BPFO 3.5848, BPFI 5.4152) are those of a
     contact angle of 0 (within the table's 4 decimals: under 0.6 deg, where acos is steep)."""

@@ -539,6 +539,11 @@ def contact_angle_from_order(bearing: Bearing, line: str, order: float) -> float
     if not math.isfinite(o):
         raise ConfigError(f"order = {order!r} must be finite")
     g = {"bpfo": 1.0 - 2.0 * o / Z, "bpfi": 2.0 * o / Z - 1.0, "ftf": 1.0 - 2.0 * o}[name]
+    # an order at an end of the range, computed in floating point, may land a rounding off it
+    # (the 6203-cwru's own alpha = 0 BPFI order was refused as outside [.., itself])
+    eps = 1e-9 * gamma
+    if -eps <= g < 0.0 or gamma < g <= gamma + eps:
+        g = min(max(g, 0.0), gamma)
     if not 0.0 <= g <= gamma:
         ends = {
             "bpfo": (0.5 * Z * (1.0 - gamma), 0.5 * Z),

@@ -41,6 +41,36 @@ ALIASING_NOTE = (
     "into its spectrum and may add lines (e.g. at fractions of the fault frequency); "
     "simulate with --antialias"
 )
+#: how far a --rpm may lie from a simulation result's own speed before a note says so: the
+#: fault-line search's tolerance (1 %, :class:`bearingsim.signal.diagnosis.DiagnosisRule`)
+SPEED_NOTE_REL = 0.01
+
+
+def speed_note(rpm: float, own: float) -> str:
+    """The note of a --rpm [r/min] that overrides a result simulated at ``own`` [r/min]."""
+    return (
+        f"rpm = {rpm:g} r/min overrides the {own:g} r/min the result was simulated at "
+        f"({100.0 * (rpm / own - 1.0):+.2f} %, beyond the line search's 1 %): the fault lines "
+        "were searched at the speed given"
+    )
+
+
+def signal_unit(rec) -> str | None:
+    """The unit of a record's samples: m/s^2 for a CWRU ``.mat`` channel and a simulation
+    result's (``sensor``, ``x``, ``y``, ``x_fe``, ``y_fe``: accelerations; the plot said "signal
+    unit" for them), None for a text column (its unit is not known)."""
+    from ..io.signal import RESULT_SUFFIXES
+
+    if rec.columns:
+        return None
+    suffix = Path(rec.source).suffix.lower()
+    if suffix in RESULT_SUFFIXES or (
+        suffix == ".mat" and rec.channel.upper() in ("DE", "FE", "BA")
+    ):
+        return "m/s^2"
+    return None
+
+
 #: columns of ``analyze --csv``
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
@@ -232,14 +262,10 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     if req.plot:
         from ..report.figures import save_figure
 
-        # CWRU channels and result accelerations are in m/s^2; a text column's unit is unknown
-        acc = not rec.columns and (
-            rec.channel.upper() in ("DE", "FE", "BA") or rec.channel.startswith("acc")
-        )
         save_figure(
             d.plot(
                 title=f"{Path(path).name} [{rec.channel}]: {d.diagnosis} ({d.confidence:.2f})",
-                unit="m/s^2" if acc else None,
+                unit=signal_unit(rec),
             ),
             req.plot,
         )
@@ -257,6 +283,9 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if rec.info.get("antialiased") is False:
         out["notes"] = [*out.get("notes", []), ALIASING_NOTE]
+    own = rec.info.get("rpm_file")  # a result's own speed, when --rpm overrode it
+    if own is not None and abs(rec.rpm / own - 1.0) > SPEED_NOTE_REL:
+        out["notes"] = [*out.get("notes", []), speed_note(rec.rpm, own)]
     return to_jsonable(out)
 
 
@@ -333,8 +362,9 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     )
     if out.get("why"):  # what made the verdict "uncertain"
         click.echo(f"  why: {out['why']}")
-    if ALIASING_NOTE in out.get("notes", ()):
-        click.echo(f"  note: {ALIASING_NOTE}")
+    for note in out.get("notes", ()):
+        if note == ALIASING_NOTE or note.startswith("rpm = ") and "overrides the" in note:
+            click.echo(f"  note: {note}")
     if not detail:
         return
     ca = out.get("contact_angle")
@@ -343,7 +373,11 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         click.echo(
             f"  contact angle {ca['contact_angle_deg']:.1f} deg: {line} at order "
             f"{ca['order']:.4f} (alpha = 0: {ca['order_alpha0']:.4f}) of the "
-            + ("measured shaft speed" if ca["shaft_lines"] else "file's speed")
+            + (
+                "measured shaft speed"
+                if ca["shaft_lines"]
+                else ("speed given" if out["rpm_source"] == "option" else "file's speed")
+            )
             + f" {ca['shaft_hz'] * 60:.1f} r/min ({ca['harmonic']}x line, SNR "
             f"{ca['snr_db']:.0f} dB)"
         )

@@ -282,6 +282,8 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
             "finite samples"
         )
     info: dict[str, Any] = {"fs_source": "file", "rpm_source": "file" if rpm is None else "option"}
+    if rpm is not None:  # the speed it was simulated at, which the option overrides
+        info["rpm_file"] = float(res.scenario["rpm"])
     # a simulation's discrete lines at fixed frequencies are those its rig adds (none on a bare
     # model channel): the diagnosis reads a supply only there (signal.diagnosis._supply)
     tones = (res.meta.get("rig") or {}).get("tone", []) if ch == "sensor" else []
