@@ -189,6 +189,11 @@ def test_csv_input_time_and_speed_columns(run_cli, tmp_path):
     bpfo = {p["label"]: p for p in d2["peaks"]}["BPFO"]
     bpfo_order = value("cwru.drive_end.bpfo_order")
     assert_allclose(bpfo["order"], bpfo_order, rtol=0.01, err_msg="BPFO order vs CWRU table")
+    # the text said "BPFO 3.58 Hz order 3.583" and "band 0-200" (twentieth session): orders
+    r3 = run_cli("analyze", p2)
+    assert r3.code == 0 and " orders" in r3.out.splitlines()[0]
+    bpfo_line = next(ln for ln in r3.out.splitlines() if ln.strip().startswith("BPFO "))
+    assert " Hz" not in bpfo_line and "order   3.6" in bpfo_line  # 3.605: its contact angle
 
 
 # ---------------------------------------------------------------------------- bad input
@@ -586,3 +591,35 @@ def test_a_results_rpm_override_is_noted_and_its_plot_is_in_m_per_s2(run_cli, tm
     np.savetxt(csv, np.c_[np.arange(100) / 1e3, np.ones(100)], delimiter=",",
                header="time_s,v", comments="")  # fmt: skip
     assert signal_unit(read_signal(csv)) is None
+
+
+def test_a_noise_free_model_channel_is_noted_and_the_verdicts_view_supports_it(run_cli, tmp_path):
+    """Exploratory testing (twentieth session): a healthy VSM without rig or noise read "outer"
+    (0.92) without a word: its varying compliance's ball passes stand 60-90 dB over a floor
+    no measurement has. The verdict is the model's; a note now says why (not through a rig or
+    with noise). And a rotor ball fault through the rig reported as its `method` a view that
+    did not support ball (FTF lines only): the view shown now supports the verdict."""
+    from bearingsim import simulate
+
+    bare = simulate(dict(model="vsm", fault="none", duration_s=1.0, fs_hz=12000.0,
+                         antialias=True)).save(tmp_path / "h.nc")  # fmt: skip
+    d = run_cli("analyze", bare, "--json").json()
+    assert any(n.startswith("a noise-free model channel") for n in d["notes"])
+    assert "note: a noise-free model channel" in run_cli("analyze", bare).out
+    noisy = dict(model="vsm", fault="none", duration_s=1.0, fs_hz=12000.0, antialias=True)
+    noisy = simulate(noisy | {"noise_rms_m_per_s2": 0.5}).save(tmp_path / "n.nc")
+    rig = simulate(dict(model="vsm", fault="none", duration_s=1.0, rig="cwru-de-12k"))
+    for f in (noisy, rig.save(tmp_path / "r.nc")):
+        notes = run_cli("analyze", f, "--json").json().get("notes", [])
+        assert not any(n.startswith("a noise-free") for n in notes), f
+    ball = simulate(dict(model="rotor", de_fault="ball", duration_s=1.0, rig="cwru-de-12k",
+                         ball_inertia=False)).save(tmp_path / "b.nc")  # fmt: skip
+    d = run_cli("analyze", ball, "--json").json()
+    assert d["diagnosis"] == "ball"
+    ev = d["evidence"]
+    view = (
+        ev[d["method"]]
+        if isinstance(ev, dict)
+        else next(e for e in ev if e["method"] == d["method"])
+    )
+    assert "ball" in view["supported"], (d["method"], view)

@@ -41,6 +41,12 @@ ALIASING_NOTE = (
     "into its spectrum and may add lines (e.g. at fractions of the fault frequency); "
     "simulate with --antialias"
 )
+NOISE_FREE_NOTE = (
+    "a noise-free model channel (no rig, no noise): the ball passes of even a healthy bearing "
+    "(its varying compliance) stand far above a floor no measurement has, and read as an "
+    "outer-race series; simulate through a rig (--rig) or with sensor noise to compare with "
+    "a measured record"
+)
 #: how far a --rpm may lie from a simulation result's own speed before a note says so: the
 #: fault-line search's tolerance (1 %, :class:`bearingsim.signal.diagnosis.DiagnosisRule`)
 SPEED_NOTE_REL = 0.01
@@ -283,6 +289,8 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if rec.info.get("antialiased") is False:
         out["notes"] = [*out.get("notes", []), ALIASING_NOTE]
+    if rec.info.get("noise_free"):
+        out["notes"] = [*out.get("notes", []), NOISE_FREE_NOTE]
     own = rec.info.get("rpm_file")  # a result's own speed, when --rpm overrode it
     if own is not None and abs(rec.rpm / own - 1.0) > SPEED_NOTE_REL:
         out["notes"] = [*out.get("notes", []), speed_note(rec.rpm, own)]
@@ -353,9 +361,11 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
         # an "uncertain" with a leading family: say which family led, at what probability
         lead = f", leading family {out['leading']} at p {out['probability']:.2f}"
+    orders = out.get("domain") == "order"  # an order-tracked record: band and lines in orders
+    band = f"band {lo:g}-{hi:g} orders" if orders else f"band {lo:.0f}-{hi:.0f}"
     click.echo(
         f"{name} [{out['channel']}]: {out['diagnosis']} (confidence "
-        f"{out['confidence']:.2f}), band {lo:.0f}-{hi:.0f}"
+        f"{out['confidence']:.2f}), {band}"
         + (f" ({out['method']})" if "method" in out else "")
         + lead
         + speed
@@ -363,7 +373,9 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     if out.get("why"):  # what made the verdict "uncertain"
         click.echo(f"  why: {out['why']}")
     for note in out.get("notes", ()):
-        if note == ALIASING_NOTE or note.startswith("rpm = ") and "overrides the" in note:
+        if note in (ALIASING_NOTE, NOISE_FREE_NOTE) or (
+            note.startswith("rpm = ") and "overrides the" in note
+        ):
             click.echo(f"  note: {note}")
     if not detail:
         return
@@ -390,10 +402,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
             )
     for p in out["peaks"]:
         if p["detected"]:
-            click.echo(
-                f"  {p['label']:<12} {p['freq_hz']:9.2f} Hz  order {p['order']:7.3f}  "
-                f"SNR {p['snr_db']:5.1f} dB"
-            )
+            at = "" if orders else f"{p['freq_hz']:9.2f} Hz  "  # freq_hz is an order there
+            click.echo(f"  {p['label']:<12} {at}order {p['order']:7.3f}  SNR {p['snr_db']:5.1f} dB")
 
 
 def _csv_row(out: dict[str, Any]) -> list[Any]:

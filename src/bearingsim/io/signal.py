@@ -284,6 +284,10 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
     info: dict[str, Any] = {"fs_source": "file", "rpm_source": "file" if rpm is None else "option"}
     if rpm is not None:  # the speed it was simulated at, which the option overrides
         info["rpm_file"] = float(res.scenario["rpm"])
+    # a model's own channel without noise: a line spectrum over a floor no measurement has
+    noise = res.scenario.get("noise_rms_m_per_s2", 0.0)
+    if ch != "sensor" and not (isinstance(noise, int | float) and noise > 0.0):
+        info["noise_free"] = True
     # a simulation's discrete lines at fixed frequencies are those its rig adds (none on a bare
     # model channel): the diagnosis reads a supply only there (signal.diagnosis._supply)
     tones = (res.meta.get("rig") or {}).get("tone", []) if ch == "sensor" else []

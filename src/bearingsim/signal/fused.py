@@ -354,12 +354,15 @@ class FusedDiagnosis:
 
     @property
     def best_view(self) -> View:
-        """The view with the largest score of the verdict's (or leading) family."""
+        """The view with the largest score of the verdict's (or leading) family among those
+        that support it (all views when none does: a view scoring the family without its
+        whole pattern showed a "ball" verdict by FTF lines alone)."""
         fam = self.diagnosis if self.diagnosis in FAMILIES else self.leading
         if fam is None:  # the benchmark method's view (the kurtogram band), else the first
             by_name = {v.name: v for v in self.views}
             return by_name.get("drs_sk", self.views[0])
-        return max(self.views, key=lambda v: v.scores.get(fam, 0.0))
+        views = [v for v in self.views if fam in v.supported] or self.views
+        return max(views, key=lambda v: v.scores.get(fam, 0.0))
 
     @property
     def band_hz(self) -> tuple[float, float]:
