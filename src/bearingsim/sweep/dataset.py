@@ -310,7 +310,9 @@ class SweepDataset:
         Returns
         -------
         X : ndarray, shape (n_runs, n_channels, n_time)
-            Signals in their units (``self.xr[name].attrs["units"]``, SI).
+            Signals in their units (``self.xr[name].attrs["units"]``, SI). Runs of different
+            lengths (e.g. a ``rig`` axis mixing 12 and 48 kHz profiles) are padded with NaN to
+            the longest; each run's rate is its scenario's (``self.scenario(i)["fs_hz"]``).
         y : ndarray of str, shape (n_runs,)
             Labels.
         """
