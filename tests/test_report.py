@@ -115,3 +115,17 @@ def test_levels_in_db_get_their_size_and_rank_among_the_misses():
     assert five.size == "5× high (+14.0 dB)"
     html = "".join(_summary([Section("signals", "t", rows=[five, r])]))
     assert html.index("prominence [dB]") < html.index("RMS [m/s²]")
+
+
+def test_a_side_by_side_rows_ratio_reads_on_its_side_of_the_bound():
+    """Exploratory testing (twentieth session): the signals section printed a kurtosis ratio
+    of 1.502 as "1.5×; bound ×1.5" in a mismatch row. The ratio (or dB difference) now takes
+    the digits it needs to read on the side of the bound its status says."""
+    from bearingsim.report.sections.signals import _size_text
+
+    assert _size_text("kurtosis", 1.502, 1.5, False) == "1.502×"
+    assert _size_text("kurtosis", 1.45, 1.5, True) == "1.45×"
+    assert _size_text("rms", 0.6663, 2.0, True) == "0.666×"
+    assert _size_text("kurtosis", 0.66664, 1.5, False) == "0.6666×"
+    assert _size_text("prominence_db", -6.04, 6.0, False) == "-6.04 dB"
+    assert _size_text("prominence_db", -5.2, 6.0, True) == "-5.2 dB"

@@ -93,6 +93,19 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
     )
 
 
+def _size_text(key: str, value: float, bound: float, ok: bool) -> str:
+    """A ratio (``×``) or a difference in dB (prominence) as the row prints it, with as many
+    digits as it takes to read on its side of the bound: a kurtosis ratio of 1.502 printed
+    "1.5×; bound ×1.5" beside "mismatch" (twentieth session)."""
+    for d in (1, 2, 3, 4, 6) if key == "prominence_db" else (3, 4, 6, 10):
+        text = f"{value:+.{d}f}" if key == "prominence_db" else f"{value:.{d}g}"
+        v = float(text)
+        inside = abs(v) <= bound if key == "prominence_db" else 1.0 / bound <= v <= bound
+        if inside == ok:
+            break
+    return f"{text} dB" if key == "prominence_db" else f"{text}×"
+
+
 def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
     """Append the four rows of one simulated record ``c`` (:func:`simulate_record`) against its
     measurement, the simulation named ``what``; returns which bounds it meets."""
@@ -104,7 +117,7 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
     ok = within_bounds(ratio)
     num = cwru_record_number(c["record"])
     for k, label, unit in METRICS:
-        size = f"{ratio[k]:+.1f} dB" if k == "prominence_db" else f"{ratio[k]:.3g}×"
+        size = _size_text(k, ratio[k], BOUNDS[k], ok[k])
         bound = f"±{BOUNDS[k]:g} dB" if k == "prominence_db" else f"×{BOUNDS[k]:g}"
         sec.rows.append(
             judge(
