@@ -281,6 +281,22 @@ def _csv(path: Path, n: int = 4000) -> Path:
     return path
 
 
+def test_a_short_record_with_its_own_rate_and_speed_asks_for_a_longer_record(run_cli, tmp_path):
+    """Exploratory testing (twentieth session): a 0.05 s simulation result, whose rate and speed
+    are its own, was refused with "valid range fs_hz in (0, 4375] Hz ... or rpm in [4800, inf)",
+    remedies that contradict the file. Now the record's length is what it asks for; with a rate
+    or speed given as an option the ranges stay."""
+    from bearingsim import simulate
+
+    f = simulate(dict(model="vsm", fault="outer", duration_s=0.05, fs_hz=12000.0)).save(
+        tmp_path / "short.nc"
+    )
+    r = run_cli("analyze", f)
+    _refused(r, "the 600 samples", "valid: a record of at least 1646 samples (0.137 s)")
+    assert "fs_hz in (0" not in r.err
+    _refused(run_cli("analyze", f, "--rpm", "1700"), "valid range fs_hz in (0, 4250] Hz")
+
+
 def test_analyze_absurd_fs_refused(run_cli, tmp_path):
     """analyze --fs-hz 1e30 reported a band at 4e29 Hz; now refused: the record would cover
     far fewer than the 4 shaft revolutions its envelope spectrum needs."""

@@ -712,12 +712,22 @@ def check_resolvable(rec: SignalRecord) -> SignalRecord:
     need = MIN_REVOLUTIONS / shaft_hz
     if span >= need:
         return rec
+    if "option" in (rec.info.get("fs_source"), rec.info.get("rpm_source")) or not rec.info:
+        # a rate or speed given: the values that would resolve these samples
+        valid = (
+            f"valid range fs_hz in (0, {n * shaft_hz / MIN_REVOLUTIONS:.6g}] Hz at this rpm, or "
+            f"rpm in [{60.0 * MIN_REVOLUTIONS / span:.6g}, inf) r/min at this fs_hz"
+        )
+    else:  # both the file's own: only a longer record helps
+        valid = (
+            f"valid: a record of at least {math.ceil(need * rec.fs)} samples ({need:.3g} s) at "
+            "its rate and speed"
+        )
     raise ConfigError(
         f"fs_hz = {rec.fs:.6g} Hz and rpm = {rec.rpm:.6g} r/min: the {n} samples of "
         f"{Path(rec.source).name!r} last {span:.3g} s, shorter than the {MIN_REVOLUTIONS} shaft "
         f"revolutions ({need:.3g} s) the envelope spectrum needs to resolve the fault lines; "
-        f"valid range fs_hz in (0, {n * shaft_hz / MIN_REVOLUTIONS:.6g}] Hz at this rpm, or rpm "
-        f"in [{60.0 * MIN_REVOLUTIONS / span:.6g}, inf) r/min at this fs_hz"
+        + valid
     )
 
 
