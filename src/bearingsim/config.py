@@ -481,10 +481,18 @@ class Scenario:
             bf = Path(data["bearing_file"])
             if not bf.is_absolute():
                 data["bearing_file"] = str(p.parent / bf)
-        rig = data.get("rig")
-        if isinstance(rig, str) and rig.lower().endswith(".toml") and not Path(rig).is_absolute():
-            data["rig"] = str(p.parent / rig)  # a rig file beside the scenario
+        if relative_rig_file(data.get("rig")):
+            data["rig"] = str(p.parent / data["rig"])  # a rig file beside the scenario
         return cls.from_dict(data, origin=p.name)
+
+
+def relative_rig_file(value: Any) -> bool:
+    """Whether a ``rig`` value names a rig file by a relative path (``*.toml``), which a
+    scenario or sweep file takes relative to itself (a profile name or an absolute path is
+    kept as it is)."""
+    return (
+        isinstance(value, str) and value.lower().endswith(".toml") and not Path(value).is_absolute()
+    )
 
 
 def _check_bearing(sc: Any, default: str) -> None:

@@ -192,23 +192,23 @@ class Mode:
         z = self.damping_ratio
         return self.frequency_hz * (np.sqrt(1.0 + z * z) + z)
 
-    def check_rate(self, fs: float, where: str) -> None:
-        """Refuse an output rate ``fs`` [Hz] whose Nyquist frequency the mode or its half-power
-        band reaches: the digital resonator of :meth:`sos` has no such band (its poles leave
-        the unit circle once the band is as wide as the Nyquist band, and the signal grows
-        without bound). ``where`` names the mode in the message."""
+    def check_rate(self, fs: float, where: str, rate: str = "the output rate") -> None:
+        """Refuse a rate ``fs`` [Hz] whose Nyquist frequency the mode or its half-power band
+        reaches: the digital resonator of :meth:`sos` has no such band (its poles leave the
+        unit circle once the band is as wide as the Nyquist band, and the signal grows without
+        bound). ``where`` names the mode in the message, ``rate`` the rate."""
         ny = 0.5 * fs
         if self.frequency_hz >= ny:
             raise ConfigError(
                 f"{where}.frequency_hz = {self.frequency_hz:g} Hz is at or above the Nyquist "
-                f"frequency of the output rate ({ny:g} Hz); valid range (0, {ny:g}) Hz"
+                f"frequency of {rate} ({ny:g} Hz); valid range (0, {ny:g}) Hz"
             )
         if self.upper_half_power_hz >= ny:
             r = ny / self.frequency_hz  # f_n (sqrt(1 + z^2) + z) = ny  <=>  z = (r^2 - 1) / 2r
             raise ConfigError(
                 f"{where}.damping_ratio = {self.damping_ratio:.6g}: the half-power band of the "
                 f"mode at {self.frequency_hz:g} Hz reaches {self.upper_half_power_hz:.6g} Hz, at "
-                f"or above the Nyquist frequency of the output rate ({ny:g} Hz); valid range "
+                f"or above the Nyquist frequency of {rate} ({ny:g} Hz); valid range "
                 f"[{MIN_DAMPING:g}, {(r * r - 1.0) / (2.0 * r):.6g}) at this rate"
             )
 
@@ -447,12 +447,7 @@ class Rig:
             )
             object.__setattr__(self, "fs_hz", rate)
             for i, m in enumerate(self.modes):
-                try:
-                    m.check_rate(self.fs_hz, f"mode[{i}]")
-                except ConfigError as e:
-                    raise ConfigError(
-                        str(e).replace("the output rate", "the rig's fs_hz")
-                    ) from None
+                m.check_rate(self.fs_hz, f"mode[{i}]", "the rig's fs_hz")
         # a fitted model path replaces every mode's gain: one gain per mode (a file's
         # [[model_gain]] and a rig built in code alike)
         for i, g in enumerate(self.model_gains):
@@ -622,10 +617,7 @@ class Rig:
         of a signal whose shaft speed puts it there, as a recorder's anti-aliasing filter
         removes it: that depends on the signal, not on the rig.)"""
         for i, m in enumerate(self.modes):
-            try:
-                m.check_rate(fs, f"mode[{i}]")
-            except ConfigError as e:
-                raise ConfigError(f"{self.source or self.name}: {e}") from None
+            m.check_rate(fs, f"{self.source or self.name}: mode[{i}]")
         items = [(f"tone[{i}]", t.frequency_hz) for i, t in enumerate(self.tones)
                  if t.frequency_hz is not None]  # fmt: skip
         for where, f in items:

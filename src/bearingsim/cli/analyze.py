@@ -287,14 +287,25 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         **rec.info,
         "rpm_source": rpm_source,
     }
-    if rec.info.get("antialiased") is False:
-        out["notes"] = [*out.get("notes", []), ALIASING_NOTE]
-    if rec.info.get("noise_free"):
-        out["notes"] = [*out.get("notes", []), NOISE_FREE_NOTE]
-    own = rec.info.get("rpm_file")  # a result's own speed, when --rpm overrode it
-    if own is not None and abs(rec.rpm / own - 1.0) > SPEED_NOTE_REL:
-        out["notes"] = [*out.get("notes", []), speed_note(rec.rpm, own)]
+    extra = _result_notes(out)
+    if extra:
+        out["notes"] = [*out.get("notes", []), *extra]
     return to_jsonable(out)
+
+
+def _result_notes(out: dict[str, Any]) -> list[str]:
+    """The notes about a simulated result, from what its reader recorded (``antialiased``,
+    ``noise_free``, ``rpm_file``: keys of the file's output): added to ``notes`` and printed
+    by the text output."""
+    notes = []
+    if out.get("antialiased") is False:
+        notes.append(ALIASING_NOTE)
+    if out.get("noise_free"):
+        notes.append(NOISE_FREE_NOTE)
+    own = out.get("rpm_file")  # a result's own speed, when --rpm overrode it
+    if own is not None and abs(out["rpm"] / own - 1.0) > SPEED_NOTE_REL:
+        notes.append(speed_note(out["rpm"], own))
+    return notes
 
 
 def _contact_angle(rec: Any, bearing: Any, verdict: str) -> dict[str, Any] | None:
@@ -372,11 +383,8 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
     )
     if out.get("why"):  # what made the verdict "uncertain"
         click.echo(f"  why: {out['why']}")
-    for note in out.get("notes", ()):
-        if note in (ALIASING_NOTE, NOISE_FREE_NOTE) or (
-            note.startswith("rpm = ") and "overrides the" in note
-        ):
-            click.echo(f"  note: {note}")
+    for note in _result_notes(out):
+        click.echo(f"  note: {note}")
     if not detail:
         return
     ca = out.get("contact_angle")

@@ -58,7 +58,14 @@ from typing import Any
 
 import numpy as np
 
-from ..config import IasScenario, RingScenario, RotorScenario, Scenario, family
+from ..config import (
+    IasScenario,
+    RingScenario,
+    RotorScenario,
+    Scenario,
+    family,
+    relative_rig_file,
+)
 from ..errors import ConfigError, check_range, read_toml
 
 __all__ = [
@@ -339,12 +346,6 @@ def _same(v: Any) -> Any:
     if isinstance(v, dict):
         return ("map", tuple(sorted((k, _same(x)) for k, x in v.items())))
     return ("other", repr(v))
-
-
-def _rig_file(v: Any) -> bool:
-    """A ``rig`` value naming a rig file by a relative path (``*.toml``), which a sweep or
-    scenario file takes relative to itself (a profile name or an absolute path is kept)."""
-    return isinstance(v, str) and v.lower().endswith(".toml") and not Path(v).is_absolute()
 
 
 @dataclass(frozen=True)
@@ -639,7 +640,7 @@ class SweepSpec:
             # its unset keys stay unset (the rate too): a rig the sweep sets gives its own
             base = Scenario.from_toml(rel(bf)).to_dict(rate=False)
         base_t = dict(base_t)
-        if _rig_file(base_t.get("rig")):  # a rig file beside the sweep file, as a scenario's
+        if relative_rig_file(base_t.get("rig")):  # beside the sweep file, as a scenario's
             base_t["rig"] = rel(base_t["rig"])
         if isinstance(base_t.get("bearing_file"), str):
             base_t["bearing_file"] = rel(base_t["bearing_file"])
@@ -665,8 +666,8 @@ class SweepSpec:
                 f"{origin}: sweep.zip = {zips!r} is invalid; valid: a list of lists of axis names"
             )
         default_label, default_channels = _FAMILY_DEFAULTS[type(base_sc)]
-        rig_axis = "rig" in axes_t
-        if rig_axis or getattr(base_sc, "rig", None) is not None:
+        has_rig = "rig" in axes_t or getattr(base_sc, "rig", None) is not None
+        if has_rig:
             default_channels += ("acc_sensor",)  # what the sensor records, beside the model's
         channels = sw.get("channels", list(default_channels))
         if channels == "all":
@@ -704,13 +705,13 @@ class SweepSpec:
             if key == "bearing_file":
                 ax = Axis(key, tuple(rel(v) if isinstance(v, str) else v for v in ax.values))
             if key == "rig":
-                ax = Axis(key, tuple(rel(v) if _rig_file(v) else v for v in ax.values))
+                ax = Axis(key, tuple(rel(v) if relative_rig_file(v) else v for v in ax.values))
             if key == "model":
                 _one_family(base_sc, ax.values, origin)
             axes.append(ax)
         # with a rig an unset rate stays unset: each run takes its own rig's (and records it
         # among the rig's defaults)
-        base = base_sc.to_dict(rate=not (rig_axis or getattr(base_sc, "rig", None) is not None))
+        base = base_sc.to_dict(rate=not has_rig)
         return cls(
             base=base,
             axes=tuple(axes),
