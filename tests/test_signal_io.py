@@ -105,6 +105,40 @@ def test_read_signal_text_time_speed_and_channel(tmp_path):
         read_signal(p, channel="z")
 
 
+def _two_columns(p, name, t, x):
+    """Write a time column [s] and a signal column named ``name`` to the CSV ``p``."""
+    rows = "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(t, x, strict=True))
+    p.write_text(f"time_s,{name}\n" + rows)
+
+
+@pytest.mark.parametrize(
+    ("name", "factor"),
+    [("de_g", 9.80665), ("DE (g)", 9.80665), ("acc [g]", 9.80665), ("de_mps2", 1.0),
+     ("acc (m/s^2)", 1.0), ("acc [m/s2]", 1.0)],
+)  # fmt: skip
+def test_a_signal_column_named_in_g_is_read_in_m_s2(tmp_path, name, factor):
+    # twentieth session: a column de_g was read as m/s^2, 9.8 times too small for every level,
+    # RMS and rig gain; g to m/s^2 is standard gravity, 9.80665 m/s^2 (ISO 80000-3)
+    t = np.arange(200) / 2000.0
+    p = tmp_path / "g.csv"
+    x = np.sin(2 * np.pi * 50.0 * t)
+    _two_columns(p, name, t, x)
+    rec = read_signal(p)
+    assert_allclose(rec.x, factor * x, rtol=1e-15)
+    assert rec.info["signal_unit"] == "m/s^2" and name in rec.info["signal_unit_source"]
+
+
+@pytest.mark.parametrize("name", ["lag", "deg", "acc", "de_gx", "signal (V)", "de (g"])
+def test_a_signal_column_without_an_acceleration_unit_is_read_as_written(tmp_path, name):
+    t = np.arange(200) / 2000.0
+    p = tmp_path / "w.csv"
+    x = np.sin(2 * np.pi * 50.0 * t)
+    _two_columns(p, name, t, x)
+    rec = read_signal(p)
+    assert_allclose(rec.x, x, rtol=1e-15)
+    assert "signal_unit" not in rec.info
+
+
 def test_a_time_column_with_a_gap_or_two_rates_is_refused(tmp_path):
     """A time column jumping 5 s halfway, or at 6 kHz after 12 kHz, was read as one rate from
     its median step (rig identify wrote fs_hz = 12000 and spectra of the spliced signal, exit
@@ -265,3 +299,18 @@ def test_read_shaft_signal_errors(tmp_path):
         ConfigError, match="kind = 'angle_rad' contradicts the header .* 'speed_rpm'"
     ):
         read_shaft_signal(p, "angle_rad")
+
+
+def test_a_short_text_record_names_the_rate_and_speed_it_was_given(tmp_path):
+    # a text file's speed is always the user's (--rpm): a record too short at that speed gets
+    # the rates and speeds that would resolve it, not "a longer record"; before, a text file
+    # with a time column was told only to be longer, as if its speed were the file's own
+    from bearingsim.signal.diagnosis import MIN_REVOLUTIONS, check_resolvable
+
+    t = np.arange(240) / 12000.0
+    p = tmp_path / "short.csv"
+    _two_columns(p, "de_g", t, np.sin(2 * np.pi * 100.0 * t))
+    rec = read_signal(p, rpm=1750.0)
+    assert 240 / 12000.0 < MIN_REVOLUTIONS * 60.0 / 1750.0
+    with pytest.raises(ConfigError, match=r"valid range fs_hz in \(0, "):
+        check_resolvable(rec)

@@ -64,11 +64,12 @@ def speed_note(rpm: float, own: float) -> str:
 def signal_unit(rec) -> str | None:
     """The unit of a record's samples: m/s^2 for a CWRU ``.mat`` channel and a simulation
     result's (``sensor``, ``x``, ``y``, ``x_fe``, ``y_fe``: accelerations; the plot said "signal
-    unit" for them), None for a text column (its unit is not known)."""
+    unit" for them); a text column's when its name gives an acceleration unit (``de_g`` is read
+    in m/s^2, ``io.signal``), None for another text column (its unit is not known)."""
     from ..io.signal import RESULT_SUFFIXES
 
     if rec.columns:
-        return None
+        return rec.info.get("signal_unit")
     suffix = Path(rec.source).suffix.lower()
     if suffix in RESULT_SUFFIXES or (
         suffix == ".mat" and rec.channel.upper() in ("DE", "FE", "BA")

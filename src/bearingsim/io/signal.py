@@ -30,6 +30,13 @@ CWRU_DEFAULT_FS = 48000.0
 _TIME_NAMES = ("time_s", "time", "t", "time_ms", "time_us")
 #: a time column's unit from its name's suffix: the factor to seconds
 _TIME_UNITS = {"_ms": 1e-3, "_us": 1e-6}
+#: standard gravity, the factor from g to m/s^2 (ISO 80000-3) [m/s^2]
+G0 = 9.80665
+#: an acceleration unit at the end of a signal column's name (``de_g``, ``DE (g)``,
+#: ``acc[m/s^2]``, ``de_mps2``): the factor to m/s^2. A column named without one is read as
+#: written; ``de_g`` was read as m/s^2, 9.8 times too small for every level and rig gain
+_UNITS = r"(g|g0|m/s\^?2|m/s²|mps2|ms2|m_s2)"
+_SIGNAL_UNIT = re.compile(rf"(?:_{_UNITS}|\s*\(\s*{_UNITS}\s*\)|\s*\[\s*{_UNITS}\s*\])$", re.I)
 
 
 @dataclass(frozen=True)
@@ -39,7 +46,9 @@ class SignalRecord:
     Attributes
     ----------
     x : ndarray
-        Samples (acceleration [m/s^2] for CWRU and our results; a text file's column as written).
+        Samples (acceleration [m/s^2] for CWRU and our results; a text file's column as written,
+        or in [m/s^2] when its name ends in an acceleration unit: ``de_g``, ``DE (g)``,
+        ``acc [m/s^2]``; a column in g is multiplied by 9.80665).
     fs : float
         Sample rate [Hz].
     rpm : float or None
@@ -133,7 +142,10 @@ def read_signal(
       session: it was taken over the times, and ``rig identify`` put modes at 4× their
       frequencies); a ``speed_hz`` or ``rpm`` column gives a per-sample
       shaft speed (order tracking); the signal is the column named ``channel`` or the first
-      other one. Without a time column ``fs_hz`` is required.
+      other one, read in [m/s^2] when its name ends in a unit of acceleration (``_g``,
+      ``(g)``, ``[g]`` are multiplied by 9.80665; ``_mps2``, ``(m/s^2)``, ``[m/s^2]`` are kept;
+      ``info["signal_unit_source"]`` says which), else as written. Without a time column
+      ``fs_hz`` is required.
 
     Parameters
     ----------
@@ -389,8 +401,20 @@ def _read_text(
         if not rest:
             raise ConfigError(f"file = {str(p)!r} has no signal column")
         xcol = rest[0]
+    x = data[:, xcol]
+    unit = _SIGNAL_UNIT.search(header[xcol].strip())
+    if unit is not None:
+        g = next(u for u in unit.groups() if u is not None).lower() in ("g", "g0")
+        if g:
+            x = x * G0
+        info["signal_unit"] = "m/s^2"
+        info["signal_unit_source"] = (
+            f"column {header[xcol]!r}: g, read as m/s^2 (x {G0})"
+            if g
+            else f"column {header[xcol]!r}: m/s^2"
+        )
     return SignalRecord(
-        data[:, xcol],
+        x,
         check_positive("fs_hz", fs, "Hz"),
         rpm,
         str(p),

@@ -712,8 +712,9 @@ def check_resolvable(rec: SignalRecord) -> SignalRecord:
     need = MIN_REVOLUTIONS / shaft_hz
     if span >= need:
         return rec
-    if "option" in (rec.info.get("fs_source"), rec.info.get("rpm_source")) or not rec.info:
-        # a rate or speed given: the values that would resolve these samples
+    if "option" in (rec.info.get("fs_source"), rec.info.get("rpm_source")) or rec.columns:
+        # a rate or speed given (a text file's speed always is): the values that would
+        # resolve these samples
         valid = (
             f"valid range fs_hz in (0, {n * shaft_hz / MIN_REVOLUTIONS:.6g}] Hz at this rpm, or "
             f"rpm in [{60.0 * MIN_REVOLUTIONS / span:.6g}, inf) r/min at this fs_hz"
