@@ -61,6 +61,18 @@ def test_ball_defect_geometry_is_the_chord_rule_with_roles_swapped():
     assert g.delta_beta == pytest.approx(2 * math.asin(WIDTH / B.element_diameter), rel=1e-12)
 
 
+def test_a_ball_defects_result_records_both_races_drops():
+    # twenty-first session: meta["defect"] held only the outer-race drop of a ball defect
+    res = simulate(
+        dict(model="vsm", fault="ball", duration_s=0.05, fs_hz=12000.0, bearing="6205",
+             defect_width_m=WIDTH, defect_depth_m=DEPTH)
+    )  # fmt: skip
+    g = defect_geometry(B, Defect("ball", WIDTH, DEPTH, 0.0))
+    assert res.meta["defect"]["h_min_m"] == g.h_min
+    assert res.meta["defect"]["h_min_inner_m"] == g.h_min_inner
+    assert res.meta["defect"]["race_radius_m"] == 0.5 * B.element_diameter
+
+
 def test_only_ball_one_carries_the_defect_and_it_meets_both_races():
     """The compiled indicator: ball 0 over the slot facing the outer race (drop h_o) at spin
     angle in [0, dpsi), facing the inner race (drop h_i) half a turn later; other balls never."""

@@ -701,3 +701,28 @@ def test_background_rms_is_the_tables_integral():
     assert bg.rms() == pytest.approx(np.sqrt(2e-4 * 5000.0), rel=1e-4)
     assert bg.rms(2600.0) == pytest.approx(np.sqrt(2e-4 * 2500.0), rel=1e-4)
     assert bg.rms(50.0) == 0.0
+
+
+@pytest.mark.parametrize("model", ["dem", "rotor"])
+def test_the_models_measurement_noise_is_added_after_the_path_and_apart_from_the_rig(model):
+    # twenty-first session: a model's white measurement noise (noise_rms_m_per_s2) was the rig's
+    # input, so the structure's modes rang with it (its PSD x27 at 2.77 kHz and x57 at
+    # 3.30 kHz through cwru-de-12k), and it drew from default_rng(seed), the stream of the
+    # rig's background (its samples were the background's Fourier coefficients)
+    fs, seed = 12000.0, 3
+    kw = dict(model=model, rig="cwru-de-12k", seed=seed, duration_s=1.0, fs_hz=fs)
+    if model == "rotor":
+        kw["dt_s"] = 1.0 / fs / 8
+    clean = simulate(kw)
+    noisy = simulate(dict(kw, noise_rms_m_per_s2=1.0))
+    e = noisy.channels["acc_sensor"] - clean.channels["acc_sensor"]
+    # the same noise on the model channel the rig reads, and nothing else added
+    assert_allclose(e, noisy.channels["acc_y"] - clean.channels["acc_y"], atol=1e-9)
+    assert np.std(e) == pytest.approx(1.0, rel=0.05)
+    f, p = welch(e, fs, nperseg=1024)
+    for mode in load_rig("cwru-de-12k").modes:  # white: no mode stands out
+        k = np.argmin(np.abs(f - mode.frequency_hz))
+        assert p[k] / np.median(p) < 2.5, (mode.frequency_hz, p[k] / np.median(p))
+    # a stream apart from the rig's default_rng(seed)
+    rig_stream = np.random.default_rng(seed).standard_normal(e.size)
+    assert abs(np.corrcoef(e, rig_stream)[0, 1]) < 0.1

@@ -771,15 +771,37 @@ def _warn_coverage(r: Rig, fs: float) -> None:
         )
 
 
+def measurement_noise(seed: int, rms: float, shape: tuple[int, ...], rig: bool):
+    """The white measurement noise a model adds to its acceleration channels [m/s^2]: ``rms``
+    times standard normal samples of ``shape``. Without a rig from ``default_rng(seed)`` (the
+    stream since the first release); with one from ``SeedSequence([seed, 4])``, a stream of its
+    own: the rig's background, tones and sensor noise draw from ``default_rng(seed)``, and the
+    same stream made the noise's samples the background's Fourier coefficients (twenty-first
+    session)."""
+    gen = np.random.default_rng(np.random.SeedSequence([seed, 4]) if rig else seed)
+    return rms * gen.standard_normal(shape)
+
+
 def apply_rig(
-    result, rig: Rig | str | Path, *, seed: int | None = None, channel: str = "acc_sensor"
+    result,
+    rig: Rig | str | Path,
+    *,
+    seed: int | None = None,
+    channel: str = "acc_sensor",
+    noise: dict[str, NDArray[np.float64]] | None = None,
 ):
     """A copy of a :class:`~bearingsim.results.SimulationResult` with the sensor's signal as
     channel ``channel`` [m/s^2]: the rig applied to its ``input_channel``. ``seed`` defaults to
     the scenario's ``seed`` (0 if it has none). A rig with a ``[[model_gain]]`` for the
     result's model sets its path (:meth:`Rig.for_model`). The rig as applied (its
     table, the model gain already in its path), the seed and the model gain are recorded in
-    ``meta["rig"]``."""
+    ``meta["rig"]``.
+
+    ``noise`` (channel name -> samples [m/s^2]): the model's white measurement noise, for a
+    result whose channels do not hold it yet. It is added to those channels, and the input
+    channel's noise to the sensor's signal *after* the path: a measurement noise is the
+    sensor's, not a vibration the structure rings with (before the twenty-first session it
+    went through the rig's modes, ×27–57 in power at their frequencies)."""
     from .results import SimulationResult
 
     r = rig if isinstance(rig, Rig) else load_rig(rig)
@@ -803,7 +825,12 @@ def apply_rig(
     fs = _result_fs(result)
     _warn_coverage(r, fs)
     y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)
-    channels = dict(result.channels) | {channel: y}
+    channels = dict(result.channels)
+    for name, v in (noise or {}).items():
+        channels[name] = channels[name] + v
+    if noise and r.input_channel in noise:
+        y = y + noise[r.input_channel]
+    channels[channel] = y
     units = dict(result.units) | {channel: "m/s^2"}
     applied = r.to_dict() | {"seed": sd, "output_channel": channel}
     if mg is not None:

@@ -320,11 +320,16 @@ def run_ring(
         ch["ball_deformation"] = aux[:, 7 + Z : 7 + 2 * Z].copy()
         units["ball_load"] = "N"
         units["ball_deformation"] = "m"
+    noise: dict[str, np.ndarray] = {}
     if scenario.noise_rms_m_per_s2 > 0:
-        rng = np.random.default_rng(scenario.seed)
-        noise = scenario.noise_rms_m_per_s2 * rng.standard_normal((n, 2))
-        ch["acc_x"] = ch["acc_x"] + noise[:, 0]
-        ch["acc_y"] = ch["acc_y"] + noise[:, 1]
+        from ...rig import measurement_noise
+
+        e = measurement_noise(
+            scenario.seed, scenario.noise_rms_m_per_s2, (n, 2), scenario.rig is not None
+        )
+        noise = {"acc_x": e[:, 0], "acc_y": e[:, 1]}
+        if scenario.rig is None:  # with a rig, added after the path (rig.apply_rig)
+            ch = ch | {k: ch[k] + v for k, v in noise.items()}
     kin = characteristic_frequencies(inputs.kinematic_bearing, inputs.shaft_hz)
     geo: dict[str, Any] = {}
     if inputs.defect is not None:
@@ -335,6 +340,8 @@ def run_ring(
             "delta_beta_rad": g.delta_beta,
             "race_radius_m": g.race_radius,
         }
+        if g.h_min_inner is not None:  # a ball defect: h_s_m, h_min_m at the outer race,
+            geo["h_min_inner_m"] = g.h_min_inner  # this at the inner (race_radius_m: the ball's)
     meta = {
         "channels": {
             "acc_x, acc_y": (
@@ -378,7 +385,10 @@ def run_ring(
         "noise": {
             "rms_m_s2": scenario.noise_rms_m_per_s2,
             "seed": scenario.seed,
-            "generator": "numpy.random.default_rng(seed).standard_normal((n, 2))",
+            "generator": "numpy.random.default_rng(seed).standard_normal((n, 2))"
+            if scenario.rig is None
+            else "numpy.random.default_rng(SeedSequence([seed, 4])).standard_normal((n, 2)), "
+            "added to the sensor's signal after the rig's path",
         },
         "slip": {
             "interval_sd_percent": scenario.slip_percent,
@@ -425,5 +435,5 @@ def run_ring(
     if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
         from ...rig import apply_rig
 
-        res = apply_rig(res, scenario.rig)
+        res = apply_rig(res, scenario.rig, noise=noise)
     return res

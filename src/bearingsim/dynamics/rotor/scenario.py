@@ -202,11 +202,17 @@ def run_rotor(
                 ch[name] = arr[:, sl].copy()
                 units[name] = "N"
                 dims[name] = ("time", f"ball_{end}")
+    noise: dict[str, np.ndarray] = {}
     if scenario.noise_rms_m_per_s2 > 0:
-        rng = np.random.default_rng(scenario.seed)
-        noise = scenario.noise_rms_m_per_s2 * rng.standard_normal((r.time.size, 4))
-        for k, name in enumerate(names):
-            ch[name] = ch[name] + noise[:, k]
+        from ...rig import measurement_noise
+
+        e = measurement_noise(
+            scenario.seed, scenario.noise_rms_m_per_s2, (r.time.size, 4), scenario.rig is not None
+        )
+        noise = {name: e[:, k] for k, name in enumerate(names)}
+        if scenario.rig is None:  # with a rig, added after the path (rig.apply_rig)
+            for name, v in noise.items():
+                ch[name] = ch[name] + v
     kin = r.kinematics
     meta = {
         "model": "rotor",
@@ -225,8 +231,12 @@ def run_rotor(
         "noise": {
             "rms_m_s2": scenario.noise_rms_m_per_s2,
             "seed": scenario.seed,
-            "generator": "numpy.random.default_rng(seed).standard_normal((n, 4)) on "
-            "acc_x, acc_y, acc_x_fe, acc_y_fe",
+            "generator": "numpy.random.default_rng(seed).standard_normal((n, 4)) on acc_x, "
+            "acc_y, acc_x_fe, acc_y_fe"
+            if scenario.rig is None
+            else "numpy.random.default_rng(SeedSequence([seed, 4])).standard_normal((n, 4)) on "
+            "acc_x, acc_y, acc_x_fe, acc_y_fe; the rig's input channel's added to the sensor's "
+            "signal after the rig's path",
         },
         "defaults": scenario.defaults_record,
         "bearingsim_version": __version__,
@@ -239,5 +249,5 @@ def run_rotor(
         rig = load_rig(scenario.rig)
         if rig.end == "FE" and rig.input_channel in ("acc_x", "acc_y"):  # a fan-end sensor:
             rig = dataclasses.replace(rig, input_channel=f"{rig.input_channel}_fe")  # its housing
-        res = apply_rig(res, rig)
+        res = apply_rig(res, rig, noise=noise)
     return res
