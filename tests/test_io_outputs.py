@@ -591,3 +591,19 @@ def test_cli_a_run_killed_while_writing_then_run_again(run_cli, tmp_path):
     assert r.code == 0, r.err
     assert _tree(tmp_path) == ["load.png"]
     assert png.read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+
+
+def test_an_output_that_is_a_symbolic_link_is_written_through_it(tmp_path):
+    # twenty-first session: the rename replaced the link by a file and left its target with
+    # the old content, which anyone reading through the target then took for the new output
+    from bearingsim.io.atomic import atomic_open
+
+    (tmp_path / "data").mkdir()
+    target = tmp_path / "data" / "target.txt"
+    target.write_text("old")
+    link = tmp_path / "link.txt"
+    link.symlink_to(target)
+    with atomic_open(link) as fh:
+        fh.write("new")
+    assert link.is_symlink() and target.read_text() == "new"
+    assert sorted(p.name for p in (tmp_path / "data").iterdir()) == ["target.txt"]

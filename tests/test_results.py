@@ -206,3 +206,62 @@ def test_ias_files_of_the_former_layout_still_load(results, tmp_path):
     back = IasResult.load(old)
     for f in dataclasses.fields(r):
         _assert_same(getattr(r, f.name), getattr(back, f.name), f.name)
+
+
+_FULL_DISK = """
+import resource, signal, sys
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails with EFBIG
+from bearingsim import simulate
+from bearingsim.errors import ConfigError
+res = simulate(dict(model="vsm", fault="outer", duration_s=0.5, fs_hz=12000.0))
+resource.setrlimit(resource.RLIMIT_FSIZE, (20000, resource.RLIM_INFINITY))
+try:
+    res.save(sys.argv[1])
+except ConfigError as exc:
+    print("error:", exc)
+"""
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="POSIX resource limits")
+def test_a_write_the_storage_refuses_is_one_line_and_no_crash(tmp_path):
+    # twenty-first session: h5py writing to a full disk gave the one-line error and then a
+    # segmentation fault (exit 139) closing its failed file at exit; a file-size limit
+    # (EFBIG, one of the storage errors) makes the same failure here
+    import subprocess
+    import sys
+
+    script = tmp_path / "full.py"
+    script.write_text(_FULL_DISK)
+    out = tmp_path / "out.nc"
+    p = subprocess.run(
+        [sys.executable, str(script), str(out)], capture_output=True, text=True, timeout=300
+    )
+    assert p.returncode == 0, p.stderr[-2000:]
+    assert p.stdout.startswith("error: path = ") and "File too large" in p.stdout
+    assert "Traceback" not in p.stderr
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["full.py"]  # nothing left
+
+
+def test_ctrl_c_while_a_result_is_written_aborts_it(tmp_path, monkeypatch):
+    # twenty-first session: a SIGINT during the netCDF write was swallowed by h5py's
+    # callbacks ("Exception ignored in ..."): exit 0 and the file written
+    import os
+    import signal
+    import time
+
+    res = simulate(dict(model="vsm", fault="outer", duration_s=0.05, fs_hz=12000.0))
+    write = xr.Dataset.to_netcdf
+
+    def interrupted(self, *args, **kw):
+        try:  # Ctrl-C in the middle of the write, where h5py's callbacks swallow it
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+        except KeyboardInterrupt:
+            pass
+        return write(self, *args, **kw)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", interrupted)
+    out = tmp_path / "r.nc"
+    with pytest.raises(KeyboardInterrupt):
+        res.save(out)
+    assert list(tmp_path.iterdir()) == []  # neither the file nor a temporary

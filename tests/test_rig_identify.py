@@ -640,3 +640,14 @@ def test_the_path_fit_scales_with_the_records(c):
         replace(true, background=loud_bg), [(c * y, x) for y, x in pairs], 12000.0
     )
     assert many.gains == pytest.approx(tuple(c * g for g in one.gains), rel=2e-3, abs=1e-9)
+
+
+@settings(max_examples=200, deadline=None)
+@given(text=st.text(st.characters(blacklist_categories=("Cs",)), max_size=40))
+def test_any_name_or_description_round_trips_through_the_rig_file(text):
+    # twenty-first session: `rig identify --description $'line1\nline2'` wrote a TOML string
+    # holding a raw newline, and the round-trip check failed with tomllib's traceback
+    import tomllib
+
+    rig = replace(load_rig("cwru-de-12k"), description=text)
+    assert tomllib.loads(rig_to_toml(rig))["description"] == text

@@ -258,3 +258,20 @@ def test_run_prints_each_runs_warning_once_and_summary_lists_the_runs(run_cli, t
     assert lines[0].endswith("(in 2 of the 4 runs computed; 'sweep summary' lists the runs)")
     r = run_cli("sweep", "summary", out)
     assert r.code == 0 and "  warning in 2 run(s) (2, 3): RigRateWarning: rig" in r.out
+
+
+def test_a_full_disk_during_a_sweep_is_one_line(run_cli, spec_file, tmp_path, monkeypatch):
+    # twenty-first session: zarr's OSError (errno 28) from the dataset's creation or a commit
+    # came out as a traceback, exit 1 (reproduced on a 12 kB and a 400 kB tmpfs)
+    import errno
+
+    from bearingsim.sweep import execute
+
+    def full(*args, **kw):
+        raise OSError(errno.ENOSPC, "No space left on device", str(tmp_path / "o.zarr" / "x"))
+
+    monkeypatch.setattr(execute, "run_sweep", full)
+    r = run_cli("sweep", "run", spec_file, "-o", tmp_path / "o.zarr", "--workers", "1")
+    assert r.code == 2, r.err
+    assert r.err.count("\n") == 1 and r.err.startswith("error: -o/--output = ")
+    assert "no space left" in r.err and "run the same command to resume" in r.err

@@ -32,6 +32,7 @@ self-describing netCDF-4 file written with xarray (engine ``h5netcdf``): float64
 
 from __future__ import annotations
 
+import io
 import json
 import math
 import os
@@ -154,13 +155,26 @@ class Result:
         return type(other) is type(self) and self.to_dataset().identical(other.to_dataset())
 
     def save(self, path: str | Path) -> Path:
-        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path."""
+        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path.
+
+        The file is made in memory and then written as bytes (twenty-first session): h5py
+        writing to a full disk raised the one-line error and then crashed at exit (a
+        segmentation fault closing its failed file). Ctrl-C is held while it is made and
+        written (:func:`~bearingsim.interrupt.held_interrupt`) and then raised, so nothing is
+        written: h5py's callbacks swallowed it and the file was written as if no Ctrl-C had
+        come."""
+        from .interrupt import held_interrupt
+
         p = Path(path)
         ds = self.to_dataset()
         ds.attrs["format"] = self.FORMAT
         ds.attrs.setdefault("bearingsim_version", __version__)
         with atomic_path(p, suffix=".nc") as tmp:
-            ds.to_netcdf(tmp, engine="h5netcdf")
+            with held_interrupt():
+                buf = io.BytesIO()
+                ds.to_netcdf(buf, engine="h5netcdf")
+                with open(tmp, "wb") as fh:
+                    fh.write(buf.getbuffer())
         return p
 
     @classmethod

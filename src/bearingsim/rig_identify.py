@@ -693,13 +693,39 @@ def fit_path_gains(
                    (background + carried) / measured, why)  # fmt: skip
 
 
+#: TOML basic-string escapes (TOML 1.0, "String"); other control characters as \uXXXX
+_TOML_ESCAPES = {
+    "\\": "\\\\",
+    '"': '\\"',
+    "\b": "\\b",
+    "\t": "\\t",
+    "\n": "\\n",
+    "\f": "\\f",
+    "\r": "\\r",
+}
+
+
+def _toml_string(v: str) -> str:
+    """``v`` as a TOML basic string: a name or description holding a newline or another
+    control character made a file that TOML could not read back (twenty-first session)."""
+    out = []
+    for ch in v:
+        if ch in _TOML_ESCAPES:
+            out.append(_TOML_ESCAPES[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04x}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
 def rig_to_toml(rig: Rig) -> str:
     """The rig as TOML text (the layout :func:`bearingsim.rig.load_rig` reads)."""
     d = rig.to_dict()
 
     def val(v):
         if isinstance(v, str):
-            return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+            return _toml_string(v)
         if isinstance(v, bool):
             return "true" if v else "false"
         if isinstance(v, list):

@@ -291,12 +291,12 @@ def ias_cmd(
         summary = res.analyze(sc.skip_s, budget=budget)
     except ShortSignalError as exc:  # too little rotation to resolve the BPFO order
         raise ConfigError(_too_short(res, sc, exc)) from None
+    res.save(out)  # the data before its figure: a failed write leaves no figure of it
     if plot:
         from ..report.figures import save_figure
 
         lab = f"spall {params.spall_width * 1e3:g} mm" if params.spall_width > 0 else "healthy"
         save_figure(_summary_figure(summary, f"{params.bearing.id}, {lab}"), plot)
-    res.save(out)
     d = summary.as_dict()
     d.update(
         wall_s=res.solver["wall_s"],

@@ -228,6 +228,7 @@ def life_cmd(
         click.echo(f"warning: {' '.join(str(w.message).split())}", err=True)
     u = inner_race_cycles_per_revolution(bearing)
     tests = _tests_beside(bearing, fr, res.cycles_spall, l10 * u, l10r * u)
+    res.save(out)  # the data before its figures: a failed write leaves no figure of it
     if plot_weibull:
         from ..report.figures import save_figure
 
@@ -240,7 +241,6 @@ def life_cmd(
         from ..report.figures import save_figure
 
         save_figure(res.plot_damage_curve(), plot_curve)
-    res.save(out)
     m = res.meta
     d: dict[str, Any] = {
         "p_max_pa": m["p_max_pa"],

@@ -249,12 +249,12 @@ def stiffness_cmd(
         )
     for n in notes:
         click.echo(f"note: {n}", err=True)
+    if out:  # the data before its figure: a failed write leaves no figure of it
+        res.save(out)
     if plot:
         from ..report.figures import save_figure
 
         save_figure(res.plot(), plot)
-    if out:
-        res.save(out)
     d = res.to_dict(full=False)
     if as_json:
         emit_json(d)

@@ -203,6 +203,16 @@ def run_cmd(
     except SweepInterrupted as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(130) from None
+    except OSError as exc:  # a full disk while the dataset is written: one line (it stays
+        from ..io.atomic import storage_reason  # consistent: the runs committed are kept)
+
+        reason = storage_reason(exc, out)
+        if reason is None:
+            raise
+        raise ConfigError(
+            f"-o/--output = {out!r} cannot be written: {reason}; the runs committed are kept: "
+            "free space and run the same command to resume"
+        ) from None
     d = rep.as_dict()
     if as_json:
         emit_json(d)

@@ -29,8 +29,6 @@ through the returned status (see :func:`run_fixed`, which raises a clear error).
 from __future__ import annotations
 
 import math
-import signal
-import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -252,23 +250,10 @@ def call_compiled(kernel, *args):
     ``SystemError`` ("returned a result with an exception set"), and a rotor run with slip
     interrupted that way crashed with a segmentation fault (exploratory testing, fifteenth
     session). Elsewhere that ``SystemError`` is turned into the ``KeyboardInterrupt``."""
-    if threading.current_thread() is not threading.main_thread():
+    from ..interrupt import held_interrupt
+
+    with held_interrupt():
         return _call(kernel, args)
-    got: list[int] = []
-    try:
-        old = signal.signal(signal.SIGINT, lambda signum, frame: got.append(signum))
-    except (ValueError, OSError):  # signals not available here
-        return _call(kernel, args)
-    try:
-        out = _call(kernel, args)
-    finally:
-        signal.signal(signal.SIGINT, old)
-    if got:
-        if callable(old):  # Python's default raises KeyboardInterrupt; a custom one decides
-            old(signal.SIGINT, None)
-        elif old == signal.SIG_DFL:
-            raise KeyboardInterrupt
-    return out
 
 
 def _call(kernel, args):

@@ -39,6 +39,7 @@ __all__ = [
     "atomic_path",
     "check_output",
     "clean_stale_temporaries",
+    "storage_reason",
     "write_json",
 ]
 
@@ -231,6 +232,15 @@ def _unwritable(dest: Path, directory: bool) -> str | None:
     return None
 
 
+def storage_reason(exc: BaseException, dest: str | Path) -> str | None:
+    """Why the output at ``dest`` could not be written when ``exc`` is an error of its
+    storage (full, over quota, too large, read-only; e.g. "no space left in ..."), else
+    ``None``."""
+    if not isinstance(exc, OSError) or exc.errno not in _STORAGE_ERRNOS:
+        return None
+    return _reason(exc, Path(exc.filename).parent if isinstance(exc.filename, str) else Path(dest))
+
+
 def _error(field: str, dest: str | Path, reason: str, directory: bool) -> ConfigError:
     valid = (
         "a directory that can be created or written"
@@ -283,7 +293,8 @@ def _missing_dirs(folder: Path) -> list[Path]:
 def atomic_path(
     path: str | Path, suffix: str | None = None, *, field: str = "path"
 ) -> Iterator[Path]:
-    """Yield a temporary path beside ``path``; on success rename it onto ``path``.
+    """Yield a temporary path beside ``path``; on success rename it onto ``path`` (onto its
+    target when ``path`` is a symbolic link: the link stays and points to the new content).
 
     Nothing is left at ``path`` if the block raises (no half-written output): the temporary
     file, and the folders created for it, are removed on any failure. The stale temporaries of
@@ -303,6 +314,8 @@ def atomic_path(
         Name of the output in error messages.
     """
     dest = Path(path)
+    if dest.is_symlink():  # written through the link: its target gets the new content (the
+        dest = Path(os.path.realpath(dest))  # rename replaced the link, the target kept the old)
     st = _stat(dest)
     if isinstance(st, os.stat_result) and not stat.S_ISREG(st.st_mode):
         raise _error(field, dest, f"it is {_kind(st.st_mode)}, not a regular file", False)
