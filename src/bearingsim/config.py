@@ -486,6 +486,15 @@ class Scenario:
         return cls.from_dict(data, origin=p.name)
 
 
+def is_rig_file(value: Any) -> bool:
+    """Whether :func:`bearingsim.rig.load_rig` reads a ``rig`` value as a file (a ``*.toml``
+    path, or a file of that name), not as a shipped profile."""
+    if not isinstance(value, str | Path):
+        return False
+    p = Path(value)
+    return p.suffix.lower() == ".toml" or p.is_file()
+
+
 def relative_rig_file(value: Any) -> bool:
     """Whether a ``rig`` value names a rig file by a relative path (``*.toml``), which a
     scenario or sweep file takes relative to itself (a profile name or an absolute path is
@@ -500,6 +509,9 @@ def _check_bearing(sc: Any, default: str) -> None:
     if sc.bearing_file is not None:
         if not isinstance(sc.bearing_file, str) or not sc.bearing_file:
             raise ConfigError(f"bearing_file = {sc.bearing_file!r} is invalid; valid: a path")
+        # by its absolute path: the scenario a result stores reruns from any folder (a
+        # relative one read another folder's file, or none; twenty-first session)
+        s(sc, "bearing_file", str(Path(sc.bearing_file).resolve()))
         s(sc, "bearing", None)
     elif sc.bearing is None:
         s(sc, "bearing", default)
@@ -561,6 +573,8 @@ def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
     from .rig import load_rig
 
     r = sc.__dict__.get("loaded_rig") or load_rig(sc.rig)  # loaded once when it set fs_hz
+    if is_rig_file(sc.rig):  # a file by its absolute path: the scenario a result stores reruns
+        object.__setattr__(sc, "rig", str(Path(sc.rig).resolve()))  # from any folder
     r.check_rate(sc.fs_hz)
     if r.input_channel not in channels:
         raise ConfigError(
