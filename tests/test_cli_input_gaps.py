@@ -300,3 +300,13 @@ def test_rig_identify_never_writes_over_a_record_and_writes_toml_only(run_cli, t
     assert "--plot" in line
     assert rec.read_bytes() == before and twin.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rec.mat", "rec.toml"]
+
+
+def test_simulate_help_shows_the_ias_models_own_defaults(run_cli):
+    # twenty-first session: the help showed only the ring models' defaults (1 s, 48 kHz,
+    # 1750 r/min, automatic step), and `simulate --model ias` then ran 10 s at 50 kHz with a
+    # 1 us step, ten times longer than the help said
+    text = " ".join(run_cli("simulate", "--help").out.split())
+    shown = ("(1; ias: 10)", "ias: 50000)", "(automatic; ias: 1e-06)", "(6205; ias: NU204-ECP)")
+    for s in (*shown, "(10; ias: 0)", "(50; ias: 400)"):
+        assert s in text, s

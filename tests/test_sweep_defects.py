@@ -277,8 +277,25 @@ def test_random_split_with_an_empty_side_is_refused(store):
     )
     with pytest.raises(ConfigError, match=r"^test_fraction = 0\.9 of 4 run\(s\) leaves the train"):
         ds.random_split(0.9)
-    a, b = ds.random_split(0.25, stratify=False)  # round(0.25 x 4) = 1
+    with pytest.warns(SplitWarning):  # one test run: the other label is on one side only
+        a, b = ds.random_split(0.25, stratify=False)  # round(0.25 x 4) = 1
     assert (len(a), len(b)) == (3, 1)
+
+
+def test_an_unstratified_split_warns_of_a_label_on_one_side_only(store):
+    # twenty-first session: random_split(stratify=False) only checked the whole selection,
+    # so a split putting both "none" runs in train and both "outer" runs in test was silent
+    ds = open_dataset(store).completed()  # runs 0-3: none, none, outer, outer
+    for seed in range(50):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SplitWarning)
+            a, b = ds.random_split(0.5, stratify=False, seed=seed)
+        if sorted(b.labels()) in (["none", "none"], ["outer", "outer"]):
+            break
+    else:  # pragma: no cover - 50 draws of 2 of 4
+        pytest.fail("no seed split the labels apart")
+    with pytest.warns(SplitWarning, match=r"none \(2 run\(s\), none in the (train|test) set\)"):
+        ds.random_split(0.5, stratify=False, seed=seed)
 
 
 def test_random_split_warns_when_a_label_is_on_one_side_only(tmp_path):

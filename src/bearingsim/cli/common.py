@@ -298,26 +298,40 @@ class DeferredDefaultOption(click.Option):
         return super().get_help_record(ctx)
 
 
-def scenario_default(key: str, model: str = "vsm") -> str | bool:
-    """What ``[default: ...]`` shows for an option that overrides scenario key ``key``: the
-    default of the family of ``model`` that has the key (else of the first family that has it,
-    :mod:`bearingsim.config`) when neither the option nor the scenario file sets it (``False``,
-    i.e. nothing shown, for a default of ``None`` or ``False``)."""
-    import dataclasses
+def _shown(v: Any) -> str | bool:
+    """A default as ``[default: ...]`` shows it (``False``: nothing shown)."""
     import enum
 
-    from ..config import IasScenario, RingScenario, RotorScenario, family
-
-    fams = [family(model), RingScenario, RotorScenario, IasScenario]
-    fam = next(f for f in fams if key in f.KEYS)
-    v = {f.name: f.default for f in dataclasses.fields(fam)}[key]
     if v is None or v is False:
         return False
-    if v is True:
-        return key.replace("_", "-")
     if isinstance(v, enum.Enum):
         v = v.value
     return format(v, "g") if isinstance(v, float) else str(v)
+
+
+def scenario_default(key: str, model: str = "vsm", *, others: bool = True) -> str | bool:
+    """What ``[default: ...]`` shows for an option that overrides scenario key ``key``: the
+    default of the family of ``model`` that has the key (else of the first family that has it,
+    :mod:`bearingsim.config`) when neither the option nor the scenario file sets it (``False``,
+    i.e. nothing shown, for a default of ``None`` or ``False``), followed by each other
+    family's that differs (``1; ias: 10``: the help showed the ring models' values for
+    ``--model ias``, whose run was then ten times longer than the help said); ``others``
+    False shows the one family's alone."""
+    import dataclasses
+
+    from ..config import IasScenario, RingScenario, RotorScenario, family
+
+    names = {RingScenario: "vsm/dem/tvsm", RotorScenario: "rotor", IasScenario: "ias"}
+    fams = [f for f in dict.fromkeys([family(model), *names]) if key in f.KEYS]
+    vals = [(f, {g.name: g.default for g in dataclasses.fields(f)}[key]) for f in fams]
+    first = vals[0][1]
+    if first is True:
+        return key.replace("_", "-")
+    shown = _shown(first)
+    rest = [f"{names[f]}: {_shown(v) or 'none'}" for f, v in vals[1:] if v != first]
+    if not rest or not others:
+        return shown
+    return "; ".join([str(shown) if shown is not False else "none", *rest])
 
 
 def emit_json(obj: Any) -> None:

@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..config import DEFECT_PROFILES, Model, Scenario, Solver
+from ..config import DEFECT_PROFILES, IasScenario, Model, Scenario, Solver
 from ..errors import ConfigError, check_range
 from .common import (
     CLEARANCE,
@@ -222,7 +222,8 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "fs_hz",
     type=Number(0.0, lo_open=True, unit="Hz"),
     default=None,
-    show_default=f"{Scenario.FS_DEFAULT_HZ:g}; with --rig: the rate its records had",
+    show_default=f"{Scenario.FS_DEFAULT_HZ:g}; with --rig: the rate its records had; ias: "
+    f"{IasScenario.FS_DEFAULT_HZ:g}",
     help="Output sample rate [Hz].",
 )
 @deprecated("--fs", "--fs-hz")
@@ -262,7 +263,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "--dt-s",
     type=Number(0.0, lo_open=True, unit="s"),
     default=None,
-    show_default="automatic",
+    show_default=f"automatic; ias: {_d('dt_s', 'ias', others=False)}",
     help="RK4 step [s].",
 )
 @click.option(

@@ -271,6 +271,13 @@ class SweepDataset:
                 side = "test" if k == 0 else "train"
                 short.append(f"{g!s} ({idx.size} run(s), none in the {side} set)")
             test[rng.choice(idx, size=k, replace=False)] = True
+        if not strat and self.label_keys:  # the labels land where the draw put them: each
+            labels = self.labels()  # one on one side only is named as well (twenty-first
+            for g in np.unique(labels):  # session: none was, the warning never came)
+                on = test[labels == g]
+                if on.all() or not on.any():
+                    side = "train" if on.all() else "test"
+                    short.append(f"{g!s} ({on.size} run(s), none in the {side} set)")
         n_test = int(test.sum())
         if n_test in (0, len(self)):
             side = "test" if n_test == 0 else "train"
