@@ -39,9 +39,9 @@ def main(argv: list[str] | None = None) -> int:
     out = []
     print(
         "| record | fault | mounting | stored speed [r/min] | measured speed [r/min] (lines) "
-        "| line | order (α = 0) | SNR [dB] | contact angle [°] |"
+        "| line | order (α = 0) | SNR [dB] | contact angle [°] | resolution [°] |"
     )
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, row in rows.items():
         fam = truth_of(row)
         if fam not in ("outer", "inner"):
@@ -51,7 +51,7 @@ def main(argv: list[str] | None = None) -> int:
         try:
             est = estimate_contact_angle(rec.x, rec.fs, bearing, fam, rec.rpm / 60.0)
         except ConfigError as e:
-            print(f"| {name} | {fam} | {mounting_of(row)} | {rec.rpm:g} | {e} |||||")
+            print(f"| {name} | {fam} | {mounting_of(row)} | {rec.rpm:g} | {e} ||||||")
             continue
         lab = ("BPFO" if fam == "outer" else "BPFI") + (
             "" if est.harmonic == 1 else f" ({est.harmonic}×)"
@@ -59,7 +59,7 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"| {name} | {fam} | {mounting_of(row)} | {rec.rpm:g} | {60 * est.shaft_hz:.1f} "
             f"({est.shaft_lines}) | {lab} | {est.order:.4f} ({est.order_alpha0:.4f}) | "
-            f"{est.snr_db:.1f} | {est.contact_angle_deg:.1f} |"
+            f"{est.snr_db:.1f} | {est.contact_angle_deg:.1f} | {est.resolution_deg:.1f} |"
         )
         out.append(
             {"file": name, "mounting": mounting_of(row), "stored_rpm": rec.rpm, **est.as_dict()}

@@ -4,7 +4,7 @@ condition simulated and passed through a rig identified WITHOUT that record's fa
 these records). Prints a Markdown table and the share of records within issue 16's bounds.
 
     python scripts/side_by_side.py [--model vsm|dem|tvsm|rotor] [--duration-s 2]
-        [--slip-percent 1.5]
+        [--slip-percent 1.5] [--pocket-jitter-percent 0]
         [--defect-profile geometric] [--contact-roughness-m 1e-7] [--model-gain]
         [--gain-method power|spectral|whittle] [--direct-gain G] [--split size|load]
         [--json OUT.json]
@@ -45,6 +45,12 @@ def main() -> int:
     ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm", "rotor"])
     ap.add_argument("--duration-s", type=float, default=2.0)
     ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
+    ap.add_argument(
+        "--pocket-jitter-percent",
+        type=float,
+        default=0.0,
+        help="balls wandering in their pockets: pass intervals jittered, the phase locked [%%]",
+    )
     ap.add_argument(
         "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular"]
     )
@@ -96,6 +102,7 @@ def main() -> int:
         )
     realism = {
         "slip_percent": a.slip_percent,
+        "pocket_jitter_percent": a.pocket_jitter_percent,
         "defect_profile": a.defect_profile,
         "contact_roughness_m": a.contact_roughness_m,
     }

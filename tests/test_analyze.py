@@ -400,12 +400,13 @@ def test_a_contact_angle_read_as_zero_from_beyond_the_alpha0_order_says_so(capsy
 
     ca = dict(family="outer", shaft_hz=29.2, shaft_lines=10, harmonic=1, order=3.5800,
               order_alpha0=3.5848, snr_db=30.0, contact_angle_rad=0.0,
-              contact_angle_deg=0.0)  # fmt: skip
+              contact_angle_deg=0.0, resolution_deg=6.2)  # fmt: skip
     out = dict(file="r.mat", band_hz=[0.0, 6000.0], rpm_source="file", channel="DE",
                diagnosis="outer", confidence=0.9, peaks=[], contact_angle=ca)  # fmt: skip
     _echo_text(out, detail=True)
     text = capsys.readouterr().out
     assert "note: the line lies 0.13 % on the far side of its alpha = 0 order" in text, text
+    assert "below 6.2 deg not told from 0 (1.5 % random slip over this record)" in text, text
     _echo_text(out | {"contact_angle": ca | dict(order=3.5972, contact_angle_deg=9.4)}, True)
     assert "far side" not in capsys.readouterr().out
 

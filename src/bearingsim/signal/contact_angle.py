@@ -16,7 +16,16 @@ rounded and may be off; so both are measured here from the record itself:
    :data:`ALPHA_SEARCH_MAX` (only the direction a contact angle moves it) widened by
    ``pad_rel``; a harmonic whose window meets a window of the other race's first three
    harmonics is not used (the 6205's 3×BPFO and 2×BPFI lie 0.7 % apart);
-3. ``alpha`` from that order (:func:`bearingsim.geometry.contact_angle_from_order`).
+3. ``alpha`` from that order (:func:`bearingsim.geometry.contact_angle_from_order`);
+4. its resolution: the angle that a line off its rate by three standard deviations of a
+   random slip's wander reads (:func:`slip_resolution`). Random slip (:data:`SLIP_ASSUMED`,
+   1.5 %) makes the ball passes a random walk, so the mean rate over ``N`` passes is off by
+   ``slip sqrt(1.2 / N)`` (one standard deviation of the least-squares slope of a Brownian
+   phase over the record, ``sqrt(6/5)`` of the end-point estimate's). The line's peak scatters
+   1.2–1.4 times that (30 VSM simulations at ``alpha = 0`` through ``cwru-de-12k`` for each
+   of 1, 2 and 4 s: the phase decorrelates within a record, more so at the higher harmonics),
+   so three of the slope's standard deviations are about 2.2–2.5 of the peak's. An estimate
+   below the resolution is not told from 0 (twenty-first session).
 
 Used for ``docs/validation.md`` ("Contact angle of the CWRU bearings", `python
 scripts/contact_angles.py`): what the fault-line offsets of the CWRU records mean.
@@ -39,6 +48,7 @@ from .spectrum import Spectrum, amplitude_spectrum
 
 __all__ = [
     "ALPHA_SEARCH_MAX",
+    "SLIP_ASSUMED",
     "ContactAngleEstimate",
     "estimate_contact_angle",
     "measured_shaft_hz",
@@ -46,7 +56,15 @@ __all__ = [
     "refuted_speed",
     "SpeedComb",
     "shaft_speed_comb",
+    "slip_resolution",
 ]
+
+#: random slip the resolution assumes: the middle of the 1–2 % that real bearings show
+#: (Randall & Antoni 2011), the rigs' realistic default [-]
+SLIP_ASSUMED = 0.015
+
+#: standard deviations of the slip's wander that the resolution spans [-] (module docstring)
+RESOLUTION_SIGMAS = 3.0
 
 #: largest contact angle the fault-line search reaches [rad] (25°: beyond it a deep-groove
 #: bearing's contact ellipse nears the groove shoulder, Harris & Kotzalas 2007)
@@ -290,6 +308,9 @@ class ContactAngleEstimate:
     contact_angle_rad : float
         The contact angle that puts the line there [rad]; 0 for a line within the search
         window's padding on the far side of the ``alpha = 0`` order.
+    resolution_rad : float
+        The angle a 3-sigma wander of the line under :data:`SLIP_ASSUMED` random slip reads
+        over this record (:func:`slip_resolution`) [rad]: an angle below it is not told from 0.
     """
 
     family: str
@@ -300,15 +321,59 @@ class ContactAngleEstimate:
     order_alpha0: float
     snr_db: float
     contact_angle_rad: float
+    resolution_rad: float = float("nan")
 
     @property
     def contact_angle_deg(self) -> float:
         """The contact angle [deg]."""
         return math.degrees(self.contact_angle_rad)
 
+    @property
+    def resolution_deg(self) -> float:
+        """The resolution [deg] (``resolution_rad``)."""
+        return math.degrees(self.resolution_rad)
+
     def as_dict(self) -> dict[str, float | int | str]:
-        """JSON-ready dict (the fields and ``contact_angle_deg``)."""
-        return {**asdict(self), "contact_angle_deg": self.contact_angle_deg}
+        """JSON-ready dict (the fields, ``contact_angle_deg`` and ``resolution_deg``)."""
+        return {
+            **asdict(self),
+            "contact_angle_deg": self.contact_angle_deg,
+            "resolution_deg": self.resolution_deg,
+        }
+
+
+def slip_resolution(
+    bearing: Bearing, family: str, n_passes: float, slip: float = SLIP_ASSUMED
+) -> float:
+    """The contact angle [rad] that a race's fault line reads when its rate over ``n_passes``
+    passes [-] is off by three standard deviations of a random slip's wander, ``3 slip
+    sqrt(1.2 / n_passes)`` (module docstring, step 4), in the direction an angle moves it
+    (BPFO up, BPFI down); ``pi/2`` when that wander reaches past the orders an angle gives.
+
+    Parameters
+    ----------
+    bearing : Bearing
+        Geometry.
+    family : str
+        ``"outer"`` or ``"inner"``.
+    n_passes : float
+        Passes of the line over the record (its frequency times the record's duration) [-].
+    slip : float
+        Standard deviation of the random slip, a share of the pass interval [-].
+    """
+    fam = str(family).lower()
+    if fam not in ("outer", "inner"):
+        raise ConfigError(f"family = {family!r} is not one of outer, inner")
+    n = check_positive("n_passes", n_passes)
+    rel = RESOLUTION_SIGMAS * float(slip) * math.sqrt(1.2 / n)
+    line = "bpfo" if fam == "outer" else "bpfi"
+    o0 = getattr(characteristic_frequencies(replace(bearing, contact_angle=0.0), 1.0), f"{line}_hz")
+    try:
+        return contact_angle_from_order(
+            bearing, line, o0 * (1.0 + rel if fam == "outer" else 1.0 - rel)
+        )
+    except ConfigError:  # past the 90 deg order: the record tells no angle
+        return 0.5 * math.pi
 
 
 def estimate_contact_angle(
@@ -385,4 +450,5 @@ def estimate_contact_angle(
     # precision, a slightly low speed estimate) reads alpha = 0
     order_c = min(max(order, min(o0, o1)), max(o0, o1))
     alpha = contact_angle_from_order(bearing, "bpfo" if fam == "outer" else "bpfi", order_c)
-    return ContactAngleEstimate(fam, shaft, n_lines, h, order, o0, snr, alpha)
+    res = slip_resolution(bearing, fam, o0 * shaft * xa.size / fs)
+    return ContactAngleEstimate(fam, shaft, n_lines, h, order, o0, snr, alpha, res)
