@@ -460,6 +460,7 @@ def test_cli_identify_model_gain_writes_the_models_gain(tmp_path):
     r = _cli("rig", "identify", str(alone), "--name", "g", "--fs-hz", "48000", "--model-gain",
              "vsm", "-o", str(out), cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2 and "is not in" in r.stderr and "manifest.csv" in r.stderr
+    assert "--conditions FILE.csv" in r.stderr  # the way for a user's own records
     assert r.stderr.count("\n") == 1 and not out.exists()
 
 

@@ -3,6 +3,7 @@ same way on both signals."""
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
@@ -62,6 +63,9 @@ def test_bounds():
 def test_record_132_side_by_side():
     rec = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
     s = side_by_side(rec, "cwru-de-12k", duration_s=0.5)
+    json.dumps(s)  # JSON-ready: the rig's background signal was returned with the numbers
+    assert set(s) == {"record", "fault", "size_in", "end", "rpm", "fs_hz", "fault_hz", "grade",
+                      "scenario", "measured", "simulated", "ratio"}  # fmt: skip
     assert s["fault"] == "outer" and s["end"] == "DE" and s["fs_hz"] == 12000.0
     assert s["scenario"]["defect_width_m"] == pytest.approx(0.007 * 0.0254)
     x = read_signal(rec, channel="DE").x[:6000]

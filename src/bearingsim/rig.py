@@ -69,7 +69,7 @@ TOML layout (SI units in the key names)::
     [[model_gain]]                   # or the fitted form: the path's gains replaced
     model = "vsm"
     path_gain = 0.01
-    mode_gains = [0.08, 0.28]        # one per [[mode]], in their order
+    mode_gains = [0.08]              # one per [[mode]], in their order
     provenance = "..."
 
 A ``[[model_gain]]`` sets the path for the output of one model. An output-only

@@ -249,9 +249,11 @@ def side_by_side(
     Returns
     -------
     dict
-        ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``, ``fault_hz``, the
+        JSON-ready: ``record``, ``fault``, ``size_in``, ``end``, ``rpm``, ``fs_hz``,
+        ``fault_hz``, ``grade`` (Smith & Randall's), ``scenario`` (the simulated one), the
         ``measured`` and ``simulated`` :class:`SignalMetrics` (as dicts) and their ``ratio``
-        (simulated / measured; prominence as the difference in dB).
+        (simulated / measured; prominence as the difference in dB). The signals themselves
+        are :func:`simulate_record`'s.
     """
     c = simulate_record(
         record,
@@ -265,7 +267,8 @@ def side_by_side(
     m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
     ratio = ratios(m_meas, m_sim)
     return {
-        **{k: v for k, v in c.items() if k not in ("measured", "simulated")},
+        # the signals stay out (the rig's background too: a whole record, not JSON-ready)
+        **{k: v for k, v in c.items() if k not in ("measured", "simulated", "background")},
         "measured": asdict(m_meas),
         "simulated": asdict(m_sim),
         "ratio": ratio,

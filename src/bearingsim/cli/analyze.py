@@ -56,8 +56,10 @@ def speed_note(rpm: float, own: float) -> str:
     """The note of a --rpm [r/min] that overrides a result simulated at ``own`` [r/min]."""
     return (
         f"rpm = {rpm:g} r/min overrides the {own:g} r/min the result was simulated at "
-        f"({100.0 * (rpm / own - 1.0):+.2f} %, beyond the line search's 1 %): the fault lines "
-        "were searched at the speed given"
+        f"({100.0 * (rpm / own - 1.0):+.2f} %, more than the 1 % the line search allows for a "
+        "speed error): the fault lines were searched at the speed given, in windows that also "
+        "reach the orders of contact angles up to 20 deg, so a line may still be found off its "
+        "target"
     )
 
 

@@ -170,8 +170,9 @@ def identify_cmd(
             if row is None:
                 raise ConfigError(
                     f"--model-gain: record {Path(p).name!r} is not in "
-                    f"{Path(p).parent / 'manifest.csv'}; valid: CWRU records listed there (the "
-                    "simulation needs each record's fault, size and speed)"
+                    f"{Path(p).parent / 'manifest.csv'}; valid: CWRU records listed there, or "
+                    "--conditions FILE.csv giving each of your own records' fault, bearing, "
+                    "defect size and speed (the simulation needs them)"
                 )
             if row["fault"].split()[0] in FAULT_FAMILIES:
                 faulty.append(Path(p))
