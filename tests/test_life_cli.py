@@ -92,6 +92,17 @@ def test_life_json_beside_tests_l10_l10r(run_cli, tmp_path):
     )  # fmt: skip
     assert r2.code == 0, r2.err
     assert r2.json()["tests"] is None
+    # twenty-first session: the file records the ratings and the speed of the hours (--rpm
+    # was not in it, so the printed hours could not be recovered from the file)
+    from bearingsim.results import load_result
+
+    m = load_result(tmp_path / "a.nc").meta
+    assert m["l10_iso281_cycles"] == d["l10_iso281_cycles"] and "rpm" not in m
+    r3 = run_cli(
+        "life", "6206", "--radial-load-n", "4000", *fast, "--stop", "initiation", "--rpm", "1500",
+        "-o", tmp_path / "c.nc", "--json",
+    )  # fmt: skip
+    assert load_result(tmp_path / "c.nc").meta["rpm"] == 1500.0 == r3.json()["rpm"]
 
 
 def test_life_text_output(run_cli, tmp_path):

@@ -223,3 +223,13 @@ def test_a_moment_that_overloads_a_ball_is_refused(run_cli, method):
     assert r.code == 0 and "exceeds the element load" in r.err
     r = run_cli(*base, "--mx-n-m", "200", "--json")
     assert r.code == 0 and "warning: largest ball load under the moment" in r.err
+
+
+def test_the_file_records_the_material_the_stiffness_was_computed_with(run_cli, tmp_path):
+    # twenty-first session: `stiffness 6205 --E-pa 100e9 --nu 0.25 -o f.nc` recorded the
+    # catalogue id alone; E and nu were nowhere in the file, only their effect on k
+    out = tmp_path / "soft.nc"
+    r = run_cli(*BASE, "--E-pa", "100e9", "--nu", "0.25", "-o", out, "--json")
+    assert r.code == 0, r.err
+    g = StiffnessResult.load(out).solution.geometry
+    assert (g.youngs_modulus, g.poisson_ratio) == (100e9, 0.25)

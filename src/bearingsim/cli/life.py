@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 import warnings
@@ -228,6 +229,13 @@ def life_cmd(
         click.echo(f"warning: {' '.join(str(w.message).split())}", err=True)
     u = inner_race_cycles_per_revolution(bearing)
     tests = _tests_beside(bearing, fr, res.cycles_spall, l10 * u, l10r * u)
+    # the file records what the printed lives rest on: the ratings beside it and the speed of
+    # the hours (twenty-first session: --rpm was not recorded, so the hours could not be
+    # recovered from the file)
+    extra = {"l10_iso281_cycles": l10 * u, "l10r_iso16281_cycles": l10r * u}
+    if rpm is not None:
+        extra["rpm"] = rpm
+    res = dataclasses.replace(res, meta={**res.meta, **extra})
     res.save(out)  # the data before its figures: a failed write leaves no figure of it
     if plot_weibull:
         from ..report.figures import save_figure

@@ -170,6 +170,10 @@ class QSGeometry:
         Largest admissible contact angle [rad].
     density : float
         Ball material density [kg/m^3] (inertia loads).
+    youngs_modulus, poisson_ratio : float
+        The material's E [Pa] and nu [-] that the Hertz constants were computed with (a saved
+        result records them: `stiffness --E-pa` left no trace but in ``k``; NaN in files
+        written before the twenty-first session).
     """
 
     n_balls: int
@@ -190,6 +194,8 @@ class QSGeometry:
     cage_ratio: float
     max_contact_angle: float
     density: float
+    youngs_modulus: float = math.nan
+    poisson_ratio: float = math.nan
 
 
 def max_contact_angle_default(bearing: BallBearing) -> float:
@@ -264,6 +270,8 @@ def qs_geometry(
         cage_ratio=characteristic_frequencies(bearing, 1.0).ftf_order,
         max_contact_angle=amax,
         density=bearing.material.density,
+        youngs_modulus=bearing.material.youngs_modulus,
+        poisson_ratio=bearing.material.poisson_ratio,
     )
 
 
