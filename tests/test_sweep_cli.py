@@ -4,6 +4,7 @@ stderr, exit code 2, no dataset left behind)."""
 from __future__ import annotations
 
 import json
+import sys
 
 import pytest
 
@@ -236,7 +237,20 @@ def test_docs_python_example_runs(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "sweep.toml").write_text(SPEC)
     ns = {"__name__": "__main__"}
-    exec(compile(code, "docs/sweeps.md", "exec"), ns)
+    # the example's names are main()'s locals (twenty-first session: code outside main() ran
+    # in every worker process the local cluster started, so the example crashed as a script)
+    seen: dict = {}
+
+    def keep(frame, event, arg):
+        if event == "return" and frame.f_code.co_name == "main":
+            seen.update(frame.f_locals)
+
+    sys.setprofile(keep)
+    try:
+        exec(compile(code, "docs/sweeps.md", "exec"), ns)
+    finally:
+        sys.setprofile(None)
+    ns = seen
     assert ns["report"].n_ok == 4
     assert ns["X"].shape == (2, 2, 200) and list(ns["y"]) == ["outer", "inner"]
     assert len(ns["test"]) == 2 and ns["r"].fs_hz == 4000.0
