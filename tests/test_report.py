@@ -129,3 +129,39 @@ def test_a_side_by_side_rows_ratio_reads_on_its_side_of_the_bound():
     assert _size_text("kurtosis", 0.66664, 1.5, False) == "0.6666×"
     assert _size_text("prominence_db", -6.04, 6.0, False) == "-6.04 dB"
     assert _size_text("prominence_db", -5.2, 6.0, True) == "-5.2 dB"
+
+
+def test_a_second_run_leaves_one_report_and_records_how_it_was_made(tmp_path, monkeypatch):
+    # twenty-first session: `reproduce --section vsm -o rep` after a full run replaced
+    # results.json but kept the first run's figures of the other sections, and nothing in the
+    # folder said whether it was a --quick run or which version made it
+    import sys
+    import types
+
+    from bearingsim import __version__
+    from bearingsim.report import Section, run_report
+
+    def fake(name):
+        mod = types.ModuleType(f"bearingsim.report.sections.{name}")
+
+        def run(ctx):
+            (ctx.out_dir / f"{name}.png").write_bytes(b"\x89PNG\r\n\x1a\n")
+            return Section(name, name, figures=[(f"{name}.png", "a figure")])
+
+        mod.TITLE, mod.run = name, run
+        monkeypatch.setitem(sys.modules, mod.__name__, mod)
+
+    fake("fake_a")
+    fake("fake_b")
+    (tmp_path / "mine.png").write_bytes(b"x")  # a user's file in the folder: never touched
+    run_report(tmp_path, quick=True, sections=["fake_a", "fake_b"], progress=False)
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert run["quick"] is True and run["bearingsim_version"] == __version__
+    assert run["sections"] == ["fake_a", "fake_b"] and run["figures"] == [
+        "fake_a.png",
+        "fake_b.png",
+    ]
+    run_report(tmp_path, quick=False, sections=["fake_b"], progress=False)
+    assert sorted(p.name for p in tmp_path.glob("*.png")) == ["fake_b.png", "mine.png"]
+    run = json.loads((tmp_path / "run.json").read_text())
+    assert run["quick"] is False and run["sections"] == ["fake_b"]

@@ -302,4 +302,36 @@ def run_report(
             rows.append(d)
     write_json(out / "results.json", rows)
     write_html(out / "report.html", done, quick)
+    _write_run(out, done, quick)
     return done
+
+
+def _write_run(out: Path, done: list[Section], quick: bool) -> None:
+    """``run.json``: how the folder's report was made (version, ``quick``, sections, figures);
+    the figures a previous run recorded there and this one did not make are removed, so the
+    folder holds one report (twenty-first session: a second `reproduce --section vsm` kept the
+    first run's figures of other sections beside its own results)."""
+    import contextlib
+    import datetime
+    import json
+
+    from .._version import __version__
+
+    figs = [f for sec in done for f, _cap in sec.figures]
+    prev: list[str] = []
+    with contextlib.suppress(OSError, ValueError, TypeError, AttributeError):
+        prev = [str(f) for f in json.loads((out / "run.json").read_text("utf-8"))["figures"]]
+    for f in set(prev) - set(figs):
+        if Path(f).name == f and f.lower().endswith(".png"):  # only a figure it wrote there
+            with contextlib.suppress(OSError):
+                (out / f).unlink()
+    write_json(
+        out / "run.json",
+        {
+            "bearingsim_version": __version__,
+            "quick": quick,
+            "sections": [sec.name for sec in done],
+            "figures": figs,
+            "written_utc": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+        },
+    )
