@@ -308,5 +308,6 @@ def test_simulate_help_shows_the_ias_models_own_defaults(run_cli):
     # 1 us step, ten times longer than the help said
     text = " ".join(run_cli("simulate", "--help").out.split())
     shown = ("(1; ias: 10)", "ias: 50000)", "(automatic; ias: 1e-06)", "(6205; ias: NU204-ECP)")
-    for s in (*shown, "(10; ias: 0)", "(50; ias: 400)"):
+    for s in (*shown, "(10; ias: 0)", "(50; ias: 400)", "(seed VSM table 1; ias: 1.3)"):
         assert s in text, s
+    assert "[default: (vsm)]" in text  # the model's own default, not each family's name

@@ -8,6 +8,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import json
+import math
 import os
 import re
 import signal
@@ -607,3 +608,45 @@ def test_an_output_that_is_a_symbolic_link_is_written_through_it(tmp_path):
         fh.write("new")
     assert link.is_symlink() and target.read_text() == "new"
     assert sorted(p.name for p in (tmp_path / "data").iterdir()) == ["target.txt"]
+
+
+def test_an_output_that_links_to_the_commands_input_is_refused(tmp_path, monkeypatch):
+    # twenty-first session: outputs are written through symbolic links, so `simulate sc.toml
+    # -o o.nc` with o.nc -> sc.toml replaced the scenario file by the netCDF result (and
+    # `analyze a.csv --plot p.png`, p.png -> a.csv, the record by a PNG)
+    from bearingsim.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    sc = tmp_path / "sc.toml"
+    sc.write_text('model = "vsm"\nfault = "outer"\nduration_s = 0.01\nfs_hz = 12000.0\n')
+    (tmp_path / "o.nc").symlink_to(sc)
+    text = sc.read_text()
+    with pytest.raises(SystemExit) as e:
+        main(["simulate", "sc.toml", "-o", "o.nc"])
+    assert e.value.code == 2 and sc.read_text() == text
+    rec = tmp_path / "a.csv"
+    rec.write_text("t,x\n" + "".join(f"{k / 100},{math.sin(k)}\n" for k in range(400)))
+    (tmp_path / "p.png").symlink_to(rec)
+    with pytest.raises(SystemExit) as e:
+        main(["analyze", "a.csv", "--rpm", "1796", "--plot", "p.png"])
+    assert e.value.code == 2 and rec.read_text().startswith("t,x\n")
+
+
+def test_a_full_disk_names_the_option_and_asks_for_space(tmp_path, monkeypatch, capsys):
+    # twenty-first session: the full-disk error named `path` (the read-only one -o/--output)
+    # and advised "a regular file in a writable directory"
+    import xarray as xr
+
+    from bearingsim.cli import main
+
+    def full(self, *args, **kw):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", full)
+    with pytest.raises(SystemExit) as e:
+        main(["simulate", "--duration-s", "0.01", "--fs-hz", "12000", "-o", str(tmp_path / "r.nc")])
+    err = capsys.readouterr().err
+    assert e.value.code == 2 and err.count("\n") == 1, err
+    assert err.startswith("error: -o/--output = ") and "no space left" in err
+    assert err.rstrip().endswith("valid: free space there, or another path")
+    assert not (tmp_path / "r.nc").exists()

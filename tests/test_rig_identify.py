@@ -652,3 +652,17 @@ def test_any_name_or_description_round_trips_through_the_rig_file(text):
 
     rig = replace(load_rig("cwru-de-12k"), description=text)
     assert tomllib.loads(rig_to_toml(rig))["description"] == text
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_a_name_that_is_not_utf8_is_one_line(tmp_path):
+    # twenty-first session: `--name $'bad\xffname'` reached the writer as a surrogate and
+    # ended in UnicodeEncodeError's traceback (exit 1)
+    rec = CWRU / "12k_Drive_End_OR007@6_2_132.mat"
+    env = {**os.environ, "PYTHONPATH": SRC}
+    args = [sys.executable, "-m", "bearingsim", "rig", "identify", str(rec), "--name"]
+    r = subprocess.run([*args, b"bad\xffname", "-o", "r.toml"], capture_output=True, env=env,
+                       cwd=tmp_path)  # fmt: skip
+    err = r.stderr.decode("utf-8", "replace")
+    assert r.returncode == 2 and err.count("\n") == 1, err
+    assert "is not UTF-8 text" in err and not (tmp_path / "r.toml").exists()

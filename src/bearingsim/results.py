@@ -154,8 +154,9 @@ class Result:
         gives."""
         return type(other) is type(self) and self.to_dataset().identical(other.to_dataset())
 
-    def save(self, path: str | Path) -> Path:
-        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path.
+    def save(self, path: str | Path, *, field: str = "path") -> Path:
+        """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path (``field``:
+        its name in an error, e.g. the command's ``-o/--output``).
 
         The file is made in memory and then written as bytes (twenty-first session): h5py
         writing to a full disk raised the one-line error and then crashed at exit (a
@@ -169,7 +170,7 @@ class Result:
         ds = self.to_dataset()
         ds.attrs["format"] = self.FORMAT
         ds.attrs.setdefault("bearingsim_version", __version__)
-        with atomic_path(p, suffix=".nc") as tmp:
+        with atomic_path(p, suffix=".nc", field=field) as tmp:
             with held_interrupt():
                 buf = io.BytesIO()
                 ds.to_netcdf(buf, engine="h5netcdf")

@@ -9,7 +9,8 @@ The scenario's ``model`` chooses the family (:mod:`bearingsim.config`) and so th
 Every result is a :class:`~bearingsim.results.SimulationResult` (``time``, named ``channels``
 with units, the scenario and the solver metadata; netCDF save/load). The families are imported
 on first use, so ``import bearingsim`` loads no compiled kernel. Results are bit-reproducible
-for the same scenario (measurement noise from ``numpy.random.default_rng(seed)``).
+for the same scenario (measurement noise from ``numpy.random.default_rng(seed)``, or with a rig
+from ``SeedSequence([seed, 4])``, added after the rig's path).
 """
 
 from __future__ import annotations

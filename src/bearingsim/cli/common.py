@@ -374,9 +374,16 @@ def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> 
     from ..io.atomic import check_output
 
     seen: dict[Path, str] = {}
+    inputs = _input_files({str(p) for _o, p in outputs if p is not None})
     for option, path in outputs:
         if path is not None:
             check_output(path, option, directory=directory)
+            target = Path(path).expanduser().resolve()
+            if target in inputs:  # e.g. -o out.nc, a symbolic link to the scenario file
+                raise ConfigError(
+                    f"{option} = {str(path)!r} is the input {inputs[target]} ({str(target)!r}): "
+                    "writing it would replace that file; valid: another path"
+                )
             if option.startswith("--plot") and Path(path).suffix.lower() not in FIGURE_SUFFIXES:
                 raise ConfigError(
                     f"{option} = {str(path)!r} has no figure suffix; valid: a name ending in "
@@ -389,6 +396,29 @@ def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> 
                     "each output"
                 )
             seen[key] = option
+
+
+def _input_files(outputs: set[str]) -> dict[Path, str]:
+    """The files the running command reads, by resolved path, from its arguments and options
+    (click's parameters whose values, or items of them, name existing files; the output
+    options' own values left out): an output must not be one of them. Outputs are written
+    through symbolic links (:func:`bearingsim.io.atomic.atomic_path`), so an output that
+    links to an input would replace it (twenty-first session)."""
+    ctx = click.get_current_context(silent=True)
+    found: dict[Path, str] = {}
+    if ctx is None:
+        return found
+    for name, value in ctx.params.items():
+        for v in value if isinstance(value, list | tuple) else (value,):
+            if not isinstance(v, str | Path) or str(v) in outputs or not str(v):
+                continue
+            try:
+                p = Path(v).expanduser()
+                if p.is_file():
+                    found.setdefault(p.resolve(), f"{name.replace('_', '-')} = {str(v)!r}")
+            except (OSError, ValueError):
+                continue
+    return found
 
 
 def available_cores() -> int:

@@ -205,7 +205,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "--model",
     type=click.Choice([m.value for m in Model]),
     default=None,
-    show_default=_d("model"),
+    show_default=_d("model", others=False),
     help="Model.",
 )
 @_opt
@@ -247,7 +247,7 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     "--mass-kg",
     type=Number(0.0, lo_open=True, unit="kg"),
     default=None,
-    show_default="seed VSM table 1",
+    show_default=f"seed VSM table 1; ias: {_d('mass_kg', 'ias', others=False)}",
     help="Vibrating mass [kg].",
 )
 @click.option(
@@ -348,7 +348,7 @@ def simulate_cmd(
             res = simulate(sc, progress=progress, budget=budget, allow_overload=allow_overload)
     finally:
         bar.close()
-    res.save(output)
+    res.save(output, field="-o/--output")
     wall = time.perf_counter() - t0
     out = {
         "output": str(output),

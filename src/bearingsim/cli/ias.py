@@ -291,7 +291,9 @@ def ias_cmd(
         summary = res.analyze(sc.skip_s, budget=budget)
     except ShortSignalError as exc:  # too little rotation to resolve the BPFO order
         raise ConfigError(_too_short(res, sc, exc)) from None
-    res.save(out)  # the data before its figure: a failed write leaves no figure of it
+    res.save(
+        out, field="-o/--output"
+    )  # the data before its figure: a failed write leaves no figure of it
     if plot:
         from ..report.figures import save_figure
 

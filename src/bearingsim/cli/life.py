@@ -236,7 +236,9 @@ def life_cmd(
     if rpm is not None:
         extra["rpm"] = rpm
     res = dataclasses.replace(res, meta={**res.meta, **extra})
-    res.save(out)  # the data before its figures: a failed write leaves no figure of it
+    res.save(
+        out, field="-o/--output"
+    )  # the data before its figures: a failed write leaves no figure of it
     if plot_weibull:
         from ..report.figures import save_figure
 

@@ -128,6 +128,15 @@ def identify_cmd(
 
     if not name.strip():
         raise ConfigError(f"name = {name!r} is empty; valid: a name for the rig (--name)")
+    for field, text in (("name", name), ("description", description)):
+        try:  # bytes that are not UTF-8 reach Python as surrogates, which no file can hold
+            text.encode("utf-8")
+        except UnicodeEncodeError:
+            shown = text.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+            raise ConfigError(
+                f"{field} = {shown!r} is not UTF-8 text; valid: text in the terminal's UTF-8 "
+                f"(--{field})"
+            ) from None
     seen: dict[Path, str] = {}
     for p in records:  # one record given twice would count twice in every median
         key = Path(p).resolve()

@@ -202,7 +202,8 @@ def rotor_simulate_options(f: Callable) -> Callable:
         click.option(
             "--antialias/--no-antialias",
             default=None,
-            show_default=_d("antialias"),
+            show_default="vsm/dem/tvsm: --antialias with --rig, else --no-antialias; rotor: "
+            "--antialias",
             help="Oversample (4x, 2x above 24 kHz) and FIR-decimate the accelerations "
             "(rotor: on; vsm/dem/tvsm: on with --rig, else off).",
         ),

@@ -250,7 +250,7 @@ def stiffness_cmd(
     for n in notes:
         click.echo(f"note: {n}", err=True)
     if out:  # the data before its figure: a failed write leaves no figure of it
-        res.save(out)
+        res.save(out, field="-o/--output")
     if plot:
         from ..report.figures import save_figure
 

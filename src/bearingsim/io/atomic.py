@@ -241,8 +241,10 @@ def storage_reason(exc: BaseException, dest: str | Path) -> str | None:
     return _reason(exc, Path(exc.filename).parent if isinstance(exc.filename, str) else Path(dest))
 
 
-def _error(field: str, dest: str | Path, reason: str, directory: bool) -> ConfigError:
-    valid = (
+def _error(
+    field: str, dest: str | Path, reason: str, directory: bool, valid: str | None = None
+) -> ConfigError:
+    valid = valid or (
         "a directory that can be created or written"
         if directory
         else "a regular file in a writable directory"
@@ -343,7 +345,14 @@ def atomic_path(
         except OSError as exc:
             if exc.errno not in _STORAGE_ERRNOS:
                 raise
-            raise _error(field, dest, _reason(exc, dest.parent), False) from None
+            full = exc.errno != errno.EROFS  # full, over quota, too large: not the folder's fault
+            raise _error(
+                field,
+                dest,
+                _reason(exc, dest.parent),
+                False,
+                valid="free space there, or another path" if full else None,
+            ) from None
         try:
             os.replace(tmp, dest)
         except OSError as exc:

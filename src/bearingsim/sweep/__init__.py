@@ -11,12 +11,13 @@ May import everything below it (config, simulation, results, io); nothing import
 CLI.
 """
 
-from .dataset import open_dataset
+from .dataset import SplitWarning, open_dataset
 from .execute import SweepInterrupted, SweepReport, Writer, connect, run_sweep
 from .plan import SweepPlan, plan_sweep
 from .spec import SweepSpec
 
 __all__ = [
+    "SplitWarning",
     "SweepInterrupted",
     "SweepPlan",
     "SweepReport",

@@ -395,7 +395,9 @@ def run_ring(
             "pocket_jitter_percent": scenario.pocket_jitter_percent,
             "seed": scenario.seed,
             "model": "cage speed w_cage (1 + s_k) over each ball-pass period, s_k ~ "
-            "N(0, slip^2) from numpy.random.SeedSequence([seed, 1]); pocket jitter: each pass "
+            "N(0, slip^2) clipped to +-0.5 from numpy.random.SeedSequence([seed, 1]), the "
+            "intervals divided by E[1/(1 + s_k)] (the kinematic pass rate on average); pocket "
+            "jitter: each pass "
             "instant moved by e_k T, e_k ~ N(0, jitter^2/2) from SeedSequence([seed, 1, 3]) "
             "(ModelInputs.slip_table, dynamics.slip)",
         },
