@@ -352,3 +352,32 @@ def test_an_edited_rig_file_is_a_changed_spec(tmp_path, monkeypatch):
     assert edited != text
     (tmp_path / "myrig.toml").write_text(edited, "utf-8")
     assert SweepSpec.from_toml(p).spec_hash != before
+
+
+def test_a_selection_that_matches_no_run_is_refused(store):
+    # twenty-first session: ds.select(rig="rig.toml") silently gave 0 runs (runs store a rig
+    # file by its absolute path); any value that matches no run is now named, with the values
+    # present, as split() does
+    ds = open_dataset(store).completed()  # runs 0-3: none, none, outer, outer
+    with pytest.raises(ConfigError, match=r"^fault = 'inner' matches no run; values present: "):
+        ds.select(fault="inner")
+    assert len(ds.select(fault=["inner", "outer"])) == 2  # one value of a list may be absent
+
+
+def test_a_rig_file_is_selected_by_the_name_the_sweep_file_gave(tmp_path, monkeypatch):
+    from bearingsim.rig import load_rig
+    from bearingsim.rig_identify import rig_to_toml
+    from bearingsim.sweep import SweepSpec, run_sweep
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "myrig.toml").write_text(rig_to_toml(load_rig("cwru-de-12k")), encoding="utf-8")
+    (tmp_path / "s.toml").write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.02\nfs_hz = 12000.0\n'
+        '[axes]\nrig = ["myrig.toml", "cwru-de-12k"]\n'
+    )
+    run_sweep(SweepSpec.from_toml("s.toml"), "o.zarr", workers=1, progress=False)
+    ds = open_dataset("o.zarr")
+    assert len(ds.select(rig="myrig.toml")) == 1 and len(ds.select(rig="cwru-de-12k")) == 1
+    assert ds.scenario(int(ds.select(rig="myrig.toml").runs[0]))["rig"] == str(
+        tmp_path / "myrig.toml"
+    )

@@ -218,11 +218,27 @@ class SweepDataset:
         return np.array(["|".join(v) for v in zip(*cols, strict=True)], dtype=object)
 
     def select(self, **conditions: Any) -> SweepDataset:
-        """Runs whose coordinate ``key`` is one of the given values (a scalar or a list)."""
+        """Runs whose coordinate ``key`` is one of the given values (a scalar or a list).
+
+        A rig file may be named as the sweep file did (``rig="rig.toml"``): runs store it by
+        its absolute path, and a relative name is taken from the working directory. Values
+        that match no run of a non-empty view are refused, naming the values present (an
+        empty selection was silent: twenty-first session)."""
+        from ..config import is_rig_file
+
         mask = np.ones(len(self), dtype=bool)
         for key, vals in conditions.items():
-            v = vals if isinstance(vals, list | tuple | np.ndarray) else [vals]
-            mask &= np.isin(self.param(key), np.asarray(v))
+            v = list(vals) if isinstance(vals, list | tuple | np.ndarray) else [vals]
+            if key == "rig":
+                v += [str(Path(x).resolve()) for x in v if is_rig_file(x)]
+            have = self.param(key)
+            hit = np.isin(have, np.asarray(v))
+            if len(self) and not hit.any():
+                raise ConfigError(
+                    f"{key} = {vals!r} matches no run; values present: "
+                    + ", ".join(map(str, np.unique(have)[:SUMMARY_MAX_VALUES]))
+                )
+            mask &= hit
         return self._view(self.runs[mask])
 
     def split(self, by: str, test: Any) -> tuple[SweepDataset, SweepDataset]:
