@@ -751,3 +751,21 @@ def test_a_results_scenario_reruns_from_any_folder_with_the_same_files(tmp_path,
     monkeypatch.chdir(b)
     again = simulate(Scenario.from_dict(first.scenario))
     assert_array_equal(again.channels["acc_sensor"], first.channels["acc_sensor"])
+
+
+def test_a_rig_name_with_a_control_character_is_refused(tmp_path, capsys):
+    # twenty-first session: a name holding an escape or a carriage return was printed raw by
+    # `rig show` and the "wrote" line, which were then no longer one line each
+    p = tmp_path / "r.toml"
+    p.write_text(RIG_TOML.replace('name = "test-rig"', 'name = "test\\u001b[2Jrig"'))
+    with pytest.raises(ConfigError, match=r"rig.name = .* holds a control character"):
+        load_rig(p)
+    from bearingsim.cli import main
+
+    rec = tmp_path / "r.csv"
+    rec.write_text("t,x\n" + "".join(f"{k / 1000},{np.sin(k)}\n" for k in range(2000)))
+    capsys.readouterr()
+    with pytest.raises(SystemExit) as e:
+        main(["rig", "identify", str(rec), "--name", "a\nb", "-o", str(tmp_path / "o.toml")])
+    assert e.value.code == 2 and not (tmp_path / "o.toml").exists()
+    assert "holds a control character" in capsys.readouterr().err

@@ -465,6 +465,10 @@ class Rig:
             name = d.get("name")
             if not isinstance(name, str) or not name.strip():
                 raise ConfigError("rig.name is missing (a text)")
+            if not name.isprintable():  # a newline or an escape in a name breaks every line
+                raise ConfigError(  # that prints it (twenty-first session)
+                    f"rig.name = {name!r} holds a control character; valid: printable text"
+                )
             desc = d.get("description", "")
             if not isinstance(desc, str):
                 raise ConfigError("rig.description must be a text")

@@ -128,6 +128,10 @@ def identify_cmd(
 
     if not name.strip():
         raise ConfigError(f"name = {name!r} is empty; valid: a name for the rig (--name)")
+    if not name.isprintable() and not any(0xD800 <= ord(c) <= 0xDFFF for c in name):
+        raise ConfigError(
+            f"name = {name!r} holds a control character; valid: printable text (--name)"
+        )
     for field, text in (("name", name), ("description", description)):
         try:  # bytes that are not UTF-8 reach Python as surrogates, which no file can hold
             text.encode("utf-8")
