@@ -311,3 +311,7 @@ def test_simulate_help_shows_the_ias_models_own_defaults(run_cli):
     for s in (*shown, "(10; ias: 0)", "(50; ias: 400)", "(seed VSM table 1; ias: 1.3)"):
         assert s in text, s
     assert "[default: (vsm)]" in text  # the model's own default, not each family's name
+    # vsm-trace runs the ring models only: their defaults alone (the shared options showed
+    # the IAS model's beside them once simulate's did)
+    trace = " ".join(run_cli("vsm-trace", "--help").out.split())
+    assert "ias:" not in trace and "(6205)" in trace and "(10)" in trace

@@ -37,13 +37,18 @@ __all__ = [
 _FAULTS = ["none", "outer", "inner", "ball"]
 
 
-def _opt(f):
+def _shared_options(f, every_family: bool):
     """Options shared by ``simulate`` and ``vsm-trace``; each overrides the scenario key of the
     same name (``--fx-n`` sets ``fx_n``); ``[default: ...]`` is the value when neither the option
-    nor the scenario file sets it."""
+    nor the scenario file sets it (``every_family``: also each other model family's that
+    differs, for ``simulate``; ``vsm-trace`` runs the ring models only)."""
     opts = [
         click.option(
-            "--bearing", "bearing", default=None, show_default=_d("bearing"), help="Catalogue id."
+            "--bearing",
+            "bearing",
+            default=None,
+            show_default=_d("bearing", others=every_family),
+            help="Catalogue id.",
         ),
         click.option(
             "--bearing-file",
@@ -55,21 +60,21 @@ def _opt(f):
             "--fault",
             type=click.Choice(_FAULTS),
             default=None,
-            show_default=_d("fault"),
+            show_default=_d("fault", others=every_family),
             help="Defect location (ball: ball 1 carries it).",
         ),
         click.option(
             "--defect-width-m",
             type=Number(0.0, lo_open=True, unit="m"),
             default=None,
-            show_default=_d("defect_width_m"),
+            show_default=_d("defect_width_m", others=every_family),
             help="Defect width b along the raceway [m] (CWRU 0.007 in).",
         ),
         click.option(
             "--defect-depth-m",
             type=Number(0.0, lo_open=True, unit="m"),
             default=None,
-            show_default=_d("defect_depth_m"),
+            show_default=_d("defect_depth_m", others=every_family),
             help="Defect depth h_d [m] (CWRU 0.011 in).",
         ),
         click.option(
@@ -84,7 +89,7 @@ def _opt(f):
             "--defect-edge-angle-deg",
             type=Number(-360.0, 360.0, unit="deg"),
             default=None,
-            show_default=_d("defect_edge_angle_deg"),
+            show_default=_d("defect_edge_angle_deg", others=every_family),
             help="Azimuth of the defect's left edge at t = 0, beta_0 [deg] (seed VSM table 1).",
         ),
         deprecated("--defect-angle-deg", "--defect-edge-angle-deg"),
@@ -92,7 +97,7 @@ def _opt(f):
             "--rpm",
             type=Number(0.0, lo_open=True, unit="r/min"),
             default=None,
-            show_default=_d("rpm"),
+            show_default=_d("rpm", others=every_family),
             help="Shaft speed [r/min].",
         ),
         click.option(
@@ -100,7 +105,7 @@ def _opt(f):
             "fx_n",
             type=Number(unit="N"),
             default=None,
-            show_default=_d("fx_n"),
+            show_default=_d("fx_n", others=every_family),
             help="Radial force x [N].",
         ),
         deprecated("--fx", "--fx-n"),
@@ -109,7 +114,7 @@ def _opt(f):
             "fy_n",
             type=Number(unit="N"),
             default=None,
-            show_default=_d("fy_n"),
+            show_default=_d("fy_n", others=every_family),
             help="Radial force y [N].",
         ),
         deprecated("--fy", "--fy-n"),
@@ -148,6 +153,16 @@ def _opt(f):
     for o in reversed(opts):
         f = o(f)
     return f
+
+
+def _opt(f):
+    """The shared options for ``simulate`` (every model family's defaults)."""
+    return _shared_options(f, True)
+
+
+def _ring_opt(f):
+    """The shared options for ``vsm-trace`` (the ring models' defaults)."""
+    return _shared_options(f, False)
 
 
 def _parse_set(items: tuple[str, ...]) -> dict[str, Any]:
@@ -419,7 +434,7 @@ def _check_zero_load(kw: dict[str, Any]) -> None:
 
 
 @cli.command("vsm-trace")
-@_opt
+@_ring_opt
 @click.option(
     "--first-ball-deg",
     type=Number(-360.0, 360.0, unit="deg"),
