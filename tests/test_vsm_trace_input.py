@@ -6,6 +6,7 @@ constant outside the Hertz constants of real bearings, a static balance that did
 from __future__ import annotations
 
 import csv
+import json
 import math
 from dataclasses import replace
 
@@ -161,8 +162,10 @@ def test_stiffness_columns_and_keys_say_n_per_m(run_cli, tmp_path):
     assert d["k_load_min_n_per_m"] == d["k_load_min_n_m"] > 0
     assert d["k_load_max_n_per_m"] == d["k_load_max_n_m"] >= d["k_load_min_n_per_m"]
     with open(out, encoding="utf-8") as fh:
-        next(fh)  # the label line
+        label = next(fh)  # the label line, with the inputs (twenty-first session)
         header = next(csv.reader(fh))
+    inputs = json.loads(label.split("; inputs: ", 1)[1])
+    assert inputs["bearing"]["id"] == "6205" and inputs["fy"] == 50.0
     for c in ("k_load_n_per_m", "k_x_n_per_m", "k_y_n_per_m", "k_xy_n_per_m", "k9_load_n_per_m"):
         assert c in header
     assert not [c for c in header if c.endswith("_n_m")]

@@ -323,9 +323,17 @@ class StiffnessTrace(Result):
                 self.ball_k_load,
             ]
         )
+        import json
+
+        from ...io.jsonable import to_jsonable
+
+        inputs = json.dumps(to_jsonable(self.meta.get("inputs", {})), separators=(",", ":"))
         with atomic_open(path, "w", encoding="utf-8") as fh:
-            fh.write(f"# bearingsim vsm-trace: {self.label}\n")
-            np.savetxt(fh, data, delimiter=",", header=",".join(cols), comments="", fmt="%.10g")
+            # the inputs as JSON (SI) on the label's line, so the export says what it is a trace
+            # of and stays one comment line before the header (twenty-first session: the label
+            # alone was written)
+            fh.write(f"# bearingsim vsm-trace: {self.label}; inputs: {inputs}\n")
+            np.savetxt(fh, data, delimiter=",", header=",".join(cols), comments="", fmt="%.17g")
 
     def plot_total(self, ax=None):
         """Total effective stiffness vs cage angle (seed VSM figs. 5–8); returns the Figure."""
