@@ -262,13 +262,30 @@ def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
     return out
 
 
+def _code_key() -> str:
+    """SHA-256 of the installed bearingsim's source and data files (``*.py``, ``*.toml``): the
+    code that made the features. A dataset cached by other code is rebuilt (twenty-first
+    session: the key held the grid and the rigs only, so a model fixed since, e.g. random slip's
+    pass rate, was still read from the cache)."""
+    import hashlib
+
+    import bearingsim
+
+    root = Path(bearingsim.__file__).resolve().parent
+    h = hashlib.sha256()
+    for f in sorted(root.rglob("*")):
+        if f.suffix in (".py", ".toml") and "__pycache__" not in f.parts:
+            h.update(str(f.relative_to(root)).encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
 def _set_key(grid_key: str, rigs: dict) -> str:
-    """Cache key of one set: the grid and every rig's full table (a changed profile or record
-    rebuilds it)."""
+    """Cache key of one set: the grid, every rig's full table (a changed profile or record
+    rebuilds it) and the code (:func:`_code_key`)."""
     import hashlib
 
     tables = {p: (None if r is None else r.to_dict()) for p, r in rigs.items()}
-    blob = grid_key + json.dumps(tables, sort_keys=True, default=str)
+    blob = grid_key + json.dumps(tables, sort_keys=True, default=str) + _code_key()
     return hashlib.sha256(blob.encode()).hexdigest()
 
 

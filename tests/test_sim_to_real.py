@@ -530,3 +530,22 @@ def test_cli_piped_into_head_ends_quietly(fake_cache, tmp_path):
         err = p.stderr.read().decode()
         p.wait(timeout=120)
     assert "Traceback" not in err and "BrokenPipe" not in err
+
+
+def test_a_dataset_made_by_other_code_is_rebuilt(small, tmp_path, monkeypatch):
+    # twenty-first session: the cache key held the grid and the rigs only, so a dataset
+    # simulated before a model fix (random slip's pass rate) was still read after it
+    monkeypatch.setattr(small, "simulate_runs", _fake_runs)
+    small.build_dataset(tmp_path, progress=False)
+    calls = []
+
+    def counted(*a, **k):
+        calls.append(1)
+        return _fake_runs(*a, **k)
+
+    monkeypatch.setattr(small, "simulate_runs", counted)
+    small.build_dataset(tmp_path, progress=False)
+    assert calls == []  # the same code: read from the cache
+    monkeypatch.setattr(small, "_code_key", lambda: "other code")
+    small.build_dataset(tmp_path, progress=False)
+    assert calls == [1]  # other code: simulated anew
