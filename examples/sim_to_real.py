@@ -263,10 +263,10 @@ def _fit_paths(rigs: dict, name: str, data: Path | None) -> dict:
 
 
 def _code_key() -> str:
-    """SHA-256 of the installed bearingsim's source and data files (``*.py``, ``*.toml``): the
-    code that made the features. A dataset cached by other code is rebuilt (twenty-first
-    session: the key held the grid and the rigs only, so a model fixed since, e.g. random slip's
-    pass rate, was still read from the cache)."""
+    """SHA-256 of the installed bearingsim's source and data files (``*.py``, ``*.toml``) and of
+    this example: the code that made the features. A dataset cached by other code is rebuilt
+    (twenty-first session: the key held the grid and the rigs only, so a model fixed since,
+    e.g. random slip's pass rate, was still read from the cache)."""
     import hashlib
 
     import bearingsim
@@ -276,6 +276,7 @@ def _code_key() -> str:
     for f in sorted(root.rglob("*")):
         if f.suffix in (".py", ".toml") and "__pycache__" not in f.parts:
             h.update(str(f.relative_to(root)).encode() + b"\0" + f.read_bytes() + b"\0")
+    h.update(Path(__file__).read_bytes())  # this example's own features and grid
     return h.hexdigest()
 
 

@@ -105,8 +105,10 @@ def test_two_outputs_on_one_path_and_plot_formats(run_cli, tmp_path):
     assert "--plot = " in line and "is also -o/--output" in line
     assert not list(tmp_path.iterdir())
     line = run_cli("load", "6205", "--fy-n", "50", "--plot", tmp_path / "x.txt").refused()
-    assert "has no figure suffix; valid: a name ending in .png, .pdf, .svg" in line
-    for suffix, magic in ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG")):
+    assert "has no figure suffix; valid: a name ending in .png, .pdf, .svg, .jpg, .jpeg" in line
+    # .jpg was refused as "no figure suffix" and save_figure wrote PNG bytes for it
+    cases = ((".pdf", b"%PDF"), (".svg", b"<?xml"), (".png", b"\x89PNG"), (".jpg", b"\xff\xd8"))
+    for suffix, magic in cases:
         p = tmp_path / f"load{suffix}"
         assert run_cli("load", "6205", "--fy-n", "50", "--plot", p).code == 0
         assert p.read_bytes().startswith(magic)

@@ -650,3 +650,35 @@ def test_a_full_disk_names_the_option_and_asks_for_space(tmp_path, monkeypatch, 
     assert err.startswith("error: -o/--output = ") and "no space left" in err
     assert err.rstrip().endswith("valid: free space there, or another path")
     assert not (tmp_path / "r.nc").exists()
+
+
+def test_outputs_that_are_files_an_input_names_or_a_derived_figure_are_refused(
+    tmp_path, monkeypatch, capsys
+):
+    # twenty-first session (a helper on this session's changes): `simulate sc.toml -o lb.nc`
+    # with lb.nc -> the scenario's bearing_file replaced the bearing file; `vsm-trace -o
+    # p_ball2.png --plot p.png --ball 2` replaced the -o file by the ball figure; the refusal
+    # named parameters as the code calls them (rig-name) instead of the option typed (--rig)
+    import bearingsim.catalog
+    from bearingsim.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    cat = Path(bearingsim.catalog.__file__).parent / "6205.toml"
+    (tmp_path / "b.toml").write_text(cat.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / "sc.toml").write_text(
+        'model = "vsm"\nbearing_file = "b.toml"\nduration_s = 0.01\nfs_hz = 12000.0\n'
+    )
+    (tmp_path / "lb.nc").symlink_to(tmp_path / "b.toml")
+    before = (tmp_path / "b.toml").read_text()
+    with pytest.raises(SystemExit) as e:
+        main(["simulate", "sc.toml", "-o", "lb.nc"])
+    assert e.value.code == 2 and (tmp_path / "b.toml").read_text() == before
+    assert "is the scenario's bearing_file" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as e:
+        main(["vsm-trace", "--fy-n", "500", "--cage-revs", "0.05", "-o", "p_ball2.png",
+              "--plot", "p.png", "--ball", "2"])  # fmt: skip
+    assert e.value.code == 2 and "is also -o/--output" in capsys.readouterr().err
+    (tmp_path / "r.nc").symlink_to(tmp_path / "b.toml")
+    with pytest.raises(SystemExit) as e:
+        main(["simulate", "--bearing-file", "b.toml", "-o", "r.nc"])
+    assert e.value.code == 2 and "is the input --bearing-file = 'b.toml'" in capsys.readouterr().err

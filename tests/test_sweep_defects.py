@@ -381,3 +381,34 @@ def test_a_rig_file_is_selected_by_the_name_the_sweep_file_gave(tmp_path, monkey
     assert ds.scenario(int(ds.select(rig="myrig.toml").runs[0]))["rig"] == str(
         tmp_path / "myrig.toml"
     )
+
+
+def test_selections_and_splits_say_when_nothing_or_everything_matches(tmp_path, monkeypatch):
+    # twenty-first session (a helper on this session's changes): conditions that matched runs
+    # each but none together gave an empty view in silence; a set of values matched nothing;
+    # split() put every run in the test set without a word; a dataset opened by a relative
+    # path failed after os.chdir
+    ds = open_dataset(make_store(tmp_path / "ds.zarr", range(5))).completed()
+    assert sorted(ds.param("fault")) == ["inner", "none", "none", "outer", "outer"]
+    inner_rpm = float(ds.select(fault="inner").param("rpm")[0])
+    other = next(r for r in ds.param("rpm") if r != inner_rpm)
+    with pytest.raises(ConfigError, match="no run has all of these"):
+        ds.select(fault="inner", rpm=float(other))
+    assert len(ds.select(fault={"none", "outer"})) == 4
+    with pytest.raises(ConfigError, match=r"holds every run \('fault'"):
+        ds.split("fault", ["none", "outer", "inner"])
+    monkeypatch.chdir(tmp_path)
+    rel = open_dataset("ds.zarr")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    assert len(rel.completed().select(fault="outer")) == 2
+
+
+def test_force_new_refuses_a_sweep_file_inside_the_dataset(run_cli, tmp_path):
+    # twenty-first session: `sweep run ds.zarr/sweep.toml -o ds.zarr --force-new` removed the
+    # dataset folder and the sweep file in it
+    store = make_store(tmp_path / "ds.zarr", range(2))
+    spec = store / "sweep.toml"
+    spec.write_text('[base]\nmodel = "vsm"\nduration_s = 0.01\n[axes]\nrpm = [1730.0, 1797.0]\n')
+    r = run_cli("sweep", "run", spec, "-o", store, "--force-new", "--workers", "1")
+    assert r.code == 2 and "lies inside -o/--output" in r.err and spec.is_file()

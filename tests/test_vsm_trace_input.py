@@ -185,3 +185,13 @@ def test_library_refuses_the_override_too():
     soft = replace(B6205, material=Material(3e9, 0.35, 1400.0, "POM"))
     assert math.isclose(ball_stiffness(soft), 1.4e8, rel_tol=0.05)
     assert stiffness_trace(ModelInputs(soft, FX, FY, SHAFT), CAGE[:10]).residual.max() < 1e-11
+
+
+def test_the_csv_records_one_drop_profile(run_cli, tmp_path):
+    # twenty-first session: the inputs on the CSV's first line held "profile": "rectangular"
+    # (the one in force) and, on the defect, "profile": "geometric" (the rotor's field)
+    out = tmp_path / "o.csv"
+    r = run_cli("vsm-trace", "--fault", "outer", "--fy-n", "500", "--cage-revs", "0.05", "-o", out)
+    assert r.code == 0, r.err
+    inputs = json.loads(out.read_text(encoding="utf-8").splitlines()[0].split("; inputs: ", 1)[1])
+    assert inputs["profile"] == "rectangular" and "profile" not in inputs["defect"]

@@ -356,7 +356,7 @@ def output_option(
 
 
 #: the figure formats a ``--plot`` file may name (its suffix chooses the format)
-FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 
 def check_outputs(*outputs: tuple[str, str | None], directory: bool = False) -> None:
@@ -408,6 +408,11 @@ def _input_files(outputs: set[str]) -> dict[Path, str]:
     found: dict[Path, str] = {}
     if ctx is None:
         return found
+    shown = {  # the name the user typed: an option's longest flag, an argument's metavar
+        p.name: (max(p.opts, key=len) if isinstance(p, click.Option) else p.human_readable_name)
+        for p in ctx.command.params
+        if p.name
+    }
     for name, value in ctx.params.items():
         for v in value if isinstance(value, list | tuple) else (value,):
             if not isinstance(v, str | Path) or str(v) in outputs or not str(v):
@@ -415,7 +420,7 @@ def _input_files(outputs: set[str]) -> dict[Path, str]:
             try:
                 p = Path(v).expanduser()
                 if p.is_file():
-                    found.setdefault(p.resolve(), f"{name.replace('_', '-')} = {str(v)!r}")
+                    found.setdefault(p.resolve(), f"{shown.get(name, name)} = {str(v)!r}")
             except (OSError, ValueError):
                 continue
     return found

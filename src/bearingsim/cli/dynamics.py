@@ -81,7 +81,9 @@ def _shared_options(f, every_family: bool):
             "--defect-profile",
             type=click.Choice(DEFECT_PROFILES),
             default=None,
-            show_default="rectangular; rotor and with --rig: geometric",
+            show_default="rectangular; rotor and with --rig: geometric"
+            if every_family
+            else "rectangular",
             help="Drop of a ball across the defect: the seed's rectangle, or resting on the "
             "nearer edge.",
         ),
@@ -132,7 +134,9 @@ def _shared_options(f, every_family: bool):
             type=CLEARANCE,
             default=None,
             show_default="the bearing's",
-            help="Diametral clearance P_d [m]; negative = preload (dem, tvsm).",
+            help="Diametral clearance P_d [m]; negative = preload (dem, tvsm)."
+            if every_family
+            else "Diametral clearance P_d [m], >= 0 (a preload needs simulate with dem or tvsm).",
         ),
         click.option(
             "--retention-factor",
@@ -339,6 +343,14 @@ def simulate_cmd(
         kw["rig"] = rig_name
     sc = _scenario(scenario_file, kw)
     rig = getattr(sc, "rig", None)
+    target = Path(output).expanduser().resolve()
+    for key in ("bearing_file", "rig"):  # files the scenario names (by absolute path)
+        named = getattr(sc, key, None)
+        if isinstance(named, str) and Path(named).is_file() and Path(named).resolve() == target:
+            raise ConfigError(
+                f"-o/--output = {output!r} is the scenario's {key} ({named!r}): writing it "
+                "would replace that file; valid: another path"
+            )
     seen: set[str] = set()
     with echo_warnings(seen):  # everything checked before any work or output
         validate_scenario(sc, budget, allow_overload)
@@ -490,7 +502,14 @@ def vsm_trace_cmd(
 
     CSV columns and JSON keys of stiffnesses end in _n_per_m [N/m] (formerly _n_m; the JSON
     keeps k_load_min_n_m and k_load_max_n_m as deprecated copies for one release)."""
-    check_outputs(("-o/--output", output), ("--plot", plot))
+    # --ball draws a second figure beside --plot's: checked as an output too (it replaced an
+    # -o file of its name without a word; twenty-first session)
+    ball_plot = (
+        None
+        if ball is None or plot is None
+        else str(Path(plot).with_name(f"{Path(plot).stem}_ball{ball}{Path(plot).suffix}"))
+    )
+    check_outputs(("-o/--output", output), ("--plot", plot), ("--plot (--ball)", ball_plot))
     import numpy as np
 
     from ..dynamics.budget import check_budget
@@ -532,9 +551,8 @@ def vsm_trace_cmd(
         from ..report.figures import save_figure
 
         save_figure(tr.plot_total(), plot)
-        if ball is not None:
-            p = Path(plot)
-            save_figure(tr.plot_ball(ball), p.with_name(f"{p.stem}_ball{ball}{p.suffix}"))
+        if ball_plot is not None:
+            save_figure(tr.plot_ball(ball), ball_plot)
     ev = [{"cage_angle_deg": a, "ball": b, "event": k} for a, b, k in tr.events()]
     out = {
         "output": output,

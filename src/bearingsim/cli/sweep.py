@@ -180,7 +180,13 @@ def run_cmd(
     check_range("connect_timeout_s", connect_timeout_s, 0.0, lo_open=True, unit="s")
     p = Path(out)
     if p.exists() and not p.is_dir():
-        raise ConfigError(f"out = {out!r} is a file; valid: a dataset directory")
+        raise ConfigError(f"-o/--output = {out!r} is a file; valid: a dataset directory")
+    if force_new and p.is_dir() and p.resolve() in Path(spec_file).resolve().parents:
+        # --force-new removes the dataset folder, and the sweep file with it
+        raise ConfigError(
+            f"SPEC = {spec_file!r} lies inside -o/--output = {out!r}, which --force-new "
+            "removes; valid: a sweep file outside the dataset folder"
+        )
     if p.is_dir() and not any(p.iterdir()):
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)

@@ -53,7 +53,8 @@ STRICT_ENV = "BEARINGSIM_STRICT_FIGURES"
 
 def save_figure(fig, path: str | Path, dpi: int = DPI) -> Path:
     """Save a Matplotlib figure atomically and close it; returns the path. The format follows
-    the suffix: PDF for ``.pdf``, SVG for ``.svg``, PNG otherwise.
+    the suffix: PDF for ``.pdf``, SVG for ``.svg``, JPEG for ``.jpg``/``.jpeg`` (Pillow,
+    Matplotlib's own dependency), PNG otherwise.
 
     With ``$BEARINGSIM_STRICT_FIGURES=1`` a figure that breaks the figure standard
     (:func:`bearingsim.plotting.figure_problems`) raises ``ValueError`` naming the file and the
@@ -67,7 +68,8 @@ def save_figure(fig, path: str | Path, dpi: int = DPI) -> Path:
             plt.close(fig)
             raise ValueError(f"figure {p.name} breaks the figure standard: " + "; ".join(problems))
     fmt = p.suffix.lower().lstrip(".")
-    fmt = fmt if fmt in ("pdf", "svg") else "png"  # the CLI allows only these three suffixes
+    fmt = {"jpg": "jpeg"}.get(fmt, fmt)
+    fmt = fmt if fmt in ("pdf", "svg", "jpeg") else "png"  # the CLI allows these suffixes only
     with atomic_path(p, suffix=f".{fmt}") as tmp:
         fig.savefig(tmp, dpi=dpi, bbox_inches="tight", pad_inches=0.04, format=fmt)
     plt.close(fig)

@@ -63,7 +63,9 @@ class SweepDataset:
     """
 
     def __init__(self, path: str | Path, runs: NDArray[np.int64] | None = None, _xr=None) -> None:
-        self.path = Path(path)
+        # absolute: a notebook that changes its working folder keeps reading the same
+        # dataset (a relative path failed after os.chdir; twenty-first session)
+        self.path = Path(path).absolute()
         self.attrs = read_attrs(self.path)
         self._ds = _xr if _xr is not None else self._open()
         n = int(self.attrs["n_runs"])
@@ -217,38 +219,57 @@ class SweepDataset:
             return cols[0].astype(object)
         return np.array(["|".join(v) for v in zip(*cols, strict=True)], dtype=object)
 
+    def _match(self, key: str, vals: Any) -> NDArray[np.bool_]:
+        """Which runs have coordinate ``key`` among ``vals`` (a scalar, list, tuple, set or
+        array; a rig file also by the name the sweep file gave it, resolved from the working
+        folder: runs store it by its absolute path)."""
+        from ..config import is_rig_file
+
+        many = isinstance(vals, list | tuple | set | frozenset | range | np.ndarray)
+        v = list(vals) if many else [vals]
+        if key == "rig":
+            v += [str(Path(x).resolve()) for x in v if is_rig_file(x)]
+        return np.isin(self.param(key), np.asarray(v))
+
     def select(self, **conditions: Any) -> SweepDataset:
         """Runs whose coordinate ``key`` is one of the given values (a scalar or a list).
 
-        A rig file may be named as the sweep file did (``rig="rig.toml"``): runs store it by
-        its absolute path, and a relative name is taken from the working directory. Values
-        that match no run of a non-empty view are refused, naming the values present (an
-        empty selection was silent: twenty-first session)."""
-        from ..config import is_rig_file
-
+        A rig file may be named as the sweep file did (``rig="rig.toml"``, resolved from the
+        working folder): runs store it by its absolute path. Values that match no run of a
+        non-empty view are refused, naming the values present, and so are conditions that
+        match runs each but none together (an empty selection was silent: twenty-first
+        session)."""
         mask = np.ones(len(self), dtype=bool)
         for key, vals in conditions.items():
-            v = list(vals) if isinstance(vals, list | tuple | np.ndarray) else [vals]
-            if key == "rig":
-                v += [str(Path(x).resolve()) for x in v if is_rig_file(x)]
-            have = self.param(key)
-            hit = np.isin(have, np.asarray(v))
+            hit = self._match(key, vals)
             if len(self) and not hit.any():
                 raise ConfigError(
                     f"{key} = {vals!r} matches no run; values present: "
-                    + ", ".join(map(str, np.unique(have)[:SUMMARY_MAX_VALUES]))
+                    + ", ".join(map(str, np.unique(self.param(key))[:SUMMARY_MAX_VALUES]))
                 )
             mask &= hit
+        if len(self) and not mask.any():
+            given = ", ".join(f"{k} = {v!r}" for k, v in conditions.items())
+            raise ConfigError(
+                f"{given}: no run has all of these; valid: values that occur together"
+            )
         return self._view(self.runs[mask])
 
     def split(self, by: str, test: Any) -> tuple[SweepDataset, SweepDataset]:
-        """Train/test split by parameter: runs with ``by`` in ``test`` form the test set."""
-        v = test if isinstance(test, list | tuple | np.ndarray) else [test]
-        mask = np.isin(self.param(by), np.asarray(v))
+        """Train/test split by parameter: runs with ``by`` in ``test`` form the test set (a
+        rig file also by the sweep file's name, as :meth:`select`). A split that leaves a side
+        empty is refused, as :meth:`random_split` does."""
+        mask = self._match(by, test)
         if not mask.any():
             raise ConfigError(
-                f"test = {list(v)!r} matches no run for {by!r}; values present: "
+                f"test = {test!r} matches no run for {by!r}; values present: "
                 + ", ".join(map(str, np.unique(self.param(by))[:SUMMARY_MAX_VALUES]))
+            )
+        if mask.all():
+            raise ConfigError(
+                f"test = {test!r} holds every run ({by!r}: "
+                + ", ".join(map(str, np.unique(self.param(by))[:SUMMARY_MAX_VALUES]))
+                + "); valid: values that leave runs to train on"
             )
         return self._view(self.runs[~mask]), self._view(self.runs[mask])
 

@@ -645,6 +645,6 @@ def _inputs_dict(inputs: ModelInputs) -> dict[str, Any]:
             "width": dfc.width,
             "depth": dfc.depth,
             "angle": dfc.angle,
-            "profile": dfc.profile.value,
-        }
+        }  # the ring models' drop profile is the inputs' own ("profile" above): the defect's
+        # field is the rotor model's, and recorded here it contradicted the one in force
     return json.loads(json_attr(d))
