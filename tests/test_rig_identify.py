@@ -666,3 +666,25 @@ def test_a_name_that_is_not_utf8_is_one_line(tmp_path):
     err = r.stderr.decode("utf-8", "replace")
     assert r.returncode == 2 and err.count("\n") == 1, err
     assert "is not UTF-8 text" in err and not (tmp_path / "r.toml").exists()
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_an_output_that_is_a_bearing_file_the_conditions_name_is_refused(tmp_path):
+    # twenty-first session (a helper on this session's changes): `-o mybrg.toml` where the
+    # --conditions CSV names mybrg.toml as a record's bearing replaced the user's bearing file
+    import bearingsim.catalog
+
+    (tmp_path / "run1.mat").write_bytes((CWRU / "48k_Drive_End_OR007@6_0_135.mat").read_bytes())
+    cat = Path(bearingsim.catalog.__file__).parent / "6205-cwru.toml"
+    brg = tmp_path / "mybrg.toml"
+    brg.write_text(cat.read_text(encoding="utf-8"), encoding="utf-8")
+    (tmp_path / "c.csv").write_text(
+        f"file,fault,bearing,defect_width_m\nrun1.mat,outer,mybrg.toml,{0.007 * 0.0254!r}\n",
+        encoding="utf-8",
+    )
+    before = brg.read_text(encoding="utf-8")
+    r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name",
+             "g", "--model-gain", "vsm", "--conditions", "c.csv", "-o", "mybrg.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "that --conditions names" in r.stderr, r.stderr
+    assert brg.read_text(encoding="utf-8") == before

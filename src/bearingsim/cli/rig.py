@@ -175,6 +175,18 @@ def identify_cmd(
         )
     if conditions is not None:
         user = _user_conditions(conditions, records, recs, model_gains)
+        named = {  # a bearing file the CSV names is an input too
+            Path(c["bearing_file"]).resolve(): c["bearing_file"]
+            for _r, c in user
+            if "bearing_file" in c
+        }
+        for option, path in (("-o/--output", output), ("--plot", plot)):
+            if path is not None and Path(path).expanduser().resolve() in named:
+                raise ConfigError(
+                    f"{option} = {path!r} is the bearing file "
+                    f"{named[Path(path).expanduser().resolve()]!r} that --conditions names: "
+                    "writing it would replace that file; valid: another path"
+                )
     elif model_gains:  # before any work: is every record's condition known?
         from ..side_by_side import FAULT_FAMILIES, cwru_row
 
