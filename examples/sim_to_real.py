@@ -75,6 +75,10 @@ SLIPS = (1.0, 1.5, 2.0)
 #: (``pocket_jitter_percent``; ``--slip-form jitter``, an experiment: the CWRU records' fault
 #: orders scatter far less than the walk lets them, docs/validation.md)
 SLIP_FORM = "walk"
+#: how a ball loses support over a defect: ``"geometric"``, a slot across the track on whose
+#: nearer edge the ball rests, or ``"pit"`` (``--defect-profile pit``, an experiment): a round
+#: pit narrower than the contact, as CWRU's EDM faults are (docs/models.md "Drop profile")
+DEFECT_PROFILE = "geometric"
 #: the model simulated: the DEM (its Hertz contact takes a preload; the VSM's secant does not)
 MODEL = "dem"
 #: Machine facts the CWRU data do not publish, drawn per run (uniformly from these sets):
@@ -316,7 +320,7 @@ def build_datasets(
     grid += [PROFILES]
     if set(OUTER_POSITIONS) != {"@6"}:  # the shipped grid's key stays as it was
         grid += [OUTER_POSITIONS]
-    grid += [DURATION_S, FEATURES, "antialias", "geometric"]
+    grid += [DURATION_S, FEATURES, "antialias", DEFECT_PROFILE]
     if SLIP_FORM != "walk":  # the shipped grid's key stays as it was
         grid += [SLIP_FORM]
     grid_key = json.dumps(grid)
@@ -415,7 +419,7 @@ def simulate_runs(runs: list, names: list, rigs: dict, progress: bool = True):
             **{"slip_percent" if SLIP_FORM == "walk" else "pocket_jitter_percent": c["slip"]},
             ball_diameter_spread_m=c["spread"],
             antialias=True,  # through a measurement chain: its anti-aliasing filter
-            defect_profile="geometric",  # the ball rests on the slot's nearer edge
+            defect_profile=DEFECT_PROFILE,  # a slot (the ball on its nearer edge) or a pit
             contact_roughness_m=c["roughness"],
         )
         sc["unbalance_n"] = c["unbalance"] * math.hypot(SEED_FX_N, SEED_FY_N)
@@ -881,8 +885,12 @@ def main() -> int:
     ap.add_argument("--slip-form", choices=["walk", "jitter"], default=SLIP_FORM,
                     help="an experiment: the slip as the cage-speed random walk (walk) or as "
                     "the balls' jitter in their pockets, the phase locked (jitter)")  # fmt: skip
+    ap.add_argument("--defect-profile", choices=["geometric", "pit"], default=DEFECT_PROFILE,
+                    help="an experiment: a slot across the track (geometric) or a round pit "
+                    "narrower than the contact (pit, CWRU's EDM faults)")  # fmt: skip
     a = ap.parse_args()
     globals()["SLIP_FORM"] = a.slip_form
+    globals()["DEFECT_PROFILE"] = a.defect_profile
     if not a.predict and not a.evaluate:
         ap.error("give --predict FILE... or --evaluate")
     if a.rpm is not None and not (math.isfinite(a.rpm) and 0.0 < a.rpm <= 1e6):

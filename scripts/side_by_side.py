@@ -52,7 +52,7 @@ def main() -> int:
         help="balls wandering in their pockets: pass intervals jittered, the phase locked [%%]",
     )
     ap.add_argument(
-        "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular"]
+        "--defect-profile", default=DEFECT_PROFILE, choices=["geometric", "rectangular", "pit"]
     )
     ap.add_argument(
         "--contact-roughness-m",

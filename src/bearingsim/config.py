@@ -597,7 +597,8 @@ class RingScenario(Scenario):
     ``fault``                       ``"none"``      ``none`` | ``outer`` | ``inner`` | ``ball``
                                                     (ball: ball 1 carries the defect)
     ``defect_width_m``              1.778e-4        defect width b along the raceway (or across
-                                                    the ball) [m] (CWRU 0.007 in)
+                                                    the ball; a pit's diameter) [m] (CWRU
+                                                    0.007 in)
     ``defect_depth_m``              2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
     ``defect_profile``              rectangular     drop of a ball across the defect:
                                     (geometric      ``rectangular`` (seed VSM eqs. (1)–(3): h_min
@@ -605,7 +606,10 @@ class RingScenario(Scenario):
                                                     over the whole extent) or ``geometric`` (the
                                                     ball rests on the nearer edge: 0 at the
                                                     edges, h_min at the centre; the rotor
-                                                    model's; not with ``retention_factor``)
+                                                    model's) or ``pit`` (a round pit narrower
+                                                    than the contact: the groove beside it
+                                                    keeps carrying the ball; CWRU's EDM
+                                                    faults); not with ``retention_factor``
     ``defect_edge_angle_deg``       10.0            the defect's **left edge** at t = 0, seed VSM
                                                     beta_0 [deg] (table 1); its centre is half the
                                                     defect's extent further on (ball: the edge's

@@ -617,14 +617,18 @@ def contact_race(race: Race | str, name: str = "race") -> Race:
 
 
 class DefectProfile(enum.Enum):
-    """Extra clearance under an element crossing a local defect: ``GEOMETRIC`` (the ball rests on
-    the nearer edge; seed VSM eq. (2) evaluated along the path, continuous) or ``RECTANGULAR``
-    (the constant maximum drop ``h_min`` over the defect's extent, seed VSM eqs. (1)–(3)). Used by
-    the bearing–rotor–housing model; the ring models follow seed VSM (rectangular, with the
-    retention factor of its eq. (11)); the IAS model follows seed IAS eqs. (19)–(28)."""
+    """How an element crossing a local defect loses support. A slot across the track:
+    ``GEOMETRIC`` (the ball rests on the nearer edge; seed VSM eq. (2) evaluated along the path,
+    continuous) or ``RECTANGULAR`` (the constant maximum drop ``h_min`` over the defect's extent,
+    seed VSM eqs. (1)–(3)). ``PIT``: a round pit of diameter ``width`` (CWRU's EDM faults)
+    narrower than the contact ellipse across the track; the contact beside it keeps carrying
+    the ball (:mod:`bearingsim.dynamics.defect_pit`; ring models only). The ring models default
+    to seed VSM's rectangle (with the retention factor of its eq. (11)), the rotor model to the
+    geometric slot; the IAS model follows seed IAS eqs. (19)–(28)."""
 
     GEOMETRIC = "geometric"
     RECTANGULAR = "rectangular"
+    PIT = "pit"
 
 
 #: reference groove conformities ``r / D_w`` of radial ball bearings, inner and outer raceway

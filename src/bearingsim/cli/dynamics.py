@@ -84,8 +84,10 @@ def _shared_options(f, every_family: bool):
             show_default="rectangular; rotor and with --rig: geometric"
             if every_family
             else "rectangular",
-            help="Drop of a ball across the defect: the seed's rectangle, or resting on the "
-            "nearer edge.",
+            help="How a ball loses support over the defect: a slot across the track (the "
+            "seed's rectangular drop, or geometric: resting on the nearer edge), or pit: a round "
+            "pit of diameter --defect-width-m narrower than the contact (CWRU's EDM faults; ring "
+            "models).",
         ),
         click.option(
             "--defect-edge-angle-deg",

@@ -55,6 +55,7 @@ from numba import njit
 from ...contact.rough import rough_ball
 from ...load_distribution import _solve_1d
 from ..defect_drop import edge_drop
+from ..defect_pit import pit_share
 from ..slip import cage_angle
 
 __all__: list[str] = []  # private: compiled helpers of the ring models
@@ -102,7 +103,7 @@ P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min
 P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
 P_BDEV = 40  #: offset in ``p`` of the Z ball-diameter deviations Delta D_j (0 = none) [-]
 P_FU = 41  #: amplitude of a force rotating with the shaft (unbalance) F_u [N]
-P_PROFILE = 42  #: drop profile across the defect: 0 rectangular (seed VSM), 1 geometric [-]
+P_PROFILE = 42  #: profile of the defect: 0 rectangular (seed VSM), 1 geometric, 2 pit [-]
 P_RBALL = 43  #: ball radius r [m] (geometric profile)
 P_HALFW = 44  #: half the defect width b/2 [m] (geometric profile)
 P_DEPTH = 45  #: defect depth h_d [m] (geometric profile)
@@ -113,7 +114,13 @@ P_RINV = 49  #: 1 / sigma [1/m] (rough law)
 P_RSN1 = 50  #: sigma^(1/2) [m^(1/2)] (rough law, balls: n = 3/2)
 P_AXZ = 51  #: axial offset z of the inner ring's groove centres under an axial load [m] (0 = none)
 P_A0 = 52  #: distance A0 = (f_i + f_o - 1) d of the groove centres of a just-touching ball [m]
-HEADER = 53  #: first table entry
+P_PITA = 53  #: pit: a^2 per unit approach of the faulty contact, A of :mod:`..defect_pit` [m]
+P_PITB = 54  #: pit: b^2 per unit approach, B [m]
+P_PITW = 55  #: pit: the faulty contact's share of the ball's compliance, w [-]
+P_PITAI = 56  #: ball pit: A at the inner-race contact [m] (P_PITA..P_PITW: the outer race's)
+P_PITBI = 57  #: ball pit: B at the inner-race contact [m]
+P_PITWI = 58  #: ball pit: w of the inner-race contact [-]
+HEADER = 59  #: first table entry
 
 #: table columns: static u_x, u_y, secant S_xx, S_xy, S_yy, tangent T_xx, T_xy, T_yy
 NCOL = 8
@@ -286,6 +293,14 @@ def geometric_drop(r, dbeta, rpath, rb, rr, sg, halfw, depth):
 
 
 @njit(cache=True, inline="always")
+def pit_offset(r, dbeta, rpath):
+    """Distance [m] along the track from a round pit's centre to the contact of a ball whose
+    angle past the pit's window edge is ``r`` [rad] (the window of extent ``dbeta``, the pit's
+    plus the contact's length, centred on it; measured along a circle of radius ``rpath`` [m])."""
+    return rpath * abs(r - 0.5 * dbeta)
+
+
+@njit(cache=True, inline="always")
 def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     """Defect fraction ``f_d`` of ball ``j`` (0-based; eq. (15): 1 = over the defect, averaged
     over the quadrature cell) and its drop [m]. A raceway defect: ``rd`` is the ball's angle
@@ -294,12 +309,19 @@ def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     ``rd`` in ``[0, dbeta)`` and the inner race (drop ``doffi``) half a turn later. The drop
     is the constant ``doff`` / ``doffi`` (rectangular profile, seed VSM) or, with
     ``p[P_PROFILE] == 1``, :func:`geometric_drop` at ``rd`` (the cell's centre; it is 0 at the
-    edges, where the cell average of the indicator matters)."""
+    edges, where the cell average of the indicator matters). A pit (``p[P_PROFILE] == 2``)
+    returns in place of the drop the distance ``x_c`` of its centre from the ball's contact
+    (:func:`pit_offset`, at the cell's centre) [m]; for a ball pit, ``-1 - x_c`` where it meets
+    the inner race (which contact's constants :func:`ball_load` takes)."""
     if fault == 0:
         return 0.0, doff
-    geo = p[P_PROFILE] > 0.5
+    prof = p[P_PROFILE]
+    geo = prof > 0.5
+    pit = prof > 1.5
     if fault != 3:
         fr = cell_fraction(rd, hd, dbeta)
+        if pit and fr > 0.0:
+            return fr, pit_offset(rd, dbeta, p[P_RRACE])
         if geo and fr > 0.0:
             rr = p[P_RRACE]
             sg = -1.0 if fault == 1 else 1.0
@@ -310,6 +332,11 @@ def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     fo = cell_fraction(rd, hd, dbeta)
     ri = advance(rd, math.pi)
     fi = cell_fraction(ri, hd, dbeta)
+    if pit:
+        rb = p[P_RBALL]
+        if fo >= fi:
+            return fo + fi, pit_offset(rd, dbeta, rb)
+        return fo + fi, -1.0 - pit_offset(ri, dbeta, rb)
     if geo:
         rb = p[P_RBALL]
         if fo >= fi:
@@ -328,6 +355,32 @@ def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p):
     fr, dof = defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p)
     zf = cell_fraction(rw, hw, psil2) if psil2 > 0.0 else 1.0
     return fr, zf, dof
+
+
+@njit(cache=True)
+def _pit_load(ue, fr, zf, clr, xc, dfac, K, n, p, full, rough):
+    """:func:`ball_load` of a ball over a round pit (``p[P_PROFILE] == 2``), out of line (only
+    the ball over the defect pays for it): the blend ``(1 - f_d) Q(d) + f_d rho(d) Q(d)`` of the
+    intact law ``Q`` (Hertz or rough) at ``d = u.e - P_d/2``, ``rho`` the share the contact
+    beside the pit keeps (:func:`..defect_pit.pit_share`; ``xc`` the pit centre's distance from
+    the contact [m], ``-1 - x_c`` for a ball pit at the inner race). The potential is ``rho``
+    times the intact one (no solver uses it)."""
+    d = ue - clr
+    if rough:
+        q0, k0, e0 = rough_ball(d, K, p[P_ROUGH], p[P_RINV], p[P_RSN1], full)
+    elif d > 0.0:
+        q0, k0 = hertz_and_slope(d, K, n)
+        e0 = q0 * d / (n + 1.0)
+    else:
+        return 0.0, 0.0, 0.0
+    rh = p[P_HALFW]
+    if xc < 0.0:
+        rho, drho = pit_share(d, -1.0 - xc, rh, p[P_PITAI], p[P_PITBI], p[P_PITWI], n, full)
+    else:
+        rho, drho = pit_share(d, xc, rh, p[P_PITA], p[P_PITB], p[P_PITW], n, full)
+    w = 1.0 - fr + fr * dfac * rho
+    dw = fr * dfac * drho
+    return zf * w * q0, zf * (w * k0 + dw * q0), zf * w * e0
 
 
 @njit(cache=True, inline="always")
@@ -349,6 +402,8 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough):
     dq = 0.0
     pot = 0.0
     if zf > 0.0:
+        if fr > 0.0 and p[P_PROFILE] > 1.5:  # a pit: doff is its centre's distance [m]
+            return _pit_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough)
         if rough:
             sig = p[P_ROUGH]
             inv = p[P_RINV]

@@ -47,6 +47,7 @@ from ...geometry import (
     defect_geometry,
     parse_enum,
 )
+from ..defect_pit import pit_constants
 from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
@@ -264,10 +265,11 @@ class ModelInputs:
         object.__setattr__(self, "axial_load", ax)  # checked above, with the radial load
         prof = parse_enum(DefectProfile, self.profile, "defect_profile")
         object.__setattr__(self, "profile", prof)
-        if prof is DefectProfile.GEOMETRIC and self.retention_factor is not None:
+        if prof is not DefectProfile.RECTANGULAR and self.retention_factor is not None:
             raise ConfigError(
-                f"defect_profile = 'geometric' with retention_factor = {self.retention_factor:g}"
-                ": a prescribed gamma replaces the drop the profile describes; valid: "
+                f"defect_profile = {prof.value!r} with retention_factor = "
+                f"{self.retention_factor:g}: a prescribed gamma replaces the drop the profile "
+                "describes; valid: "
                 "defect_profile = 'rectangular' with a retention_factor, or no retention_factor"
             )
 
@@ -408,15 +410,29 @@ class ModelInputs:
             if self.defect.race is Race.BALL:
                 k = characteristic_frequencies(self.kinematic_bearing, self.shaft_hz)
                 p[bl.P_SPIN] = k.bsf_hz / k.ftf_hz  # spin angle per cage angle
-            if self.profile is DefectProfile.GEOMETRIC:
+            if self.profile is not DefectProfile.RECTANGULAR:
                 b = self.bearing
                 r_i, r_o = b.inner_raceway_radius, b.outer_raceway_radius
-                p[bl.P_PROFILE] = 1.0
+                p[bl.P_PROFILE] = 2.0 if self.profile is DefectProfile.PIT else 1.0
                 p[bl.P_RBALL] = 0.5 * b.element_diameter
                 p[bl.P_HALFW] = 0.5 * self.defect.width
                 p[bl.P_DEPTH] = self.defect.depth
                 p[bl.P_RRACE] = r_i if self.defect.race is Race.INNER else r_o
                 p[bl.P_RRACEI] = r_i
+            if self.profile is DefectProfile.PIT:  # the contact(s) the pit meets
+                ball = self.defect.race is Race.BALL
+                race = Race.OUTER if ball else self.defect.race
+                pa, pb, pw, margin = pit_constants(self.bearing, race, self.k_ball)
+                p[bl.P_PITA], p[bl.P_PITB], p[bl.P_PITW] = pa, pb, pw
+                if ball:
+                    pa, pb, pw, m_i = pit_constants(self.bearing, Race.INNER, self.k_ball)
+                    p[bl.P_PITAI], p[bl.P_PITBI], p[bl.P_PITWI] = pa, pb, pw
+                    margin = max(margin, m_i)
+                # the window holds every position where the contact overlaps the pit
+                rpath = p[bl.P_RBALL] if ball else p[bl.P_RRACE]
+                grow = margin / rpath
+                p[bl.P_BETA0] -= grow
+                p[bl.P_DBETA] += 2.0 * grow
         p[bl.P_NTAB] = 0
         p[bl.P_PERBALL] = 1.0 if per_ball else 0.0
         p[bl.P_WARMX] = math.nan

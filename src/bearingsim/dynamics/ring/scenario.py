@@ -20,6 +20,7 @@ from ...catalog import resolve_bearing
 from ...config import Model, RingScenario, Solver
 from ...errors import SolverError
 from ...geometry import (
+    DefectProfile,
     characteristic_frequencies,
     check_unused_defect,
     defect_at_edge,
@@ -342,6 +343,9 @@ def run_ring(
         }
         if g.h_min_inner is not None:  # a ball defect: h_s_m, h_min_m at the outer race,
             geo["h_min_inner_m"] = g.h_min_inner  # this at the inner (race_radius_m: the ball's)
+        geo["profile"] = inputs.profile.value
+        if inputs.profile is DefectProfile.PIT:  # the drops above are a slot's, unused here
+            geo["pit_radius_m"] = 0.5 * inputs.defect.width
     meta = {
         "channels": {
             "acc_x, acc_y": (

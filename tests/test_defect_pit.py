@@ -1,0 +1,184 @@
+"""The ring models' round pit (``defect_profile = "pit"``): a pit narrower than the ball's
+contact ellipse takes only part of the contact's load (:mod:`bearingsim.dynamics.defect_pit`).
+
+Reference values: the Hertz pressure ``p0 sqrt(1 - x^2/b^2 - y^2/a^2)`` of an elliptical contact
+(Johnson 1985, *Contact Mechanics*, eq. (4.32); Harris & Kotzalas 2007, ch. 6), integrated here
+by brute force over the pit's disc with NumPy, and the Hertz semi-axes of
+:func:`bearingsim.contact.hertz.ball_contact` (Hamrock & Brewe 1983).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from bearingsim import simulate
+from bearingsim.catalog import get_bearing
+from bearingsim.contact.hertz import ball_contact, ball_stiffness
+from bearingsim.dynamics.defect_pit import (
+    pit_constants,
+    pit_lost_share,
+    pit_share,
+    strip_share,
+)
+from bearingsim.dynamics.ring.base import ModelInputs
+from bearingsim.errors import ConfigError
+from bearingsim.geometry import Defect, Race
+
+B = get_bearing("6205-cwru")
+INCH = 0.0254
+
+
+def _brute_share(xc, rh, a, b, n=1601):
+    """Share of the Hertz load on the disc of radius ``rh`` centred ``xc`` along the track from
+    the contact's centre: the pressure summed on an n x n grid over the ellipse."""
+    x = np.linspace(-b, b, n)
+    y = np.linspace(-a, a, n)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    p = np.sqrt(np.clip(1.0 - (X / b) ** 2 - (Y / a) ** 2, 0.0, None))
+    on = (X - xc) ** 2 + Y**2 < rh * rh
+    return float(p[on].sum() / p.sum())
+
+
+def test_strip_share_is_the_hertz_line_load_across_the_track():
+    """A strip |y| < t a of the ellipse carries 1.5 t - 0.5 t^3 of the load."""
+    a, b = 1.0, 0.15
+    x = np.linspace(-b, b, 1201)
+    y = np.linspace(-a, a, 1201)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    p = np.sqrt(np.clip(1.0 - (X / b) ** 2 - (Y / a) ** 2, 0.0, None))
+    for t in (0.1, 0.3, 0.6, 0.9):
+        assert strip_share(t) == pytest.approx(p[np.abs(Y) < t * a].sum() / p.sum(), abs=2e-3)
+    assert strip_share(1.0) == 1.0 and strip_share(3.0) == 1.0
+
+
+@pytest.mark.parametrize(
+    ("xc", "rh", "a", "b"),
+    [
+        (0.0, 0.089, 0.341, 0.054),  # 0.007 in under a 25 N outer-race contact, centred
+        (0.06, 0.089, 0.341, 0.054),  # ... entering
+        (0.12, 0.089, 0.341, 0.054),  # ... the contact's edge over the pit's rim
+        (0.0, 0.178, 0.341, 0.054),  # 0.014 in
+        (0.0, 0.178, 0.541, 0.2),  # a long contact
+        (0.1, 0.3, 0.25, 0.05),  # the pit wider than the contact
+    ],
+)
+def test_pit_share_is_the_hertz_pressure_on_the_pit(xc, rh, a, b):
+    """The 12-point quadrature against the pressure summed over the disc (within 0.01)."""
+    assert pit_lost_share(xc, rh, a, b) == pytest.approx(_brute_share(xc, rh, a, b), abs=0.01)
+    assert pit_lost_share(-xc, rh, a, b) == pit_lost_share(xc, rh, a, b)
+
+
+def test_pit_share_limits():
+    # off the pit, and a contact of no length (the strip at its centre)
+    assert pit_lost_share(0.2, 0.089, 0.3, 0.1) == 0.0
+    assert pit_lost_share(0.0, 0.089, 0.3, 0.0) == pytest.approx(strip_share(0.089 / 0.3))
+    # one contact: rho = g; a contact not under load carries nothing
+    a2, b2 = 0.06, 0.0015
+    d = 2e-6
+    f = pit_lost_share(0.0, 1e-4, math.sqrt(a2 * d), math.sqrt(b2 * d))
+    assert pit_share(d, 0.0, 1e-4, a2, b2, 1.0, 1.5, False)[0] == pytest.approx(1.0 - f)
+    assert pit_share(0.0, 0.0, 1e-4, a2, b2, 0.5, 1.5, True) == (0.0, 0.0)
+    # two contacts in series: the constant K rho is the series of g k_p and k_q
+    w, g = 0.52, 1.0 - f
+    kp, kq = 1.0, (1.0 / w - 1.0) ** -1.5  # k^(-2/3) shares w and 1 - w
+    series = (1.0 / (g * kp) ** (2 / 3) + 1.0 / kq ** (2 / 3)) ** -1.5
+    intact = (1.0 / kp ** (2 / 3) + 1.0 / kq ** (2 / 3)) ** -1.5
+    rho = pit_share(d, 0.0, 1e-4, a2, b2, w, 1.5, False)[0]
+    assert rho == pytest.approx(series / intact, rel=1e-12)
+
+
+def test_pit_share_slope_is_its_derivative():
+    a2, b2, w = 0.06, 0.0015, 0.52
+    for d in (0.5e-6, 2e-6, 5e-6):
+        for xc in (0.0, 5e-5):
+            rho, slope = pit_share(d, xc, 8.89e-5, a2, b2, w, 1.5, True)
+            h = 1e-3 * d
+            up = pit_share(d + h, xc, 8.89e-5, a2, b2, w, 1.5, False)[0]
+            dn = pit_share(d - h, xc, 8.89e-5, a2, b2, w, 1.5, False)[0]
+            assert slope == pytest.approx((up - dn) / (2 * h), rel=1e-3)
+            assert slope > 0.0  # the ball sinks: the contact grows past the pit
+
+
+@pytest.mark.parametrize("race", [Race.OUTER, Race.INNER])
+def test_semi_axes_follow_the_approach_as_hertz(race):
+    """a^2 = A d and b^2 = B d give Hertz's semi-axes at the load K d^1.5 of both contacts."""
+    K = ball_stiffness(B)
+    A, Bc, w, margin = pit_constants(B, race, K)
+    for q in (5.0, 50.0, 500.0):
+        d = (q / K) ** (2.0 / 3.0)
+        c = ball_contact(B, q, race)
+        assert math.sqrt(A * d) == pytest.approx(float(c.a), rel=1e-9)
+        assert math.sqrt(Bc * d) == pytest.approx(float(c.b), rel=1e-9)
+    ko = ball_contact(B, 1.0, race).k_hertz
+    assert 0.4 < w < 0.6  # the two contacts of a 6205 share the compliance about equally
+    # the window's margin: the contact's length at 4.2 GPa (ISO 76)
+    c = ball_contact(B, 1.0, race)
+    q42 = (4.2e9 / float(c.p_max)) ** 3
+    assert margin == pytest.approx(float(ball_contact(B, q42, race).b), rel=1e-9)
+    assert ko > 0
+
+
+def _run(profile, width_in=0.007, fault="outer", **kw):
+    sc = dict(model="vsm", bearing="6205-cwru", fault=fault, rpm=1797.0, duration_s=0.3,
+              fs_hz=12000.0, antialias=True, per_ball=True, defect_width_m=width_in * INCH,
+              defect_profile=profile)  # fmt: skip
+    return simulate({**sc, **kw})
+
+
+def test_a_pit_unloads_the_ball_less_than_a_slot_of_its_width():
+    """0.014 in: the slot's drop (3.3 um at the centre) exceeds the ball's approach at the
+    seed's load, so the ball over it carries nothing; the groove beside a pit of that diameter
+    still carries it (about half its load, pit_share)."""
+    geo, pit = _run("geometric", 0.014), _run("pit", 0.014)
+    lg = np.asarray(geo["ball_load"])
+    lp = np.asarray(pit["ball_load"])
+    heavy = lg.max(axis=0) > 0.8 * lg.max()  # balls that pass through the load zone's middle
+    assert heavy.any()
+    # the least load of a ball in the load zone's middle: the slot empties it, the pit does not
+    top_g = [lg[lg[:, j] > 0, j] for j in np.flatnonzero(heavy)]
+    assert min(float(v.min()) for v in top_g) < 0.05 * lg.max()
+    loaded = lp[:, heavy]
+    assert loaded[loaded > 0.5 * lp.max()].size
+    assert float(np.asarray(pit["acc_y"]).std()) < 0.7 * float(np.asarray(geo["acc_y"]).std())
+
+
+@pytest.mark.parametrize("model", ["vsm", "dem", "tvsm"])
+def test_the_level_grows_with_the_pit(model):
+    """A tiny pit is nearly the healthy bearing; the response grows with the diameter up to
+    0.014 in. The DEM and TVSM then ring their 6 kHz contact mode less as the pit's passage
+    lengthens (0.3 s, 1797 r/min: 15.8, 38.7, 31.2 m/s^2 for 0.007, 0.014, 0.021 in), so only
+    the quasi-static VSM grows throughout."""
+    rms = [
+        float(np.asarray(_run("pit", w, model=model, per_ball=False)["acc_y"]).std())
+        for w in (0.0005, 0.007, 0.014, 0.021)
+    ]
+    healthy = float(
+        np.asarray(_run("pit", fault="none", model=model, per_ball=False)["acc_y"]).std()
+    )
+    assert rms[0] < 1.5 * healthy
+    assert rms[0] < rms[1] < rms[2]
+    assert rms[3] > 100.0 * healthy
+    if model == "vsm":
+        assert rms[2] < rms[3]
+
+
+@pytest.mark.parametrize("fault", ["inner", "ball"])
+def test_inner_race_and_ball_pits_run(fault):
+    r = _run("pit", fault=fault, per_ball=False)
+    a = np.asarray(r["acc_y"])
+    assert np.all(np.isfinite(a))
+    assert a.std() < np.asarray(_run("geometric", fault=fault, per_ball=False)["acc_y"]).std()
+    if fault == "inner":
+        assert r.meta["static_residual_max"] < 1e-9
+
+
+def test_pit_is_refused_with_gamma_and_in_the_rotor():
+    with pytest.raises(ConfigError, match=r"^defect_profile = 'pit' with retention_factor"):
+        ModelInputs(B, 10.0, 50.0, 29.0, Defect("outer"), retention_factor=0.4, profile="pit")
+    with pytest.raises(
+        ConfigError, match=r"^defect_profile = 'pit' is not available in the rotor model"
+    ):
+        simulate(dict(model="rotor", de_fault="outer", duration_s=0.01, defect_profile="pit"))
