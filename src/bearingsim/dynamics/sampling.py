@@ -47,9 +47,16 @@ def fir_taps(q: int) -> NDArray[np.float64]:
 def decimate_antialias(x: NDArray[np.float64], q: int, axis: int = 0) -> NDArray[np.float64]:
     """Every ``q``-th sample of ``x`` after the anti-aliasing low-pass (module docstring):
     ``ceil(len / q)`` samples along ``axis``, sample ``k`` at the time of input sample ``k q``
-    (zero phase; the ends padded by a fitted line) [unit of ``x``]."""
+    (zero phase) [unit of ``x``].
+
+    Each end is continued by the signal's point reflection about its end sample (``2 x_0 -
+    x_k``: the value and slope kept), so the first samples depend on the record's start only.
+    Until the twenty-second session the ends were padded by the line through the first and
+    last samples, which made the first ~50 output samples depend on the record's length. The
+    last samples are the filter's with that continuation in place of the signal that would
+    follow, as at the end of any zero-phase filtered record."""
     from scipy.signal import resample_poly
 
     if q == 1:
         return np.asarray(x, dtype=float)
-    return resample_poly(x, 1, q, axis=axis, window=fir_taps(q), padtype="line")
+    return resample_poly(x, 1, q, axis=axis, window=fir_taps(q), padtype="antireflect")
