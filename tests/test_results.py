@@ -104,6 +104,34 @@ def test_save_load_is_lossless(results, kind, tmp_path):
     assert list(tmp_path.iterdir()) == [path]  # no temporary file left beside it
 
 
+def test_a_rerun_is_identical_but_for_its_timing(results):
+    """A rerun of the same inputs computes the same bits; only its wall time differs, which
+    ``identical(timing=False)`` leaves out (found by exploratory testing, twenty-first
+    session). Another input still differs."""
+    ias = IasParams(get_bearing("NU204-ECP"))
+    reruns = {
+        "ring": simulate(
+            Scenario(
+                model="vsm", fault="outer", duration_s=0.01, per_ball=True, noise_rms_m_per_s2=0.1
+            )
+        ),
+        "rotor_simulation": simulate(
+            Scenario(model="rotor", de_fault="inner", duration_s=0.01, fs_hz=12000.0, per_ball=True)
+        ),
+        "rotor": simulate_rotor(
+            cwru_rotor_config(1, de_fault=Defect("outer")), duration=0.01, ball_forces=True
+        ),
+        "ias": simulate_ias(ias, 0.02, 1e-5, 20_000.0),
+    }
+    for kind, again in reruns.items():
+        assert again.identical(results[kind], timing=False), kind
+        assert results[kind].identical(again, timing=False), kind
+    assert not results["ring"].identical(reruns["ring"]), "the wall time is in the file"
+    other = simulate(Scenario(model="vsm", fault="outer", duration_s=0.01, per_ball=True))
+    assert not other.identical(results["ring"], timing=False)  # no noise: other bits
+    assert not results["ring"].identical(results["trace"], timing=False)
+
+
 @pytest.mark.parametrize(
     "kind", ["ring", "rotor_simulation", "trace", "rotor", "ias", "life"], ids=str
 )

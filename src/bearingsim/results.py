@@ -104,6 +104,37 @@ def read_json_attr(ds: Any, name: str) -> Any:
         ) from None
 
 
+#: attribute keys that record how long a run took, not what it computed (left out by
+#: ``Result.identical(other, timing=False)``)
+TIMING_KEYS = frozenset({"wall_s", "wall_time_s", "cpu_s", "time_per_step_s"})
+
+
+def _drop_timing(v: Any) -> Any:
+    if isinstance(v, dict):
+        return {k: _drop_timing(x) for k, x in v.items() if k not in TIMING_KEYS}
+    if isinstance(v, list):
+        return [_drop_timing(x) for x in v]
+    return v
+
+
+def _without_timing(ds: Any) -> Any:
+    """``ds`` with :data:`TIMING_KEYS` removed from its attributes and from the JSON held in
+    them (a shallow copy)."""
+    out = ds.copy()
+    attrs = {}
+    for k, v in ds.attrs.items():
+        if k in TIMING_KEYS:
+            continue
+        if isinstance(v, str) and v[:1] in "{[":
+            try:
+                v = json.dumps(_drop_timing(json.loads(v)), sort_keys=True)
+            except ValueError:
+                pass
+        attrs[k] = v
+    out.attrs = attrs
+    return out
+
+
 class Result:
     """Base class of every model result (see the module docstring for the pattern).
 
@@ -148,11 +179,18 @@ class Result:
                 f"{cls.FORMAT!r}" + _OTHER_USE.get(got, " (load_result reads any kind)")
             )
 
-    def identical(self, other: Any) -> bool:
+    def identical(self, other: Any, *, timing: bool = True) -> bool:
         """Whether ``other`` is a result of the same class with an identical dataset (values,
         dims, coordinates and attributes; NaN equals NaN): what a lossless ``load(save(r))``
-        gives."""
-        return type(other) is type(self) and self.to_dataset().identical(other.to_dataset())
+        gives. ``timing=False`` leaves out how long the run took (the keys of
+        :data:`TIMING_KEYS` at any depth of the attributes): what a rerun of the same inputs
+        gives, whose wall time differs."""
+        if type(other) is not type(self):
+            return False
+        a, b = self.to_dataset(), other.to_dataset()
+        if not timing:
+            a, b = _without_timing(a), _without_timing(b)
+        return a.identical(b)
 
     def save(self, path: str | Path, *, field: str = "path") -> Path:
         """Write a netCDF-4 file (engine h5netcdf) atomically; returns the path (``field``:
