@@ -899,8 +899,9 @@ class RotorScenario(Scenario):
     ``defect_depth_m``                  2.794e-4        defect depth h_d [m] (CWRU EDM 0.011 in)
     ``defect_profile``                  geometric       drop of a ball across the defect:
                                                         ``geometric`` (it rests on the nearer
-                                                        edge) or ``rectangular`` (h_min over
-                                                        the extent, seed VSM)
+                                                        edge), ``rectangular`` (h_min over
+                                                        the extent, seed VSM) or ``pit`` (a
+                                                        round pit narrower than the contact)
     ``de_defect_angle_deg``,            180.0           defect **centre** azimuth at t = 0 [deg]
     ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``; ball:
                                                         the slot's spin angle, 0 = facing the

@@ -622,7 +622,7 @@ class DefectProfile(enum.Enum):
     continuous) or ``RECTANGULAR`` (the constant maximum drop ``h_min`` over the defect's extent,
     seed VSM eqs. (1)–(3)). ``PIT``: a round pit of diameter ``width`` (CWRU's EDM faults)
     narrower than the contact ellipse across the track; the contact beside it keeps carrying
-    the ball (:mod:`bearingsim.dynamics.defect_pit`; ring models only). The ring models default
+    the ball (:mod:`bearingsim.dynamics.defect_pit`; ring and rotor models). The ring models default
     to seed VSM's rectangle (with the retention factor of its eq. (11)), the rotor model to the
     geometric slot; the IAS model follows seed IAS eqs. (19)–(28)."""
 

@@ -86,8 +86,7 @@ def _shared_options(f, every_family: bool):
             else "rectangular",
             help="How a ball loses support over the defect: a slot across the track (the "
             "seed's rectangular drop, or geometric: resting on the nearer edge), or pit: a round "
-            "pit of diameter --defect-width-m narrower than the contact (CWRU's EDM faults; ring "
-            "models).",
+            "pit of diameter --defect-width-m narrower than the contact (CWRU's EDM faults).",
         ),
         click.option(
             "--defect-edge-angle-deg",

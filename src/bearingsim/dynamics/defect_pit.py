@@ -57,7 +57,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["pit_constants", "pit_lost_share", "pit_share", "strip_share"]
+__all__ = ["pit_constants", "pit_contact", "pit_lost_share", "pit_share", "strip_share"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] of the share integral (module docstring)
 _GL_U, _GL_W = np.polynomial.legendre.leggauss(12)
@@ -133,13 +133,12 @@ def pit_share(d, xc, rh, a2, b2, w, n, slope):
     return rho, (_rho(d + h, xc, rh, a2, b2, w, n) - _rho(d - h, xc, rh, a2, b2, w, n)) / (2 * h)
 
 
-def pit_constants(bearing, race, k_ball: float) -> tuple[float, float, float, float]:
-    """``(A, B, w, margin)`` of a pit in the ``race`` contact
-    (:class:`bearingsim.geometry.Race`, inner or outer) of a ball of ``bearing`` whose two
-    contacts in series have the constant ``k_ball`` [N/m^1.5] (module docstring): ``a^2 = A d``
-    and ``b^2 = B d`` [m], the contact's share of the ball's compliance ``w`` [-], and the
-    contact's semi-axis ``b`` along the track at ISO 76's 4.2 GPa, by which the defect's window
-    is widened on each side [m]."""
+def pit_contact(bearing, race) -> tuple[float, float, float, float]:
+    """``(a_1^2, b_1^2, w, margin)`` of the ``race`` contact (:class:`bearingsim.geometry.
+    Race`, inner or outer) of a ball of ``bearing``: its Hertz semi-axes squared at 1 N
+    [m^2/N^(2/3)] (``a^2 = a_1^2 Q^(2/3)``), its share of the two contacts' compliance ``w``
+    [-], and its semi-axis ``b`` along the track at ISO 76's 4.2 GPa, by which a defect's
+    window is widened on each side [m] (module docstring)."""
     from ..contact.hertz import ball_contact
     from ..geometry import Race
 
@@ -148,5 +147,14 @@ def pit_constants(bearing, race, k_ball: float) -> tuple[float, float, float, fl
     a1, b1, p1 = float(this.a), float(this.b), float(this.p_max)
     ct = this.k_hertz ** (-2.0 / 3.0)
     co = other.k_hertz ** (-2.0 / 3.0)
+    return a1 * a1, b1 * b1, ct / (ct + co), b1 * P_CAPACITY_PA / p1
+
+
+def pit_constants(bearing, race, k_ball: float) -> tuple[float, float, float, float]:
+    """``(A, B, w, margin)`` of a pit in the ``race`` contact of a ball of ``bearing`` whose
+    two contacts in series have the constant ``k_ball`` [N/m^1.5]: ``a^2 = A d`` and ``b^2 =
+    B d`` [m] at the approach ``d`` of both contacts, and ``w``, ``margin`` of
+    :func:`pit_contact`."""
+    a2, b2, w, margin = pit_contact(bearing, race)
     k23 = k_ball ** (2.0 / 3.0)
-    return a1 * a1 * k23, b1 * b1 * k23, ct / (ct + co), b1 * P_CAPACITY_PA / p1
+    return a2 * k23, b2 * k23, w, margin

@@ -66,6 +66,7 @@ from numba import cfunc, njit
 
 from ...contact.rough import U_MIN, rough_ball
 from ..defect_drop import edge_drop
+from ..defect_pit import pit_lost_share
 from ..integrate import RHS_SIG
 from ..slip import cage_angle
 
@@ -107,7 +108,7 @@ B_HALFW = 13  # defect half width b/2 [m]
 B_RBALL = 14  # ball radius [m]
 B_RRACE = 15  # radius of the faulty raceway [m] (ball: of the outer raceway)
 B_RSIGN = 16  # -1 outer (concave) race, +1 inner (convex) race (seed VSM eq. 2)
-B_PROFILE = 17  # 0 geometric ball path, 1 rectangular (constant h_min)
+B_PROFILE = 17  # 0 geometric ball path, 1 rectangular (constant h_min), 2 round pit
 B_HMAX = 18  # h_min = min(h_d, h_s) [m] (ball: at the outer race)
 B_FOMEGA = 19  # angular speed of the defect [rad/s] (0 outer, Omega inner)
 B_SLIP = 20  # offset in p of the bearing's ball-pass instants (random slip); 0 = no slip
@@ -123,7 +124,13 @@ B_RSN1 = 29  # sigma^(1/2) [m^0.5]
 B_KEFF = 30  # quasi-static balls: Hertz constant of the two contacts in series [N/m^1.5]
 B_AXZ = 31  # quasi-static balls under an axial load: axial offset z of the groove centres [m]
 B_A0 = 32  # and their unloaded distance A0 = (f_i + f_o - 1) d [m] (0 without an axial load)
-BRG_LEN = 33
+B_PITA = 33  # pit: a^2 / Q^(2/3) of the faulty contact (ball: at the outer race) [m^2/N^(2/3)]
+B_PITB = 34  # pit: b^2 / Q^(2/3) [m^2/N^(2/3)]
+B_PITW = 35  # pit: that contact's share of the two contacts' compliance (quasi-static balls) [-]
+B_PITAI = 36  # ball pit: B_PITA at the inner-race contact
+B_PITBI = 37  # ball pit: B_PITB at the inner-race contact
+B_PITWI = 38  # ball pit: B_PITW of the inner-race contact
+BRG_LEN = 39
 
 HS_M = 0  # DE housing mass [kg]; FE at +5
 HS_KX = 1
@@ -155,7 +162,7 @@ def defect_drop_on(p, o, dpsi, rpath, rr, sg, hmax):
     surface of radius ``rr`` [m] and sign ``sg`` (-1 concave outer race, +1 convex inner race;
     seed VSM eq. (2)), at most ``hmax`` [m] (rectangular profile)."""
     half = p[o + B_FHALF]
-    if abs(dpsi) >= half:
+    if abs(dpsi) >= half or p[o + B_PROFILE] > 1.5:  # off the defect, or a pit (no drop)
         return 0.0, 0.0
     if p[o + B_PROFILE] > 0.5:  # rectangular: the seed VSM h_min over the whole extent
         return hmax, 0.0
@@ -168,6 +175,34 @@ def defect_drop_on(p, o, dpsi, rpath, rr, sg, hmax):
     d, dd_de = edge_drop(e, p[o + B_RBALL], rr, sg, p[o + B_DEPTH])
     sgn = 1.0 if dpsi > 0.0 else -1.0
     return d, -dd_de * rpath * sgn
+
+
+@njit(cache=True)
+def pit_factor(p, o, dpsi, rpath, d, k, inner, series):
+    """Factor [-] on the elastic load of a contact of constant ``k`` [N/m^1.5] at compression
+    ``d`` [m] whose ball lies ``dpsi`` [rad] from a round pit's centre along a circle of
+    radius ``rpath`` [m] (:mod:`bearingsim.dynamics.defect_pit`): 1 off the pit's window,
+    else the share the contact beside the pit keeps, ``g`` for one contact, or with ``series``
+    (the quasi-static ball's two contacts in series of constant ``k``) ``(w g^(-2/3) + 1 -
+    w)^(-3/2)``. ``inner``: the ball pit's inner-race contact constants."""
+    if abs(dpsi) >= p[o + B_FHALF] or d <= 0.0:
+        return 1.0
+    ia = B_PITAI if inner else B_PITA
+    ib = B_PITBI if inner else B_PITB
+    k23 = k ** (2.0 / 3.0)
+    lost = pit_lost_share(
+        rpath * abs(dpsi),
+        p[o + B_HALFW],
+        math.sqrt(p[o + ia] * k23 * d),
+        math.sqrt(p[o + ib] * k23 * d),
+    )
+    g = 1.0 - lost
+    if g <= 0.0:
+        return 0.0
+    if not series:
+        return g
+    w = p[o + (B_PITWI if inner else B_PITW)]
+    return (w * g ** (-2.0 / 3.0) + 1.0 - w) ** -1.5
 
 
 @njit(cache=True, inline="always")
@@ -217,6 +252,7 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
     rp = p[o + B_RP]
     ch = p[o + B_CH]
     fault = int(p[o + B_FAULT])
+    pit = p[o + B_PROFILE] > 1.5
     fang = p[o + B_FANG] + p[o + B_FOMEGA] * t
     xs = y[node]
     ys = y[node + 1]
@@ -243,6 +279,8 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         hd_in = 0.0
         h_out = 0.0
         hd_out = 0.0
+        phi = 0.0
+        dpsi = 0.0
         if fault == 3:
             if j == 0:  # ball 1's slot: spin angle of its centre from the outer contact
                 spin = p[o + B_SPIN]
@@ -269,17 +307,29 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         if boff > 0:  # a ball larger by Delta D_j: each contact closes by half of it
             d_in += 0.5 * p[boff + j]
             d_out += 0.5 * p[boff + j]
+        g_in = 1.0
+        g_out = 1.0
+        if pit and fault != 0:  # a round pit: the contact beside it keeps a share
+            if fault == 3:
+                if j == 0:
+                    rb = p[o + B_RBALL]
+                    g_out = pit_factor(p, o, phi, rb, d_out, kout, False, False)
+                    g_in = pit_factor(p, o, _wrap(phi - math.pi), rb, d_in, kin, True, False)
+            elif fault == 1:
+                g_out = pit_factor(p, o, dpsi, p[o + B_RRACE], d_out, kout, False, False)
+            else:
+                g_in = pit_factor(p, o, dpsi, p[o + B_RRACE], d_in, kin, False, False)
         # elastic load (rough from `onset` on, Hertz from 0), then the damping once touching
         q_in = 0.0
         if d_in > onset:
-            q_in = _elastic(d_in, kin, sig, p, o)
+            q_in = g_in * _elastic(d_in, kin, sig, p, o)
             if d_in > 0.0:
                 q_in = q_in + c * (-sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in)
                 if q_in < 0.0:
                     q_in = 0.0
         q_out = 0.0
         if d_out > onset:
-            q_out = _elastic(d_out, kout, sig, p, o)
+            q_out = g_out * _elastic(d_out, kout, sig, p, o)
             if d_out > 0.0:
                 q_out = q_out + c * (sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out)
                 if q_out < 0.0:
@@ -338,9 +388,12 @@ def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
     a0 = p[o + B_A0]
     fx = 0.0
     fy = 0.0
+    pit = p[o + B_PROFILE] > 1.5
     for j in range(z):
         h = 0.0
         hd = 0.0
+        phi = 0.0
+        dpsi = 0.0
         if fault == 3:
             if j == 0:  # ball 1's slot meets the outer race, half a spin turn later the inner
                 spin = p[o + B_SPIN]
@@ -353,7 +406,8 @@ def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
                 h += h_i
                 hd = (dh + dh_i) * spin * wc
         elif fault != 0:
-            h, dh = defect_drop(p, o, _wrap(psi + j * step - fang))
+            dpsi = _wrap(psi + j * step - fang)
+            h, dh = defect_drop(p, o, dpsi)
             hd = dh * rel_speed
         d = xr * sp + yr * cp - ch - h
         if boff > 0:  # a ball larger by Delta D_j closes the two contacts by Delta D_j
@@ -364,9 +418,19 @@ def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
             a = math.sqrt(r * r + z_ax * z_ax)
             cos_a = r / a
             d = a - a0 - h  # the normal approach, the drop taken from it
+        g = 1.0
+        if pit and fault != 0:  # a round pit: the contact beside it keeps a share
+            if fault == 3:
+                if j == 0:
+                    rb = p[o + B_RBALL]
+                    g = pit_factor(p, o, phi, rb, d, keff, False, True) * pit_factor(
+                        p, o, _wrap(phi - math.pi), rb, d, keff, True, True
+                    )
+            else:
+                g = pit_factor(p, o, dpsi, p[o + B_RRACE], d, keff, False, True)
         q = 0.0
         if d > onset:
-            q = _elastic(d, keff, sig, p, o)
+            q = g * _elastic(d, keff, sig, p, o)
             if d > 0.0:
                 rate = cos_a * (vxr * sp + vyr * cp + wc * (xr * cp - yr * sp)) - hd
                 q = q + c2 * rate

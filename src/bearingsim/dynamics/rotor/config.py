@@ -33,7 +33,6 @@ from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
     BallBearing,
     Defect,
-    DefectProfile,
     KinematicFrequencies,
     characteristic_frequencies,
     check_defect_depth,
@@ -143,11 +142,6 @@ class BearingSupport:
             )
         if self.fault is not None:
             check_defect_depth(self.bearing, self.fault)
-            if self.fault.profile is DefectProfile.PIT:
-                raise ConfigError(
-                    "defect_profile = 'pit' is not available in the rotor model; valid: "
-                    "geometric, rectangular (the pit: the ring models vsm, dem, tvsm)"
-                )
 
     @property
     def ball_mass(self) -> float:

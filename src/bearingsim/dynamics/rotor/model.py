@@ -42,6 +42,7 @@ from ...geometry import (
     parse_enum,
 )
 from ..budget import F8, Budget, Estimate, check_budget
+from ..defect_pit import pit_contact
 from ..integrate import run_adaptive, run_fixed
 from . import _kernel as rk
 from .config import (
@@ -477,7 +478,11 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
         blk[rk.B_RBALL] = 0.5 * b.element_diameter
         blk[rk.B_RRACE] = g.race_radius
         blk[rk.B_RSIGN] = -1.0 if f.race is Race.OUTER else 1.0
-        blk[rk.B_PROFILE] = 0.0 if f.profile is DefectProfile.GEOMETRIC else 1.0
+        blk[rk.B_PROFILE] = {
+            DefectProfile.GEOMETRIC: 0.0,
+            DefectProfile.RECTANGULAR: 1.0,
+            DefectProfile.PIT: 2.0,
+        }[f.profile]
         blk[rk.B_HMAX] = g.h_min
         blk[rk.B_FOMEGA] = config.omega if f.race is Race.INNER else 0.0
         if f.race is Race.BALL:  # the slot meets the outer race (B_RRACE) and the inner race
@@ -487,6 +492,17 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
             blk[rk.B_RSIGN] = -1.0
             blk[rk.B_RRACE_I] = b.inner_raceway_radius
             blk[rk.B_HMAX_I] = g.h_min_inner
+        if f.profile is DefectProfile.PIT:  # the contact(s) the pit meets (..defect_pit)
+            ball = f.race is Race.BALL
+            a2, b2, w, margin = pit_contact(b, Race.OUTER if ball else f.race)
+            blk[rk.B_PITA], blk[rk.B_PITB], blk[rk.B_PITW] = a2, b2, w
+            if ball:
+                a2, b2, w, m_i = pit_contact(b, Race.INNER)
+                blk[rk.B_PITAI], blk[rk.B_PITBI], blk[rk.B_PITWI] = a2, b2, w
+                margin = max(margin, m_i)
+            # the window holds every position where the contact overlaps the pit
+            rpath = 0.5 * b.element_diameter if ball else g.race_radius
+            blk[rk.B_FHALF] += margin / rpath
     return blk
 
 
