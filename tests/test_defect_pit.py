@@ -63,6 +63,8 @@ def test_strip_share_is_the_hertz_line_load_across_the_track():
         (0.0, 0.178, 0.341, 0.054),  # 0.014 in
         (0.0, 0.178, 0.541, 0.2),  # a long contact
         (0.1, 0.3, 0.25, 0.05),  # the pit wider than the contact
+        (0.0, 0.005, 0.34, 0.054),  # a 10 um pit under a 25 N contact
+        (0.03, 0.005, 0.34, 0.054),  # ... off its centre
     ],
 )
 def test_pit_share_is_the_hertz_pressure_on_the_pit(xc, rh, a, b):
@@ -80,7 +82,10 @@ def test_pit_share_limits():
     d = 2e-6
     f = pit_lost_share(0.0, 1e-4, math.sqrt(a2 * d), math.sqrt(b2 * d))
     assert pit_share(d, 0.0, 1e-4, a2, b2, 1.0, 1.5, False)[0] == pytest.approx(1.0 - f)
+    # no approach (a rough contact's asperities): nothing over the pit, all beside it
     assert pit_share(0.0, 0.0, 1e-4, a2, b2, 0.5, 1.5, True) == (0.0, 0.0)
+    assert pit_share(-1e-8, 3e-4, 1e-4, a2, b2, 0.5, 1.5, True) == (1.0, 0.0)
+    assert pit_share(1e-12, 3e-4, 1e-4, a2, b2, 0.5, 1.5, False)[0] == 1.0
     # two contacts in series: the constant K rho is the series of g k_p and k_q
     w, g = 0.52, 1.0 - f
     kp, kq = 1.0, (1.0 / w - 1.0) ** -1.5  # k^(-2/3) shares w and 1 - w
@@ -199,3 +204,101 @@ def test_rotor_pit(fault, inertia):
     assert tiny == pytest.approx(healthy, rel=0.01)
     assert healthy < small < mid < big
     assert mid < 0.9 * rms("geometric", 0.014)
+
+
+# ---- found by exploratory testing of the pit (twenty-second session), one test each
+
+
+def test_rough_contacts_beside_a_pit_keep_their_load():
+    """A rough contact carries load before the surfaces meet (d <= 0); the pit's window took
+    it all away, even 0.3 mm off a 10 um pit (found by exploratory testing). The contact's
+    size now comes from the load it carries: beside the pit nothing is lost, over it a share."""
+    from bearingsim.dynamics.ring import _balance as bl
+
+    mi = ModelInputs(B, 10.0, 50.0, 29.0, Defect("outer", width=1e-5), profile="pit",
+                     roughness=1e-6)  # fmt: skip
+    p = mi.header()
+    clr, _doff, dfac, K, n = bl.constants(p)
+    for d in (-2e-6, -1e-8, 1e-6):
+        intact = bl.ball_load(clr + d, 0.0, 1.0, clr, 0.0, dfac, K, n, p, True, True)[0]
+        assert intact > 0.0
+        beside = bl.ball_load(clr + d, 1.0, 1.0, clr, 3e-4, dfac, K, n, p, True, True)[0]
+        assert beside == intact
+        over = bl.ball_load(clr + d, 1.0, 1.0, clr, 0.0, dfac, K, n, p, True, True)[0]
+        assert 0.0 < over < intact
+    # a 10 um pit: its passages add less than 2 % of the 0.007 in pit's RMS to the sensor
+    sc = dict(model="vsm", bearing="6205-cwru", rpm=1797.0, duration_s=0.2, fs_hz=12000.0,
+              contact_roughness_m=1e-6, fault="outer", defect_profile="pit")  # fmt: skip
+    healthy = np.asarray(simulate({**sc, "fault": "none"})["acc_y"])
+    tiny = np.asarray(simulate({**sc, "defect_width_m": 1e-5})["acc_y"])
+    pit = np.asarray(simulate({**sc, "defect_width_m": 0.007 * INCH})["acc_y"])
+    assert (tiny - healthy).std() < 0.02 * pit.std()
+
+
+def test_a_pit_shallower_than_the_ball_sinks_is_refused():
+    """The model holds the ball beside the pit, clear of its bottom: a 1 nm deep pit was
+    simulated as a deep one. Refused in one line, ring and rotor."""
+    w = 0.014 * INCH
+    for sc in (
+        dict(model="vsm", fault="outer", defect_width_m=w),
+        dict(model="dem", fault="ball", defect_width_m=w),
+        dict(model="rotor", de_fault="inner", defect_width_m=w),
+    ):
+        with pytest.raises(ConfigError, match=r"^defect_depth_m = 1e-09 m is not deeper than a "
+                           r"ball sinks into a pit .* valid range \("):  # fmt: skip
+            simulate({**sc, "duration_s": 0.01, "defect_profile": "pit", "defect_depth_m": 1e-9})
+    # the same depth is a valid (shallow) slot
+    simulate(dict(model="vsm", fault="outer", defect_width_m=w, duration_s=0.01,
+                  defect_profile="geometric", defect_depth_m=1e-9))  # fmt: skip
+
+
+def test_vsm_trace_ball_loads_follow_the_pit():
+    """The trace's per-ball loads took the rectangle's constant drop for every profile (0 N
+    over a 0.014 in pit); they are now the kernels' own, about half the intact load at the
+    pit's centre, and the geometric slot's follow its drop."""
+    from bearingsim.dynamics.ring.trace import stiffness_trace
+
+    w = 0.014 * INCH
+    traces = {}
+    for prof in ("rectangular", "geometric", "pit"):
+        d = Defect("outer", w, 0.011 * INCH, math.atan2(10.0, 50.0))  # under the load
+        mi = ModelInputs(B, 10.0, 50.0, 1797.0 / 60.0, d, profile=prof)
+        traces[prof] = stiffness_trace(mi, n_points=2001)
+    pit = traces["pit"]
+    over = pit.in_defect
+    assert over.any()
+    q_over = pit.ball_load[over]
+    assert q_over.max() > 0.0
+    # least load over the pit: about half the heaviest intact ball's (pit_share: 0.47-0.54)
+    intact = pit.ball_load[~over].max()
+    assert 0.3 * intact < q_over[q_over > 0.1 * intact].min() < 0.8 * intact
+    rect = traces["rectangular"]
+    assert rect.ball_load[rect.in_defect].min() < 0.5 * q_over[q_over > 0.1 * intact].min()
+    # the trace's ball loads balance the ring's load at every point (its own displacements)
+    f = np.hypot(*(np.sum(pit.ball_load * t(pit.meta["psi"]), axis=1) for t in (np.sin, np.cos)))
+    np.testing.assert_allclose(f, math.hypot(10.0, 50.0), rtol=1e-6)
+
+
+def test_sweep_plan_refuses_a_profile_with_gamma():
+    """The check lived in the model inputs: `sweep plan` passed and one run failed later."""
+    from bearingsim.config import RingScenario
+
+    with pytest.raises(ConfigError, match=r"^defect_profile = 'pit' with retention_factor"):
+        RingScenario(fault="outer", defect_profile="pit", retention_factor=0.5)
+    RingScenario(fault="none", defect_profile="pit", retention_factor=0.5)  # no defect: unused
+
+
+def test_pit_meta_records_the_pit_not_a_slot():
+    r = simulate(
+        dict(model="vsm", bearing="6205-cwru", fault="outer", duration_s=0.01, defect_profile="pit")
+    )
+    geo = r.meta["defect"]
+    assert geo["profile"] == "pit" and "h_min_m" not in geo
+    assert geo["pit_radius_m"] == pytest.approx(0.5 * 0.007 * INCH)
+    # the window: the pit's extent plus the contact's length at 4.2 GPa on each side
+    margin = pit_constants(B, Race.OUTER, ball_stiffness(B))[3]
+    assert geo["window_rad"] * geo["race_radius_m"] == pytest.approx(
+        2 * math.asin(0.5 * 0.007 * INCH / geo["race_radius_m"]) * geo["race_radius_m"]
+        + 2 * margin,
+        rel=1e-9,
+    )

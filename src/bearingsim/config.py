@@ -833,6 +833,14 @@ class RingScenario(Scenario):
                 "retention_factor",
                 check_range("retention_factor", self.retention_factor, 0.0, 1.0),
             )
+            prof = self.defect_profile or "rectangular"
+            if prof != "rectangular" and self.fault != "none":  # checked before any run
+                raise ConfigError(
+                    f"defect_profile = {prof!r} with retention_factor = "
+                    f"{self.retention_factor:g}: a prescribed gamma replaces the drop the "
+                    "profile describes; valid: defect_profile = 'rectangular' with a "
+                    "retention_factor, or no retention_factor"
+                )
         if self.load_zone_half_angle_deg is not None:
             s(
                 self,

@@ -841,6 +841,32 @@ def check_defect_depth(bearing: Bearing, defect: Defect) -> float:
     return defect.depth
 
 
+def check_pit_depth(bearing: Bearing, defect: Defect) -> float:
+    """Refuse a pit (:attr:`DefectProfile.PIT`) shallower than a ball sinks into it: the pit
+    model has the ball held by the groove beside the pit, never touching its bottom. The bound
+    is seed VSM eq. (2) for a slot as wide as the pit's diameter, the most a ball can sink into
+    it (the rim across the track holds it higher), at each contact the pit meets (a ball's
+    pit: the outer and the inner race). Returns the depth [m]."""
+    r = 0.5 * bearing.element_diameter
+    e = 0.5 * defect.width
+    if defect.race is Race.BALL:
+        surfaces = ((bearing.outer_raceway_radius, -1.0), (bearing.inner_raceway_radius, 1.0))
+    else:
+        radius = defect_geometry(bearing, defect).race_radius
+        surfaces = ((radius, -1.0 if defect.race is Race.OUTER else 1.0),)
+    sag = max(
+        (r - math.sqrt(r * r - e * e)) + sg * (rr - math.sqrt(rr * rr - e * e))
+        for rr, sg in surfaces
+    )
+    if not defect.depth > sag:
+        raise ConfigError(
+            f"defect_depth_m = {defect.depth:.6g} m is not deeper than a ball sinks into a pit "
+            f"of diameter {defect.width:.6g} m ({sag:.3g} m) with defect_profile = 'pit'; "
+            f"valid range ({sag:.3g}, inf) m, or a slot profile (geometric, rectangular)"
+        )
+    return defect.depth
+
+
 def check_unused_defect(bearing: Bearing, width: float, depth: float) -> None:
     """The defect keys of a scenario without a fault (``fault = "none"``): unused, but refused
     (one-line :class:`ConfigError`, as for a fault of the outer ring) when neither raceway of

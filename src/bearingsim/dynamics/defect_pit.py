@@ -25,12 +25,13 @@ as a share of the load ``Q = 2 pi p0 a b / 3``:
 pit). Each slice ``u`` of the ellipse carries ``3/4 (1 - u^2)`` of the load with a semicircular
 pressure across the track, of which ``G`` lies on the pit's chord. A strip of constant half-width
 ``s`` gives ``F = 1.5 t - 0.5 t^3``, ``t = s/a`` (:func:`strip_share`, the check of the
-quadrature). The integral is a 12-point Gauss-Legendre sum: the contact's length ``2 b`` along
-the track smooths the pit's entry and exit over that length. The contact keeps ``g = 1 - F`` of
-its Hertz constant at the same approach, ``Q = g k delta^1.5``. This holds the pressure beside
-the pit at Hertz's value; the elastic half-space carries part of the pit's share to its sides,
-so ``1 - g`` is an upper bound of the load a pit removes at a given approach (a numerical
-contact solution would tighten it).
+quadrature). The integral is a 12-point Gauss-Legendre sum over the slices that cross the pit
+(a pit far shorter than the contact falls between nodes spread over the whole contact): the
+contact's length ``2 b`` along the track smooths the pit's entry and exit over that length.
+The contact keeps ``g = 1 - F`` of its Hertz constant at the same approach, ``Q = g k
+delta^1.5``. This holds the pressure beside the pit at Hertz's value; the elastic half-space
+carries part of the pit's share to its sides, so ``1 - g`` is an upper bound of the load a pit
+removes at a given approach (a numerical contact solution would tighten it).
 
 **Semi-axes from the approach.** Hertz's ``a, b ∝ Q^(1/3)`` and ``delta ∝ Q^(2/3)`` make ``a^2
 / delta`` and ``b^2 / delta`` constants of the contact: with the ring models' combined constant
@@ -93,15 +94,24 @@ def pit_lost_share(xc, rh, a, b):
         return 0.0
     if b <= 0.0:  # a contact of no length: the strip at its centre
         return strip_share(math.sqrt(rh * rh - x * x) / a) if x < rh else 0.0
+    # the slices u of the contact that cross the pit, |x + b u| < rh: the nodes on them only
+    # (on the whole contact a pit much shorter than it fell between the nodes)
+    lo = max(-1.0, (-rh - x) / b)
+    hi = min(1.0, (rh - x) / b)
+    if hi <= lo:
+        return 0.0
+    mid = 0.5 * (hi + lo)
+    half = 0.5 * (hi - lo)
     f = 0.0
     for k in range(_GL_U.size):
-        u = _GL_U[k]
+        u = mid + half * _GL_U[k]
         xs = x + b * u
         e2 = rh * rh - xs * xs
-        if e2 <= 0.0:
-            continue
         c = 1.0 - u * u
+        if e2 <= 0.0 or c <= 0.0:
+            continue
         f += _GL_W[k] * 0.75 * c * _semicircle_share(math.sqrt(e2) / (a * math.sqrt(c)))
+    f *= half
     return f if f < 1.0 else 1.0
 
 
@@ -123,9 +133,11 @@ def pit_share(d, xc, rh, a2, b2, w, n, slope):
     [1/m] when ``slope`` (else 0; a central difference of relative step 1e-6).
 
     ``a^2 = a2 d``, ``b^2 = b2 d`` [m] at the approach ``d`` [m]; ``w`` the pit contact's
-    compliance share [-], ``n`` the load exponent [-] (module docstring). ``d <= 0``: (0, 0)."""
+    compliance share [-], ``n`` the load exponent [-] (module docstring). ``d <= 0`` (a rough
+    contact's asperities carry load before the surfaces meet; the Hertz contact has no size):
+    0 with its centre over the pit, else 1 (the limits of ``d -> 0+``)."""
     if d <= 0.0:
-        return 0.0, 0.0
+        return (0.0 if abs(xc) < rh else 1.0), 0.0
     rho = _rho(d, xc, rh, a2, b2, w, n)
     if not slope:
         return rho, 0.0

@@ -362,9 +362,10 @@ def _pit_load(ue, fr, zf, clr, xc, dfac, K, n, p, full, rough):
     """:func:`ball_load` of a ball over a round pit (``p[P_PROFILE] == 2``), out of line (only
     the ball over the defect pays for it): the blend ``(1 - f_d) Q(d) + f_d rho(d) Q(d)`` of the
     intact law ``Q`` (Hertz or rough) at ``d = u.e - P_d/2``, ``rho`` the share the contact
-    beside the pit keeps (:func:`..defect_pit.pit_share`; ``xc`` the pit centre's distance from
-    the contact [m], ``-1 - x_c`` for a ball pit at the inner race). The potential is ``rho``
-    times the intact one (no solver uses it)."""
+    beside the pit keeps (:func:`..defect_pit.pit_share` at the Hertz approach of ``Q``, ``(Q /
+    K)^(1/n)``: ``d`` for Hertz's law; ``xc`` the pit centre's distance from the contact [m],
+    ``-1 - x_c`` for a ball pit at the inner race). The potential is ``rho`` times the intact
+    one (no solver uses it)."""
     d = ue - clr
     if rough:
         q0, k0, e0 = rough_ball(d, K, p[P_ROUGH], p[P_RINV], p[P_RSN1], full)
@@ -374,10 +375,15 @@ def _pit_load(ue, fr, zf, clr, xc, dfac, K, n, p, full, rough):
     else:
         return 0.0, 0.0, 0.0
     rh = p[P_HALFW]
+    # the contact's size from the load it carries: the Hertz approach of that load (d itself
+    # for Hertz's law; a rough contact carries load, and has a size, before the surfaces meet)
+    de = (q0 / K) ** (1.0 / n) if q0 > 0.0 else 0.0
     if xc < 0.0:
-        rho, drho = pit_share(d, -1.0 - xc, rh, p[P_PITAI], p[P_PITBI], p[P_PITWI], n, full)
+        rho, drho = pit_share(de, -1.0 - xc, rh, p[P_PITAI], p[P_PITBI], p[P_PITWI], n, full)
     else:
-        rho, drho = pit_share(d, xc, rh, p[P_PITA], p[P_PITB], p[P_PITW], n, full)
+        rho, drho = pit_share(de, xc, rh, p[P_PITA], p[P_PITB], p[P_PITW], n, full)
+    if full and de > 0.0:  # d rho / d d = d rho / d de * d de / d d
+        drho *= de * k0 / (n * q0)
     w = 1.0 - fr + fr * dfac * rho
     dw = fr * dfac * drho
     return zf * w * q0, zf * (w * k0 + dw * q0), zf * w * e0

@@ -44,6 +44,7 @@ from ...geometry import (
     Race,
     characteristic_frequencies,
     check_clearance,
+    check_pit_depth,
     defect_geometry,
     parse_enum,
 )
@@ -265,6 +266,8 @@ class ModelInputs:
         object.__setattr__(self, "axial_load", ax)  # checked above, with the radial load
         prof = parse_enum(DefectProfile, self.profile, "defect_profile")
         object.__setattr__(self, "profile", prof)
+        if prof is DefectProfile.PIT and self.defect is not None:
+            check_pit_depth(self.bearing, self.defect)
         if prof is not DefectProfile.RECTANGULAR and self.retention_factor is not None:
             raise ConfigError(
                 f"defect_profile = {prof.value!r} with retention_factor = "

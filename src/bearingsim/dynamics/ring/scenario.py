@@ -344,8 +344,14 @@ def run_ring(
         if g.h_min_inner is not None:  # a ball defect: h_s_m, h_min_m at the outer race,
             geo["h_min_inner_m"] = g.h_min_inner  # this at the inner (race_radius_m: the ball's)
         geo["profile"] = inputs.profile.value
-        if inputs.profile is DefectProfile.PIT:  # the drops above are a slot's, unused here
-            geo["pit_radius_m"] = 0.5 * inputs.defect.width
+        if inputs.profile is DefectProfile.PIT:  # no drop: the window where the contact
+            hdr = inputs.header()  # overlaps the pit, widened by the contact's length
+            geo = {
+                "profile": "pit",
+                "pit_radius_m": 0.5 * inputs.defect.width,
+                "window_rad": float(hdr[bl.P_DBETA]),
+                "race_radius_m": g.race_radius,
+            }
     meta = {
         "channels": {
             "acc_x, acc_y": (

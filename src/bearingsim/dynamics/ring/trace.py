@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from ...contact.capacity import check_load
 from ...contact.rough import rough_mean_power
 from ...errors import ConfigError, SolverError, check_range
-from ...geometry import BallBearing, Race, check_clearance, defect_geometry
+from ...geometry import BallBearing, DefectProfile, Race, check_clearance, defect_geometry
 from ...io.atomic import atomic_open
 from ...load_distribution import radial_load_distribution
 from ...results import Result, json_attr, read_json_attr, var_attrs
@@ -571,7 +571,26 @@ def stiffness_trace(
         fac = np.where(margin >= 0, fac, 0.0)
     comp = nominal - off
     K = p[bl.P_K]
-    if inputs.roughness > 0.0:  # the rough load law (contact.rough), as the kernels use it
+    if inputs.defect is not None and inputs.profile is not DefectProfile.RECTANGULAR:
+        # the drop (geometric) or share (pit) varies across the defect: the kernels' own ball
+        # loads at the solved displacements (point values), as simulate's per-ball output;
+        # the window the kernels use (a pit's is widened by the contact's length)
+        Q = np.empty_like(psi)
+        buf = np.empty(2 * Z)
+        for i in range(times.size):
+            bl.per_ball(float(times[i]), p, float(ux[i, 0]), float(uy[i, 0]), buf, 0, True)
+            Q[i] = buf[:Z]
+        edge = p[bl.P_BETA0] + (shaft[:, None] if defect.race is Race.INNER else 0.0)
+        if defect.race is Race.BALL:
+            spin = np.mod(p[bl.P_SPIN] * (psi[:, 0] - inputs.first_ball_angle) + p[bl.P_BETA0],
+                          2 * math.pi)  # fmt: skip
+            over = np.zeros_like(psi, dtype=bool)
+            over[:, 0] = (spin < p[bl.P_DBETA]) | (
+                np.mod(spin + math.pi, 2 * math.pi) < p[bl.P_DBETA]
+            )
+        else:
+            over = np.mod(psi - edge, 2 * math.pi) < p[bl.P_DBETA]
+    elif inputs.roughness > 0.0:  # the rough load law (contact.rough), as the kernels use it
         sig = inputs.roughness
         Q = fac * K * sig**1.5 * rough_mean_power(comp / sig, 1.5)
     else:
@@ -593,7 +612,10 @@ def stiffness_trace(
         label += f", b {inputs.defect.width * 1e3:.3g} mm, " + (
             f"gamma {inputs.retention_factor:g}"
             if inputs.retention_factor is not None
-            else f"h_min {p[bl.P_DOFF] * 1e6:.3g} um (eq. 11 implicit)"
+            else f"pit, r {0.5e3 * inputs.defect.width:.3g} mm"
+            if inputs.profile is DefectProfile.PIT
+            else f"h_min {p[bl.P_DOFF] * 1e6:.3g} um (eq. 11 implicit"
+            + (", geometric)" if inputs.profile is DefectProfile.GEOMETRIC else ")")
         )
     label += f", K {K:.3g} N/m^1.5, psi_L0 {math.degrees(float(ldh.psi_l[0])):.1f} deg"
     if inputs.load_zone_half_angle is not None:

@@ -179,13 +179,15 @@ def defect_drop_on(p, o, dpsi, rpath, rr, sg, hmax):
 
 @njit(cache=True)
 def pit_factor(p, o, dpsi, rpath, d, k, inner, series):
-    """Factor [-] on the elastic load of a contact of constant ``k`` [N/m^1.5] at compression
-    ``d`` [m] whose ball lies ``dpsi`` [rad] from a round pit's centre along a circle of
-    radius ``rpath`` [m] (:mod:`bearingsim.dynamics.defect_pit`): 1 off the pit's window,
-    else the share the contact beside the pit keeps, ``g`` for one contact, or with ``series``
-    (the quasi-static ball's two contacts in series of constant ``k``) ``(w g^(-2/3) + 1 -
-    w)^(-3/2)``. ``inner``: the ball pit's inner-race contact constants."""
-    if abs(dpsi) >= p[o + B_FHALF] or d <= 0.0:
+    """Factor [-] on the elastic load of a contact of constant ``k`` [N/m^1.5] at the Hertz
+    compression ``d`` [m] of its load (``(Q/k)^(2/3)``: a rough contact carries load, and has
+    a size, before the surfaces meet) whose ball lies ``dpsi`` [rad] from a round pit's
+    centre along a circle of radius ``rpath`` [m] (:mod:`bearingsim.dynamics.defect_pit`): 1
+    off the pit's window, else the share the contact beside the pit keeps, ``g`` for one
+    contact, or with ``series`` (the quasi-static ball's two contacts in series of constant
+    ``k``) ``(w g^(-2/3) + 1 - w)^(-3/2)``. ``inner``: the ball pit's inner-race contact
+    constants."""
+    if abs(dpsi) >= p[o + B_FHALF] or d <= 0.0:  # off the window, or no load to share
         return 1.0
     ia = B_PITAI if inner else B_PITA
     ib = B_PITBI if inner else B_PITB
@@ -203,6 +205,20 @@ def pit_factor(p, o, dpsi, rpath, d, k, inner, series):
         return g
     w = p[o + (B_PITWI if inner else B_PITW)]
     return (w * g ** (-2.0 / 3.0) + 1.0 - w) ** -1.5
+
+
+@njit(cache=True)
+def _pit_g(p, o, fault, phi, dpsi, q, k, inner):
+    """:func:`pit_factor` of a massive ball's one contact (``inner`` or outer, constant ``k``
+    [N/m^1.5]) carrying the elastic load ``q`` [N] over the bearing's pit (``fault`` 1, 2 or 3:
+    ``phi`` the ball's spin angle of the pit, else ``dpsi`` its azimuth from it [rad])."""
+    if q <= 0.0:
+        return 1.0
+    d = (q / k) ** (2.0 / 3.0)
+    if fault == 3:
+        ang = _wrap(phi - math.pi) if inner else phi
+        return pit_factor(p, o, ang, p[o + B_RBALL], d, k, inner, False)
+    return pit_factor(p, o, dpsi, p[o + B_RRACE], d, k, False, False)
 
 
 @njit(cache=True, inline="always")
@@ -307,29 +323,21 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         if boff > 0:  # a ball larger by Delta D_j: each contact closes by half of it
             d_in += 0.5 * p[boff + j]
             d_out += 0.5 * p[boff + j]
-        g_in = 1.0
-        g_out = 1.0
-        if pit and fault != 0:  # a round pit: the contact beside it keeps a share
-            if fault == 3:
-                if j == 0:
-                    rb = p[o + B_RBALL]
-                    g_out = pit_factor(p, o, phi, rb, d_out, kout, False, False)
-                    g_in = pit_factor(p, o, _wrap(phi - math.pi), rb, d_in, kin, True, False)
-            elif fault == 1:
-                g_out = pit_factor(p, o, dpsi, p[o + B_RRACE], d_out, kout, False, False)
-            else:
-                g_in = pit_factor(p, o, dpsi, p[o + B_RRACE], d_in, kin, False, False)
         # elastic load (rough from `onset` on, Hertz from 0), then the damping once touching
         q_in = 0.0
         if d_in > onset:
-            q_in = g_in * _elastic(d_in, kin, sig, p, o)
+            q_in = _elastic(d_in, kin, sig, p, o)
+            if pit and (fault == 2 or (fault == 3 and j == 0)):  # a round pit: a share kept
+                q_in *= _pit_g(p, o, fault, phi, dpsi, q_in, kin, True)
             if d_in > 0.0:
                 q_in = q_in + c * (-sd + vxs * sp + vys * cp + wc * (xs * cp - ys * sp) - hd_in)
                 if q_in < 0.0:
                     q_in = 0.0
         q_out = 0.0
         if d_out > onset:
-            q_out = g_out * _elastic(d_out, kout, sig, p, o)
+            q_out = _elastic(d_out, kout, sig, p, o)
+            if pit and (fault == 1 or (fault == 3 and j == 0)):  # a round pit: a share kept
+                q_out *= _pit_g(p, o, fault, phi, dpsi, q_out, kout, False)
             if d_out > 0.0:
                 q_out = q_out + c * (sd - vxh * sp - vyh * cp - wc * (xh * cp - yh * sp) - hd_out)
                 if q_out < 0.0:
@@ -418,19 +426,19 @@ def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
             a = math.sqrt(r * r + z_ax * z_ax)
             cos_a = r / a
             d = a - a0 - h  # the normal approach, the drop taken from it
-        g = 1.0
-        if pit and fault != 0:  # a round pit: the contact beside it keeps a share
-            if fault == 3:
-                if j == 0:
-                    rb = p[o + B_RBALL]
-                    g = pit_factor(p, o, phi, rb, d, keff, False, True) * pit_factor(
-                        p, o, _wrap(phi - math.pi), rb, d, keff, True, True
-                    )
-            else:
-                g = pit_factor(p, o, dpsi, p[o + B_RRACE], d, keff, False, True)
         q = 0.0
         if d > onset:
-            q = g * _elastic(d, keff, sig, p, o)
+            q = _elastic(d, keff, sig, p, o)
+            if pit and fault != 0 and q > 0.0:  # a round pit: the contact beside it keeps a share
+                de = (q / keff) ** (2.0 / 3.0)  # the Hertz approach of the load
+                if fault == 3:
+                    if j == 0:
+                        rb = p[o + B_RBALL]
+                        q *= pit_factor(p, o, phi, rb, de, keff, False, True) * pit_factor(
+                            p, o, _wrap(phi - math.pi), rb, de, keff, True, True
+                        )
+                else:
+                    q *= pit_factor(p, o, dpsi, p[o + B_RRACE], de, keff, False, True)
             if d > 0.0:
                 rate = cos_a * (vxr * sp + vyr * cp + wc * (xr * cp - yr * sp)) - hd
                 q = q + c2 * rate

@@ -33,9 +33,11 @@ from ...errors import ConfigError, check_positive, check_range
 from ...geometry import (
     BallBearing,
     Defect,
+    DefectProfile,
     KinematicFrequencies,
     characteristic_frequencies,
     check_defect_depth,
+    check_pit_depth,
     parse_enum,
 )
 from ...materials import DENSITY_RANGE, YOUNGS_MODULUS_RANGE
@@ -142,6 +144,8 @@ class BearingSupport:
             )
         if self.fault is not None:
             check_defect_depth(self.bearing, self.fault)
+            if self.fault.profile is DefectProfile.PIT:
+                check_pit_depth(self.bearing, self.fault)
 
     @property
     def ball_mass(self) -> float:
