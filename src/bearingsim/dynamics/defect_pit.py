@@ -146,11 +146,11 @@ def pit_share(d, xc, rh, a2, b2, w, n, slope):
 
 
 def pit_contact(bearing, race) -> tuple[float, float, float, float]:
-    """``(a_1^2, b_1^2, w, margin)`` of the ``race`` contact (:class:`bearingsim.geometry.
-    Race`, inner or outer) of a ball of ``bearing``: its Hertz semi-axes squared at 1 N
-    [m^2/N^(2/3)] (``a^2 = a_1^2 Q^(2/3)``), its share of the two contacts' compliance ``w``
-    [-], and its semi-axis ``b`` along the track at ISO 76's 4.2 GPa, by which a defect's
-    window is widened on each side [m] (module docstring)."""
+    """``(a_1^2, b_1^2, w, margin)`` of the ``race`` contact (a
+    :class:`~bearingsim.geometry.Race`, inner or outer) of a ball of ``bearing``: its Hertz
+    semi-axes squared at 1 N [m^2/N^(2/3)] (``a^2 = a_1^2 Q^(2/3)``), its share of the two
+    contacts' compliance ``w`` [-], and its semi-axis ``b`` along the track at ISO 76's
+    4.2 GPa, by which a defect's window is widened on each side [m] (module docstring)."""
     from ..contact.hertz import ball_contact
     from ..geometry import Race
 
