@@ -222,9 +222,9 @@ def test_rough_contacts_beside_a_pit_keep_their_load():
     for d in (-2e-6, -1e-8, 1e-6):
         intact = bl.ball_load(clr + d, 0.0, 1.0, clr, 0.0, dfac, K, n, p, True, True)[0]
         assert intact > 0.0
-        beside = bl.ball_load(clr + d, 1.0, 1.0, clr, 3e-4, dfac, K, n, p, True, True)[0]
+        beside = bl.ball_load_pit(clr + d, 1.0, 1.0, clr, 3e-4, dfac, K, n, p, True, True, True)[0]
         assert beside == intact
-        over = bl.ball_load(clr + d, 1.0, 1.0, clr, 0.0, dfac, K, n, p, True, True)[0]
+        over = bl.ball_load_pit(clr + d, 1.0, 1.0, clr, 0.0, dfac, K, n, p, True, True, True)[0]
         assert 0.0 < over < intact
     # a 10 um pit: its passages add less than 2 % of the 0.007 in pit's RMS to the sensor
     sc = dict(model="vsm", bearing="6205-cwru", rpm=1797.0, duration_s=0.2, fs_hz=12000.0,
@@ -302,3 +302,16 @@ def test_pit_meta_records_the_pit_not_a_slot():
         + 2 * margin,
         rel=1e-9,
     )
+
+
+def test_pit_under_an_axial_load_and_a_preload():
+    """The pit's out-of-line paths take the axial geometry only when there is an axial load
+    (a copy once passed it always: a division by zero with rough contacts)."""
+    sc = dict(model="dem", bearing="6205-cwru", fault="outer", duration_s=0.1, fs_hz=12000.0,
+              defect_profile="pit", contact_roughness_m=1e-7)  # fmt: skip
+    plain = np.asarray(simulate(sc)["acc_y"])
+    axial = np.asarray(simulate({**sc, "axial_load_n": 200.0})["acc_y"])
+    pre = np.asarray(simulate({**sc, "clearance_m": -5e-6})["acc_y"])
+    for a in (plain, axial, pre):
+        assert np.all(np.isfinite(a)) and a.std() > 0.0
+    assert not np.array_equal(plain, axial)

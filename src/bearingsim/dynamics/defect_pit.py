@@ -90,9 +90,9 @@ def pit_lost_share(xc, rh, a, b):
     rolling direction [m]) on a round pit of radius ``rh`` [m] whose centre lies ``xc`` [m]
     from the contact's centre along the track (module docstring)."""
     x = abs(xc)
-    if x >= rh + b or a <= 0.0:
+    if x >= rh + b or not a > 0.0:
         return 0.0
-    if b <= 0.0:  # a contact of no length: the strip at its centre
+    if not b > 0.0 or rh / b > 1e12:  # a contact of no length: the strip at its centre
         return strip_share(math.sqrt(rh * rh - x * x) / a) if x < rh else 0.0
     # the slices u of the contact that cross the pit, |x + b u| < rh: the nodes on them only
     # (on the whole contact a pit much shorter than it fell between the nodes)
@@ -110,7 +110,9 @@ def pit_lost_share(xc, rh, a, b):
         c = 1.0 - u * u
         if e2 <= 0.0 or c <= 0.0:
             continue
-        f += _GL_W[k] * 0.75 * c * _semicircle_share(math.sqrt(e2) / (a * math.sqrt(c)))
+        den = a * math.sqrt(c)  # the slice's half-width across the track [m]
+        g = _semicircle_share(math.sqrt(e2) / den) if den > 0.0 else 1.0
+        f += _GL_W[k] * 0.75 * c * g
     f *= half
     return f if f < 1.0 else 1.0
 
@@ -142,6 +144,8 @@ def pit_share(d, xc, rh, a2, b2, w, n, slope):
     if not slope:
         return rho, 0.0
     h = 1e-6 * d
+    if not h > 0.0:  # a subnormal approach (a rough contact's faint load): no slope resolved
+        return rho, 0.0
     return rho, (_rho(d + h, xc, rh, a2, b2, w, n) - _rho(d - h, xc, rh, a2, b2, w, n)) / (2 * h)
 
 

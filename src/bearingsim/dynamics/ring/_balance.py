@@ -103,7 +103,7 @@ P_DOFFI = 38  #: ball defect: deflection offset at the inner-race contact (h_min
 P_SPIN = 39  #: ball defect: ball spin angle per cage angle, BSF / FTF [-]
 P_BDEV = 40  #: offset in ``p`` of the Z ball-diameter deviations Delta D_j (0 = none) [-]
 P_FU = 41  #: amplitude of a force rotating with the shaft (unbalance) F_u [N]
-P_PROFILE = 42  #: profile of the defect: 0 rectangular (seed VSM), 1 geometric, 2 pit [-]
+P_PROFILE = 42  #: profile of the defect: 0 rectangular (seed VSM), 1 geometric, -1 pit [-]
 P_RBALL = 43  #: ball radius r [m] (geometric profile)
 P_HALFW = 44  #: half the defect width b/2 [m] (geometric profile)
 P_DEPTH = 45  #: defect depth h_d [m] (geometric profile)
@@ -300,6 +300,32 @@ def pit_offset(r, dbeta, rpath):
     return rpath * abs(r - 0.5 * dbeta)
 
 
+@njit(cache=True)
+def pit_dof(j, rd, hd, fault, dbeta, p):
+    """What a pit's load (:func:`_pit_load`) takes in place of ball ``j``'s drop: the distance
+    ``x_c`` [m] of the pit's centre from the ball's contact (:func:`pit_offset`, at the cell's
+    centre), for a ball pit ``-1 - x_c`` where it meets the inner race (which contact's
+    constants to take). Called on the pit's paths only, out of line: a test of the profile in
+    :func:`defect_fraction` slowed every profile's hot loop (twenty-second session, A/B)."""
+    if fault != 3:
+        return pit_offset(rd, dbeta, p[P_RRACE])
+    rb = p[P_RBALL]
+    ri = advance(rd, math.pi)
+    if cell_fraction(rd, hd, dbeta) >= cell_fraction(ri, hd, dbeta):
+        return pit_offset(rd, dbeta, rb)
+    return -1.0 - pit_offset(ri, dbeta, rb)
+
+
+@njit(cache=True)
+def _pit_dofs(rd, step, hd, fault, dbeta, p, fr, dof):
+    """:func:`pit_dof` of every ball over the pit (``fr > 0``) into ``dof``, ball 0's angle
+    past the pit's window edge ``rd`` [rad] and one ball pitch ``step`` [rad] apart."""
+    for j in range(fr.size):
+        if fr[j] > 0.0:
+            dof[j] = pit_dof(j, rd, hd, fault, dbeta, p)
+        rd = advance(rd, step)
+
+
 @njit(cache=True, inline="always")
 def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     """Defect fraction ``f_d`` of ball ``j`` (0-based; eq. (15): 1 = over the defect, averaged
@@ -309,19 +335,13 @@ def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     ``rd`` in ``[0, dbeta)`` and the inner race (drop ``doffi``) half a turn later. The drop
     is the constant ``doff`` / ``doffi`` (rectangular profile, seed VSM) or, with
     ``p[P_PROFILE] == 1``, :func:`geometric_drop` at ``rd`` (the cell's centre; it is 0 at the
-    edges, where the cell average of the indicator matters). A pit (``p[P_PROFILE] == 2``)
-    returns in place of the drop the distance ``x_c`` of its centre from the ball's contact
-    (:func:`pit_offset`, at the cell's centre) [m]; for a ball pit, ``-1 - x_c`` where it meets
-    the inner race (which contact's constants :func:`ball_load` takes)."""
+    edges, where the cell average of the indicator matters). A pit (``p[P_PROFILE] == -1``)
+    takes the rectangle's branch here; its paths replace the drop by :func:`pit_dof`."""
     if fault == 0:
         return 0.0, doff
-    prof = p[P_PROFILE]
-    geo = prof > 0.5
-    pit = prof > 1.5
+    geo = p[P_PROFILE] > 0.5
     if fault != 3:
         fr = cell_fraction(rd, hd, dbeta)
-        if pit and fr > 0.0:
-            return fr, pit_offset(rd, dbeta, p[P_RRACE])
         if geo and fr > 0.0:
             rr = p[P_RRACE]
             sg = -1.0 if fault == 1 else 1.0
@@ -332,11 +352,6 @@ def defect_fraction(j, rd, hd, fault, dbeta, doff, doffi, p):
     fo = cell_fraction(rd, hd, dbeta)
     ri = advance(rd, math.pi)
     fi = cell_fraction(ri, hd, dbeta)
-    if pit:
-        rb = p[P_RBALL]
-        if fo >= fi:
-            return fo + fi, pit_offset(rd, dbeta, rb)
-        return fo + fi, -1.0 - pit_offset(ri, dbeta, rb)
     if geo:
         rb = p[P_RBALL]
         if fo >= fi:
@@ -359,7 +374,7 @@ def ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p):
 
 @njit(cache=True)
 def _pit_load(ue, fr, zf, clr, xc, dfac, K, n, p, full, rough):
-    """:func:`ball_load` of a ball over a round pit (``p[P_PROFILE] == 2``), out of line (only
+    """:func:`ball_load` of a ball over a round pit (``p[P_PROFILE] == -1``), out of line (only
     the ball over the defect pays for it): the blend ``(1 - f_d) Q(d) + f_d rho(d) Q(d)`` of the
     intact law ``Q`` (Hertz or rough) at ``d = u.e - P_d/2``, ``rho`` the share the contact
     beside the pit keeps (:func:`..defect_pit.pit_share` at the Hertz approach of ``Q``, ``(Q /
@@ -408,8 +423,6 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough):
     dq = 0.0
     pot = 0.0
     if zf > 0.0:
-        if fr > 0.0 and p[P_PROFILE] > 1.5:  # a pit: doff is its centre's distance [m]
-            return _pit_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough)
         if rough:
             sig = p[P_ROUGH]
             inv = p[P_RINV]
@@ -447,6 +460,18 @@ def ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough):
 
 
 @njit(cache=True, inline="always")
+def ball_load_pit(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough, pit):
+    """:func:`ball_load`, or with ``pit`` (``p[P_PROFILE] == -1``) for a ball over the defect
+    :func:`_pit_load`. ``pit`` is a literal at the hot call sites, where the branch then
+    compiles away: a run-time test of the profile inside :func:`ball_load` made the VSM's static
+    solve 1.9x slower (twenty-second session, A/B), as the axial law's did (:func:`_axial_sums`)."""
+    if pit:
+        if fr > 0.0:
+            return _pit_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough)
+    return ball_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough)
+
+
+@njit(cache=True, inline="always")
 def axial_approach(ue, cl, p):
     """Normal approach of a ball, written as the radial approach that gives it,
     ``sqrt((A0 - cl + u.e)^2 + z^2) - A0 + cl`` [m], and the cosine of its contact angle
@@ -462,17 +487,17 @@ def axial_approach(ue, cl, p):
 
 
 @njit(cache=True, inline="always")
-def ball_load_ax(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough, axial):
+def ball_load_ax(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough, axial, pit):
     """:func:`ball_load` of a ball under an axial load (``axial``): the load ``Q`` along the
     contact normal at the normal approach of :func:`axial_approach` (the defect's drop taken
     from it), returned as its radial component ``Q cos(alpha)`` [N] with the radial stiffness
     ``dQ_r/d(u.e) = Q' cos^2(alpha) + Q sin^2(alpha) / A`` [N/m] (the groove centres' distance
     ``A``) and the contact potential [J]. Without ``axial``, :func:`ball_load` itself (bit for
-    bit)."""
+    bit). ``pit``: :func:`ball_load_pit`'s."""
     if not axial:
-        return ball_load(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough)
+        return ball_load_pit(ue, fr, zf, cl, doff, dfac, K, n, p, full, rough, pit)
     un, ca, a = axial_approach(ue, cl, p)
-    q, kk, pot = ball_load(un, fr, zf, cl, doff, dfac, K, n, p, full, rough)
+    q, kk, pot = ball_load_pit(un, fr, zf, cl, doff, dfac, K, n, p, full, rough, pit)
     return q * ca, kk * ca * ca + q * (1.0 - ca * ca) / a, pot
 
 
@@ -539,13 +564,25 @@ def initial_guess(sn, cs, clr, K, n, fx, fy):
 
 @njit(cache=True)
 def _axial_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough):
-    """Bearing force ``sum Q_j cos(alpha_j) e_j`` [N] and tangent entries [N/m] of the static
-    solve at ring displacement ``(vx, vy)`` [m] under an axial load (:func:`ball_load_ax`);
-    the secant is not formed (the VSM, which needs it, refuses an axial load)."""
-    qx = qy = kxx = kxy = kyy = 0.0
+    """:func:`_side_sums` under an axial load."""
+    return _side_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, True)[:5]
+
+
+@njit(cache=True)
+def _side_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, axial):
+    """Bearing force ``sum Q_j cos(alpha_j) e_j`` [N], tangent and secant entries [N/m] of the
+    static solve at ring displacement ``(vx, vy)`` [m] under an axial load
+    (:func:`ball_load_ax`) or over a pit (:func:`ball_load_pit`; the profile read at run
+    time): the static solve's paths off the radial slot's, compiled out of line so that they
+    do not slow it. The secant is formed without an axial load only (the VSM, which needs it,
+    refuses one)."""
+    pit = p[P_PROFILE] < -0.5
+    qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
     for j in range(sn.size):
         ue = vx * sn[j] + vy * cs[j]
-        q, kk, _e = ball_load_ax(ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough, True)
+        q, kk, _e = ball_load_ax(
+            ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough, axial, pit
+        )
         if q > 0.0:
             a = sn[j]
             b = cs[j]
@@ -554,7 +591,12 @@ def _axial_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough):
             kxx += kk * a * a
             kxy += kk * a * b
             kyy += kk * b * b
-    return qx, qy, kxx, kxy, kyy
+            if not axial:  # the secant from the concentric position (as the radial loop)
+                sk = q / ue if ue > 0.0 else 0.0
+                lxx += sk * a * a
+                lxy += sk * a * b
+                lyy += sk * b * b
+    return qx, qy, kxx, kxy, kyy, lxx, lxy, lyy
 
 
 @njit(cache=True)
@@ -608,6 +650,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
     cell = p[P_CELL] > 0.0 and not point
     rough = p[P_ROUGH] > 0.0
     axial = p[P_AXZ] != 0.0  # an axial load: the normal approach of axial_approach
+    pit = p[P_PROFILE] < -0.5  # a round pit: its share of the load (_pit_load)
     hh = p[P_HTAB]
     t0 = p[P_T0]
     w_rel = defect_rate(p)
@@ -631,6 +674,7 @@ def static_kernel(times, point, p, table, residual, ux, uy):
             hw = wc * ht
         s0 = math.sin(th)
         c0 = math.cos(th)
+        rd0 = rd
         for j in range(Z):
             sn[j] = s0
             cs[j] = c0
@@ -642,6 +686,8 @@ def static_kernel(times, point, p, table, residual, ux, uy):
             s1 = s0 * cc + c0 * ss
             c0 = c0 * cc - s0 * ss
             s0 = s1
+        if pit:  # the pit's offsets in place of the drops (out of line)
+            _pit_dofs(rd0, step, hd, ifault, dbeta, p, fr, dof)
         # ---- start
         if not (math.isfinite(ux) and math.isfinite(uy)):
             gx, gy = initial_guess(sn, cs, clr, K, n, fx, fy)
@@ -676,7 +722,11 @@ def static_kernel(times, point, p, table, residual, ux, uy):
                     qx, qy, kxx, kxy, kyy = _axial_sums(
                         vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough
                     )
-                for j in range(Z if not axial else 0):
+                elif pit:  # out of line too (a run-time test in the loop: 1.9x slower)
+                    qx, qy, kxx, kxy, kyy, lxx, lxy, lyy = _side_sums(
+                        vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, False
+                    )
+                for j in range(Z if not (axial or pit) else 0):
                     ue = vx * sn[j] + vy * cs[j]
                     q, kk, _e = ball_load(
                         ue, fr[j], zf[j], clj[j], dof[j], dfac, K, n, p, True, rough
@@ -805,14 +855,17 @@ def per_ball(t, p, ux, uy, out, k0, fill):
     qthr = loaded_threshold(p)
     rough = qthr > 0.0  # once per output sample: the law chosen at run time (one copy)
     axial = p[P_AXZ] != 0.0
+    pit = p[P_PROFILE] < -0.5
     n_loaded = 0
     for j in range(Z):
         fr, zf, dof = ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
+        if pit and fr > 0.0:
+            dof = pit_dof(j, rd, hd, fault, dbeta, p)
         cl = ball_clearance(p, boff, j, clr)
         ue = ux * s0 + uy * c0
         if axial:  # the load along the contact normal
             ue = axial_approach(ue, cl, p)[0]
-        q, _dq, _e = ball_load(ue, fr, zf, cl, dof, dfac, K, n, p, False, rough)
+        q, _dq, _e = ball_load_pit(ue, fr, zf, cl, dof, dfac, K, n, p, False, rough, pit)
         if q > qthr:
             n_loaded += 1
         if fill:

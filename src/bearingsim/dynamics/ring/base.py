@@ -416,7 +416,7 @@ class ModelInputs:
             if self.profile is not DefectProfile.RECTANGULAR:
                 b = self.bearing
                 r_i, r_o = b.inner_raceway_radius, b.outer_raceway_radius
-                p[bl.P_PROFILE] = 2.0 if self.profile is DefectProfile.PIT else 1.0
+                p[bl.P_PROFILE] = -1.0 if self.profile is DefectProfile.PIT else 1.0
                 p[bl.P_RBALL] = 0.5 * b.element_diameter
                 p[bl.P_HALFW] = 0.5 * self.defect.width
                 p[bl.P_DEPTH] = self.defect.depth

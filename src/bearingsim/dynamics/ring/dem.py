@@ -26,7 +26,7 @@ __all__ = ["KERNEL"]
 
 
 @njit(cache=True, inline="always")
-def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial):
+def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial, pit):
     """Bearing force ``sum Q_j e_j`` [N] and tangent entries [N/m] at displacement ``u`` from
     ball 1's direction ``(s0, c0)``, its angles past the defect/zone edges ``rd, rw`` and the
     cell half-widths ``hd, hw`` (the ball frame of :func:`._balance.frame_cached`), with the
@@ -35,7 +35,8 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial):
     a literal at the call site (:func:`._balance.ball_load`); ``full = False`` (the
     right-hand side) needs the force only: with rough contacts the tangent entries are then
     0. ``axial``: an axial load (:func:`._balance.ball_load_ax`), a literal at the hot call
-    sites like ``rough`` (the axial copy is called out of line, :func:`_ball_sum_axial`)."""
+    sites like ``rough`` (the axial copy is called out of line, :func:`_ball_sum_axial`), and
+    so is ``pit``, a round pit (:func:`._balance.ball_load_pit`; :func:`_ball_sum_pit`)."""
     Z = int(p[bl.P_Z])
     fault = int(p[bl.P_FAULT])
     psil2 = 2.0 * p[bl.P_PSIL]
@@ -58,9 +59,12 @@ def _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial):
     for j in range(Z):
         # a ball over the defect loses the geometric drop h_min from its deflection
         fr, zf, dof = bl.ball_flags(j, rd, rw, hd, hw, fault, psil2, dbeta, doff, doffi, p)
+        if pit:  # a literal: only the pit's copy has this
+            if fr > 0.0:
+                dof = bl.pit_dof(j, rd, hd, fault, dbeta, p)
         cl = bl.ball_clearance(p, boff, j, clr)  # a ball's diameter deviation, if any
         ue = ux * s0 + uy * c0
-        q, kk, _e = bl.ball_load_ax(ue, fr, zf, cl, dof, dfac, K, n, p, full, rough, axial)
+        q, kk, _e = bl.ball_load_ax(ue, fr, zf, cl, dof, dfac, K, n, p, full, rough, axial, pit)
         if q > 0.0:
             gx += q * s0
             gy += q * c0
@@ -80,7 +84,14 @@ def _ball_sum_axial(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough):
     """:func:`_ball_sum` under an axial load, compiled out of line: inlined into the
     right-hand side as a run-time choice, the axial law slowed the radial path (the static
     solve's equivalent measured ~10 %)."""
-    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, True)
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, True, False)
+
+
+@njit(cache=True)
+def _ball_sum_pit(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial):
+    """:func:`_ball_sum` over a round pit, compiled out of line (a run-time test of the
+    profile in the hot loop slowed every profile)."""
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, full, rough, axial, True)
 
 
 @njit(cache=True)
@@ -94,7 +105,10 @@ def _dem_force(t, ux, uy, p, point):
         hw = 0.0
     # once per output sample: a run-time choice of the law (one compiled copy) is cheap here
     rough = p[bl.P_ROUGH] > 0.0
-    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, True, rough, p[bl.P_AXZ] != 0.0)
+    axial = p[bl.P_AXZ] != 0.0
+    if p[bl.P_PROFILE] < -0.5:
+        return _ball_sum_pit(ux, uy, s0, c0, rd, rw, hd, hw, p, True, rough, axial)
+    return _ball_sum(ux, uy, s0, c0, rd, rw, hd, hw, p, True, rough, axial, False)
 
 
 @cfunc(RHS_SIG, cache=True)
@@ -137,13 +151,23 @@ def _dem_rhs(t, y, p, dydt):
         p[bl.P_CRW] = rw
         p[bl.P_CHD] = hd
         p[bl.P_CHW] = hw
-    if p[bl.P_AXZ] != 0.0:  # an axial load: its copy, out of line
+    if p[bl.P_PROFILE] < -0.5:  # a round pit: its copy, out of line
+        rough = p[bl.P_ROUGH] > 0.0
+        axial = p[bl.P_AXZ] != 0.0
+        gx, gy, _a, _b, _c = _ball_sum_pit(
+            y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, rough, axial
+        )
+    elif p[bl.P_AXZ] != 0.0:  # an axial load: its copy, out of line
         rough = p[bl.P_ROUGH] > 0.0
         gx, gy, _a, _b, _c = _ball_sum_axial(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, rough)
     elif p[bl.P_ROUGH] > 0.0:
-        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, True, False)
+        gx, gy, _a, _b, _c = _ball_sum(
+            y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, True, False, False
+        )
     else:
-        gx, gy, _a, _b, _c = _ball_sum(y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, False, False)
+        gx, gy, _a, _b, _c = _ball_sum(
+            y[0], y[1], s0, c0, rd, rw, hd, hw, p, False, False, False, False
+        )
     m = p[bl.P_MASS]
     c = p[bl.P_DAMP]
     dydt[0] = y[2]
