@@ -315,3 +315,19 @@ def test_pit_under_an_axial_load_and_a_preload():
     for a in (plain, axial, pre):
         assert np.all(np.isfinite(a)) and a.std() > 0.0
     assert not np.array_equal(plain, axial)
+
+
+def test_rotor_results_record_their_defects():
+    """The rotor's results carried no meta['defect'] (found by exploratory testing): now one
+    entry per bearing, as the ring models record theirs, and saved and reloaded with it."""
+    r = simulate(dict(model="rotor", de_fault="outer", fe_fault="ball", duration_s=0.01,
+                      defect_profile="pit"))  # fmt: skip
+    de, fe = r.meta["defect"]["DE"], r.meta["defect"]["FE"]
+    assert de["race"] == "outer" and de["profile"] == "pit"
+    assert de["pit_radius_m"] == pytest.approx(0.5 * 0.007 * INCH)
+    assert fe["race"] == "ball"
+    g = simulate(dict(model="rotor", de_fault="inner", duration_s=0.01))
+    assert g.meta["defect"]["FE"] == {}
+    assert (
+        g.meta["defect"]["DE"]["profile"] == "geometric" and g.meta["defect"]["DE"]["h_min_m"] > 0
+    )
