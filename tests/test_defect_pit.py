@@ -18,7 +18,7 @@ from bearingsim import simulate
 from bearingsim.catalog import get_bearing
 from bearingsim.contact.hertz import ball_contact, ball_stiffness
 from bearingsim.dynamics.defect_pit import (
-    pit_constants,
+    pit_contact,
     pit_lost_share,
     pit_share,
     strip_share,
@@ -111,7 +111,8 @@ def test_pit_share_slope_is_its_derivative():
 def test_semi_axes_follow_the_approach_as_hertz(race):
     """a^2 = A d and b^2 = B d give Hertz's semi-axes at the load K d^1.5 of both contacts."""
     K = ball_stiffness(B)
-    A, Bc, w, margin = pit_constants(B, race, K)
+    a2, b2, w, margin = pit_contact(B, race)
+    A, Bc = a2 * K ** (2.0 / 3.0), b2 * K ** (2.0 / 3.0)
     for q in (5.0, 50.0, 500.0):
         d = (q / K) ** (2.0 / 3.0)
         c = ball_contact(B, q, race)
@@ -296,7 +297,7 @@ def test_pit_meta_records_the_pit_not_a_slot():
     assert geo["profile"] == "pit" and "h_min_m" not in geo
     assert geo["pit_radius_m"] == pytest.approx(0.5 * 0.007 * INCH)
     # the window: the pit's extent plus the contact's length at 4.2 GPa on each side
-    margin = pit_constants(B, Race.OUTER, ball_stiffness(B))[3]
+    margin = pit_contact(B, Race.OUTER)[3]
     assert geo["window_rad"] * geo["race_radius_m"] == pytest.approx(
         2 * math.asin(0.5 * 0.007 * INCH / geo["race_radius_m"]) * geo["race_radius_m"]
         + 2 * margin,

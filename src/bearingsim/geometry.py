@@ -727,6 +727,9 @@ class DefectGeometry:
     h_min_inner : float or None
         Ball defect: the maximum loss of approach at the inner-race contact [m] (None for a
         raceway defect).
+    h_s_inner : float or None
+        Ball defect: eq. (2)'s drop at the inner-race contact, before the depth caps it
+        (``h_min_inner = min(h_d, h_s_inner)``) [m] (None for a raceway defect).
     """
 
     race: Race
@@ -736,6 +739,7 @@ class DefectGeometry:
     delta_beta: float
     edge_angle: float
     h_min_inner: float | None = None
+    h_s_inner: float | None = None
 
 
 def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
@@ -791,7 +795,7 @@ def defect_geometry(bearing: Bearing, defect: Defect) -> DefectGeometry:
         dpsi = 2.0 * math.asin(b / d)  # the slot's central angle on the ball
         return DefectGeometry(
             Race.BALL, r, h_o, min(defect.depth, h_o), dpsi, defect.angle - 0.5 * dpsi,
-            min(defect.depth, h_i),
+            min(defect.depth, h_i), h_i,
         )  # fmt: skip
     if defect.race is Race.INNER:
         rr = bearing.inner_raceway_radius
@@ -846,18 +850,10 @@ def check_pit_depth(bearing: Bearing, defect: Defect) -> float:
     model has the ball held by the groove beside the pit, never touching its bottom. The bound
     is seed VSM eq. (2) for a slot as wide as the pit's diameter, the most a ball can sink into
     it (the rim across the track holds it higher), at each contact the pit meets (a ball's
-    pit: the outer and the inner race). Returns the depth [m]."""
-    r = 0.5 * bearing.element_diameter
-    e = 0.5 * defect.width
-    if defect.race is Race.BALL:
-        surfaces = ((bearing.outer_raceway_radius, -1.0), (bearing.inner_raceway_radius, 1.0))
-    else:
-        radius = defect_geometry(bearing, defect).race_radius
-        surfaces = ((radius, -1.0 if defect.race is Race.OUTER else 1.0),)
-    sag = max(
-        (r - math.sqrt(r * r - e * e)) + sg * (rr - math.sqrt(rr * rr - e * e))
-        for rr, sg in surfaces
-    )
+    pit: the outer and the inner race; :func:`defect_geometry`'s ``h_s``, ``h_s_inner``).
+    Returns the depth [m]."""
+    g = defect_geometry(bearing, defect)
+    sag = g.h_s if g.h_s_inner is None else max(g.h_s, g.h_s_inner)
     if not defect.depth > sag:
         raise ConfigError(
             f"defect_depth_m = {defect.depth:.6g} m is not deeper than a ball sinks into a pit "

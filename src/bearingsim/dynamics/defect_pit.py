@@ -36,10 +36,10 @@ removes at a given approach (a numerical contact solution would tighten it).
 **Semi-axes from the approach.** Hertz's ``a, b ∝ Q^(1/3)`` and ``delta ∝ Q^(2/3)`` make ``a^2
 / delta`` and ``b^2 / delta`` constants of the contact: with the ring models' combined constant
 ``Q = K d^n`` (``d`` the approach of both contacts), ``a^2 = A d`` and ``b^2 = B d``, ``A = a_1^2
-K^(2/3)``, ``B = b_1^2 K^(2/3)`` (``a_1, b_1`` the semi-axes at 1 N): the intact contact's at the
-same approach (the ball sinks a little deeper beside a pit; second order). Where the pit covers
-the whole contact (``F = 1``) the race carries nothing until the ball has sunk far enough for
-the contact to reach past it.
+K^(2/3)``, ``B = b_1^2 K^(2/3)`` (``a_1, b_1`` the semi-axes at 1 N, :func:`pit_contact`): the
+intact contact's at the same approach (the ball sinks a little deeper beside a pit; second
+order). Where the pit covers the whole contact (``F = 1``) the race carries nothing until the
+ball has sunk far enough for the contact to reach past it.
 
 **Two contacts in series** (the ring models' ball, seed VSM eq. (10)): the pit's contact, of
 compliance share ``w = k_p^(-1/n) / (k_p^(-1/n) + k_q^(-1/n))``, keeps ``g k_p``, so the ball's
@@ -47,7 +47,7 @@ constant becomes ``K rho(g)``, ``rho = (w g^(-1/n) + 1 - w)^(-n)``. One contact 
 ``rho = g``.
 
 **Where the contact meets the pit.** From ``x_c = -(r_h + b)`` to ``r_h + b``: the ring models
-widen the defect's window by ``b`` at ISO 76's 4.2 GPa on each side (:func:`pit_constants`);
+widen the defect's window by ``b`` at ISO 76's 4.2 GPa on each side (:func:`pit_contacts`);
 a contact pressed harder is longer than the window.
 """
 
@@ -58,12 +58,12 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["pit_constants", "pit_contact", "pit_lost_share", "pit_share", "strip_share"]
+__all__ = ["pit_contact", "pit_contacts", "pit_lost_share", "pit_share", "strip_share"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] of the share integral (module docstring)
 _GL_U, _GL_W = np.polynomial.legendre.leggauss(12)
 #: ISO 76's static-capacity pressure of ball bearings, the load up to which the window of
-#: :func:`pit_constants` holds the whole contact [Pa]
+#: :func:`pit_contacts` holds the whole contact [Pa]
 P_CAPACITY_PA = 4.2e9
 
 
@@ -166,11 +166,19 @@ def pit_contact(bearing, race) -> tuple[float, float, float, float]:
     return a1 * a1, b1 * b1, ct / (ct + co), b1 * P_CAPACITY_PA / p1
 
 
-def pit_constants(bearing, race, k_ball: float) -> tuple[float, float, float, float]:
-    """``(A, B, w, margin)`` of a pit in the ``race`` contact of a ball of ``bearing`` whose
-    two contacts in series have the constant ``k_ball`` [N/m^1.5]: ``a^2 = A d`` and ``b^2 =
-    B d`` [m] at the approach ``d`` of both contacts, and ``w``, ``margin`` of
-    :func:`pit_contact`."""
-    a2, b2, w, margin = pit_contact(bearing, race)
-    k23 = k_ball ** (2.0 / 3.0)
-    return a2 * k23, b2 * k23, w, margin
+def pit_contacts(bearing, defect) -> tuple[tuple[float, float, float], tuple | None, float]:
+    """The contacts a pit ``defect`` of ``bearing`` meets and its window, for the models' set-up:
+    ``(a_1^2, b_1^2, w)`` of :func:`pit_contact` at the pit's race (a ball pit: the outer race),
+    the same at the inner race for a ball pit (else ``None``), and the angle [rad] by which the
+    defect's window widens on each side (the larger ``margin`` over the pit's path: the
+    raceway, or the ball for a ball pit)."""
+    from ..geometry import Race, defect_geometry
+
+    ball = defect.race is Race.BALL
+    *first, margin = pit_contact(bearing, Race.OUTER if ball else defect.race)
+    inner = None
+    if ball:
+        *inner, m_i = pit_contact(bearing, Race.INNER)
+        margin = max(margin, m_i)
+    rpath = 0.5 * bearing.element_diameter if ball else defect_geometry(bearing, defect).race_radius
+    return tuple(first), (tuple(inner) if inner else None), margin / rpath

@@ -464,7 +464,7 @@ def ball_load_pit(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough, pit):
     """:func:`ball_load`, or with ``pit`` (``p[P_PROFILE] == -1``) for a ball over the defect
     :func:`_pit_load`. ``pit`` is a literal at the hot call sites, where the branch then
     compiles away: a run-time test of the profile inside :func:`ball_load` made the VSM's static
-    solve 1.9x slower (twenty-second session, A/B), as the axial law's did (:func:`_axial_sums`)."""
+    solve 1.9x slower (twenty-second session, A/B), as the axial law's did (:func:`_side_sums`)."""
     if pit:
         if fr > 0.0:
             return _pit_load(ue, fr, zf, clr, doff, dfac, K, n, p, full, rough)
@@ -560,12 +560,6 @@ def initial_guess(sn, cs, clr, K, n, fx, fy):
         cosl[j] = sn[j] * s0 + cs[j] * c0
     dr = _solve_1d(cosl, ones, clr, K, n, F)
     return dr * s0, dr * c0
-
-
-@njit(cache=True)
-def _axial_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough):
-    """:func:`_side_sums` under an axial load."""
-    return _side_sums(vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, True)[:5]
 
 
 @njit(cache=True)
@@ -718,13 +712,10 @@ def static_kernel(times, point, p, table, residual, ux, uy):
             while True:
                 # contact sums at (vx, vy)
                 qx = qy = kxx = kxy = kyy = lxx = lxy = lyy = 0.0
-                if axial:  # out of line: inlined here, it slowed the radial path by ~10 %
-                    qx, qy, kxx, kxy, kyy = _axial_sums(
-                        vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough
-                    )
-                elif pit:  # out of line too (a run-time test in the loop: 1.9x slower)
+                if axial or pit:  # out of line: inlined here, the axial law slowed the
+                    # radial path by ~10 %, a test of the pit in the loop by 1.9x
                     qx, qy, kxx, kxy, kyy, lxx, lxy, lyy = _side_sums(
-                        vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, False
+                        vx, vy, sn, cs, fr, zf, clj, dof, dfac, K, n, p, rough, axial
                     )
                 for j in range(Z if not (axial or pit) else 0):
                     ue = vx * sn[j] + vy * cs[j]

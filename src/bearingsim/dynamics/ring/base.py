@@ -48,7 +48,7 @@ from ...geometry import (
     defect_geometry,
     parse_enum,
 )
-from ..defect_pit import pit_constants
+from ..defect_pit import pit_contacts
 from ..integrate import call_compiled, run_adaptive, run_fixed
 from . import _balance as bl
 from .defects import FAULT_CODE
@@ -423,17 +423,13 @@ class ModelInputs:
                 p[bl.P_RRACE] = r_i if self.defect.race is Race.INNER else r_o
                 p[bl.P_RRACEI] = r_i
             if self.profile is DefectProfile.PIT:  # the contact(s) the pit meets
-                ball = self.defect.race is Race.BALL
-                race = Race.OUTER if ball else self.defect.race
-                pa, pb, pw, margin = pit_constants(self.bearing, race, self.k_ball)
-                p[bl.P_PITA], p[bl.P_PITB], p[bl.P_PITW] = pa, pb, pw
-                if ball:
-                    pa, pb, pw, m_i = pit_constants(self.bearing, Race.INNER, self.k_ball)
-                    p[bl.P_PITAI], p[bl.P_PITBI], p[bl.P_PITWI] = pa, pb, pw
-                    margin = max(margin, m_i)
+                first, inner, grow = pit_contacts(self.bearing, self.defect)
+                k23 = self.k_ball ** (2.0 / 3.0)  # a^2 = a_1^2 Q^(2/3), Q = K d^1.5
+                p[bl.P_PITA], p[bl.P_PITB], p[bl.P_PITW] = first[0] * k23, first[1] * k23, first[2]
+                if inner is not None:
+                    p[bl.P_PITAI], p[bl.P_PITBI] = inner[0] * k23, inner[1] * k23
+                    p[bl.P_PITWI] = inner[2]
                 # the window holds every position where the contact overlaps the pit
-                rpath = p[bl.P_RBALL] if ball else p[bl.P_RRACE]
-                grow = margin / rpath
                 p[bl.P_BETA0] -= grow
                 p[bl.P_DBETA] += 2.0 * grow
         p[bl.P_NTAB] = 0

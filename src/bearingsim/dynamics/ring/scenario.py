@@ -29,6 +29,7 @@ from ...geometry import (
 from ...results import SimulationResult
 from ..budget import F8, Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
+from ..defect_pit import pit_contacts
 from ..sampling import PASS, STOP_DB, decimate_antialias
 from . import _balance as bl
 from .base import (
@@ -345,11 +346,11 @@ def run_ring(
             geo["h_min_inner_m"] = g.h_min_inner  # this at the inner (race_radius_m: the ball's)
         geo["profile"] = inputs.profile.value
         if inputs.profile is DefectProfile.PIT:  # no drop: the window where the contact
-            hdr = inputs.header()  # overlaps the pit, widened by the contact's length
+            grow = pit_contacts(inputs.bearing, inputs.defect)[2]  # overlaps the pit
             geo = {
                 "profile": "pit",
                 "pit_radius_m": 0.5 * inputs.defect.width,
-                "window_rad": float(hdr[bl.P_DBETA]),
+                "window_rad": g.delta_beta + 2.0 * grow,
                 "race_radius_m": g.race_radius,
             }
     meta = {

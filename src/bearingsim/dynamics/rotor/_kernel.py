@@ -66,7 +66,7 @@ from numba import cfunc, njit
 
 from ...contact.rough import U_MIN, rough_ball
 from ..defect_drop import edge_drop
-from ..defect_pit import pit_lost_share
+from ..defect_pit import pit_share
 from ..integrate import RHS_SIG
 from ..slip import cage_angle
 
@@ -189,22 +189,11 @@ def pit_factor(p, o, dpsi, rpath, d, k, inner, series):
     constants."""
     if abs(dpsi) >= p[o + B_FHALF] or d <= 0.0:  # off the window, or no load to share
         return 1.0
-    ia = B_PITAI if inner else B_PITA
-    ib = B_PITBI if inner else B_PITB
-    k23 = k ** (2.0 / 3.0)
-    lost = pit_lost_share(
-        rpath * abs(dpsi),
-        p[o + B_HALFW],
-        math.sqrt(p[o + ia] * k23 * d),
-        math.sqrt(p[o + ib] * k23 * d),
-    )
-    g = 1.0 - lost
-    if g <= 0.0:
-        return 0.0
-    if not series:
-        return g
-    w = p[o + (B_PITWI if inner else B_PITW)]
-    return (w * g ** (-2.0 / 3.0) + 1.0 - w) ** -1.5
+    k23 = k ** (2.0 / 3.0)  # a^2 = a_1^2 Q^(2/3), Q = k d^1.5
+    w = p[o + (B_PITWI if inner else B_PITW)] if series else 1.0
+    a2 = p[o + (B_PITAI if inner else B_PITA)] * k23
+    b2 = p[o + (B_PITBI if inner else B_PITB)] * k23
+    return pit_share(d, rpath * abs(dpsi), p[o + B_HALFW], a2, b2, w, 1.5, False)[0]
 
 
 @njit(cache=True)

@@ -42,7 +42,7 @@ from ...geometry import (
     parse_enum,
 )
 from ..budget import F8, Budget, Estimate, check_budget
-from ..defect_pit import pit_contact
+from ..defect_pit import pit_contacts
 from ..integrate import run_adaptive, run_fixed
 from . import _kernel as rk
 from .config import (
@@ -493,16 +493,11 @@ def _bearing_block(sup: BearingSupport, config: RotorConfig) -> NDArray[np.float
             blk[rk.B_RRACE_I] = b.inner_raceway_radius
             blk[rk.B_HMAX_I] = g.h_min_inner
         if f.profile is DefectProfile.PIT:  # the contact(s) the pit meets (..defect_pit)
-            ball = f.race is Race.BALL
-            a2, b2, w, margin = pit_contact(b, Race.OUTER if ball else f.race)
-            blk[rk.B_PITA], blk[rk.B_PITB], blk[rk.B_PITW] = a2, b2, w
-            if ball:
-                a2, b2, w, m_i = pit_contact(b, Race.INNER)
-                blk[rk.B_PITAI], blk[rk.B_PITBI], blk[rk.B_PITWI] = a2, b2, w
-                margin = max(margin, m_i)
-            # the window holds every position where the contact overlaps the pit
-            rpath = 0.5 * b.element_diameter if ball else g.race_radius
-            blk[rk.B_FHALF] += margin / rpath
+            first, inner, grow = pit_contacts(b, f)
+            blk[rk.B_PITA], blk[rk.B_PITB], blk[rk.B_PITW] = first
+            if inner is not None:
+                blk[rk.B_PITAI], blk[rk.B_PITBI], blk[rk.B_PITWI] = inner
+            blk[rk.B_FHALF] += grow  # every position where the contact overlaps the pit
     return blk
 
 
