@@ -546,20 +546,19 @@ def stiffness_trace(
     drop = np.full_like(psi, p[bl.P_DOFF])
     if defect is None:
         over = np.zeros_like(psi, dtype=bool)
-    elif defect.race is Race.BALL:  # ball 1's spin angle past the defect edge (_balance)
-        g = defect_geometry(inputs.bearing, defect)
-        beta0 = g.edge_angle
-        spin = np.mod(p[bl.P_SPIN] * (psi[:, 0] - inputs.first_ball_angle) + beta0, 2 * math.pi)
-        outer = spin < g.delta_beta
-        inner = np.mod(spin + math.pi, 2 * math.pi) < g.delta_beta
-        over = np.zeros_like(psi, dtype=bool)
-        over[:, 0] = outer | inner
-        drop[:, 0] = np.where(inner, p[bl.P_DOFFI], p[bl.P_DOFF])
-    else:
-        g = defect_geometry(inputs.bearing, defect)
-        beta0 = g.edge_angle
-        edge = g.edge_angle + (shaft[:, None] if defect.race is Race.INNER else 0.0)
-        over = np.mod(psi - edge, 2 * math.pi) < g.delta_beta
+    else:  # the kernels' window: the defect's extent (a pit's widened by the contact's length)
+        beta0 = defect_geometry(inputs.bearing, defect).edge_angle
+        w0, wext = p[bl.P_BETA0], p[bl.P_DBETA]
+        if defect.race is Race.BALL:  # ball 1's spin angle past the defect edge (_balance)
+            spin = np.mod(p[bl.P_SPIN] * (psi[:, 0] - inputs.first_ball_angle) + w0, 2 * math.pi)
+            outer = spin < wext
+            inner = np.mod(spin + math.pi, 2 * math.pi) < wext
+            over = np.zeros_like(psi, dtype=bool)
+            over[:, 0] = outer | inner
+            drop[:, 0] = np.where(inner, p[bl.P_DOFFI], p[bl.P_DOFF])
+        else:
+            edge = w0 + (shaft[:, None] if defect.race is Race.INNER else 0.0)
+            over = np.mod(psi - edge, 2 * math.pi) < wext
     off = np.where(over, drop, 0.0)
     fac = np.where(over, p[bl.P_DFAC], 1.0)
     th0 = inputs.theta0
@@ -573,23 +572,12 @@ def stiffness_trace(
     K = p[bl.P_K]
     if inputs.defect is not None and inputs.profile is not DefectProfile.RECTANGULAR:
         # the drop (geometric) or share (pit) varies across the defect: the kernels' own ball
-        # loads at the solved displacements (point values), as simulate's per-ball output;
-        # the window the kernels use (a pit's is widened by the contact's length)
+        # loads at the solved displacements (point values), as simulate's per-ball output
         Q = np.empty_like(psi)
         buf = np.empty(2 * Z)
         for i in range(times.size):
             bl.per_ball(float(times[i]), p, float(ux[i, 0]), float(uy[i, 0]), buf, 0, True)
             Q[i] = buf[:Z]
-        edge = p[bl.P_BETA0] + (shaft[:, None] if defect.race is Race.INNER else 0.0)
-        if defect.race is Race.BALL:
-            spin = np.mod(p[bl.P_SPIN] * (psi[:, 0] - inputs.first_ball_angle) + p[bl.P_BETA0],
-                          2 * math.pi)  # fmt: skip
-            over = np.zeros_like(psi, dtype=bool)
-            over[:, 0] = (spin < p[bl.P_DBETA]) | (
-                np.mod(spin + math.pi, 2 * math.pi) < p[bl.P_DBETA]
-            )
-        else:
-            over = np.mod(psi - edge, 2 * math.pi) < p[bl.P_DBETA]
     elif inputs.roughness > 0.0:  # the rough load law (contact.rough), as the kernels use it
         sig = inputs.roughness
         Q = fac * K * sig**1.5 * rough_mean_power(comp / sig, 1.5)
