@@ -189,6 +189,18 @@ def ring_is_held(clearance_m: float | None, axial_load_n: float) -> bool:
     return pre or axial_load_n > 0.0
 
 
+def profile_gamma_refusal(profile: str, retention_factor: float | None) -> None:
+    """Refuse a prescribed retention factor with a profile other than the rectangle (a slot's
+    drop along the path or a pit's share: the gamma would replace what the profile describes),
+    in one line (the ring scenario before any run, and the model inputs)."""
+    if retention_factor is not None and profile != "rectangular":
+        raise ConfigError(
+            f"defect_profile = {profile!r} with retention_factor = {retention_factor:g}: a "
+            "prescribed gamma replaces the drop the profile describes; valid: defect_profile "
+            "= 'rectangular' with a retention_factor, or no retention_factor"
+        )
+
+
 def secant_refusal(who: str, clearance_m: float | None, axial_load_n: float) -> None:
     """Refuse a preload (``clearance_m`` < 0 [m]) or an axial load [N] for ``who`` (the VSM and
     its static trace): their secant stiffness ``Q_j / (u.e_j)`` is measured from the
@@ -833,14 +845,8 @@ class RingScenario(Scenario):
                 "retention_factor",
                 check_range("retention_factor", self.retention_factor, 0.0, 1.0),
             )
-            prof = self.defect_profile or "rectangular"
-            if prof != "rectangular" and self.fault != "none":  # checked before any run
-                raise ConfigError(
-                    f"defect_profile = {prof!r} with retention_factor = "
-                    f"{self.retention_factor:g}: a prescribed gamma replaces the drop the "
-                    "profile describes; valid: defect_profile = 'rectangular' with a "
-                    "retention_factor, or no retention_factor"
-                )
+            if self.fault != "none":  # checked before any run (a sweep's plan)
+                profile_gamma_refusal(self.defect_profile or "rectangular", self.retention_factor)
         if self.load_zone_half_angle_deg is not None:
             s(
                 self,

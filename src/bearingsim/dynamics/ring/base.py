@@ -31,6 +31,7 @@ from ...config import (
     ZERO_RADIAL_LOAD,
     check_ball_spread,
     check_roughness,
+    profile_gamma_refusal,
     ring_is_held,
     secant_refusal,
 )
@@ -268,13 +269,7 @@ class ModelInputs:
         object.__setattr__(self, "profile", prof)
         if prof is DefectProfile.PIT and self.defect is not None:
             check_pit_depth(self.bearing, self.defect)
-        if prof is not DefectProfile.RECTANGULAR and self.retention_factor is not None:
-            raise ConfigError(
-                f"defect_profile = {prof.value!r} with retention_factor = "
-                f"{self.retention_factor:g}: a prescribed gamma replaces the drop the profile "
-                "describes; valid: "
-                "defect_profile = 'rectangular' with a retention_factor, or no retention_factor"
-            )
+        profile_gamma_refusal(prof.value, self.retention_factor)
 
     def require_clearance(self, who: str) -> None:
         """Refuse a negative clearance or an axial load for ``who`` (the VSM and its static
