@@ -412,3 +412,91 @@ def test_force_new_refuses_a_sweep_file_inside_the_dataset(run_cli, tmp_path):
     spec.write_text('[base]\nmodel = "vsm"\nduration_s = 0.01\n[axes]\nrpm = [1730.0, 1797.0]\n')
     r = run_cli("sweep", "run", spec, "-o", store, "--force-new", "--workers", "1")
     assert r.code == 2 and "lies inside -o/--output" in r.err and spec.is_file()
+
+
+# ------------------------------------------------------------------ runs that cannot start
+#: five VSM runs, the first four with an outer-race slot wider than the 6205's ball (7.94 mm,
+#: the catalogue's ``d``): model-level errors the sweep file's own fields do not show
+WIDE_TOML = """
+[base]
+model = "vsm"
+duration_s = 0.005
+fs_hz = 4000.0
+fault = "outer"
+[axes]
+defect_width_m = [9e-3, 10e-3, 11e-3, 12e-3, 1e-3]
+"""
+
+
+def test_plan_lists_the_runs_that_cannot_start(tmp_path, run_cli):
+    """``sweep plan`` checked the sweep file's fields only; a defect wider than the ball (or a
+    pit too shallow, a load above the static capacity) failed at run time, run by run (left
+    for planning, twenty-second session). The plan now runs each run's own check and lists
+    them with their axis values and the error the run records; its probe and timing runs are
+    taken among the runs that start."""
+    p = tmp_path / "wide.toml"
+    p.write_text(WIDE_TOML)
+    plan = plan_sweep(SweepSpec.from_toml(p), timing_runs=2, timing_duration_s=0.005)
+    assert [d["run"] for d in plan.invalid_runs] == [0, 1, 2, 3]
+    assert plan.invalid_runs[1]["values"] == {"defect_width_m": 10e-3}
+    err = plan.invalid_runs[1]["error"]
+    assert err.startswith("defect_width_m = 0.01 m is wider than the ball"), err
+    assert plan.channels == ["acc_x", "acc_y"]
+    assert [t["run"] for t in plan.timing] == [4] and not plan.timing[0].get("failed")
+    t = plan.timing[0]
+    assert plan.compute_s_total == pytest.approx(t["fixed_s"] + 0.005 * t["rate_s_per_s"])
+    r = run_cli("sweep", "plan", str(p), "--timing-runs", "0")
+    assert r.code == 0, r.err
+    lines = r.out.splitlines()
+    i = lines.index("  4 of 5 runs cannot start ('sweep run' records them as failed):")
+    assert lines[i + 1].startswith("    run 0 (defect_width_m = 0.009): defect_width_m = 0.009 m")
+    assert len(lines) == i + 5
+    d = run_cli("sweep", "plan", str(p), "--timing-runs", "0", "--json").json()
+    assert [x["run"] for x in d["invalid_runs"]] == [0, 1, 2, 3]
+
+
+def test_plan_of_runs_that_all_fail_is_one_line(tmp_path, run_cli):
+    p = tmp_path / "none.toml"
+    p.write_text(WIDE_TOML.replace(", 1e-3]", "]"))
+    with pytest.raises(ConfigError) as e:
+        plan_sweep(SweepSpec.from_toml(p), timing_runs=0)
+    assert one_line(e).startswith("no run can start; run 0: defect_width_m = 0.009 m is wider")
+    r = run_cli("sweep", "plan", str(p))
+    assert r.code == 2 and "no run can start; run 0: defect_width_m" in r.err
+    assert len(r.err.strip().splitlines()) == 1
+
+
+def test_plan_checks_a_pit_and_a_load_at_the_model_level(tmp_path):
+    """Two more model-level checks the sweep file's fields pass: a pit shallower than the
+    contact's approach (``geometry.check_pit_depth``) and a load above twice C0 (ISO 76)."""
+    p = tmp_path / "pit.toml"
+    p.write_text(
+        '[base]\nmodel = "vsm"\nduration_s = 0.005\nfs_hz = 4000.0\nfault = "outer"\n'
+        'defect_profile = "pit"\ndefect_width_m = 0.3e-3\n[axes]\n'
+        "defect_depth_m = [1e-9, 0.2e-3]\nfy_n = [50.0, 1e6]\n"
+    )
+    plan = plan_sweep(SweepSpec.from_toml(p), timing_runs=0)
+    errs = {d["run"]: d["error"] for d in plan.invalid_runs}
+    assert sorted(errs) == [0, 1, 3]
+    assert errs[0].startswith("defect_depth_m = 1e-09 m is not deeper than a ball sinks")
+    assert errs[1] == errs[0]  # its load is too high as well: the first check stops it
+    assert "fy_n" in errs[3] and "C0" in errs[3], errs[3]
+
+
+@pytest.mark.integration
+def test_a_run_starts_when_its_first_runs_cannot(client, tmp_path):
+    """``sweep run`` probed the first three runs of a model for the dataset's channels and
+    refused the whole sweep when none started — naming run 0 with run 2's error (the last
+    candidate's). Now later runs are probed too; the four that cannot start are recorded as
+    failed, the fifth is computed."""
+    p = tmp_path / "wide.toml"
+    p.write_text(WIDE_TOML)
+    rep = run_sweep(SweepSpec.from_toml(p), tmp_path / "w.zarr", client=client)
+    assert (rep.n_ok, rep.n_failed) == (1, 4)
+    p.write_text(WIDE_TOML.replace(", 1e-3]", "]"))
+    with pytest.raises(ConfigError) as e:
+        run_sweep(SweepSpec.from_toml(p), tmp_path / "n.zarr", client=client)
+    msg = one_line(e)
+    assert msg.startswith("run 0 cannot start: defect_width_m = 0.009 m is wider"), msg
+    assert msg.endswith("nor can any other run with its model, per_ball and bearing")
+    assert not (tmp_path / "n.zarr").exists()

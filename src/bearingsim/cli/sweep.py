@@ -95,7 +95,11 @@ def plan_cmd(
     workers = _count("workers", workers)
     spec = SweepSpec.from_toml(spec_file)
     plan = plan_sweep(
-        spec, timing_runs=timing_runs, timing_duration_s=timing_duration_s, workers=workers
+        spec,
+        timing_runs=timing_runs,
+        timing_duration_s=timing_duration_s,
+        workers=workers,
+        progress=not as_json,
     )
     d = plan.as_dict()
     d["spec"] = str(spec_file)
@@ -117,6 +121,30 @@ def plan_cmd(
     click.echo(
         f"  disk ~{_human_bytes(plan.bytes_estimate)} ({_human_bytes(plan.bytes_raw)} uncompressed)"
     )
+    _echo_invalid(plan.invalid_runs, plan.n_runs)
+
+
+#: distinct errors of runs that cannot start that ``sweep plan`` prints (``--json`` lists all)
+SHOW_ERRORS = 5
+
+
+def _echo_invalid(invalid: list[dict], n_runs: int) -> None:
+    """The runs that cannot start, grouped by their error: the first runs of each group with
+    their axis values."""
+    if not invalid:
+        return
+    by: dict[str, list[dict]] = {}
+    for d in invalid:
+        by.setdefault(d["error"], []).append(d)
+    click.echo(
+        f"  {len(invalid)} of {n_runs} runs cannot start ('sweep run' records them as failed):"
+    )
+    for err, ds in list(by.items())[:SHOW_ERRORS]:
+        vals = ", ".join(f"{k} = {v!r}" for k, v in ds[0]["values"].items())
+        more = f" and {len(ds) - 1} more with this error" if len(ds) > 1 else ""
+        click.echo(f"    run {ds[0]['run']} ({vals}){more}: {err}")
+    if len(by) > SHOW_ERRORS:
+        click.echo(f"    ... {len(by) - SHOW_ERRORS} more errors (--json lists every run)")
 
 
 @sweep_group.command("run")

@@ -534,6 +534,31 @@ def connect(
         cluster.close()
 
 
+#: candidates of a group's first probe task; when none of them starts, the next task takes
+#: twice as many (a run that cannot start fails at its check, in milliseconds)
+PROBE_BATCH = 3
+
+
+def _probe_rest(
+    cl: Any, first: dict[str, Any] | str, idx: list[int], sdicts: list[dict[str, Any]]
+) -> dict[str, Any]:
+    """The probe of a group whose first :data:`PROBE_BATCH` runs gave ``first``: when none of
+    them started, the group's later runs in growing batches until one starts; a one-line
+    :class:`ConfigError` with the first run's error when none does."""
+    p, start, size = first, PROBE_BATCH, 2 * PROBE_BATCH
+    while isinstance(p, str) and start < len(idx):
+        p2 = cl.submit(probe_first, [sdicts[i] for i in idx[start : start + size]], pure=False)
+        p2 = p2.result()
+        p = p2 if not isinstance(p2, str) else p
+        start, size = start + size, 2 * size
+    if isinstance(p, str):
+        raise ConfigError(
+            f"run {idx[0]} cannot start: {p}; nor can any other run with its model, per_ball "
+            "and bearing"
+        )
+    return p
+
+
 def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
     """Validate ``workers`` (>= 1) and ``scheduler`` (``tcp://HOST:PORT``; not both)."""
     if workers is not None and (
@@ -683,13 +708,12 @@ def run_sweep(
             if not path.exists() or replace_old:
                 groups = probe_groups(scenarios)
                 futs = {
-                    k: cl.submit(probe_first, [sdicts[i] for i in idx], pure=False)
+                    k: cl.submit(probe_first, [sdicts[i] for i in idx[:PROBE_BATCH]], pure=False)
                     for k, idx in groups.items()
                 }
-                probes = {k: f.result() for k, f in futs.items()}
-                for k, p in probes.items():
-                    if isinstance(p, str):
-                        raise ConfigError(f"run {groups[k][0]} cannot start: {p}")
+                probes = {
+                    k: _probe_rest(cl, f.result(), groups[k], sdicts) for k, f in futs.items()
+                }
                 layout = make_layout(spec, scenarios, probes)
                 if replace_old:  # read_attrs() above proved it is a sweep dataset
                     _remove_dataset(path)
