@@ -332,3 +332,31 @@ def test_rotor_results_record_their_defects():
     assert (
         g.meta["defect"]["DE"]["profile"] == "geometric" and g.meta["defect"]["DE"]["h_min_m"] > 0
     )
+
+
+@pytest.mark.parametrize("profile", ["geometric", "pit"])
+@pytest.mark.parametrize("race", ["outer", "ball"])
+def test_ring_and_rotor_record_a_defect_with_the_same_keys(profile, race):
+    """The ring and rotor results built ``meta["defect"]`` in two places with different keys
+    (the ring no race, size or angle, the rotor no surface radius or pit window; left for
+    planning, twenty-second session): one function now records both."""
+    from bearingsim.dynamics.defect_meta import defect_meta
+    from bearingsim.geometry import Defect
+
+    ring = simulate(dict(model="vsm", bearing="6205-cwru", fault=race, duration_s=0.002,
+                         defect_profile=profile)).meta["defect"]  # fmt: skip
+    rotor = simulate(dict(model="rotor", de_fault=race, duration_s=0.002,
+                          defect_profile=profile)).meta["defect"]["DE"]  # fmt: skip
+    assert set(ring) == set(rotor)
+    common = {"race", "width_m", "depth_m", "angle_rad", "profile", "race_radius_m"}
+    assert common <= set(ring)
+    assert (ring["race"], ring["profile"], rotor["race"], rotor["profile"]) == (
+        race, profile, race, profile,
+    )  # fmt: skip
+    assert ring["width_m"] == rotor["width_m"] == pytest.approx(0.007 * INCH)
+    extra = {"pit_radius_m", "window_rad"} if profile == "pit" else {
+        "h_s_m", "h_min_m", "delta_beta_rad", *(["h_min_inner_m"] if race == "ball" else [])
+    }  # fmt: skip
+    assert set(ring) == common | extra
+    d = Defect(race, 0.007 * INCH, 0.011 * INCH, 1.0, profile)
+    assert defect_meta(B, d)["angle_rad"] == 1.0 and defect_meta(B, None) == {}

@@ -11,7 +11,6 @@ import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -20,16 +19,14 @@ from ...catalog import resolve_bearing
 from ...config import Model, RingScenario, Solver
 from ...errors import SolverError
 from ...geometry import (
-    DefectProfile,
     characteristic_frequencies,
     check_unused_defect,
     defect_at_edge,
-    defect_geometry,
 )
 from ...results import SimulationResult
 from ..budget import F8, Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
-from ..defect_pit import pit_contacts
+from ..defect_meta import defect_meta
 from ..sampling import PASS, STOP_DB, decimate_antialias
 from . import _balance as bl
 from .base import (
@@ -333,26 +330,9 @@ def run_ring(
         if scenario.rig is None:  # with a rig, added after the path (rig.apply_rig)
             ch = ch | {k: ch[k] + v for k, v in noise.items()}
     kin = characteristic_frequencies(inputs.kinematic_bearing, inputs.shaft_hz)
-    geo: dict[str, Any] = {}
-    if inputs.defect is not None:
-        g = defect_geometry(inputs.bearing, inputs.defect)
-        geo = {
-            "h_s_m": g.h_s,
-            "h_min_m": g.h_min,
-            "delta_beta_rad": g.delta_beta,
-            "race_radius_m": g.race_radius,
-        }
-        if g.h_min_inner is not None:  # a ball defect: h_s_m, h_min_m at the outer race,
-            geo["h_min_inner_m"] = g.h_min_inner  # this at the inner (race_radius_m: the ball's)
-        geo["profile"] = inputs.profile.value
-        if inputs.profile is DefectProfile.PIT:  # no drop: the window where the contact
-            grow = pit_contacts(inputs.bearing, inputs.defect)[2]  # overlaps the pit
-            geo = {
-                "profile": "pit",
-                "pit_radius_m": 0.5 * inputs.defect.width,
-                "window_rad": g.delta_beta + 2.0 * grow,
-                "race_radius_m": g.race_radius,
-            }
+    defect = inputs.defect  # the ring's Defect leaves the profile to the inputs
+    if defect is not None:
+        defect = dataclasses.replace(defect, profile=inputs.profile)
     meta = {
         "channels": {
             "acc_x, acc_y": (
@@ -376,7 +356,7 @@ def run_ring(
         "shaft_hz": inputs.shaft_hz,
         "cage_hz": inputs.cage_hz,
         "kinematics": kin.as_dict(),
-        "defect": geo,
+        "defect": defect_meta(inputs.bearing, defect),
         "resolved": {
             "mass_kg": inputs.mass,
             "stiffness_n_per_m1_5": inputs.k_ball,

@@ -26,14 +26,13 @@ from ...config import RotorScenario
 from ...errors import ConfigError
 from ...geometry import (
     Defect,
-    DefectProfile,
     check_clearance,
     check_unused_defect,
-    defect_geometry,
 )
 from ...results import SimulationResult
 from ..budget import Budget, Estimate, check_budget
 from ..checks import check_load, check_speed
+from ..defect_meta import defect_meta
 from .config import (
     Armature,
     BearingSupport,
@@ -49,30 +48,6 @@ __all__ = [
     "rotor_config_from_scenario",
     "run_rotor",
 ]
-
-
-def _defect_meta(sup: BearingSupport) -> dict:
-    """The defect of one bearing as the ring models record theirs: its race, size, depth [m],
-    centre azimuth [rad], profile and, for a slot, seed VSM's drop ``h_min`` [m] and extent
-    [rad] (eqs. (1)-(3)); a pit its radius [m]; ``{}`` without a defect."""
-    f = sup.fault
-    if f is None:
-        return {}
-    out: dict = {
-        "race": f.race.value,
-        "width_m": f.width,
-        "depth_m": f.depth,
-        "angle_rad": f.angle,
-        "profile": f.profile.value,
-    }
-    if f.profile is DefectProfile.PIT:
-        out["pit_radius_m"] = 0.5 * f.width
-    else:
-        g = defect_geometry(sup.bearing, f)
-        out.update(h_s_m=g.h_s, h_min_m=g.h_min, delta_beta_rad=g.delta_beta)
-        if g.h_min_inner is not None:
-            out["h_min_inner_m"] = g.h_min_inner
-    return out
 
 
 def _support(
@@ -269,7 +244,10 @@ def run_rotor(
             "signal after the rig's path",
         },
         "defaults": scenario.defaults_record,
-        "defect": {end: _defect_meta(sup) for end, sup in (("DE", cfg.de), ("FE", cfg.fe))},
+        "defect": {
+            "DE": defect_meta(cfg.de.bearing, cfg.de.fault),
+            "FE": defect_meta(cfg.fe.bearing, cfg.fe.fault),
+        },  # fmt: skip
         "bearingsim_version": __version__,
         "wall_s": time.perf_counter() - t_wall,
     }
