@@ -497,6 +497,44 @@ def test_a_run_starts_when_its_first_runs_cannot(client, tmp_path):
     with pytest.raises(ConfigError) as e:
         run_sweep(SweepSpec.from_toml(p), tmp_path / "n.zarr", client=client)
     msg = one_line(e)
-    assert msg.startswith("run 0 cannot start: defect_width_m = 0.009 m is wider"), msg
-    assert msg.endswith("nor can any other run with its model, per_ball and bearing")
+    assert msg.startswith("no run can start; run 0: defect_width_m = 0.009 m is wider"), msg
     assert not (tmp_path / "n.zarr").exists()
+
+
+#: a slot that the 6205's ball (7.94 mm) spans and the 6203-cwru's (6.75 mm) does not, in runs
+#: of three lengths: the longest cannot start
+GROUPS_TOML = """
+[sweep]
+combine = "zip"
+[base]
+model = "vsm"
+fs_hz = 4000.0
+fault = "outer"
+defect_width_m = 7.5e-3
+[axes]
+bearing = ["6205", "6205", "6203-cwru"]
+duration_s = [0.005, 0.01, 0.5]
+"""
+
+
+@pytest.mark.integration
+def test_a_group_of_runs_that_cannot_start_is_recorded_failed(client, tmp_path, run_cli):
+    """Exploratory testing (twenty-third session): when every run of one group (model,
+    per_ball, bearing) could not start, ``sweep run`` refused the whole sweep that ``sweep
+    plan`` had said would run with those runs failed. And the runs that cannot start sized the
+    dataset's time axis and the plan's disk estimate (a run of 0.5 s that stores nothing made
+    every run's row 2000 samples long)."""
+    p = tmp_path / "groups.toml"
+    p.write_text(GROUPS_TOML)
+    spec = SweepSpec.from_toml(p)
+    plan = plan_sweep(spec, timing_runs=0)
+    assert [d["run"] for d in plan.invalid_runs] == [2]
+    assert tuple(plan.n_samples) == (20, 40)  # the runs that start: 0.005 and 0.01 s at 4 kHz
+    assert plan.bytes_raw == 2 * 2 * 40 * 8  # two runs, acc_x and acc_y, 40 samples
+    rep = run_sweep(spec, tmp_path / "g.zarr", client=client)
+    assert (rep.n_ok, rep.n_failed) == (2, 1)
+    ds = open_dataset(tmp_path / "g.zarr")
+    X, _ = ds.completed().arrays(["acc_y"])
+    assert X.shape == (2, 1, 40)
+    r = run_cli("sweep", "summary", str(tmp_path / "g.zarr"))
+    assert r.code == 0 and "wider than the ball" in r.out, r.out

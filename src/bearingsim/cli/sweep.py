@@ -63,7 +63,7 @@ def sweep_group() -> None:
     "--timing-runs",
     type=Number(0, integer=True),
     default=3,
-    help="Short timing runs for the estimate (0: count only).",
+    help="Short timing runs for the estimate (0: none; every run is still checked).",
 )
 @click.option(
     "--timing-duration-s",

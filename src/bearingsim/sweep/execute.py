@@ -93,7 +93,15 @@ from ..errors import BearingsimError, ConfigError, check_range, collect_warnings
 from ..geometry import parse_enum
 from ..io.jsonable import to_jsonable
 from .lock import ClientLock
-from .plan import SweepPlan, coordinates, make_layout, plan_sweep, probe_first, probe_groups
+from .plan import (
+    SweepPlan,
+    coordinates,
+    first_valid,
+    make_layout,
+    plan_sweep,
+    probe_first,
+    probe_groups,
+)
 from .spec import SweepSpec, canonical_hash, spec_differences
 from .store import (
     FAILED,
@@ -541,22 +549,36 @@ PROBE_BATCH = 3
 
 def _probe_rest(
     cl: Any, first: dict[str, Any] | str, idx: list[int], sdicts: list[dict[str, Any]]
-) -> dict[str, Any]:
+) -> dict[str, Any] | str:
     """The probe of a group whose first :data:`PROBE_BATCH` runs gave ``first``: when none of
-    them started, the group's later runs in growing batches until one starts; a one-line
-    :class:`ConfigError` with the first run's error when none does."""
+    them started, the group's later runs in growing batches until one starts; the first run's
+    error text when none does (the group's runs are then recorded as failed)."""
     p, start, size = first, PROBE_BATCH, 2 * PROBE_BATCH
     while isinstance(p, str) and start < len(idx):
         p2 = cl.submit(probe_first, [sdicts[i] for i in idx[start : start + size]], pure=False)
         p2 = p2.result()
         p = p2 if not isinstance(p2, str) else p
         start, size = start + size, 2 * size
-    if isinstance(p, str):
-        raise ConfigError(
-            f"run {idx[0]} cannot start: {p}; nor can any other run with its model, per_ball "
-            "and bearing"
-        )
     return p
+
+
+def _longest_valid(cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, Any]]) -> int:
+    """Samples of the longest run that passes its check (the dataset's time axis; a run that
+    cannot start stores nothing): the runs from the longest down, checked on a worker in
+    growing batches (usually the first passes). Every run's length when they are all equal;
+    the longest run's when none passes (each is then recorded as failed)."""
+    ns = [sc.n_samples for sc in scenarios]
+    if min(ns) == max(ns):
+        return ns[0]
+    order = sorted(range(len(ns)), key=lambda i: -ns[i])
+    start, size = 0, PROBE_BATCH
+    while start < len(order):
+        part = order[start : start + size]
+        k = cl.submit(first_valid, [sdicts[i] for i in part], pure=False).result()
+        if k >= 0:
+            return ns[part[k]]
+        start, size = start + size, 2 * size
+    return max(ns)
 
 
 def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
@@ -711,10 +733,13 @@ def run_sweep(
                     k: cl.submit(probe_first, [sdicts[i] for i in idx[:PROBE_BATCH]], pure=False)
                     for k, idx in groups.items()
                 }
-                probes = {
-                    k: _probe_rest(cl, f.result(), groups[k], sdicts) for k, f in futs.items()
-                }
-                layout = make_layout(spec, scenarios, probes)
+                tried = {k: _probe_rest(cl, f.result(), groups[k], sdicts) for k, f in futs.items()}
+                probes = {k: v for k, v in tried.items() if not isinstance(v, str)}
+                if not probes:  # the groups of runs that cannot start are recorded as failed
+                    k0 = next(iter(groups))
+                    raise ConfigError(f"no run can start; run {groups[k0][0]}: {tried[k0]}")
+                n_time = _longest_valid(cl, scenarios, sdicts)
+                layout = make_layout(spec, scenarios, probes, n_time)
                 if replace_old:  # read_attrs() above proved it is a sweep dataset
                     _remove_dataset(path)
                 attrs_new = {

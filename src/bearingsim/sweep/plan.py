@@ -27,6 +27,7 @@ __all__ = [
     "check_runs",
     "coordinates",
     "extrapolate",
+    "first_valid",
     "make_layout",
     "plan_sweep",
     "probe_first",
@@ -77,7 +78,7 @@ def check_runs(scenarios: list[Scenario], progress: bool = False) -> list[dict[s
     ball, a pit shallower than the contact's approach, a load above twice the static capacity —
     and the run's memory and step estimate). Returns one ``{"run", "error"}`` per run that
     would fail at its start, in run order (``error``: the one-line message the run would
-    record). ``progress`` shows a bar on a terminal [-]. Costs ~3 ms a ring run and ~20 ms a
+    record). ``progress`` shows a bar on a terminal [-]. Costs ~1 ms a ring run and ~20 ms a
     rotor run (its FE model is built)."""
     from tqdm import tqdm
 
@@ -152,6 +153,21 @@ def _group_key(sd: dict[str, Any]) -> tuple:
     return (sd["model"], sd.get("per_ball"), sd.get("bearing"), sd.get("bearing_file"))
 
 
+def first_valid(candidates: list[dict[str, Any]]) -> int:
+    """Position in ``candidates`` (scenario dicts) of the first that passes its check
+    (:func:`bearingsim.simulation.validate_scenario`), or -1 when none does."""
+    from ..simulation import validate_scenario
+
+    with collect_warnings():
+        for k, sd in enumerate(candidates):
+            try:
+                validate_scenario(Scenario.from_dict(sd))
+            except BearingsimError:
+                continue
+            return k
+    return -1
+
+
 def probe_groups(
     scenarios: list[Scenario], skip: set[int] | frozenset[int] = frozenset()
 ) -> dict[tuple, list[int]]:
@@ -167,9 +183,14 @@ def probe_groups(
 
 
 def make_layout(
-    spec: SweepSpec, scenarios: list[Scenario], probes: dict[tuple, dict[str, Any]]
+    spec: SweepSpec,
+    scenarios: list[Scenario],
+    probes: dict[tuple, dict[str, Any]],
+    n_time: int | None = None,
 ) -> Layout:
-    """Dataset layout from the probe results of every group (see :func:`probe_groups`)."""
+    """Dataset layout from the probe results of the groups that start (see
+    :func:`probe_groups`); ``n_time``: the longest run that starts [samples] (default: the
+    longest run; one that cannot start stores nothing, so it should not size the time axis)."""
     order: list[str] = []
     info: dict[str, dict[str, Any]] = {}
     for p in probes.values():
@@ -195,7 +216,8 @@ def make_layout(
         ChannelLayout(n, info[n]["units"], info[n]["extra_dim"], info[n]["n_extra"]) for n in names
     )
     lengths = {(sc.fs_hz, sc.n_samples) for sc in scenarios}
-    n_time = max(sc.n_samples for sc in scenarios)
+    if n_time is None:
+        n_time = max(sc.n_samples for sc in scenarios)
     fs = next(iter(lengths))[0] if len(lengths) == 1 else None
     return Layout(len(scenarios), n_time, fs, chans)
 
@@ -219,9 +241,10 @@ class SweepPlan:
     channels : list of str
         Stored channels.
     n_samples : tuple of int
-        Smallest and largest samples per run.
+        Smallest and largest samples per run (of the runs that start).
     compute_s_per_run : float
-        Estimated mean compute time of one run on one worker [s].
+        Estimated mean compute time of one run that starts on one worker [s] (one that cannot
+        start stops at its check).
     compute_s_total : float
         Estimated compute time of every run on one worker [s].
     workers : int
@@ -230,7 +253,8 @@ class SweepPlan:
         ``compute_s_total / min(workers, n_runs)`` (ideal scaling), but at least the longest
         run: a run is not split across workers [s].
     bytes_raw, bytes_estimate : int
-        Size of the stored arrays uncompressed, and the estimate after compression [byte].
+        Size of the stored arrays uncompressed, and the estimate after compression [byte]
+        (the runs that start: one that cannot start stores no signal).
     timing : list of dict
         The timing runs (run, duration [s], wall [s]).
     spec_hash : str
@@ -308,8 +332,9 @@ def plan_sweep(
         d["values"] = spec.run_values(d["run"])
     groups = probe_groups(scenarios, bad)
     probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
-    layout = make_layout(spec, scenarios, probes)
     n = len(scenarios)
+    ok = [i for i in range(n) if i not in bad]
+    layout = make_layout(spec, scenarios, probes, max(scenarios[i].n_samples for i in ok))
     w = workers or os.cpu_count() or 1
     raw_per_run = sum(8 * layout.n_time * max(1, c.n_extra) for c in layout.channels)
     timing: list[dict[str, Any]] = []
@@ -317,7 +342,6 @@ def plan_sweep(
     est = np.full(n, math.nan)
     if timing_runs > 0:
         rng = np.random.default_rng(seed)
-        ok = [i for i in range(n) if i not in bad]
         models = sorted({scenarios[i].model.value for i in ok})
         picks = [next(i for i in ok if scenarios[i].model.value == m) for m in models]
         rest = [i for i in rng.permutation(n) if i not in picks and i not in bad]
@@ -345,20 +369,21 @@ def plan_sweep(
     total = float(np.sum(est))
     # ideal scaling over the workers that get a run, but no less than the longest run (a run
     # runs on one worker); NaN (no estimate) stays NaN
-    wall = float(np.maximum(total / min(w, n), np.max(est)))
-    ns = [sc.n_samples for sc in scenarios]
+    wall = float(np.maximum(total / min(w, len(ok)), np.max(est)))
+    ns = [scenarios[i].n_samples for i in ok]
+    n_ok = len(ok)  # a run that cannot start stores no signal
     return SweepPlan(
         n_runs=n,
         combine=spec.combine.value,
         axes={a.name: len(a) for a in spec.axes},
         channels=[c.name for c in layout.channels],
         n_samples=(min(ns), max(ns)),
-        compute_s_per_run=total / n,
+        compute_s_per_run=total / n_ok,
         compute_s_total=total,
         workers=w,
         wall_s=wall,
-        bytes_raw=raw_per_run * n,
-        bytes_estimate=int(raw_per_run * n * ratio + 600 * n),
+        bytes_raw=raw_per_run * n_ok,
+        bytes_estimate=int(raw_per_run * n_ok * ratio + 600 * n),
         timing=timing,
         spec_hash=spec.spec_hash,
         invalid_runs=invalid,
