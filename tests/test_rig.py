@@ -511,7 +511,8 @@ def test_a_fitted_model_path_replaces_the_path_for_its_model_only(tmp_path):
     assert applied.gain == 0.01 and applied.modes[0].gain == 0.5 and not applied.model_gains
     assert applied.modes[0].frequency_hz == rig.modes[0].frequency_hz
     assert rig.for_model("rotor").gain == pytest.approx(0.5 * 6.5)
-    vsm = simulate(dict(model="vsm", fault="outer", duration_s=0.05, fs_hz=12000.0, seed=0))
+    vsm = simulate(dict(model="vsm", fault="outer", duration_s=0.05, fs_hz=12000.0, seed=0,
+                       defect_profile="geometric"))  # the gain's profile  # fmt: skip
     out = apply_rig(vsm, rig)
     silent = replace(rig, gain=0.0, modes=(), model_gains=())
     bg = apply_rig(vsm, silent)["acc_sensor"]
@@ -769,3 +770,60 @@ def test_a_rig_name_with_a_control_character_is_refused(tmp_path, capsys):
         main(["rig", "identify", str(rec), "--name", "a\nb", "-o", str(tmp_path / "o.toml")])
     assert e.value.code == 2 and not (tmp_path / "o.toml").exists()
     assert "holds a control character" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------ model gain and defect profile
+def test_a_model_gain_records_the_defect_profile_it_was_identified_with():
+    """Exploratory testing (twenty-third session): a rig's model gain fitted with the geometric
+    slot (the realism a rig brings) scaled pit runs without a word. A ``[[model_gain]]`` now
+    records its ``defect_profile`` (written only when it is not the default, so the shipped
+    files, identified with the slot, keep their bytes); a bad value is one line."""
+    from bearingsim.rig import ModelGain
+
+    g = ModelGain("rotor", 2.0, "test", defect_profile="pit")
+    assert g.to_dict()["defect_profile"] == "pit" and "(pit defects)" in g.describe()
+    assert ModelGain.from_dict(g.to_dict(), "model_gain[0]") == g
+    plain = ModelGain("rotor", 2.0, "test")
+    assert plain.defect_profile == "geometric" and "defect_profile" not in plain.to_dict()
+    with pytest.raises(ConfigError) as e:
+        ModelGain.from_dict(dict(g.to_dict(), defect_profile="round"), "model_gain[0]")
+    assert str(e.value) == (
+        "model_gain[0].defect_profile = 'round' is invalid; valid: geometric, rectangular, pit"
+    )
+    for name in available_rigs():  # identified with the slot
+        assert all(m.defect_profile == "geometric" for m in load_rig(name).model_gains)
+
+
+def test_a_run_with_another_profile_than_its_gain_is_warned():
+    import warnings
+
+    from bearingsim.rig import RigGainWarning
+
+    base = dict(model="rotor", duration_s=0.01, rig="cwru-de-12k")
+    with pytest.warns(RigGainWarning, match=r"rotor model gain was identified with "
+                      r"defect_profile = 'geometric'; this run's defect is 'pit'"):  # fmt: skip
+        simulate(dict(base, de_fault="outer", defect_profile="pit"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigGainWarning)
+        simulate(dict(base, de_fault="outer"))  # the gain's own profile
+        simulate(dict(base, defect_profile="pit"))  # no defect: the profile is not used
+        simulate(dict(model="vsm", duration_s=0.01, fault="outer", defect_profile="pit",
+                      rig="cwru-de-12k"))  # no vsm gain in the profile  # fmt: skip
+
+
+def test_rig_identify_takes_the_defect_profile_of_its_model_gain(run_cli, tmp_path):
+    from conftest import cwru_record
+
+    recs = [str(cwru_record(n)) for n in ("132", "107")]
+    out = tmp_path / "t.toml"
+    r = run_cli("rig", "identify", *recs, "--name", "t", "--channel", "DE", "--model-gain",
+                "vsm", "--defect-profile", "pit", "-o", str(out))  # fmt: skip
+    assert r.code == 0, r.err
+    assert load_rig(str(out)).model_gain("vsm").defect_profile == "pit"
+    assert "(pit defects)" in r.out
+    r = run_cli("rig", "identify", *recs, "--name", "t", "--channel", "DE",
+                "--defect-profile", "pit", "-o", str(tmp_path / "u.toml"))  # fmt: skip
+    assert r.code == 2 and not (tmp_path / "u.toml").exists()
+    assert r.err.strip() == (
+        "error: --defect-profile pit is only read with --model-gain; give both or neither"
+    )

@@ -64,7 +64,8 @@ TOML layout (SI units in the key names)::
     [[model_gain]]                   # optional, one per model: a model-based path gain
     model = "rotor"                  # vsm | dem | tvsm | rotor
     scale = 6.8
-    provenance = "..."
+    defect_profile = "pit"           # optional: the drop profile it was identified with
+    provenance = "..."               # (default geometric, the realism a rig brings)
 
     [[model_gain]]                   # or the fitted form: the path's gains replaced
     model = "vsm"
@@ -110,6 +111,7 @@ __all__ = [
     "Mode",
     "ModelGain",
     "Rig",
+    "RigGainWarning",
     "RigRateWarning",
     "Tone",
     "apply_rig",
@@ -138,6 +140,14 @@ def _provenance(table: dict[str, Any], where: str) -> str:
             f"{where}.provenance is missing; every value of a rig needs its source (a text)"
         )
     return p.strip()
+
+
+def _profile(table: dict[str, Any], where: str) -> str:
+    """A ``[[model_gain]]``'s ``defect_profile`` (default ``"geometric"``), checked."""
+    from .geometry import DefectProfile, parse_enum
+
+    return parse_enum(DefectProfile, table.get("defect_profile", "geometric"),
+                      f"{where}.defect_profile").value  # fmt: skip
 
 
 def _keys(
@@ -244,6 +254,12 @@ class ModelGain:
     * ``path_gain`` [-] and ``mode_gains`` [-] (one per ``[[mode]]``, in their order) -- the
       path's gains replaced by these, the modes' frequencies and damping kept
       (:func:`bearingsim.side_by_side.model_path_fit`).
+
+    ``defect_profile``: the drop profile the records' faults were simulated with
+    (:class:`bearingsim.geometry.DefectProfile`; the gain matches that profile's level, and
+    :func:`apply_rig` warns when a faulty run uses another); default ``"geometric"``, the
+    realism a rig brings (:data:`bearingsim.config.REALISM`), which every file written before
+    this key existed was identified with. Written only when it is not the default.
     """
 
     model: str
@@ -251,8 +267,15 @@ class ModelGain:
     provenance: str
     path_gain: float | None = None
     mode_gains: tuple[float, ...] | None = None
+    defect_profile: str = "geometric"
 
-    KEYS = ("model", "scale", "path_gain", "mode_gains", "provenance")
+    KEYS = ("model", "scale", "path_gain", "mode_gains", "defect_profile", "provenance")
+
+    def __post_init__(self) -> None:
+        from .geometry import DefectProfile, parse_enum
+
+        prof = parse_enum(DefectProfile, self.defect_profile, "model_gain.defect_profile")
+        object.__setattr__(self, "defect_profile", prof.value)
 
     @classmethod
     def from_dict(cls, d: Any, where: str) -> ModelGain:
@@ -267,11 +290,13 @@ class ModelGain:
                 f"{where}: give either scale or path_gain with mode_gains; valid: one of the "
                 "two forms"
             )
+        prof = _profile(d, where)
         if not fitted:
             return cls(
                 d["model"],
                 check_range(f"{where}.scale", d["scale"], 0.0, MAX_GAIN, lo_open=True),
                 _provenance(d, where),
+                defect_profile=prof,
             )
         for k in ("path_gain", "mode_gains"):
             if k not in d:
@@ -287,6 +312,7 @@ class ModelGain:
             tuple(
                 check_range(f"{where}.mode_gains[{i}]", v, 0.0, MAX_GAIN) for i, v in enumerate(mg)
             ),
+            prof,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -297,15 +323,19 @@ class ModelGain:
         else:
             out["path_gain"] = self.path_gain
             out["mode_gains"] = list(self.mode_gains or ())
+        if self.defect_profile != "geometric":
+            out["defect_profile"] = self.defect_profile
         out["provenance"] = self.provenance
         return out
 
     def describe(self) -> str:
-        """One phrase: what the gain does to the path."""
+        """One phrase: what the gain does to the path (and the defect profile it was identified
+        with, when not the default geometric one)."""
+        prof = "" if self.defect_profile == "geometric" else f" ({self.defect_profile} defects)"
         if self.scale is not None:
-            return f"path x {self.scale:.4g}"
+            return f"path x {self.scale:.4g}{prof}"
         modes = ", ".join(f"{g:.4g}" for g in self.mode_gains or ())
-        return f"fitted path: direct gain {self.path_gain:.4g}, mode gains {modes or '-'}"
+        return f"fitted path: direct gain {self.path_gain:.4g}, mode gains {modes or '-'}{prof}"
 
 
 @dataclass(frozen=True)
@@ -746,6 +776,32 @@ class RigRateWarning(UserWarning):
     background table the sensor signal carries the model's output alone."""
 
 
+class RigGainWarning(UserWarning):
+    """A rig's model gain was identified with another defect profile than the run's: it
+    matched that profile's level to the records, not this run's."""
+
+
+def _defect_profiles(meta: dict) -> list[str]:
+    """The drop profiles of the defects a result records (``meta["defect"]``: a ring model's
+    one defect, or the rotor's per bearing), in order, without repeats."""
+    d = meta.get("defect") or {}
+    found = [d] if "profile" in d else [v for v in d.values() if isinstance(v, dict)]
+    return list(dict.fromkeys(v["profile"] for v in found if v.get("profile")))
+
+
+def _warn_gain_profile(mg: ModelGain, rig_name: str, meta: dict) -> None:
+    other = [p for p in _defect_profiles(meta) if p != mg.defect_profile]
+    if other:
+        warnings.warn(
+            f"rig {rig_name!r}: its {mg.model} model gain was identified with "
+            f"defect_profile = {mg.defect_profile!r}; this run's defect is {other[0]!r}, whose "
+            "level differs, so the sensor's level is not what identification matched (identify "
+            "the gain with 'rig identify --model-gain ... --defect-profile')",
+            RigGainWarning,
+            stacklevel=3,
+        )
+
+
 #: share of the output's Nyquist frequency below which a rig's background table may end
 #: before :func:`apply_rig` warns [-] (the shipped 12 kHz profiles end at 5.4 kHz, 0.9 of
 #: their records' Nyquist frequency)
@@ -811,6 +867,8 @@ def apply_rig(
     r = rig if isinstance(rig, Rig) else load_rig(rig)
     model = result.scenario.get("model") if isinstance(result.scenario, dict) else None
     mg = r.model_gain(model)
+    if mg is not None:
+        _warn_gain_profile(mg, r.name, result.meta)
     r = r.for_model(model)
     if r.input_channel not in result.channels:
         raise ConfigError(

@@ -344,7 +344,9 @@ def model_path_scale(
             realism=realism,
         )
         powers.append(_powers(c["measured"], c["simulated"], c["background"]))
-    return _with_gain(rig, model, powers, [Path(r).name for r in records], duration_s)
+    return _with_gain(
+        rig, model, powers, [Path(r).name for r in records], duration_s, _profile_of(realism)
+    )
 
 
 def model_path_fit(
@@ -398,11 +400,19 @@ def model_path_fit(
         pairs.append((c["measured"], c["simulated"]))
         rates.add(c["fs_hz"])
     names = [Path(r).name for r in records]
-    return _with_path(rig, model, pairs, rates, names, duration_s, objective)
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective, _profile_of(realism))
+
+
+def _profile_of(realism: dict | None) -> str:
+    """The drop profile a model gain identified with ``realism`` simulates its faults with."""
+    from .geometry import DefectProfile, parse_enum
+
+    prof = {**REALISM, **(realism or {})}["defect_profile"]
+    return parse_enum(DefectProfile, prof, "defect_profile").value
 
 
 def _with_path(rig, model: str, pairs, rates: set, names: list[str], duration_s: float,
-               objective: str):  # fmt: skip
+               objective: str, profile: str = "geometric"):  # fmt: skip
     """The rig with the path fitted on ``pairs`` (measured, model output; their sample
     ``rates`` [Hz], one rate) as its fitted ``[[model_gain]]`` for ``model``, and the
     :class:`~bearingsim.rig_identify.PathFit`."""
@@ -416,7 +426,7 @@ def _with_path(rig, model: str, pairs, rates: set, names: list[str], duration_s:
     fs = next(iter(rates))
     why = f"the {model} model's output for {', '.join(names)}, {duration_s:g} s each"
     fit = fit_path_gains(rig, pairs, fs, objective=objective, provenance=why)
-    gain = ModelGain(model, None, fit.provenance, fit.gains[0], tuple(fit.gains[1:]))
+    gain = ModelGain(model, None, fit.provenance, fit.gains[0], tuple(fit.gains[1:]), profile)
     return replace(rig, model_gains=(*rig.model_gains, gain)), fit
 
 
@@ -472,7 +482,7 @@ def model_path_scale_conditions(
         sim, bg = _through_rig(bare, rig, seed)
         powers.append(_powers(measured[: sim.size], sim, bg))
         names.append(name)
-    return _with_gain(rig, model, powers, names, duration_s)
+    return _with_gain(rig, model, powers, names, duration_s, _profile_of(realism))
 
 
 def model_path_fit_conditions(
@@ -500,7 +510,7 @@ def model_path_fit_conditions(
         pairs.append((measured[: x.size], x))
         names.append(name)
         rates.add(_result_fs(bare))
-    return _with_path(rig, model, pairs, rates, names, duration_s, objective)
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective, _profile_of(realism))
 
 
 def _user_simulations(records, conditions, model, duration_s, realism, seed, progress):
@@ -636,7 +646,9 @@ def _powers(measured, simulated, background) -> tuple[float, float]:
     return float(np.mean(m * m) - np.mean(b * b)), float(np.mean(x * x))
 
 
-def _with_gain(rig, model: str, powers, names: list[str], duration_s: float):
+def _with_gain(
+    rig, model: str, powers, names: list[str], duration_s: float, profile: str = "geometric"
+):
     """The rig with the power-balance scale of ``powers`` as its ``[[model_gain]]``."""
     from .rig import ModelGain
 
@@ -656,6 +668,7 @@ def _with_gain(rig, model: str, powers, names: list[str], duration_s: float):
         k,
         f"power of {joined} above the rig's background over the {model} model's path power "
         f"(bearingsim.side_by_side.model_path_scale, {duration_s:g} s per record)",
+        defect_profile=profile,
     )
     return replace(rig, model_gains=(*rig.model_gains, gain)), k
 

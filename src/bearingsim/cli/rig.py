@@ -73,6 +73,15 @@ def rig_group() -> None:
     "level by the same power balance (written as path_gain and mode_gains).",
 )
 @click.option(
+    "--defect-profile",
+    type=click.Choice(("geometric", "rectangular", "pit")),
+    default=None,
+    show_default="geometric, the realism a rig brings",
+    help="Drop profile the records' faults are simulated with for --model-gain (a model gain "
+    "matches that profile's level; it is written into the rig, and a run with another "
+    "profile through it is warned).",
+)
+@click.option(
     "--conditions",
     default=None,
     type=click.Path(dir_okay=False),
@@ -100,6 +109,7 @@ def identify_cmd(
     model_gains: tuple[str, ...],
     gain_method: str,
     conditions: str | None,
+    defect_profile: str | None,
     plot: str | None,
     output: str,
     as_json: bool,
@@ -169,6 +179,11 @@ def identify_cmd(
     user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
     if conditions is not None and not model_gains:
         raise ConfigError("--conditions is only read with --model-gain; give both or neither")
+    if defect_profile is not None and not model_gains:
+        raise ConfigError(
+            f"--defect-profile {defect_profile} is only read with --model-gain; give both or "
+            "neither"
+        )
     if gain_method != "power" and not model_gains:
         raise ConfigError(
             f"--gain-method {gain_method} is only read with --model-gain; give both or neither"
@@ -227,15 +242,18 @@ def identify_cmd(
         from .. import side_by_side as sbs
 
         bar = sys.stderr.isatty()
-        fit = {"spectral": {"objective": "spectral"}}.get(gain_method, {})
+        spectral = gain_method == "spectral"
+        kw: dict = {"objective": "spectral"} if spectral else {}
+        if defect_profile is not None:
+            kw["realism"] = {"defect_profile": defect_profile}
         for m in dict.fromkeys(model_gains):
             if user:
-                f = sbs.model_path_fit_conditions if fit else sbs.model_path_scale_conditions
+                f = sbs.model_path_fit_conditions if spectral else sbs.model_path_scale_conditions
                 rig, _ = f(rig, [r for r, _ in user], [c for _, c in user], model=m,
-                           progress=bar, **fit)  # fmt: skip
+                           progress=bar, **kw)  # fmt: skip
             else:
-                f = sbs.model_path_fit if fit else sbs.model_path_scale
-                rig, _ = f(rig, faulty, model=m, progress=bar, **fit)
+                f = sbs.model_path_fit if spectral else sbs.model_path_scale
+                rig, _ = f(rig, faulty, model=m, progress=bar, **kw)
     text = rig_to_toml(rig)
     Rig.from_dict(tomllib.loads(text), source="identified rig")  # round-trip check
     with atomic_open(output, "w", field="-o/--output", encoding="utf-8") as fh:
