@@ -245,8 +245,9 @@ def test_a_pit_shallower_than_the_ball_sinks_is_refused():
         dict(model="dem", fault="ball", defect_width_m=w),
         dict(model="rotor", de_fault="inner", defect_width_m=w),
     ):
-        with pytest.raises(ConfigError, match=r"^defect_depth_m = 1e-09 m is not deeper than a "
-                           r"ball sinks into a pit .* valid range \("):  # fmt: skip
+        end = r"de_fault = 'inner' on the DE bearing \(6205-cwru\): " if "de_fault" in sc else ""
+        with pytest.raises(ConfigError, match=rf"^{end}defect_depth_m = 1e-09 m is not deeper "
+                           r"than a ball sinks into a pit .* valid range \("):  # fmt: skip
             simulate({**sc, "duration_s": 0.01, "defect_profile": "pit", "defect_depth_m": 1e-9})
     # the same depth is a valid (shallow) slot
     simulate(dict(model="vsm", fault="outer", defect_width_m=w, duration_s=0.01,
@@ -360,3 +361,18 @@ def test_ring_and_rotor_record_a_defect_with_the_same_keys(profile, race):
     assert set(ring) == common | extra
     d = Defect(race, 0.007 * INCH, 0.011 * INCH, 1.0, profile)
     assert defect_meta(B, d)["angle_rad"] == 1.0 and defect_meta(B, None) == {}
+
+
+def test_a_rotor_defect_error_names_its_end():
+    """The rotor's two bearings differ (6205 DE, 6203 FE), so a defect valid at one end may
+    not be at the other; the error did not say which end it was about (exploratory testing,
+    twenty-third session)."""
+    with pytest.raises(ConfigError) as e:
+        simulate(dict(model="rotor", duration_s=0.01, fe_fault="outer", defect_profile="pit",
+                      defect_depth_m=8.5e-7))  # fmt: skip
+    assert str(e.value).startswith(
+        "fe_fault = 'outer' on the FE bearing (6203-cwru): defect_depth_m = 8.5e-07 m is not "
+        "deeper than a ball sinks into a pit"
+    )
+    simulate(dict(model="rotor", duration_s=0.01, de_fault="outer", defect_profile="pit",
+                  defect_depth_m=8.5e-7 * 2))  # fmt: skip

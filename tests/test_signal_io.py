@@ -50,6 +50,8 @@ def test_read_table_without_header_names_columns(tmp_path):
         ("a,b\n1,2\nx,3\n", "non-numeric line 'x,3'"),
         ("1,2\n3\n", "line '3' has 1 values, the first data line 2"),
         ("# only a comment\n", "is empty; valid: at least one line of numbers"),
+        # a one-word file was "empty" (exploratory testing, twenty-third session)
+        ("hello\n", "has a header line ('hello') and no line of numbers; valid: at least"),
         ("a,b,c\n1,2\n", "the header names 3 columns, the data has 2"),
         ("1,,2\n", "non-numeric line '1,,2'"),
     ],

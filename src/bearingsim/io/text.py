@@ -108,7 +108,12 @@ def read_table(path: str | Path) -> TextTable:
                 "commas, semicolons, tabs or blanks, after an optional header line"
             )
     if not rows:
-        raise ConfigError(f"file = {str(p)!r} is empty; valid: at least one line of numbers")
+        what = (
+            f"has a header line ({', '.join(header)[:40]!r}) and no line of numbers"
+            if header is not None
+            else "is empty"
+        )
+        raise ConfigError(f"file = {str(p)!r} {what}; valid: at least one line of numbers")
     if header is not None and len(header) != len(rows[0]):
         raise ConfigError(
             f"file = {str(p)!r}: the header names {len(header)} columns, the data has "

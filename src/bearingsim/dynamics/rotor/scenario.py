@@ -64,12 +64,19 @@ def _support(
     if clearance is not None:  # negative = preload; bounded like a bearing file's
         pd = check_clearance(b, clearance, name=f"{end}_clearance_m")
         b = dataclasses.replace(b, diametral_clearance=pd)
-    return BearingSupport(
-        b,
-        f,
-        contact_damping=sc.contact_damping_n_s_per_m,
-        contact_roughness=sc.contact_roughness_m,
-    )
+    try:
+        return BearingSupport(
+            b,
+            f,
+            contact_damping=sc.contact_damping_n_s_per_m,
+            contact_roughness=sc.contact_roughness_m,
+        )
+    except ConfigError as exc:  # the two ends differ (6205 DE, 6203 FE): say which it is
+        if f is None:
+            raise
+        raise ConfigError(
+            f"{end}_fault = {fault!r} on the {end.upper()} bearing ({b.id}): {exc}"
+        ) from None
 
 
 def rotor_config_from_scenario(sc: RotorScenario) -> RotorConfig:
