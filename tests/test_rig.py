@@ -827,3 +827,21 @@ def test_rig_identify_takes_the_defect_profile_of_its_model_gain(run_cli, tmp_pa
     assert r.err.strip() == (
         "error: --defect-profile pit is only read with --model-gain; give both or neither"
     )
+
+
+@pytest.mark.parametrize("name", ["cwru-de-12k", "cwru-de-48k", "cwru-fe-12k"])
+def test_a_rate_too_low_for_a_rig_names_the_rate_it_needs(name):
+    """A run's rate below what a rig's modes need was refused with the rig file's range
+    ("mode[0].frequency_hz = 2768.55 Hz ...; valid range (0, 1500) Hz"), not the run's remedy
+    (exploratory testing, twenty-third session). The message now gives the rate needed,
+    :meth:`Rig.min_rate_hz`, and the rate just above it is accepted."""
+    from bearingsim.config import Scenario
+
+    need = load_rig(name).min_rate_hz()
+    Scenario.from_dict(dict(model="vsm", fault="outer", rig=name, fs_hz=need * 1.0001))
+    with pytest.raises(ConfigError) as e:
+        Scenario.from_dict(dict(model="vsm", fault="outer", rig=name, fs_hz=need * 0.9999))
+    msg = str(e.value)
+    assert msg.startswith(f"<scenario>: fs_hz = {need * 0.9999:g} Hz is too low for rig '{name}'")
+    assert msg.endswith(f"; valid: fs_hz above {need:.6g} Hz, or a rig identified at this rate")
+    assert "\n" not in msg

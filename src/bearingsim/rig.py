@@ -644,6 +644,16 @@ class Rig:
             ),
         )
 
+    def min_rate_hz(self) -> float:
+        """The output rate :meth:`check_rate` needs to be above [Hz]: twice the highest of the
+        modes' upper half-power frequencies, the fixed-frequency tones and the background
+        table's first frequency (0 for a rig with none of them)."""
+        f = [m.upper_half_power_hz for m in self.modes]
+        f += [t.frequency_hz for t in self.tones if t.frequency_hz is not None]
+        if self.background is not None:
+            f.append(float(self.background.frequency_hz[0]))
+        return 2.0 * float(max(f, default=0.0))
+
     def check_rate(self, fs: float) -> None:
         """Refuse a mode (or its half-power band, :meth:`Mode.check_rate`) or a fixed-frequency
         tone at or above the Nyquist frequency of the output rate ``fs`` [Hz], and a background
