@@ -698,7 +698,8 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
             x, fs, rpm_used, source, bearing = _record(
                 p, rpm, channel=channel, fs_hz=fs_hz, info=info
             )
-            warn = _length_warning(x, fs) + _speed_warning(x, fs, rpm_used, rpm)
+            _check_length(x, fs, rpm_used, bearing)
+            warn = _length_warning(x, fs) + _speed_warning(x, fs, rpm_used, rpm) + _rate_warning(fs)
             segs = segments(x, fs)
             feats = []
             for k, seg in enumerate(segs):
@@ -732,6 +733,43 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
         if warn:
             o["warning"] = "; ".join(warn)
         yield o
+
+
+#: the cage revolutions a record must span: the envelope spectrum's line spacing (1/T) must
+#: resolve the cage line (FTF, ~0.4 of the shaft speed) from 0 by three lines, the least the
+#: features' windows (+/- 1.5 %, at least 1.5 lines) can tell apart
+MIN_CAGE_TURNS = 3.0
+
+
+def _check_length(x, fs: float, rpm: float, bearing) -> None:
+    """Refuse a record too short to resolve the cage line (:data:`MIN_CAGE_TURNS`): its
+    features would read every target line in one window of the same few bins (a 0.04 s
+    record, 25 Hz lines, was labelled "none" at p = 0.73)."""
+    from bearingsim.catalog import as_bearing
+    from bearingsim.errors import ConfigError
+    from bearingsim.geometry import characteristic_frequencies
+
+    ftf = characteristic_frequencies(as_bearing(bearing), rpm / 60.0).ftf_hz
+    t, need = np.asarray(x).size / fs, MIN_CAGE_TURNS / ftf
+    if t < need:
+        raise ConfigError(
+            f"the record is {t:.3g} s long; valid: at least {need:.3g} s ({MIN_CAGE_TURNS:g} "
+            f"turns of the cage at {ftf:.4g} Hz, {rpm:g} r/min), so that the envelope spectrum "
+            "resolves the cage line"
+        )
+
+
+def _rate_warning(fs: float) -> list[str]:
+    """A warning for a sample rate none of the training's rigs has (:data:`PROFILES`): the
+    kurtogram's bands and the rig's ringing the classifier learned are those rates'."""
+    rates = sorted({float(r) for _, r in PROFILES.values()})
+    if float(fs) in rates:
+        return []
+    return [
+        f"fs = {fs:g} Hz is not a rate the classifier was trained at ("
+        + ", ".join(f"{r:g}" for r in rates)
+        + " Hz): its bands and the rigs' ringing differ, the label is less reliable"
+    ]
 
 
 def _length_warning(x, fs: float) -> list[str]:
