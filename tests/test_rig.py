@@ -845,3 +845,33 @@ def test_a_rate_too_low_for_a_rig_names_the_rate_it_needs(name):
     assert msg.startswith(f"<scenario>: fs_hz = {need * 0.9999:g} Hz is too low for rig '{name}'")
     assert msg.endswith(f"; valid: fs_hz above {need:.6g} Hz, or a rig identified at this rate")
     assert "\n" not in msg
+
+
+def test_a_run_far_from_the_rigs_speeds_is_warned(tmp_path):
+    """Exploratory testing (twenty-third session): a healthy bearing through ``cwru-de-12k``
+    at 3000 r/min was diagnosed "outer" (docs/validation.md, "Simulations through the rig,
+    diagnosed"): the model's ball-pass line grows with speed while the rig's background is
+    the machine's at the records' 1730-1797 r/min. A rig now records the speeds it was
+    identified at (``rpm_range``), and a run more than 10 % outside them is warned."""
+    import warnings
+
+    from bearingsim.rig import RigSpeedWarning
+
+    for name in available_rigs():  # CWRU: loads 0-3 hp, 1723-1797 r/min in the files
+        lo, hi = load_rig(name).rpm_range
+        assert 1700.0 <= lo <= hi <= 1800.0
+    base = dict(model="vsm", duration_s=0.01, rig="cwru-de-12k")
+    with pytest.warns(RigSpeedWarning, match=r"identified at 1723-1796 r/min; this run turns "
+                      r"at 3000 r/min"):  # fmt: skip
+        simulate(dict(base, rpm=3000.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigSpeedWarning)
+        simulate(dict(base, rpm=1796.0 * 1.09))  # within 10 % of the range
+        simulate(dict(base, rpm=1600.0))
+    with pytest.raises(
+        ConfigError,
+        match=r"^rig.rpm_range\[1\] = 1000 r/min is out of range; valid range \[1500, inf\) r/min$",
+    ):
+        Rig(name="x", description="", provenance="t", rpm_range=(1500.0, 1000.0))
+    r = Rig(name="x", description="", provenance="t", rpm_range=(1500.0, 1600.0))
+    assert Rig.from_dict(r.to_dict()) == r and r.to_dict()["rpm_range"] == [1500.0, 1600.0]

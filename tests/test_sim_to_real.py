@@ -466,8 +466,7 @@ def test_the_readers_options_cannot_overrule_what_the_record_confirms(small, tmp
     assert "'time_s' is the time or speed column of two.csv; valid: de" in o["error"]
     (o,) = small.predict(_Stub(), [f], 1750.0)
     assert (
-        o["predicted"]
-        and f"is 0.3 s long, shorter than the {small.DURATION_S:g} s" in o["warning"]
+        o["predicted"] and f"is 0.3 s long, shorter than the {small.DURATION_S:g} s" in o["warning"]
     )
 
 

@@ -36,6 +36,8 @@ TOML layout (SI units in the key names)::
     fs_hz = 12000.0                  # optional: the sampling rate of the records it was
                                      # identified from [Hz]; a scenario with this rig and no
                                      # fs_hz of its own is sampled at it
+    rpm_range = [1730.0, 1797.0]     # optional: the shaft speeds of those records [r/min];
+                                     # a run far outside them is warned (RigSpeedWarning)
 
     [path]
     gain = 1.0
@@ -101,6 +103,7 @@ from .errors import (
     MAX_ACCELERATION,
     ConfigError,
     check_int,
+    check_positive,
     check_range,
     read_toml,
 )
@@ -113,6 +116,7 @@ __all__ = [
     "Rig",
     "RigGainWarning",
     "RigRateWarning",
+    "RigSpeedWarning",
     "Tone",
     "apply_rig",
     "available_rigs",
@@ -455,6 +459,10 @@ class Rig:
     #: the sampling rate of the records the rig was identified from [Hz] (None: not said); a
     #: scenario with this rig and no ``fs_hz`` of its own is sampled at it
     fs_hz: float | None = None
+    #: the shaft speeds of the records the rig was identified from, ``(lowest, highest)``
+    #: [r/min] (None: not said); its background and tones are those speeds' (a run far outside
+    #: them gets a :class:`RigSpeedWarning`)
+    rpm_range: tuple[float, float] | None = None
     gain: float = 1.0
     gain_provenance: str = "default: the model's output passes unchanged"
     modes: tuple[Mode, ...] = ()
@@ -466,10 +474,20 @@ class Rig:
     model_gains: tuple[ModelGain, ...] = ()
     source: str = field(default="", compare=False)
 
-    KEYS = ("name", "description", "provenance", "input_channel", "end", "fs_hz", "path",
-            "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
+    KEYS = ("name", "description", "provenance", "input_channel", "end", "fs_hz", "rpm_range",
+            "path", "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
 
     def __post_init__(self) -> None:
+        if self.rpm_range is not None:
+            r = self.rpm_range
+            if not isinstance(r, list | tuple) or len(r) != 2:
+                raise ConfigError(
+                    f"rig.rpm_range = {r!r} is invalid; valid: [lowest, highest] shaft speed "
+                    "[r/min]"
+                )
+            lo = check_positive("rig.rpm_range[0]", r[0], "r/min")
+            hi = check_range("rig.rpm_range[1]", r[1], lo, unit="r/min")
+            object.__setattr__(self, "rpm_range", (lo, hi))
         if self.fs_hz is not None:  # checked here for a file and a rig built in code alike;
             # its own modes lie below the Nyquist frequency of its rate
             rate = check_range(
@@ -547,6 +565,7 @@ class Rig:
                 input_channel=ch,
                 end=end,
                 fs_hz=d.get("fs_hz"),  # checked in __post_init__
+                rpm_range=d.get("rpm_range"),  # checked in __post_init__
                 gain=gain,
                 gain_provenance=gprov,
                 modes=tuple(Mode.from_dict(m, f"mode[{i}]") for i, m in enumerate(modes)),
@@ -577,6 +596,8 @@ class Rig:
             out["end"] = self.end
         if self.fs_hz is not None:
             out["fs_hz"] = self.fs_hz
+        if self.rpm_range is not None:
+            out["rpm_range"] = list(self.rpm_range)
         if self.modes:
             out["mode"] = [dataclasses.asdict(m) for m in self.modes]
         if self.background is not None:
@@ -786,6 +807,35 @@ class RigRateWarning(UserWarning):
     background table the sensor signal carries the model's output alone."""
 
 
+class RigSpeedWarning(UserWarning):
+    """A run's shaft speed lies far outside the speeds a rig was identified at: its
+    background and tones are those speeds' machine, while the model's own vibration follows
+    the run's speed."""
+
+
+#: how far outside a rig's ``rpm_range`` a run's speed may lie before :func:`apply_rig` warns
+#: (a share of the range's ends) [-]
+RPM_MARGIN = 0.1
+
+
+def _warn_speed(r: Rig, result) -> None:
+    fsh = _shaft_hz(result)
+    if r.rpm_range is None or fsh is None:
+        return
+    lo, hi = r.rpm_range
+    rpm = 60.0 * fsh
+    if lo * (1.0 - RPM_MARGIN) <= rpm <= hi * (1.0 + RPM_MARGIN):
+        return
+    warnings.warn(
+        f"rig {r.name!r} was identified at {lo:g}-{hi:g} r/min; this run turns at {rpm:g} "
+        "r/min: the rig's background and tones are the machine's at those speeds, while the "
+        "model's own vibration follows the run's (a healthy bearing's ball-pass line grows "
+        "with speed and can stand out of a background that does not)",
+        RigSpeedWarning,
+        stacklevel=3,
+    )
+
+
 class RigGainWarning(UserWarning):
     """A rig's model gain was identified with another defect profile than the run's: it
     matched that profile's level to the records, not this run's."""
@@ -896,6 +946,7 @@ def apply_rig(
         )
     fs = _result_fs(result)
     _warn_coverage(r, fs)
+    _warn_speed(r, result)
     y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)
     channels = dict(result.channels)
     for name, v in (noise or {}).items():

@@ -241,6 +241,15 @@ def _decay_rate(x, fs, fn, bw):
     return float(sigma), len(segs)
 
 
+def _rpm_range(records) -> tuple[float, float] | None:
+    """The lowest and highest shaft speed of ``records`` [r/min] (a speed column: its median),
+    or None when none is known."""
+    v = [float(r.rpm) for r in records if r.rpm]
+    v += [60.0 * float(np.median(r.speed_hz)) for r in records
+          if not r.rpm and getattr(r, "speed_hz", None) is not None]  # fmt: skip
+    return (min(v), max(v)) if v else None
+
+
 def identify_rig(
     records: list,
     *,
@@ -454,6 +463,7 @@ def identify_rig(
         input_channel="acc_y",
         end=end,
         fs_hz=float(fs),
+        rpm_range=_rpm_range(records),
         gain=1.0,
         gain_provenance="output-only identification: the path's direct gain is taken as 1 and "
         "each mode's gain is relative to it (bearingsim.rig_identify, item 3)",
@@ -733,7 +743,9 @@ def rig_to_toml(rig: Rig) -> str:
         return repr(float(v)) if isinstance(v, float) else str(v)
 
     # every top-level value before the tables (a key added to Rig.to_dict is written too)
-    lines = [f"{k} = {val(v)}" for k, v in d.items() if not isinstance(v, dict | list)]
+    lines = [f"{k} = {val(v)}" for k, v in d.items()
+             if not isinstance(v, dict) and not (isinstance(v, list) and v and
+                                                  isinstance(v[0], dict))]  # fmt: skip
     for table in ("path", "background", "sensor"):
         if table in d:
             lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]

@@ -618,7 +618,11 @@ def diagnose_fused(
         notes.append(
             f"leading family {top} (margin {margin:.3f}, p {p:.2f}) is no method's own reading ("
             + ", ".join(f"{v.name} {v.diagnosis.diagnosis}" for v in views)
-            + "): the methods disagree"
+            + (  # every method undecided is not a disagreement (exploratory testing)
+                "): no method settles on a family"
+                if all(v.diagnosis.diagnosis == "uncertain" for v in views)
+                else "): the methods disagree"
+            )
         )
         return _res("uncertain", 0.0, top, p, margin)
     if p >= 0.5:
