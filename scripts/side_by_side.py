@@ -1,7 +1,8 @@
-"""Simulated beside measured: every outer- and inner-race record of ../shared/data/cwru, its
-condition simulated and passed through a rig identified WITHOUT that record's fault size
-(leave-one-mounting-out: Smith & Randall 2015 found the mounting, not the fault size, dominates
-these records). Prints a Markdown table and the share of records within issue 16's bounds.
+"""Simulated beside measured: every fault record (outer race, inner race, ball) of
+../shared/data/cwru, its condition simulated and passed through a rig identified WITHOUT that
+record's fault size (leave-one-mounting-out: Smith & Randall 2015 found the mounting, not the
+fault size, dominates these records). Prints a Markdown table and the share of records
+within issue 16's bounds.
 
     python scripts/side_by_side.py [--model vsm|dem|tvsm|rotor] [--duration-s 2]
         [--slip-percent 1.5] [--pocket-jitter-percent 0]
@@ -40,8 +41,28 @@ from bearingsim.side_by_side import (
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
 
 
+def _check_inputs(a, realism: dict) -> dict:
+    """The manifest rows of ``--data``, after checking the options a run would otherwise
+    refuse record by record (duration, realism keys against the model) and ``--json``'s
+    location (it was written after every simulation, and a bad one ended in a traceback)."""
+    from bearingsim.cli.common import check_outputs
+    from bearingsim.config import Scenario
+
+    check_outputs(("--json", None if a.json is None else str(a.json)))
+    keys = {"duration_s": a.duration_s, **realism}
+    Scenario.from_dict({"model": a.model, **keys}, origin="options")
+    if not a.data.is_dir():
+        raise ConfigError(f"--data = {str(a.data)!r} is not a folder; valid: the CWRU data folder")
+    try:
+        return cwru_manifest(a.data)
+    except OSError as exc:
+        raise ConfigError(f"--data = {str(a.data)!r}: {exc.strerror or exc}") from None
+
+
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(
+        description=" ".join(__doc__.split("\n\n")[0].split())  # the first paragraph
+    )
     ap.add_argument("--model", default="vsm", choices=["vsm", "dem", "tvsm", "rotor"])
     ap.add_argument("--duration-s", type=float, default=2.0)
     ap.add_argument("--slip-percent", type=float, default=SLIP_PERCENT, help="random slip [%%]")
@@ -106,7 +127,11 @@ def main() -> int:
         "defect_profile": a.defect_profile,
         "contact_roughness_m": a.contact_roughness_m,
     }
-    rows = cwru_manifest(a.data)
+    try:  # every input before any simulation: one line, exit 2 (not an error in every row)
+        rows = _check_inputs(a, realism)
+    except ConfigError as exc:
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return 2
     faults = {f: r for f, r in rows.items() if r["fault_diameter_in"]}
     rigs: dict[object, object] = {}  # by mounting set (size split) or by record (load split)
     make_rig = lomo_rig if a.split == "size" else rig_other_loads

@@ -351,3 +351,26 @@ def test_model_path_fit_gives_the_records_spectrum_and_weighs_the_direct_path():
         ConfigError, match="gain_method = 'x' is invalid; valid: power, spectral, whittle"
     ):
         rig_other_loads(CWRU, "12k_Drive_End_IR014_1_170.mat", model_gain="vsm", gain_method="x")
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--duration-s", "-1"], "error: options: duration_s = -1 s is out of range"),
+        (["--slip-percent", "-5"], "error: options: slip_percent = -5 % is out of range"),
+        (["--data", "/nonexistent"], "error: --data = '/nonexistent' is not a folder"),
+        (["--json", "/proc/x.json"], "error: --json = '/proc/x.json' cannot be written"),
+    ],
+)
+def test_the_script_refuses_bad_options_before_any_simulation(args, message):
+    """Exploratory testing (twenty-third session): a negative duration or slip wrote an error
+    into every row and exited 0; --data naming no folder and an unwritable --json (checked
+    after every simulation) ended in tracebacks. Each is now one line on stderr, exit 2."""
+    import subprocess
+    import sys
+
+    script = Path(__file__).resolve().parents[1] / "scripts" / "side_by_side.py"
+    r = subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True,
+                       timeout=120)  # fmt: skip
+    assert r.returncode == 2 and r.stdout == "", (r.returncode, r.stdout[:200])
+    assert r.stderr.startswith(message) and r.stderr.count("\n") == 1, r.stderr
