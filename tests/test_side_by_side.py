@@ -123,6 +123,10 @@ def test_report_section_signals(tmp_path):
     assert rotor_summary.ours == ("yes" if all(r.status == "match" for r in rotor) else "no")
     assert (tmp_path / "signals_side_by_side.png").is_file()
     assert (tmp_path / "report.html").is_file()
+    # the caption named three dashed lines where each panel draws one, unlabelled (exploratory
+    # testing, twenty-third session): each panel's line now has its name in a legend
+    (cap,) = [c for f, c in sec.figures if f == "signals_side_by_side.png"]
+    assert "dashed: the record's fault line, BPFO, BPFI or 2×BSF, as its legend says" in cap
 
 
 @needs_data

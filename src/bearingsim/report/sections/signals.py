@@ -74,7 +74,9 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
         axs[i, 0].set_ylabel("acceleration / RMS [-]")
         axs[i, 1].set_ylabel("amplitude [m/s²]")
         axs[i, 2].set_ylabel("SES / its median [-]")
-        axs[i, 2].axvline(c["fault_hz"], color="C0", lw=0.8, ls="--")
+        line = {"outer": "BPFO", "inner": "BPFI", "ball": "2×BSF"}.get(c["fault"], "fault line")
+        axs[i, 2].axvline(c["fault_hz"], color="C0", lw=0.8, ls="--", label=line)
+        axs[i, 2].legend(fontsize=7, loc="upper right")
     for ax in axs[:-1].ravel():
         ax.tick_params(labelbottom=False)
     axs[-1, 0].set_xlabel("time [ms]")
@@ -88,7 +90,8 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
             fname,
             "Measured (black) and simulated through the leave-one-mounting-out rig (red): the "
             "first 0.1 s normalised by the RMS, the amplitude spectrum, and the whole-band "
-            "squared envelope spectrum over its median below 600 Hz (dashed: BPFO, BPFI, 2×BSF).",
+            "squared envelope spectrum over its median below 600 Hz (dashed: the record's fault "
+            "line, BPFO, BPFI or 2×BSF, as its legend says).",
         )
     )
 
