@@ -109,15 +109,21 @@ def test_report_section_signals(tmp_path):
 
     (sec,) = run_report(tmp_path, quick=True, sections=["signals"], progress=False)
     judged = [r for r in sec.rows if r.status != "info" and "rotor + rig" not in r.quantity]
+    # beside each judged record, its crest factor and ringing band (issue 16, item 5), shown
+    shown = [r for r in sec.rows if r.status == "info" and "crest factor" in r.quantity]
+    assert len(shown) == len(judged) // 4 + 1  # the rotor's record 132 too
+    assert all(re.fullmatch(r"crest [0-9.]+, band [0-9.]+–[0-9.]+ kHz", r.ours) for r in shown)
     assert judged and len(judged) % 4 == 0
     assert all(r.reference_kind == "measured" for r in judged)
     assert {r.status for r in judged} <= {"match", "mismatch"}
     n_rec = len(judged) // 4
     ok_all = sum(all(r.status == "match" for r in judged[4 * i : 4 * i + 4]) for i in range(n_rec))
-    summary, rotor_summary = [r for r in sec.rows if r.status == "info"]
+    summary, rotor_summary = [
+        r for r in sec.rows if r.status == "info" and "crest factor" not in r.quantity
+    ]
     assert summary.ours == f"{ok_all} of {n_rec}"
     # the rotor model beside record 132 (issue 16), four rows against the measurement
-    rotor = [r for r in sec.rows if "rotor + rig" in r.quantity]
+    rotor = [r for r in sec.rows if "rotor + rig" in r.quantity and r.status != "info"]
     assert len(rotor) == 4 and all("CWRU 132" in r.quantity for r in rotor)
     assert all(r.reference_kind == "measured" for r in rotor)
     assert rotor_summary.ours == ("yes" if all(r.status == "match" for r in rotor) else "no")

@@ -136,6 +136,20 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
                 db_level=k == "prominence_db",  # its size is the difference in dB
             )
         )
+
+    # issue 16, item 5 also lists the crest factor and the ringing band, without a bound: shown
+    def shown(x) -> str:
+        return f"crest {x.crest:.3g}, band {x.band_lo_hz / 1e3:.2f}–{x.band_hi_hz / 1e3:.2f} kHz"
+
+    sec.rows.append(
+        info(
+            f"CWRU {num} ({c['fault']} {c['size_in']:.3f} in, {c['end']}, "
+            f"{c['fs_hz'] / 1e3:g} kHz): crest factor [-] and ringing band (fast kurtogram), "
+            f"{what}, beside the measured {shown(m)} (no bound in issue 16)",
+            f"CWRU {num} {c['end']} (measured)",
+            shown(s),
+        )
+    )
     return ok
 
 
