@@ -646,3 +646,23 @@ def test_uncertain_because_no_method_settles_is_not_called_a_disagreement(run_cl
     assert (d["diagnosis"], d["leading"]) == ("uncertain", "inner"), d["diagnosis"]
     why = d["why"]
     assert why.endswith("no method settles on a family") and "disagree" not in why, why
+
+
+def test_a_bearing_overriding_the_results_own_is_noted(run_cli, tmp_path):
+    """Exploratory testing (twenty-third session): ``analyze --bearing 6203-cwru`` on a 6205
+    simulation searched the 6203's lines without a word (a --rpm override gets a note)."""
+    p = tmp_path / "b.nc"
+    r = run_cli("simulate", "--model", "vsm", "--bearing", "6205-cwru", "--fault", "outer",
+                "--duration-s", "0.5", "--rig", "cwru-de-12k", "-o", str(p))  # fmt: skip
+    assert r.code == 0, r.err
+    r = run_cli("analyze", str(p), "--bearing", "6203-cwru")
+    assert (
+        r.code == 0
+        and ("  note: bearing = 6203-cwru overrides the 6205-cwru the result was simulated with")
+        in r.out
+    ), r.out
+    d = run_cli("analyze", str(p), "--bearing", "6203-cwru", "--json").json()
+    d = d[0] if isinstance(d, list) else d
+    assert (d["bearing"], d["bearing_file"]) == ("6203-cwru", "6205-cwru")
+    r = run_cli("analyze", str(p), "--bearing", "6205-cwru")  # its own: no note
+    assert "overrides the" not in r.out

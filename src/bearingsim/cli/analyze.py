@@ -63,6 +63,14 @@ def speed_note(rpm: float, own: float) -> str:
     )
 
 
+def bearing_note(given: str, own: str) -> str:
+    """The note of a --bearing that overrides the bearing a simulated result states."""
+    return (
+        f"bearing = {given} overrides the {own} the result was simulated with: the fault lines "
+        f"were searched at {given}'s frequencies"
+    )
+
+
 def signal_unit(rec) -> str | None:
     """The unit of a record's samples: m/s^2 for a CWRU ``.mat`` channel and a simulation
     result's (``sensor``, ``x``, ``y``, ``x_fe``, ``y_fe``: accelerations; the plot said "signal
@@ -258,6 +266,11 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     # a text file named like a CWRU fan-end record gets the fan end's bearing, as a .mat does
     end = rec.channel if mat else cwru_end(path)
     bearing = req.bearing or rec.bearing or resolve_bearing(cwru_bearing(end))
+    overridden = (  # a --bearing that is not the one a simulated result states
+        rec.bearing.id
+        if req.bearing is not None and rec.bearing is not None and req.bearing != rec.bearing
+        else None
+    )
     if not mat and end == "FE" and bearing.id == cwru_bearing("FE"):
         channel_source = f"{channel_source}; bearing from the file name (Fan_End)"
     # an order-tracked record's angle grid is checked against the memory budget (a speed
@@ -290,6 +303,8 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         **rec.info,
         "rpm_source": rpm_source,
     }
+    if overridden is not None:
+        out["bearing_file"] = overridden  # the result's own, which --bearing overrode
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
@@ -298,8 +313,8 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 
 def _result_notes(out: dict[str, Any]) -> list[str]:
     """The notes about a simulated result, from what its reader recorded (``antialiased``,
-    ``noise_free``, ``rpm_file``: keys of the file's output): added to ``notes`` and printed
-    by the text output."""
+    ``noise_free``, ``rpm_file``, ``bearing_file``: keys of the file's output): added to
+    ``notes`` and printed by the text output."""
     notes = []
     if out.get("antialiased") is False:
         notes.append(ALIASING_NOTE)
@@ -308,6 +323,8 @@ def _result_notes(out: dict[str, Any]) -> list[str]:
     own = out.get("rpm_file")  # a result's own speed, when --rpm overrode it
     if own is not None and abs(out["rpm"] / own - 1.0) > SPEED_NOTE_REL:
         notes.append(speed_note(out["rpm"], own))
+    if out.get("bearing_file"):  # a result's own bearing, when --bearing overrode it
+        notes.append(bearing_note(out["bearing"], out["bearing_file"]))
     return notes
 
 
