@@ -165,3 +165,19 @@ def test_a_second_run_leaves_one_report_and_records_how_it_was_made(tmp_path, mo
     assert sorted(p.name for p in tmp_path.glob("*.png")) == ["fake_b.png", "mine.png"]
     run = json.loads((tmp_path / "run.json").read_text())
     assert run["quick"] is False and run["sections"] == ["fake_b"]
+
+
+def test_a_record_standing_in_for_the_papers_says_so():
+    """Exploratory testing (twenty-third session): the fig. 15 rows set the paper's 0.014 in
+    inner-race simulation beside CWRU 107, a 0.007 in fault (the paper's record is not in
+    shared/data), and the row did not say so. The rows' note now starts with why the record
+    stands in."""
+    from bearingsim.report import Section
+    from bearingsim.report.sections.vsm import _peak_rows
+
+    sec = Section("vsm", "t")
+    why = "CWRU 107 is a 0.007 in (0.1778 mm) fault standing in for the paper's record; "
+    _peak_rows(sec, "fig. 15", "107", 10.0, {"VSM": 1.0, "TVSM": 2.0, "DEM": 3.0}, why)
+    assert len(sec.rows) == 3 and all(r.note.startswith(why) for r in sec.rows)
+    _peak_rows(sec, "other", "109", 10.0, {"VSM": 1.0, "TVSM": 2.0, "DEM": 3.0})
+    assert sec.rows[-1].note.startswith("the seed's own models miss the tests too")
