@@ -17,7 +17,7 @@ import numpy as np
 from ..._version import __version__
 from ...catalog import resolve_bearing
 from ...config import Model, RingScenario, Solver
-from ...errors import SolverError
+from ...errors import ConfigError, SolverError
 from ...geometry import (
     characteristic_frequencies,
     check_unused_defect,
@@ -199,6 +199,27 @@ def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: in
     return Estimate(what, raw + channels + table, float(n) * decim)
 
 
+def _check_deflection(inputs: ModelInputs) -> None:
+    """Refuse a stiffness (or load) whose static deflection exceeds the rolling element's
+    diameter: not a contact's, and the run diverged at t = 0 with a message about the state's
+    bound (``stiffness_n_per_m1_5 = 1`` passed every check before; exploratory testing,
+    twenty-third session)."""
+    from ...contact.hertz import element_stiffness
+
+    table0, _res = static_path(inputs, np.zeros(1))
+    u = math.hypot(float(table0[0, 0]), float(table0[0, 1]))
+    d = inputs.bearing.element_diameter
+    if not u < d:  # also NaN
+        hertz = element_stiffness(inputs.bearing)[0]
+        f = math.hypot(inputs.fx, inputs.fy)
+        raise ConfigError(
+            f"stiffness_n_per_m1_5 = {inputs.k_ball:.6g} N/m^1.5 under |(fx_n, fy_n)| = "
+            f"{f:.6g} N puts the static deflection at {u:.3g} m, more than the rolling "
+            f"element's diameter ({d:.3g} m); valid: a contact's stiffness (Hertz gives "
+            f"{hertz:.3g} N/m^1.5 for {inputs.bearing.id}, the default) and a load it carries"
+        )
+
+
 def plan_ring(
     scenario: RingScenario, budget: Budget | None = None, allow_overload: bool = False
 ) -> RingPlan:
@@ -223,6 +244,7 @@ def plan_ring(
     )
     inputs.axial_state  # noqa: B018 -- solved here: a bad axial load fails before any work
     check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
+    _check_deflection(inputs)
     decim, dt, w = choose_steps(scenario, inputs)
     chunk = max(1, min(CHUNK, MAX_CHUNK_STEPS // decim))
     est = check_budget(_estimate(scenario, inputs, decim, chunk), budget)
