@@ -818,8 +818,9 @@ class RigSpeedWarning(UserWarning):
 RPM_MARGIN = 0.1
 
 
-def _warn_speed(r: Rig, result) -> None:
-    fsh = _shaft_hz(result)
+def _warn_speed(r: Rig, fsh: float | None) -> None:
+    """Warn when the shaft speed ``fsh`` [Hz] lies more than :data:`RPM_MARGIN` outside
+    ``r.rpm_range``."""
     if r.rpm_range is None or fsh is None:
         return
     lo, hi = r.rpm_range
@@ -946,8 +947,9 @@ def apply_rig(
         )
     fs = _result_fs(result)
     _warn_coverage(r, fs)
-    _warn_speed(r, result)
-    y = r.apply(x, fs, shaft_hz=_shaft_hz(result), seed=sd)
+    shaft_hz = _shaft_hz(result)
+    _warn_speed(r, shaft_hz)
+    y = r.apply(x, fs, shaft_hz=shaft_hz, seed=sd)
     channels = dict(result.channels)
     for name, v in (noise or {}).items():
         channels[name] = channels[name] + v

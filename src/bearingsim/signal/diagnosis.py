@@ -65,6 +65,7 @@ MIN_REVOLUTIONS = 4
 __all__ = [
     "BandSelection",
     "FAMILIES",
+    "FAMILY_LINE",
     "Diagnosis",
     "DiagnosisRule",
     "MIN_REVOLUTIONS",
@@ -78,6 +79,8 @@ __all__ = [
 ]
 
 FAMILIES = ("outer", "inner", "ball")
+#: the fundamental line label of each fault family (the labels of :func:`find_lines`)
+FAMILY_LINE = {"outer": "BPFO", "inner": "BPFI", "ball": "2xBSF"}
 
 
 class BandSelection(enum.Enum):
@@ -634,7 +637,7 @@ def diagnose_spectrum(
     if drop:
         peaks = [replace(p, detected=False) if _family(p.label) in drop else p for p in peaks]
     by = {p.label: p for p in peaks}
-    base = {"outer": "BPFO", "inner": "BPFI", "ball": "2xBSF"}
+    base = FAMILY_LINE
     side = {
         "outer": [],
         "inner": [f"BPFI-{SHAFT}", f"BPFI+{SHAFT}", f"2xBPFI-{SHAFT}", f"2xBPFI+{SHAFT}"],

@@ -125,7 +125,14 @@ from ..geometry import Bearing
 from .benchmark import cepstral_prewhitening, discrete_random_separation
 from .coherence import MIN_WINDOW as COHERENCE_MIN_WINDOW
 from .coherence import cyclic_modulation_coherence
-from .diagnosis import FAMILIES, Diagnosis, DiagnosisRule, diagnose_spectrum, min_band_width
+from .diagnosis import (
+    FAMILIES,
+    FAMILY_LINE,
+    Diagnosis,
+    DiagnosisRule,
+    diagnose_spectrum,
+    min_band_width,
+)
 from .envelope import BandEnvelopes, check_band
 from .kurtogram import Infogram, Kurtogram, band_maps
 from .peaks import match_peaks
@@ -271,7 +278,7 @@ def view_scores(d: Diagnosis, rule: DiagnosisRule) -> tuple[dict[str, float], li
     """
     by = {p.label: p for p in d.peaks}
     t = rule.threshold_db
-    base = {"outer": "BPFO", "inner": "BPFI", "ball": "2xBSF"}
+    base = FAMILY_LINE
     side = {
         "outer": [],
         "inner": ["BPFI-fr", "BPFI+fr", "2xBPFI-fr", "2xBPFI+fr"],

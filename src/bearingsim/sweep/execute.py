@@ -547,19 +547,28 @@ def connect(
 PROBE_BATCH = 3
 
 
+def _batches(cl: Any, fn: Callable, idx: list[int], sdicts: list[dict[str, Any]], start: int,
+             size: int) -> Iterator[tuple[list[int], Any]]:  # fmt: skip
+    """``(part, fn(its scenario dicts))`` on a worker for the runs ``idx[start:]`` in batches
+    of ``size``, then twice as many at a time (the caller stops at the first it needs)."""
+    while start < len(idx):
+        part = idx[start : start + size]
+        yield part, cl.submit(fn, [sdicts[i] for i in part], pure=False).result()
+        start, size = start + size, 2 * size
+
+
 def _probe_rest(
     cl: Any, first: dict[str, Any] | str, idx: list[int], sdicts: list[dict[str, Any]]
 ) -> dict[str, Any] | str:
     """The probe of a group whose first :data:`PROBE_BATCH` runs gave ``first``: when none of
     them started, the group's later runs in growing batches until one starts; the first run's
     error text when none does (the group's runs are then recorded as failed)."""
-    p, start, size = first, PROBE_BATCH, 2 * PROBE_BATCH
-    while isinstance(p, str) and start < len(idx):
-        p2 = cl.submit(probe_first, [sdicts[i] for i in idx[start : start + size]], pure=False)
-        p2 = p2.result()
-        p = p2 if not isinstance(p2, str) else p
-        start, size = start + size, 2 * size
-    return p
+    if not isinstance(first, str):
+        return first
+    for _part, p in _batches(cl, probe_first, idx, sdicts, PROBE_BATCH, 2 * PROBE_BATCH):
+        if not isinstance(p, str):
+            return p
+    return first
 
 
 def _longest_valid(cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, Any]]) -> int:
@@ -571,13 +580,9 @@ def _longest_valid(cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, An
     if min(ns) == max(ns):
         return ns[0]
     order = sorted(range(len(ns)), key=lambda i: -ns[i])
-    start, size = 0, PROBE_BATCH
-    while start < len(order):
-        part = order[start : start + size]
-        k = cl.submit(first_valid, [sdicts[i] for i in part], pure=False).result()
+    for part, k in _batches(cl, first_valid, order, sdicts, 0, PROBE_BATCH):
         if k >= 0:
             return ns[part[k]]
-        start, size = start + size, 2 * size
     return max(ns)
 
 

@@ -33,6 +33,7 @@ __all__ = [
     "probe_first",
     "probe_groups",
     "probe_run",
+    "start_error",
     "SweepPlan",
     "timing_probe",
     "timing_run",
@@ -82,18 +83,27 @@ def check_runs(scenarios: list[Scenario], progress: bool = False) -> list[dict[s
     rotor run (its FE model is built)."""
     from tqdm import tqdm
 
-    from ..simulation import validate_scenario
-
     bad = []
     with collect_warnings():  # the runs' own warnings: each run records them
         for i, sc in enumerate(
             tqdm(scenarios, desc="checking runs", unit="run", disable=None if progress else True)
         ):
-            try:
-                validate_scenario(sc)
-            except BearingsimError as exc:
-                bad.append({"run": i, "error": " ".join(str(exc).split())})
+            err = start_error(sc)
+            if err is not None:
+                bad.append({"run": i, "error": err})
     return bad
+
+
+def start_error(scenario: Scenario | dict[str, Any]) -> str | None:
+    """The one-line error a run of ``scenario`` would stop at before any work
+    (:func:`bearingsim.simulation.validate_scenario` with a sweep's defaults), or None."""
+    from ..simulation import as_scenario, validate_scenario
+
+    try:
+        validate_scenario(as_scenario(scenario))
+    except BearingsimError as exc:
+        return " ".join(str(exc).split())
+    return None
 
 
 # ------------------------------------------------------------------------------ timing
@@ -156,16 +166,8 @@ def _group_key(sd: dict[str, Any]) -> tuple:
 def first_valid(candidates: list[dict[str, Any]]) -> int:
     """Position in ``candidates`` (scenario dicts) of the first that passes its check
     (:func:`bearingsim.simulation.validate_scenario`), or -1 when none does."""
-    from ..simulation import validate_scenario
-
     with collect_warnings():
-        for k, sd in enumerate(candidates):
-            try:
-                validate_scenario(Scenario.from_dict(sd))
-            except BearingsimError:
-                continue
-            return k
-    return -1
+        return next((k for k, sd in enumerate(candidates) if start_error(sd) is None), -1)
 
 
 def probe_groups(
@@ -334,6 +336,7 @@ def plan_sweep(
     probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
     n = len(scenarios)
     ok = [i for i in range(n) if i not in bad]
+    n_ok = len(ok)  # a run that cannot start stores no signal
     layout = make_layout(spec, scenarios, probes, max(scenarios[i].n_samples for i in ok))
     w = workers or os.cpu_count() or 1
     raw_per_run = sum(8 * layout.n_time * max(1, c.n_extra) for c in layout.channels)
@@ -369,9 +372,8 @@ def plan_sweep(
     total = float(np.sum(est))
     # ideal scaling over the workers that get a run, but no less than the longest run (a run
     # runs on one worker); NaN (no estimate) stays NaN
-    wall = float(np.maximum(total / min(w, len(ok)), np.max(est)))
+    wall = float(np.maximum(total / min(w, n_ok), np.max(est)))
     ns = [scenarios[i].n_samples for i in ok]
-    n_ok = len(ok)  # a run that cannot start stores no signal
     return SweepPlan(
         n_runs=n,
         combine=spec.combine.value,

@@ -170,7 +170,8 @@ def choose_steps(scenario: RingScenario, inputs: ModelInputs) -> tuple[int, floa
 @dataclass(frozen=True)
 class RingPlan:
     """A checked ring-model run: its inputs, steps and resource estimate
-    (:func:`plan_ring`)."""
+    (:func:`plan_ring`), and the static state at ``t = 0`` (``static_path``'s table row and
+    residual, solved once for the deflection check and the run's initial state)."""
 
     inputs: ModelInputs
     decim: int
@@ -178,6 +179,7 @@ class RingPlan:
     omega_max: float
     chunk: int
     estimate: Estimate
+    static0: tuple[np.ndarray, np.ndarray]
 
 
 def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: int) -> Estimate:
@@ -199,14 +201,15 @@ def _estimate(scenario: RingScenario, inputs: ModelInputs, decim: int, chunk: in
     return Estimate(what, raw + channels + table, float(n) * decim)
 
 
-def _check_deflection(inputs: ModelInputs) -> None:
-    """Refuse a stiffness (or load) whose static deflection exceeds the rolling element's
-    diameter: not a contact's, and the run diverged at t = 0 with a message about the state's
-    bound (``stiffness_n_per_m1_5 = 1`` passed every check before; exploratory testing,
+def _check_deflection(inputs: ModelInputs) -> tuple[np.ndarray, np.ndarray]:
+    """The static state at ``t = 0`` (``static_path``'s table and residual), after refusing a
+    stiffness (or load) whose static deflection exceeds the rolling element's diameter: not a
+    contact's, and the run diverged at t = 0 with a message about the state's bound
+    (``stiffness_n_per_m1_5 = 1`` passed every check before; exploratory testing,
     twenty-third session)."""
     from ...contact.hertz import element_stiffness
 
-    table0, _res = static_path(inputs, np.zeros(1))
+    table0, res0 = static_path(inputs, np.zeros(1))
     u = math.hypot(float(table0[0, 0]), float(table0[0, 1]))
     d = inputs.bearing.element_diameter
     if not u < d:  # also NaN
@@ -218,6 +221,7 @@ def _check_deflection(inputs: ModelInputs) -> None:
             f"element's diameter ({d:.3g} m); valid: a contact's stiffness (Hertz gives "
             f"{hertz:.3g} N/m^1.5 for {inputs.bearing.id}, the default) and a load it carries"
         )
+    return table0, res0
 
 
 def plan_ring(
@@ -244,11 +248,11 @@ def plan_ring(
     )
     inputs.axial_state  # noqa: B018 -- solved here: a bad axial load fails before any work
     check_speed(inputs.bearing, scenario.rpm, scenario.fs_hz)
-    _check_deflection(inputs)
+    static0 = _check_deflection(inputs)
     decim, dt, w = choose_steps(scenario, inputs)
     chunk = max(1, min(CHUNK, MAX_CHUNK_STEPS // decim))
     est = check_budget(_estimate(scenario, inputs, decim, chunk), budget)
-    return RingPlan(inputs, decim, dt, w, chunk, est)
+    return RingPlan(inputs, decim, dt, w, chunk, est, static0)
 
 
 def check_ring(
@@ -274,7 +278,7 @@ def run_ring(
     fs = scenario.fs_hz
     q = scenario.oversampling
     fs_int = q * fs  # the internal rate (antialias: q > 1)
-    table0, res0 = static_path(inputs, np.zeros(1))
+    table0, res0 = plan.static0
     y0 = np.array([table0[0, 0], table0[0, 1], 0.0, 0.0])
     decim, dt, w = plan.decim, plan.dt, plan.omega_max
     if scenario.solver is Solver.RK4:

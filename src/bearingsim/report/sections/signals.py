@@ -23,6 +23,7 @@ import numpy as np
 from ...io.cwru import cwru_data_dir, cwru_manifest, cwru_record_number
 from ...signal import amplitude_spectrum
 from ...signal.benchmark import squared_envelope_spectrum
+from ...signal.diagnosis import FAMILY_LINE
 from .. import Context, Section, info, judge
 from ..figures import FULL_WIDTH, new_figure, save_figure
 
@@ -74,7 +75,7 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
         axs[i, 0].set_ylabel("acceleration / RMS [-]")
         axs[i, 1].set_ylabel("amplitude [m/s²]")
         axs[i, 2].set_ylabel("SES / its median [-]")
-        line = {"outer": "BPFO", "inner": "BPFI", "ball": "2×BSF"}.get(c["fault"], "fault line")
+        line = FAMILY_LINE.get(c["fault"], "fault line").replace("2x", "2×")
         axs[i, 2].axvline(c["fault_hz"], color="C0", lw=0.8, ls="--", label=line)
         axs[i, 2].legend(fontsize=7, loc="upper right")
     for ax in axs[:-1].ravel():
