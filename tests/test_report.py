@@ -117,6 +117,28 @@ def test_levels_in_db_get_their_size_and_rank_among_the_misses():
     assert html.index("prominence [dB]") < html.index("RMS [m/s²]")
 
 
+def test_a_row_judged_on_its_own_bound_shows_its_size_in_the_difference_column(tmp_path):
+    """The side-by-side rows (judge: no relative tolerance) left the section table's difference
+    column empty (last note's planning list); they now show their size, a compare row its
+    relative difference, and a row without numbers a dash."""
+    import re
+
+    from bearingsim.report import Section, compare, info, judge
+    from bearingsim.report.html import write_html
+
+    rows = [
+        judge("RMS [m/s²]", "CWRU 132", 1.0, 5.0, False, kind="measured"),
+        compare("f [Hz]", "paper", 100.0, 101.0, 0.05, kind="paper"),
+        info("crest [-]", "ours", "crest 4"),
+    ]
+    write_html(tmp_path / "r.html", [Section("s", "t", rows=rows)], quick=True)
+    page = (tmp_path / "r.html").read_text()
+    table = page[page.index("<th>difference</th>") :]
+    cells = re.findall(r"<tr class='\w+'><td>[^<]*</td><td>[^<]*</td><td>[^<]*</td><td>[^<]*"
+                       r"</td><td>([^<]*)</td>", table)  # fmt: skip
+    assert cells == ["5× high (+14.0 dB)", "+1.00 %", "–"]
+
+
 def test_a_side_by_side_rows_ratio_reads_on_its_side_of_the_bound():
     """Exploratory testing (twentieth session): the signals section printed a kurtosis ratio
     of 1.502 as "1.5×; bound ×1.5" in a mismatch row. The ratio (or dB difference) now takes

@@ -234,6 +234,11 @@ def test_apply_to_a_simulation_and_save(rig_file, tmp_path):
             "mode[0].frequency_hz = 3350 Hz is at or above the Nyquist frequency of the rig's "
             "fs_hz (3000 Hz)",
         ),
+        # a channel no model has failed only when a run applied the rig (twenty-fourth session)
+        (
+            ('input_channel = "acc_y"', 'input_channel = "acc_z"'),
+            "rig.input_channel = 'acc_z' is invalid; valid: acc_x, acc_y, acc_x_fe, acc_y_fe",
+        ),
         # exploratory testing (fourteenth session): 1e308 overflowed the mode filters with a
         # traceback, 1e200 wrote an infinite RMS
         ((_MG, _MG.replace("6.5", "1e308")), "model_gain[0].scale = 1e+308 is out of range"),

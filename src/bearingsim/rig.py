@@ -124,6 +124,10 @@ __all__ = [
     "load_rig",
 ]
 
+#: the models' acceleration channels a rig can take as its input (ring models: ``acc_x``,
+#: ``acc_y``; the rotor model also the fan-end housing's ``acc_x_fe``, ``acc_y_fe``)
+INPUT_CHANNELS = ("acc_x", "acc_y", "acc_x_fe", "acc_y_fe")
+
 #: folder of the rig profiles shipped with the package (``bearingsim/rigs/NAME.toml``)
 PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 
@@ -522,8 +526,10 @@ class Rig:
                 raise ConfigError("rig.description must be a text")
             prov = _provenance(d, "rig")
             ch = d.get("input_channel", "acc_y")
-            if not isinstance(ch, str) or not ch:
-                raise ConfigError(f"rig.input_channel = {ch!r} is invalid; valid: a channel name")
+            if ch not in INPUT_CHANNELS:  # a typo failed only when a run applied the rig
+                raise ConfigError(
+                    f"rig.input_channel = {ch!r} is invalid; valid: " + ", ".join(INPUT_CHANNELS)
+                )
             end = d.get("end")
             if end is not None and end not in ("DE", "FE"):
                 raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")

@@ -141,10 +141,15 @@ def write_html(path: Path, sections, quick: bool) -> None:
             parts.append(f"<p>{html.escape(s.text)}</p>")
         parts.append(
             "<table><tr><th>quantity</th><th>source</th><th>reference</th><th>ours</th>"
-            "<th>rel. diff</th><th>kind</th><th>status</th><th>note</th></tr>"
+            "<th>difference</th><th>kind</th><th>status</th><th>note</th></tr>"
         )
         for r in s.rows:
-            rel = "–" if r.rel_diff is None else f"{100 * r.rel_diff:+.2f} %"
+            # a row judged against a bound of its own (the side-by-side's ratios) has no
+            # rel_diff: its size (a factor, or dB) filled an empty column (twenty-fourth session)
+            if r.rel_diff is None:
+                rel = html.escape(r.size) or "–"
+            else:
+                rel = f"{100 * r.rel_diff:+.2f} %"
             status = r.status
             if r.verified_by:
                 status += f"<br><small>verified by {html.escape(r.verified_by)}</small>"
