@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -880,3 +881,72 @@ def test_a_run_far_from_the_rigs_speeds_is_warned(tmp_path):
         Rig(name="x", description="", provenance="t", rpm_range=(1500.0, 1000.0))
     r = Rig(name="x", description="", provenance="t", rpm_range=(1500.0, 1600.0))
     assert Rig.from_dict(r.to_dict()) == r and r.to_dict()["rpm_range"] == [1500.0, 1600.0]
+
+
+def _law(text: str) -> str:
+    """RIG_TOML with a speed law in its [background] table."""
+    return RIG_TOML.replace(
+        "psd_m2_per_s4_per_hz = [1e-4, 1e-6]\n",
+        "psd_m2_per_s4_per_hz = [1e-4, 1e-6]\n" + text,
+    )
+
+
+def test_a_background_speed_law_scales_its_amplitude_and_nothing_else(tmp_path):
+    """A background with ``speed_exponent`` n and ``rpm_ref`` (twenty-fourth session; left for
+    planning last session: a rig's background did not grow with speed) is the table at
+    ``rpm_ref`` and ``(N / rpm_ref)^n`` times it in amplitude at N: the same draws, so at twice
+    the reference speed with n = 2 exactly four times the samples. Without a law, and at the
+    reference speed, the samples are those of before, bit for bit."""
+    p = tmp_path / "law.toml"
+    p.write_text(_law("speed_exponent = 2.0\nrpm_ref = 1500.0\n"), encoding="utf-8")
+    law = replace(load_rig(p), modes=(), tones=(), noise_rms_m_per_s2=0.0)
+    bare = replace(law, background=replace(law.background, speed_exponent=None, rpm_ref=None))
+    z = np.zeros(4096)
+    at_ref = law.apply(z, 12000.0, shaft_hz=25.0, seed=3)
+    assert np.array_equal(at_ref, bare.apply(z, 12000.0, shaft_hz=25.0, seed=3))
+    assert np.array_equal(bare.apply(z, 12000.0, shaft_hz=50.0, seed=3), at_ref)
+    assert np.allclose(law.apply(z, 12000.0, shaft_hz=50.0, seed=3), 4.0 * at_ref, rtol=1e-12)
+    assert np.array_equal(law.apply(z, 12000.0, seed=3), at_ref)  # no speed: the table's
+    assert law.background.speed_factor(12.5) == 0.25
+    assert Rig.from_dict(law.to_dict()) == law  # saved and reloaded
+    assert list(law.to_dict()["background"])[-1] == "provenance"
+
+
+@pytest.mark.parametrize(
+    ("text", "msg"),
+    [
+        ("speed_exponent = 2.0\n", r"background.rpm_ref is missing \(speed_exponent is given\)"),
+        ("rpm_ref = 1500.0\n", r"background.speed_exponent is missing \(rpm_ref is given\)"),
+        (
+            "speed_exponent = 9.0\nrpm_ref = 1500.0\n",
+            r"background.speed_exponent = 9 is out of range; valid range \[-4, 4\]$",
+        ),
+        (
+            "speed_exponent = 2.0\nrpm_ref = 0.0\n",
+            r"background.rpm_ref = 0 r/min is out of range; valid range \(0, inf\) r/min$",
+        ),
+        ("speed_exponent = nan\nrpm_ref = 1500.0\n", r"background.speed_exponent = nan is not"),
+    ],
+)
+def test_a_bad_speed_law_is_one_line(tmp_path, text, msg):
+    p = tmp_path / "bad.toml"
+    p.write_text(_law(text), encoding="utf-8")
+    with pytest.raises(ConfigError, match="^bad.toml: " + msg):
+        load_rig(p)
+    r = _cli("rig", "show", str(p), cwd=tmp_path)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+def test_the_speed_warning_says_when_the_background_follows_the_speed(tmp_path):
+    """Outside the rig's speeds the run is still warned (the law is an extrapolation there),
+    but the warning no longer says the background stays the records'."""
+    from bearingsim.rig import RigSpeedWarning
+
+    p = tmp_path / "law.toml"
+    p.write_text(_law("speed_exponent = 2.0\nrpm_ref = 1500.0\n").replace(
+        'input_channel = "acc_y"', 'input_channel = "acc_y"\nrpm_range = [1000.0, 2000.0]'
+    ), encoding="utf-8")  # fmt: skip
+    with pytest.warns(RigSpeedWarning, match=r"its background is scaled as speed\^2, a law "):
+        simulate(dict(model="vsm", duration_s=0.01, rpm=3000.0, rig=str(p), fs_hz=12000.0))
+    r = _cli("rig", "show", str(p), cwd=tmp_path)
+    assert "background amplitude x (speed / 1500 r/min)^2" in r.stdout, r.stdout

@@ -15,7 +15,8 @@ data, applied to any model's output as a linear system plus additive signals:
   discretised as the digital resonator with the same centre, gain and half-power bandwidth
   (:meth:`Mode.sos`) and applied as second-order sections;
 * ``b(t)`` -- the machine's background vibration: Gaussian noise whose one-sided power spectral
-  density follows the rig's table (log-log interpolation between its points, zero outside);
+  density follows the rig's table (log-log interpolation between its points, zero outside),
+  optionally scaled with the shaft speed (``(N / rpm_ref)^speed_exponent`` in amplitude);
 * tones -- discrete lines at multiples of the shaft speed (``order``) or at fixed frequencies,
   with seeded random phases;
 * ``n(t)`` -- the sensor's white noise of a given RMS.
@@ -52,6 +53,8 @@ TOML layout (SI units in the key names)::
     [background]
     frequency_hz = [20.0, 500.0, 6000.0]
     psd_m2_per_s4_per_hz = [1e-4, 1e-5, 1e-6]
+    speed_exponent = 2.0             # optional, with rpm_ref: the table is the background at
+    rpm_ref = 1500.0                 # rpm_ref [r/min]; at N its amplitude is (N/rpm_ref)^2 x
     provenance = "..."
 
     [[tone]]
@@ -139,6 +142,10 @@ PROFILES_DIR = Path(__file__).resolve().parent / "rigs"
 MAX_GAIN = 1e6
 #: largest identification rate a rig file takes [Hz] (a rate a recorder has; 10 MHz)
 MAX_RIG_RATE_HZ = 1e7
+#: largest magnitude of a background's speed exponent [-]: forces from unbalance and
+#: misalignment grow as speed^2 (their accelerations with them); a law steeper than speed^4
+#: either way is a typo or a fit of scatter, not a machine
+MAX_SPEED_EXPONENT = 4.0
 
 
 def _provenance(table: dict[str, Any], where: str) -> str:
@@ -349,17 +356,52 @@ class ModelGain:
 @dataclass(frozen=True)
 class Background:
     """Background vibration: one-sided acceleration PSD ``psd`` [(m/s^2)^2/Hz] at
-    ``frequency_hz`` [Hz] (log-log interpolation between the points, zero outside)."""
+    ``frequency_hz`` [Hz] (log-log interpolation between the points, zero outside).
+
+    ``speed_exponent`` [-] and ``rpm_ref`` [r/min], given together or not at all: the table is
+    the background at the shaft speed ``rpm_ref``, and at a speed ``N`` its amplitude is
+    ``(N / rpm_ref)^speed_exponent`` times it (the PSD the square of that; the frequencies
+    stay: a machine's structure rings where it rings). :func:`bearingsim.rig_identify.
+    identify_rig` fits the exponent when its records span enough speeds
+    (:data:`~bearingsim.rig_identify.MIN_SPEED_SPAN`); without it the background is the same
+    at every speed (the records' own)."""
 
     frequency_hz: tuple[float, ...]
     psd: tuple[float, ...]
     provenance: str
+    speed_exponent: float | None = None
+    rpm_ref: float | None = None
 
-    KEYS = ("frequency_hz", "psd_m2_per_s4_per_hz", "provenance")
+    KEYS = ("frequency_hz", "psd_m2_per_s4_per_hz", "speed_exponent", "rpm_ref", "provenance")
+
+    def speed_factor(self, shaft_hz: float | None) -> float:
+        """The background's amplitude at shaft speed ``shaft_hz`` [Hz] over the table's [-]:
+        1 without a speed law or a speed."""
+        if self.speed_exponent is None or self.rpm_ref is None or shaft_hz is None:
+            return 1.0
+        return float((60.0 * shaft_hz / self.rpm_ref) ** self.speed_exponent)
 
     @classmethod
     def from_dict(cls, d: Any, where: str) -> Background:
         d = _keys(d, cls.KEYS, where)
+        if ("speed_exponent" in d) != ("rpm_ref" in d):
+            given, missing = (
+                ("speed_exponent", "rpm_ref") if "speed_exponent" in d else
+                ("rpm_ref", "speed_exponent")
+            )  # fmt: skip
+            raise ConfigError(
+                f"{where}.{missing} is missing ({given} is given); valid: speed_exponent and "
+                "rpm_ref together, or neither"
+            )
+        law = {}
+        if "speed_exponent" in d:
+            law = {
+                "speed_exponent": check_range(
+                    f"{where}.speed_exponent", d["speed_exponent"], -MAX_SPEED_EXPONENT,
+                    MAX_SPEED_EXPONENT
+                ),
+                "rpm_ref": check_positive(f"{where}.rpm_ref", d["rpm_ref"], "r/min"),
+            }  # fmt: skip
         f, s = d.get("frequency_hz"), d.get("psd_m2_per_s4_per_hz")
         if not isinstance(f, list) or not isinstance(s, list) or len(f) != len(s) or len(f) < 2:
             raise ConfigError(
@@ -376,7 +418,7 @@ class Background:
                 f"{where}.frequency_hz[{k}] = {fv[k]:g} Hz does not exceed [{k - 1}] = "
                 f"{fv[k - 1]:g} Hz; valid: frequencies that increase strictly"
             )
-        return cls(tuple(fv), tuple(sv), _provenance(d, where))
+        return cls(tuple(fv), tuple(sv), _provenance(d, where), **law)
 
     def psd_at(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
         """PSD [(m/s^2)^2/Hz] at frequencies ``f`` [Hz] (log-log interpolation, 0 outside)."""
@@ -397,12 +439,18 @@ class Background:
         f = np.geomspace(self.frequency_hz[0], hi, 2000)
         return float(np.sqrt(np.trapezoid(self.psd_at(f), f)))
 
-    def synthesize(self, n: int, fs: float, rng: np.random.Generator) -> NDArray[np.float64]:
-        """``n`` samples at ``fs`` [Hz] of Gaussian noise with this PSD [m/s^2]: each Fourier
-        coefficient complex normal with ``E|X_k|^2 = S(f_k) fs n / 2``, so the periodogram
-        ``2 |X_k|^2 / (fs n)`` has expectation ``S(f_k)``."""
+    def synthesize(
+        self, n: int, fs: float, rng: np.random.Generator, shaft_hz: float | None = None
+    ) -> NDArray[np.float64]:
+        """``n`` samples at ``fs`` [Hz] of Gaussian noise with this PSD [m/s^2] at the shaft
+        speed ``shaft_hz`` [Hz] (:meth:`speed_factor`): each Fourier coefficient complex normal
+        with ``E|X_k|^2 = S(f_k) fs n / 2``, so the periodogram ``2 |X_k|^2 / (fs n)`` has
+        expectation ``S(f_k)``."""
         f = np.fft.rfftfreq(n, 1.0 / fs)
         amp = np.sqrt(self.psd_at(f) * fs * n / 4.0)
+        k = self.speed_factor(shaft_hz)
+        if k != 1.0:  # without a speed law the samples are bit for bit those of before
+            amp = k * amp
         X = amp * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size))
         X[0] = 0.0
         if n % 2 == 0:
@@ -611,8 +659,10 @@ class Rig:
             out["background"] = {
                 "frequency_hz": list(b.frequency_hz),
                 "psd_m2_per_s4_per_hz": list(b.psd),
-                "provenance": b.provenance,
             }
+            if b.speed_exponent is not None:
+                out["background"] |= {"speed_exponent": b.speed_exponent, "rpm_ref": b.rpm_ref}
+            out["background"]["provenance"] = b.provenance
         if self.tones:
             out["tone"] = [
                 {k: v for k, v in dataclasses.asdict(t).items() if v is not None}
@@ -752,7 +802,7 @@ class Rig:
                 y = y + sosfilt(m.sos(fs), x)
         rng = np.random.default_rng(seed)
         if self.background is not None:
-            y = y + self.background.synthesize(x.size, fs, rng)
+            y = y + self.background.synthesize(x.size, fs, rng, shaft_hz)
         t = np.arange(x.size) / fs
         for tone in self.tones:
             f = tone.frequency(shaft_hz)
@@ -833,11 +883,21 @@ def _warn_speed(r: Rig, fsh: float | None) -> None:
     rpm = 60.0 * fsh
     if lo * (1.0 - RPM_MARGIN) <= rpm <= hi * (1.0 + RPM_MARGIN):
         return
+    bg = r.background
+    if bg is not None and bg.speed_exponent is not None:  # scaled, but beyond what was measured
+        what = (
+            f"its background is scaled as speed^{bg.speed_exponent:.3g}, a law fitted within "
+            "those speeds, and its tones are the machine's at them"
+        )
+    else:
+        what = (
+            "the rig's background and tones are the machine's at those speeds, while the "
+            "model's own vibration follows the run's (a healthy bearing's ball-pass line grows "
+            "with speed and can stand out of a background that does not)"
+        )
     warnings.warn(
         f"rig {r.name!r} was identified at {lo:g}-{hi:g} r/min; this run turns at {rpm:g} "
-        "r/min: the rig's background and tones are the machine's at those speeds, while the "
-        "model's own vibration follows the run's (a healthy bearing's ball-pass line grows "
-        "with speed and can stand out of a background that does not)",
+        f"r/min: {what}",
         RigSpeedWarning,
         stacklevel=3,
     )

@@ -31,7 +31,19 @@ not known. What can be identified from them, and how:
    fault line (an inner-race fault at 162 Hz strikes every 6.2 ms), so the median over time
    ignores the impacts; for stationary Gaussian noise the share is 1 (a periodogram's median
    is ln 2 times its mean), for a steady tone it is capped at 1. The median over the records,
-   smoothed over 1/6 octave and tabulated at log-spaced frequencies. (Until the seventeenth
+   smoothed over 1/6 octave and tabulated at log-spaced frequencies.
+   **Growth with speed** (twenty-fourth session): when the records' shaft speeds span at
+   least :data:`MIN_SPEED_SPAN` (highest over lowest, at least :data:`MIN_SPEED_RECORDS`
+   records with a speed), each record's background level ``ln b`` (the median over frequency
+   of its log amplitude relative to the others', :func:`_background_levels`) is fitted by
+   least squares as a line in the log of its speed, ``ln b = a + n ln(N / N_ref)`` with
+   ``N_ref`` the speeds' geometric mean; the slope ``n`` is kept when its
+   standard error is at most :data:`MAX_SPEED_EXPONENT_SE` (and within the rig's
+   ``MAX_SPEED_EXPONENT``). Each record's PSD is then referred to ``N_ref`` (times
+   ``(N_ref / N)^(2 n)``) before the median, and the table is the background at ``N_ref``
+   (``speed_exponent``, ``rpm_ref`` of :class:`~bearingsim.rig.Background`). Otherwise the
+   background is the same at every speed, and why is said in its provenance (the CWRU
+   records span 1723-1797 r/min, 4 %: too narrow). (Until the seventeenth
    session the background was the median-averaged Welch PSD itself, over 0.25 s segments: each
    held tens of impacts, so the median kept them, and its ln 2 correction inflated tonal
    content by 1.44: its power exceeded the records' own, 41 against 31 (m/s^2)^2 on record
@@ -56,7 +68,15 @@ from numpy.typing import NDArray
 from .errors import ConfigError
 from .rig import Background, Mode, Rig, Tone
 
-__all__ = ["PATH_FIT_OBJECTIVES", "IdentifiedRig", "PathFit", "fit_path_gains", "identify_rig"]
+__all__ = [
+    "PATH_FIT_OBJECTIVES",
+    "IdentifiedRig",
+    "PathFit",
+    "SpeedLaw",
+    "fit_path_gains",
+    "identify_rig",
+    "speed_law",
+]
 
 #: shortest record [s]
 MIN_DURATION_S = 1.0
@@ -73,6 +93,38 @@ MIN_GAIN = 0.1
 #: the rig's own rate was the model's output alone above it, with no floor
 ROLL_OFF_POINTS = (0.46, 0.47, 0.48, 0.49, 0.5)
 ROLL_OFF_HALF_BAND = 0.005
+#: smallest ratio of the records' highest to lowest shaft speed over which the background's
+#: growth with speed is fitted [-]: the twelve 0.014 in drive-end 12 kHz CWRU records'
+#: background levels (:func:`_background_levels`) scatter by 1.3 dB (standard deviation)
+#: within their 1723-1796 r/min, and fitted over that 4 % span the slope is -0.09 +/- 3.1
+#: (docs/validation.md); the same scatter over a 1.5x span gives about +/- 0.3
+MIN_SPEED_SPAN = 1.5
+#: fewest records with a known shaft speed for that fit (two give a slope without a scatter)
+MIN_SPEED_RECORDS = 3
+#: largest standard error of the fitted speed exponent that is kept [-]
+MAX_SPEED_EXPONENT_SE = 0.5
+
+
+@dataclass(frozen=True)
+class SpeedLaw:
+    """The background's growth with shaft speed as identified (:func:`speed_law`).
+
+    Attributes
+    ----------
+    exponent : float or None
+        ``n`` of ``b ~ N^n`` [-] (amplitude); None when not identified.
+    rpm_ref : float or None
+        The speed the background table is referred to [r/min] (the speeds' geometric mean).
+    stderr : float or None
+        Standard error of ``n`` [-].
+    note : str
+        How it was fitted, or why it was not (for the provenance and the command's output).
+    """
+
+    exponent: float | None
+    rpm_ref: float | None
+    stderr: float | None
+    note: str
 
 
 @dataclass
@@ -95,6 +147,8 @@ class IdentifiedRig:
         The records.
     decay : list of dict
         Per mode: the fitted decay rate [1/s] and the number of impacts used.
+    speed_law : SpeedLaw or None
+        The background's growth with shaft speed, or why it was not fitted.
     """
 
     rig: Rig
@@ -104,6 +158,7 @@ class IdentifiedRig:
     impulsive: NDArray[np.float64]
     sources: list[str]
     decay: list[dict]
+    speed_law: SpeedLaw | None = None
 
     def plot(self, rig: Rig | None = None):
         """Measured PSDs and the identified background (sensor side), the identified path's
@@ -241,13 +296,82 @@ def _decay_rate(x, fs, fn, bw):
     return float(sigma), len(segs)
 
 
-def _rpm_range(records) -> tuple[float, float] | None:
-    """The lowest and highest shaft speed of ``records`` [r/min] (a speed column: its median),
-    or None when none is known."""
-    v = [float(r.rpm) for r in records if r.rpm]
-    v += [60.0 * float(np.median(r.speed_hz)) for r in records
-          if not r.rpm and getattr(r, "speed_hz", None) is not None]  # fmt: skip
+def _rpm_range(rpms: list[float | None]) -> tuple[float, float] | None:
+    """The lowest and highest of the records' shaft speeds ``rpms`` [r/min]
+    (:func:`_record_rpm`), or None when none is known."""
+    v = [n for n in rpms if n]
     return (min(v), max(v)) if v else None
+
+
+def _record_rpm(r) -> float | None:
+    """A record's shaft speed [r/min]: its ``rpm``, else the median of its speed column."""
+    if r.rpm:
+        return float(r.rpm)
+    if getattr(r, "speed_hz", None) is not None:
+        return 60.0 * float(np.median(r.speed_hz))
+    return None
+
+
+#: points of the background's level per record [-] (log-spaced, 10 Hz to 0.45 fs)
+N_LEVEL_POINTS = 60
+
+
+def _background_levels(f, psd_bg, fs) -> list[float]:
+    """Each record's background level [-]: the median over :data:`N_LEVEL_POINTS`
+    log-spaced frequencies (10 Hz to 0.45 fs) of ``0.5 ln(S_i / S_mean)``, ``S_i`` its
+    non-impulsive PSD smoothed over 1/6 octave and ``S_mean`` the records' geometric mean:
+    the log of its amplitude relative to the others. A median over frequency, not the RMS:
+    the ringing a fault leaves between its impacts stays in a mode's band of the non-impulsive
+    PSD and does not follow the machine's speed (on synthetic records whose background grows
+    as speed^2 the RMS gave a slope of 0.89, this level 2.0)."""
+    fl = np.geomspace(10.0, 0.45 * fs, N_LEVEL_POINTS)
+    logs = np.array([
+        np.log(np.maximum(np.interp(fl, f, _smooth_octave(f, p, 1.0 / 6.0)), 1e-300))
+        for p in psd_bg
+    ])  # fmt: skip
+    common = logs.mean(axis=0)
+    return [float(np.median(0.5 * (lg - common))) for lg in logs]
+
+
+def speed_law(levels: list[float], rpms: list[float | None]) -> SpeedLaw:
+    """Fit the background's speed law from each record's background level ``levels`` [-]
+    (the log of its amplitude on any common reference, :func:`_background_levels`) and shaft
+    speed ``rpms`` [r/min] (None: unknown), as the module docstring says (step 4)."""
+    from .rig import MAX_SPEED_EXPONENT
+
+    pts = [(b, n) for b, n in zip(levels, rpms, strict=True) if n and math.isfinite(b)]
+    if len(pts) < MIN_SPEED_RECORDS:
+        return SpeedLaw(None, None, None,
+                        f"not fitted: {len(pts)} record(s) with a known shaft speed, "
+                        f"{MIN_SPEED_RECORDS} needed")  # fmt: skip
+    b, n = np.array([p[0] for p in pts]), np.log([p[1] for p in pts])
+    lo, hi = math.exp(n.min()), math.exp(n.max())
+    span = hi / lo
+    if span < MIN_SPEED_SPAN:
+        return SpeedLaw(None, None, None,
+                        f"not fitted: the records' speeds span {lo:.4g}-{hi:.4g} r/min (x"
+                        f"{span:.3g}), under the x{MIN_SPEED_SPAN:g} a speed law needs; the "
+                        "background is the same at every speed")  # fmt: skip
+    ref = float(math.exp(n.mean()))
+    x = n - n.mean()
+    slope = float(np.sum(x * (b - b.mean())) / np.sum(x * x))
+    resid = b - b.mean() - slope * x
+    dof = len(pts) - 2
+    se = float(math.sqrt(np.sum(resid**2) / dof / np.sum(x * x))) if dof > 0 else math.inf
+    how = (
+        "least-squares slope of the records' background level (the median over 10 Hz-0.45 fs "
+        "of ln amplitude) over ln(shaft speed), "
+        f"{len(pts)} records at {lo:.4g}-{hi:.4g} r/min: {slope:.3g} +/- {se:.2g}"
+    )
+    if not se <= MAX_SPEED_EXPONENT_SE:
+        return SpeedLaw(None, None, se,
+                        f"not fitted: {how}, a standard error above {MAX_SPEED_EXPONENT_SE:g}; "
+                        "the background is the same at every speed")  # fmt: skip
+    if abs(slope) > MAX_SPEED_EXPONENT:
+        return SpeedLaw(None, None, se,
+                        f"not fitted: {how}, beyond +/- {MAX_SPEED_EXPONENT:g}; the background "
+                        "is the same at every speed")  # fmt: skip
+    return SpeedLaw(slope, ref, se, f"{how}; the table is the background at {ref:.5g} r/min")
 
 
 def identify_rig(
@@ -351,6 +475,12 @@ def identify_rig(
             break
     # the shoulders of the modes' gains (step 3): the median-averaged PSD, smoothed
     bg_s = _smooth_octave(f, np.median(np.array(psd_med), axis=0), 1.0 / 6.0)
+    # the background's growth with speed (step 4), then each record's referred to rpm_ref
+    rpms = [_record_rpm(r) for r in records]
+    law = speed_law(_background_levels(f, psd_bg, fs), rpms)
+    if law.exponent is not None:
+        psd_bg = [p * (law.rpm_ref / n) ** (2.0 * law.exponent) if n else p
+                  for p, n in zip(psd_bg, rpms, strict=True)]  # fmt: skip
     # the background table (step 4): the non-impulsive PSD, median over the records, smoothed
     bg_t = _smooth_octave(f, np.median(np.array(psd_bg), axis=0), 1.0 / 6.0)
     mean_psd = np.median(np.array(psd_mean), axis=0)
@@ -430,7 +560,9 @@ def identify_rig(
         f"median/(ln 2 mean) <= 1 of STFT power in segments of {nps} samples), median over "
         f"{len(records)} records, mean over 1/6 octave, at {n_background} log-spaced points "
         f"to 0.45 fs; above, the recorder's roll-off: the mean over +/- {ROLL_OFF_HALF_BAND:g} "
-        f"fs at {', '.join(f'{q:g}' for q in ROLL_OFF_POINTS)} fs",
+        f"fs at {', '.join(f'{q:g}' for q in ROLL_OFF_POINTS)} fs; speed law: {law.note}",
+        speed_exponent=law.exponent,
+        rpm_ref=law.rpm_ref,
     )
     # tones at shaft orders: each record's amplitude spectrum (Hann), computed once
     from .signal.spectrum import amplitude_spectrum
@@ -463,7 +595,7 @@ def identify_rig(
         input_channel="acc_y",
         end=end,
         fs_hz=float(fs),
-        rpm_range=_rpm_range(records),
+        rpm_range=_rpm_range(rpms),
         gain=1.0,
         gain_provenance="output-only identification: the path's direct gain is taken as 1 and "
         "each mode's gain is relative to it (bearingsim.rig_identify, item 3)",
@@ -481,6 +613,7 @@ def identify_rig(
         impulsive=E,
         sources=[str(r.source) for r in records],
         decay=decay,
+        speed_law=law,
     )
 
 
@@ -535,6 +668,7 @@ def fit_path_gains(
     *,
     objective: str = "spectral",
     provenance: str = "",
+    rpms: list[float | None] | None = None,
 ) -> PathFit:
     """Model-based gains of the path: the direct gain and every mode's gain of ``rig`` fitted so
     that the model's output through the path, plus the rig's background, has the measured
@@ -582,6 +716,9 @@ def fit_path_gains(
         See above.
     provenance : str
         Where the pairs come from (the records and the model), put in the gains' provenance.
+    rpms : list of float or None, optional
+        Each pair's shaft speed [r/min] (None: unknown): the background a rig with a speed law
+        adds at it (:meth:`bearingsim.rig.Background.speed_factor`); default unknown for all.
 
     Returns
     -------
@@ -609,6 +746,11 @@ def fit_path_gains(
         )
     if not pairs:
         raise ConfigError("pairs is empty; valid: at least one (measured, model output) pair")
+    if rpms is not None and len(rpms) != len(pairs):
+        raise ConfigError(
+            f"rpms has {len(rpms)} speeds for {len(pairs)} pairs; valid: one per pair (None "
+            "where unknown)"
+        )
     nperseg = 2 ** int(round(math.log2(fs / PATH_FIT_RESOLUTION_HZ)))
     data = []
     for i, pair in enumerate(pairs):
@@ -635,7 +777,10 @@ def fit_path_gains(
                     f"{PATH_FIT_HIGH_FS * fs:g} Hz; no path gain can be fitted to it"
                 )
         fb = f[band]
-        pb = rig.background.psd_at(fb) if rig.background is not None else np.zeros(fb.size)
+        pb = np.zeros(fb.size)
+        if rig.background is not None:
+            n = rpms[i] if rpms is not None else None
+            pb = rig.background.psd_at(fb) * rig.background.speed_factor(n and n / 60.0) ** 2
         resp = [sosfreqz(dc_replace(m, gain=1.0).sos(fs), worN=fb, fs=fs)[1] for m in rig.modes]
         data.append((py[band], px[band], pb, np.array(resp).reshape(len(rig.modes), fb.size)))
     # a floor for S and P_y where a Welch ordinate is exactly 0 (not a spectrum): 1e-12 of the

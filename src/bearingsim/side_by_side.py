@@ -392,15 +392,17 @@ def model_path_fit(
     records = _fault_records(records)
     bare = Rig(name="bare", description="", provenance="the model's output itself",
                input_channel=rig.input_channel)  # fmt: skip
-    pairs, rates = [], set()
+    pairs, rates, rpms = [], set(), []
     bar = tqdm(records, desc=f"{model} path fit", unit="record", disable=not progress,
                leave=False)  # fmt: skip
     for rec in bar:
         c = simulate_record(rec, bare, model=model, duration_s=duration_s, realism=realism)
         pairs.append((c["measured"], c["simulated"]))
         rates.add(c["fs_hz"])
+        rpms.append(c["rpm"])
     names = [Path(r).name for r in records]
-    return _with_path(rig, model, pairs, rates, names, duration_s, objective, _profile_of(realism))
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective,
+                      _profile_of(realism), rpms)  # fmt: skip
 
 
 def _profile_of(realism: dict | None) -> str:
@@ -412,10 +414,10 @@ def _profile_of(realism: dict | None) -> str:
 
 
 def _with_path(rig, model: str, pairs, rates: set, names: list[str], duration_s: float,
-               objective: str, profile: str = "geometric"):  # fmt: skip
+               objective: str, profile: str = "geometric", rpms=None):  # fmt: skip
     """The rig with the path fitted on ``pairs`` (measured, model output; their sample
-    ``rates`` [Hz], one rate) as its fitted ``[[model_gain]]`` for ``model``, and the
-    :class:`~bearingsim.rig_identify.PathFit`."""
+    ``rates`` [Hz], one rate; their shaft speeds ``rpms`` [r/min]) as its fitted
+    ``[[model_gain]]`` for ``model``, and the :class:`~bearingsim.rig_identify.PathFit`."""
     from .rig import ModelGain
     from .rig_identify import fit_path_gains
 
@@ -425,7 +427,7 @@ def _with_path(rig, model: str, pairs, rates: set, names: list[str], duration_s:
         )
     fs = next(iter(rates))
     why = f"the {model} model's output for {', '.join(names)}, {duration_s:g} s each"
-    fit = fit_path_gains(rig, pairs, fs, objective=objective, provenance=why)
+    fit = fit_path_gains(rig, pairs, fs, objective=objective, provenance=why, rpms=rpms)
     gain = ModelGain(model, None, fit.provenance, fit.gains[0], tuple(fit.gains[1:]), profile)
     return replace(rig, model_gains=(*rig.model_gains, gain)), fit
 
@@ -499,10 +501,10 @@ def model_path_fit_conditions(
 ):
     """:func:`model_path_fit` for a user's own machine: the records and their conditions as
     in :func:`model_path_scale_conditions` (one sample rate). Returns ``(Rig, PathFit)``."""
-    from .rig import _result_fs
+    from .rig import _result_fs, _shaft_hz
 
     rig = _without_gain(rig, model)
-    pairs, names, rates = [], [], set()
+    pairs, names, rates, rpms = [], [], set(), []
     for name, measured, bare in _user_simulations(
         records, conditions, model, duration_s, realism, seed, progress
     ):
@@ -510,7 +512,10 @@ def model_path_fit_conditions(
         pairs.append((measured[: x.size], x))
         names.append(name)
         rates.add(_result_fs(bare))
-    return _with_path(rig, model, pairs, rates, names, duration_s, objective, _profile_of(realism))
+        fsh = _shaft_hz(bare)
+        rpms.append(None if fsh is None else 60.0 * fsh)
+    return _with_path(rig, model, pairs, rates, names, duration_s, objective,
+                      _profile_of(realism), rpms)  # fmt: skip
 
 
 def _user_simulations(records, conditions, model, duration_s, realism, seed, progress):

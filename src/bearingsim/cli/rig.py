@@ -286,6 +286,9 @@ def identify_cmd(
             if g.scale is None
         },
         "background_rms_m_per_s2": rig.background.rms() if rig.background else 0.0,
+        "background_speed_exponent": rig.background.speed_exponent if rig.background else None,
+        "background_rpm_ref": rig.background.rpm_ref if rig.background else None,
+        "background_speed_law": ir.speed_law.note if ir.speed_law else None,
     }
     if as_json:
         emit_json(out)
@@ -299,6 +302,7 @@ def identify_cmd(
         f"wrote {output}: rig {name} from {len(recs)} records; modes {modes}; background "
         f"{out['background_rms_m_per_s2']:.3g} m/s^2 RMS{gains}"
     )
+    click.echo(f"  background speed law: {out['background_speed_law']}")
 
 
 @rig_group.command("show")
@@ -332,6 +336,13 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
             f"  background: {len(r.background.psd)} PSD points, {min(fb):g}-{max(fb):g} Hz "
             f"(an output rate above {coverage_rate_hz(r):g} Hz gets a RigRateWarning)"
         )
+        b = r.background
+        if b.speed_exponent is not None:
+            click.echo(
+                f"  background amplitude x (speed / {b.rpm_ref:.5g} r/min)^{b.speed_exponent:.3g}"
+            )
+        else:
+            click.echo("  background the same at every shaft speed (no speed law)")
     click.echo(f"  sensor noise {r.noise_rms_m_per_s2:g} m/s^2")
     for g in r.model_gains:
         click.echo(f"  {g.describe()} for the {g.model} model's output (model-based)")
