@@ -629,18 +629,28 @@ def test_a_noise_free_model_channel_is_noted_and_the_verdicts_view_supports_it(r
     assert "ball" in view["supported"], (d["method"], view)
 
 
-def test_uncertain_because_no_method_settles_is_not_called_a_disagreement(run_cli, tmp_path):
+def test_the_6203s_inner_race_fault_is_inner_and_no_settling_is_not_a_disagreement(
+    run_cli, tmp_path, monkeypatch
+):
     """Exploratory testing (twenty-third session): a 0.014 in inner-race fault of the fan-end
-    6203 through ``cwru-fe-12k`` (1 s, 1797 r/min) is "uncertain" at p 0.99 because every
-    view's own rule is undecided (ball-family harmonics 2 and 3 x 2BSF lie on 8 and 12 x the
-    shaft speed, beside the inner race's shaft sidebands), and the reason read "the methods
-    disagree", which they do not. A diagnosis miss, recorded in docs/validation.md; the reason
-    now says what happened."""
+    6203 through ``cwru-fe-12k`` (1 s, 1797 r/min) was "uncertain" at p 0.99: every view's
+    own rule was undecided, because the ball family's 2 and 3 x (2 x BSF) lie 0.3 Hz from the
+    inner race's shaft sidebands BPFI + 3 f_r and 2 BPFI + 2 f_r and counted as a rival. Such
+    lines are now the supported family's own (``MAX_SIDEBAND_ORDER``, twenty-fourth session):
+    the fault reads "inner". Without that (order 0, the rule before) it is "uncertain" again,
+    and its reason says that no method settles on a family, not that the methods disagree
+    (they did not; the reason said so until the twenty-third session)."""
+    import bearingsim.signal.diagnosis as dg
+
     p = tmp_path / "fe_inner.nc"
     r = run_cli("simulate", "--model", "vsm", "--bearing", "6203-cwru", "--fault", "inner",
                 "--rpm", "1797", "--duration-s", "1", "--rig", "cwru-fe-12k",
                 "--defect-width-m", "3.556e-4", "-o", str(p))  # fmt: skip
     assert r.code == 0, r.err
+    d = run_cli("analyze", str(p), "--json").json()
+    d = d[0] if isinstance(d, list) else d
+    assert d["diagnosis"] == "inner" and d["confidence"] > 0.9, (d["diagnosis"], d["why"])
+    monkeypatch.setattr(dg, "MAX_SIDEBAND_ORDER", 0)
     d = run_cli("analyze", str(p), "--json").json()
     d = d[0] if isinstance(d, list) else d
     assert (d["diagnosis"], d["leading"]) == ("uncertain", "inner"), d["diagnosis"]

@@ -883,12 +883,16 @@ def test_a_run_far_from_the_rigs_speeds_is_warned(tmp_path):
     assert Rig.from_dict(r.to_dict()) == r and r.to_dict()["rpm_range"] == [1500.0, 1600.0]
 
 
-def _law(text: str) -> str:
-    """RIG_TOML with a speed law in its [background] table."""
-    return RIG_TOML.replace(
+def _law(text: str, rpm_range: str = "[1000.0, 2000.0]") -> str:
+    """RIG_TOML with a speed law in its [background] table (and the speeds it holds over)."""
+    out = RIG_TOML.replace(
         "psd_m2_per_s4_per_hz = [1e-4, 1e-6]\n",
         "psd_m2_per_s4_per_hz = [1e-4, 1e-6]\n" + text,
     )
+    if rpm_range:
+        out = out.replace('input_channel = "acc_y"',
+                          f'input_channel = "acc_y"\nrpm_range = {rpm_range}')  # fmt: skip
+    return out
 
 
 def test_a_background_speed_law_scales_its_amplitude_and_nothing_else(tmp_path):
@@ -910,6 +914,12 @@ def test_a_background_speed_law_scales_its_amplitude_and_nothing_else(tmp_path):
     assert law.background.speed_factor(12.5) == 0.25
     assert Rig.from_dict(law.to_dict()) == law  # saved and reloaded
     assert list(law.to_dict()["background"])[-1] == "provenance"
+    # a speed at which the law's level passes any accelerometer, or overflows: one line
+    big = replace(law, background=replace(law.background, speed_exponent=4.0))
+    for rps in (1e6, 1e300):
+        with pytest.raises(ConfigError, match=r"^rig 'test-rig': at [\d.e+]+ r/min the "
+                           r"background's speed law, \(N / 1500 r/min\)\^4, gives "):  # fmt: skip
+            big.apply(z, 12000.0, shaft_hz=rps, seed=3)
 
 
 @pytest.mark.parametrize(
@@ -926,11 +936,28 @@ def test_a_background_speed_law_scales_its_amplitude_and_nothing_else(tmp_path):
             r"background.rpm_ref = 0 r/min is out of range; valid range \(0, inf\) r/min$",
         ),
         ("speed_exponent = nan\nrpm_ref = 1500.0\n", r"background.speed_exponent = nan is not"),
+        # exploratory testing (twenty-fourth session): rpm_ref = 1e-300 passed and the run
+        # ended in an OverflowError; 25 (Hz for r/min) gave a 538 m/s^2 background. A law
+        # holds over the speeds it was fitted at: rpm_ref within them, and they are given
+        (
+            "speed_exponent = 2.0\nrpm_ref = 25.0\n",
+            r"background.rpm_ref = 25 r/min lies outside rig.rpm_range \[1000, 2000\] r/min; "
+            "valid: a speed within the range the law was fitted over$",
+        ),
+        (
+            "speed_exponent = 2.0\nrpm_ref = 1e-300\n",
+            r"background.rpm_ref = 1e-300 r/min lies outside rig.rpm_range",
+        ),
+        (
+            "speed_exponent = 2.0\nrpm_ref = 1500.0\n|",
+            r"background.speed_exponent needs rig.rpm_range \(the shaft speeds the law",
+        ),
     ],
 )
 def test_a_bad_speed_law_is_one_line(tmp_path, text, msg):
     p = tmp_path / "bad.toml"
-    p.write_text(_law(text), encoding="utf-8")
+    text, bar, _ = text.partition("|")  # a "|": the file without an rpm_range
+    p.write_text(_law(text, "" if bar else "[1000.0, 2000.0]"), encoding="utf-8")
     with pytest.raises(ConfigError, match="^bad.toml: " + msg):
         load_rig(p)
     r = _cli("rig", "show", str(p), cwd=tmp_path)
@@ -943,9 +970,7 @@ def test_the_speed_warning_says_when_the_background_follows_the_speed(tmp_path):
     from bearingsim.rig import RigSpeedWarning
 
     p = tmp_path / "law.toml"
-    p.write_text(_law("speed_exponent = 2.0\nrpm_ref = 1500.0\n").replace(
-        'input_channel = "acc_y"', 'input_channel = "acc_y"\nrpm_range = [1000.0, 2000.0]'
-    ), encoding="utf-8")  # fmt: skip
+    p.write_text(_law("speed_exponent = 2.0\nrpm_ref = 1500.0\n"), encoding="utf-8")
     with pytest.warns(RigSpeedWarning, match=r"its background is scaled as speed\^2, a law "):
         simulate(dict(model="vsm", duration_s=0.01, rpm=3000.0, rig=str(p), fs_hz=12000.0))
     r = _cli("rig", "show", str(p), cwd=tmp_path)

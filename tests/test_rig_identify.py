@@ -265,7 +265,7 @@ def test_the_path_fit_refuses_bad_pairs_in_one_line():
         fit_path_gains(loud, [(x, x)], 12000.0)
     # a background with a speed law is the one at each pair's speed: 10x slower is 100x
     # quieter in amplitude (n = 2), and no longer carries the records' power
-    law = Rig(name="r", description="", provenance="test",
+    law = Rig(name="r", description="", provenance="test", rpm_range=(100.0, 1000.0),
               background=Background((10.0, 6000.0), (1.0, 1.0), "test", 2.0, 1000.0))  # fmt: skip
     with pytest.raises(ConfigError, match="background alone carries the records' power"):
         fit_path_gains(law, [(x, x)], 12000.0, rpms=[1000.0])
@@ -446,6 +446,51 @@ def test_cli_identify_a_users_csv_records(tmp_path):
              cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2 and r.stderr.startswith("error: "), r.stderr
     assert r.stderr.count("\n") == 1 and not (tmp_path / "q.toml").exists()
+
+
+def test_cli_identify_reads_each_csv_records_speed_column(tmp_path):
+    """Exploratory testing (twenty-fourth session), a user's records with an ``rpm`` column:
+    the column gave the speed law but no shaft-order tone (the tones took only a file's single
+    rpm), ``--rpm`` overrode the columns without a word (and lost the law), and a negative
+    column printed a NumPy warning and an error naming no file. Now: the tones are placed at
+    each column's median, ``--rpm`` against a column is one line, and so is a speed <= 0."""
+    paths = []
+    rpms = (900.0, 1500.0, 2400.0)
+    for seed, n in enumerate(rpms):
+        rec = _speed_records([n])[0]
+        t = np.arange(rec.x.size) / rec.fs
+        x = rec.x + 1.0 * np.sin(2.0 * np.pi * n / 60.0 * t)  # a 1 m/s^2 line at 1 x
+        p = tmp_path / f"r{seed}.csv"
+        np.savetxt(p, np.column_stack([t, x, np.full(t.size, n)]), delimiter=",",
+                   header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+        paths.append(p.name)
+    r = _cli("rig", "identify", *paths, "--name", "cols", "-o", "cols.toml", "--json",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)
+    assert [t["order"] for t in d["tones"]][:1] == [1.0], d["tones"]
+    assert d["tones"][0]["amplitude_m_per_s2"] == pytest.approx(1.0, rel=0.05)
+    assert d["background_speed_exponent"] == pytest.approx(2.0, abs=0.15)
+    assert 0.0 < d["background_speed_exponent_stderr"] < 0.5
+    assert load_rig(tmp_path / "cols.toml").rpm_range == (900.0, 2400.0)
+    r = _cli("rig", "identify", *paths, "--name", "cols", "--rpm", "1500", "-o", "x.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and r.stderr == (
+        "error: rpm = 1500 r/min contradicts the speed column of 'r0.csv' (median 900 r/min); "
+        "valid: the records' speed (or no --rpm, to take each file's)\n"
+    ), r.stderr
+    for bad in (-900.0, 0.0):
+        data = np.loadtxt(tmp_path / "r0.csv", delimiter=",", skiprows=1)
+        data[:, 2] = bad
+        np.savetxt(tmp_path / "bad.csv", data, delimiter=",", header="time_s,acc_m_per_s2,rpm",
+                   comments="")  # fmt: skip
+        r = _cli("rig", "identify", paths[1], paths[2], "bad.csv", "--name", "b", "-o",
+                 "b.toml", cwd=tmp_path)  # fmt: skip
+        assert r.returncode == 2 and r.stderr == (
+            f"error: rig identify: bad.csv: median of its speed column = {bad:g} r/min; valid: "
+            "a positive shaft speed\n"
+        ), r.stderr
+    assert not (tmp_path / "x.toml").exists() and not (tmp_path / "b.toml").exists()
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")

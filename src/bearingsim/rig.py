@@ -94,6 +94,7 @@ and no other.
 from __future__ import annotations
 
 import dataclasses
+import math
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -376,10 +377,13 @@ class Background:
 
     def speed_factor(self, shaft_hz: float | None) -> float:
         """The background's amplitude at shaft speed ``shaft_hz`` [Hz] over the table's [-]:
-        1 without a speed law or a speed."""
+        1 without a speed law or a speed (inf where the power overflows)."""
         if self.speed_exponent is None or self.rpm_ref is None or shaft_hz is None:
             return 1.0
-        return float((60.0 * shaft_hz / self.rpm_ref) ** self.speed_exponent)
+        try:
+            return float((60.0 * shaft_hz / self.rpm_ref) ** self.speed_exponent)
+        except OverflowError:
+            return math.inf
 
     @classmethod
     def from_dict(cls, d: Any, where: str) -> Background:
@@ -540,6 +544,21 @@ class Rig:
             lo = check_positive("rig.rpm_range[0]", r[0], "r/min")
             hi = check_range("rig.rpm_range[1]", r[1], lo, unit="r/min")
             object.__setattr__(self, "rpm_range", (lo, hi))
+        bg = self.background
+        if bg is not None and bg.speed_exponent is not None:  # a law holds where it was fitted
+            if self.rpm_range is None:
+                raise ConfigError(
+                    "background.speed_exponent needs rig.rpm_range (the shaft speeds the law "
+                    "was fitted over; a run far outside them is warned); valid: rpm_range = "
+                    "[lowest, highest] r/min"
+                )
+            lo, hi = self.rpm_range
+            if not lo <= bg.rpm_ref <= hi:
+                raise ConfigError(
+                    f"background.rpm_ref = {bg.rpm_ref:g} r/min lies outside rig.rpm_range "
+                    f"[{lo:g}, {hi:g}] r/min; valid: a speed within the range the law was "
+                    "fitted over"
+                )
         if self.fs_hz is not None:  # checked here for a file and a rig built in code alike;
             # its own modes lie below the Nyquist frequency of its rate
             rate = check_range(
@@ -771,6 +790,21 @@ class Rig:
             h += hk
         return h
 
+    def _check_speed_law(self, shaft_hz: float | None) -> None:
+        """Refuse (one line) a shaft speed at which the background's speed law gives an RMS
+        above :data:`~bearingsim.errors.MAX_ACCELERATION`."""
+        b = self.background
+        k = b.speed_factor(shaft_hz) if b is not None else 1.0
+        if k == 1.0:
+            return
+        level = k * b.rms()
+        if not level <= MAX_ACCELERATION:
+            raise ConfigError(
+                f"rig {self.name!r}: at {60.0 * shaft_hz:g} r/min the background's speed law, "
+                f"(N / {b.rpm_ref:g} r/min)^{b.speed_exponent:g}, gives {level:.3g} m/s^2 RMS; "
+                f"valid: a speed at which it stays below {MAX_ACCELERATION:g} m/s^2"
+            )
+
     def apply(
         self,
         signal: NDArray[np.float64],
@@ -802,6 +836,7 @@ class Rig:
                 y = y + sosfilt(m.sos(fs), x)
         rng = np.random.default_rng(seed)
         if self.background is not None:
+            self._check_speed_law(shaft_hz)
             y = y + self.background.synthesize(x.size, fs, rng, shaft_hz)
         t = np.arange(x.size) / fs
         for tone in self.tones:
@@ -887,7 +922,7 @@ def _warn_speed(r: Rig, fsh: float | None) -> None:
     if bg is not None and bg.speed_exponent is not None:  # scaled, but beyond what was measured
         what = (
             f"its background is scaled as speed^{bg.speed_exponent:.3g}, a law fitted within "
-            "those speeds, and its tones are the machine's at them"
+            "those speeds" + (", and its tones are the machine's at them" if r.tones else "")
         )
     else:
         what = (

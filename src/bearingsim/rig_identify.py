@@ -304,12 +304,21 @@ def _rpm_range(rpms: list[float | None]) -> tuple[float, float] | None:
 
 
 def _record_rpm(r) -> float | None:
-    """A record's shaft speed [r/min]: its ``rpm``, else the median of its speed column."""
-    if r.rpm:
-        return float(r.rpm)
-    if getattr(r, "speed_hz", None) is not None:
-        return 60.0 * float(np.median(r.speed_hz))
-    return None
+    """A record's shaft speed [r/min]: its ``rpm``, else the median of its speed column; None
+    when it has neither. A speed that is not positive is refused in one line naming the
+    record."""
+    if r.rpm is not None:
+        n, what = float(r.rpm), "shaft speed"
+    elif getattr(r, "speed_hz", None) is not None:
+        n, what = 60.0 * float(np.median(r.speed_hz)), "median of its speed column"
+    else:
+        return None
+    if not (math.isfinite(n) and n > 0.0):
+        raise ConfigError(
+            f"rig identify: {Path(r.source).name}: {what} = {n:g} r/min; valid: a positive "
+            "shaft speed"
+        )
+    return n
 
 
 #: points of the background's level per record [-] (log-spaced, 10 Hz to 0.45 fs)
@@ -427,6 +436,7 @@ def identify_rig(
                 f"rig identify: {Path(r.source).name} is {dur:.6g} s long ({r.x.size} samples "
                 f"at {fs:g} Hz); at least {MIN_DURATION_S:g} s is needed"
             )
+    rpms = [_record_rpm(r) for r in records]  # before any work: a bad speed is one line
     nps = nperseg_sk or int(2 ** round(math.log2(0.0025 * fs)))
     if nps < MIN_SEGMENT:
         lo = 2 ** (math.log2(MIN_SEGMENT) - 0.5) / 0.0025 if nperseg_sk is None else None
@@ -476,7 +486,6 @@ def identify_rig(
     # the shoulders of the modes' gains (step 3): the median-averaged PSD, smoothed
     bg_s = _smooth_octave(f, np.median(np.array(psd_med), axis=0), 1.0 / 6.0)
     # the background's growth with speed (step 4), then each record's referred to rpm_ref
-    rpms = [_record_rpm(r) for r in records]
     law = speed_law(_background_levels(f, psd_bg, fs), rpms)
     if law.exponent is not None:
         psd_bg = [p * (law.rpm_ref / n) ** (2.0 * law.exponent) if n else p
@@ -567,13 +576,16 @@ def identify_rig(
     # tones at shaft orders: each record's amplitude spectrum (Hann), computed once
     from .signal.spectrum import amplitude_spectrum
 
-    spectra = [(r, amplitude_spectrum(x, fs)) for r, x in zip(records, xs, strict=True) if r.rpm]
+    # (a record's speed: its rpm, or its speed column's median; a column alone placed no tone
+    # until the twenty-fourth session)
+    spectra = [(r, rn, amplitude_spectrum(x, fs))
+               for r, rn, x in zip(records, rpms, xs, strict=True) if rn]  # fmt: skip
     tones = []
     for order in (1.0, 2.0, 3.0):
         amps = []
-        for r, sp in spectra:
+        for r, rn, sp in spectra:
             spec, ff, n = sp.amplitude, sp.freq, len(r.x)
-            ft = order * r.rpm / 60.0
+            ft = order * rn / 60.0
             k = np.argmin(np.abs(ff - ft))
             w = slice(max(k - 2, 0), k + 3)
             line = float(spec[w].max())

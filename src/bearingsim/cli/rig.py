@@ -34,7 +34,8 @@ def rig_group() -> None:
     type=Number(0.0, lo_open=True, unit="r/min"),
     default=None,
     show_default="from each file",
-    help="Shaft speed [r/min] of every record (for the shaft-order tones).",
+    help="Shaft speed [r/min] of every record (for the shaft-order tones and the rig's "
+    "rpm_range; one speed gives no speed law). Refused against a record's own speed column.",
 )
 @click.option(
     "--fs-hz",
@@ -116,7 +117,8 @@ def identify_cmd(
 ) -> None:
     """Identify a rig from measured records of one machine and channel (output-only: modes
     from the impulsive spectrum and the ringing decay, background, shaft-order tones; with
-    --model-gain, a model-based path gain per model)."""
+    --model-gain, a model-based path gain per model). Records at speeds spanning 1.5x or more
+    (three or more with a known speed) also give the background's growth with speed."""
     check_outputs(("-o/--output", output), ("--plot", plot))
     if Path(output).suffix.lower() != ".toml":  # `--rig FILE` reads it as a rig file by name
         raise ConfigError(
@@ -165,6 +167,16 @@ def identify_cmd(
         from ..signal.contact_angle import refuted_speed
 
         for r in recs:
+            if r.speed_hz is not None:  # a speed column: --rpm would override it unseen
+                import numpy as np
+
+                own = 60.0 * float(np.median(r.speed_hz))
+                if abs(own / rpm - 1.0) > RPM_OPTION_REL:
+                    raise ConfigError(
+                        f"rpm = {rpm:.6g} r/min contradicts the speed column of "
+                        f"{Path(r.source).name!r} (median {own:.6g} r/min); valid: the "
+                        "records' speed (or no --rpm, to take each file's)"
+                    )
             c = refuted_speed(r.x, r.fs, rpm / 60.0)
             if c is not None:
                 off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
@@ -288,6 +300,7 @@ def identify_cmd(
         "background_rms_m_per_s2": rig.background.rms() if rig.background else 0.0,
         "background_speed_exponent": rig.background.speed_exponent if rig.background else None,
         "background_rpm_ref": rig.background.rpm_ref if rig.background else None,
+        "background_speed_exponent_stderr": ir.speed_law.stderr if ir.speed_law else None,
         "background_speed_law": ir.speed_law.note if ir.speed_law else None,
     }
     if as_json:
@@ -350,6 +363,9 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
 
 #: columns of a --conditions file: required, then optional
 _COND_REQUIRED = ("file", "fault", "bearing", "defect_width_m")
+#: how far ``--rpm`` may lie from a record's own speed column (its median) [-]: the 1 % a
+#: diagnosis allows for the speed's uncertainty
+RPM_OPTION_REL = 0.01
 _COND_OPTIONAL = ("defect_depth_m", "rpm")
 
 
