@@ -975,3 +975,37 @@ def test_the_speed_warning_says_when_the_background_follows_the_speed(tmp_path):
         simulate(dict(model="vsm", duration_s=0.01, rpm=3000.0, rig=str(p), fs_hz=12000.0))
     r = _cli("rig", "show", str(p), cwd=tmp_path)
     assert "background amplitude x (speed / 1500 r/min)^2" in r.stdout, r.stdout
+
+
+def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
+    """Left for planning (twenty-third session): a 6205 through ``cwru-fe-12k`` (the fan end's
+    6203 housing) passed without a word. A rig now names the bearing its records were taken on
+    (``bearing``; `rig identify` writes it for a CWRU end), and a run whose bearing is another
+    size gets one ``RigBearingWarning``; the seed's 6205 through the drive-end rig (0.1 % from
+    the CWRU 6205) and the rotor's fan-end 6203 through ``cwru-fe-12k`` do not."""
+    import warnings
+
+    from bearingsim.rig import RigBearingWarning
+
+    assert [load_rig(n).bearing for n in ("cwru-de-12k", "cwru-de-48k", "cwru-fe-12k")] == [
+        "6205-cwru", "6205-cwru", "6203-cwru"]  # fmt: skip
+    base = dict(model="vsm", duration_s=0.01)
+    with pytest.warns(RigBearingWarning, match=r"^rig 'cwru-fe-12k' was identified on records "
+                      r"of the 6203-cwru \(pitch diameter 28\.5 mm, 8 elements\); this run's "
+                      r"bearing 6205-cwru is another size \(pitch diameter 39\.04 mm"):  # fmt: skip
+        simulate(dict(base, bearing="6205-cwru", rig="cwru-fe-12k"))
+    with pytest.warns(RigBearingWarning, match="identified on records of the 6205-cwru"):
+        simulate(dict(base, bearing="6206", rig="cwru-de-12k"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigBearingWarning)
+        simulate(dict(base, bearing="6205", rig="cwru-de-12k"))
+        simulate(dict(base, bearing="6203-cwru", rig="cwru-fe-12k"))
+        simulate(dict(model="rotor", duration_s=0.01, rig="cwru-fe-12k"))
+    p = tmp_path / "r.toml"
+    p.write_text(RIG_TOML.replace('input_channel = "acc_y"',
+                                  'input_channel = "acc_y"\nbearing = "6205-xyz"'))  # fmt: skip
+    with pytest.raises(ConfigError, match=r"^r.toml: rig.bearing = '6205-xyz' is not a "
+                       r"catalogue bearing; valid: 6203-cwru, "):  # fmt: skip
+        load_rig(p)
+    r = _cli("rig", "show", "cwru-fe-12k", cwd=tmp_path)
+    assert "identified on records of the 6203-cwru" in r.stdout, r.stdout

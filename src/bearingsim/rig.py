@@ -34,6 +34,8 @@ TOML layout (SI units in the key names)::
     input_channel = "acc_y"          # the model channel that enters the chain
     end = "FE"                       # optional: the machine end whose housing the sensor is on
                                      # (DE|FE; the rotor model then reads that housing)
+    bearing = "6203-cwru"            # optional: catalogue id of the bearing the records were
+                                     # taken on (a run's bearing of another size is warned)
     fs_hz = 12000.0                  # optional: the sampling rate of the records it was
                                      # identified from [Hz]; a scenario with this rig and no
                                      # fs_hz of its own is sampled at it
@@ -118,6 +120,7 @@ __all__ = [
     "Mode",
     "ModelGain",
     "Rig",
+    "RigBearingWarning",
     "RigGainWarning",
     "RigRateWarning",
     "RigSpeedWarning",
@@ -519,6 +522,10 @@ class Rig:
     #: [r/min] (None: not said); its background and tones are those speeds' (a run far outside
     #: them gets a :class:`RigSpeedWarning`)
     rpm_range: tuple[float, float] | None = None
+    #: catalogue id of the bearing the records were taken on (None: not said); a run whose
+    #: bearing is of another size gets a :class:`RigBearingWarning` (another bearing sits in
+    #: another housing, with other modes)
+    bearing: str | None = None
     gain: float = 1.0
     gain_provenance: str = "default: the model's output passes unchanged"
     modes: tuple[Mode, ...] = ()
@@ -530,8 +537,8 @@ class Rig:
     model_gains: tuple[ModelGain, ...] = ()
     source: str = field(default="", compare=False)
 
-    KEYS = ("name", "description", "provenance", "input_channel", "end", "fs_hz", "rpm_range",
-            "path", "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
+    KEYS = ("name", "description", "provenance", "input_channel", "end", "bearing", "fs_hz",
+            "rpm_range", "path", "mode", "background", "tone", "sensor", "model_gain")  # fmt: skip
 
     def __post_init__(self) -> None:
         if self.rpm_range is not None:
@@ -600,6 +607,16 @@ class Rig:
             end = d.get("end")
             if end is not None and end not in ("DE", "FE"):
                 raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")
+            bearing = d.get("bearing")
+            if bearing is not None:
+                from .catalog import _catalog_files
+
+                ids = sorted(_catalog_files())
+                if bearing not in ids:
+                    raise ConfigError(
+                        f"rig.bearing = {bearing!r} is not a catalogue bearing; valid: "
+                        + ", ".join(ids)
+                    )
             gain, gprov = 1.0, cls.gain_provenance
             if "path" in d:
                 p = _keys(d["path"], ("gain", "provenance"), "path")
@@ -637,6 +654,7 @@ class Rig:
                 provenance=prov,
                 input_channel=ch,
                 end=end,
+                bearing=bearing,
                 fs_hz=d.get("fs_hz"),  # checked in __post_init__
                 rpm_range=d.get("rpm_range"),  # checked in __post_init__
                 gain=gain,
@@ -667,6 +685,8 @@ class Rig:
         }
         if self.end is not None:
             out["end"] = self.end
+        if self.bearing is not None:
+            out["bearing"] = self.bearing
         if self.fs_hz is not None:
             out["fs_hz"] = self.fs_hz
         if self.rpm_range is not None:
@@ -938,6 +958,48 @@ def _warn_speed(r: Rig, fsh: float | None) -> None:
     )
 
 
+class RigBearingWarning(UserWarning):
+    """A run's bearing is of another size than the one a rig's records were taken on: it sits
+    in another housing, whose modes and background the rig does not have."""
+
+
+#: relative difference of the pitch or rolling-element diameter, or any difference in the
+#: number of elements, above which a run's bearing is another size than its rig's [-] (the
+#: 6205 of seed VSM and the CWRU's measured 6205 differ by 0.1 %)
+BEARING_SIZE_REL = 0.02
+
+
+def _warn_bearing(r: Rig, meta: dict) -> None:
+    """Warn when the result's bearing (``meta["bearing"]``, or ``meta["bearing_fe"]`` for a
+    rig fed by the fan-end housing) is another size than ``r.bearing``."""
+    if r.bearing is None:
+        return
+    key = "bearing_fe" if r.input_channel.endswith("_fe") else "bearing"
+    run = meta.get(key)
+    if not isinstance(run, dict):
+        return
+    from .catalog import get_bearing
+
+    own = get_bearing(r.bearing)
+    try:
+        same = int(run["n_elements"]) == own.n_elements and all(
+            abs(float(run[k]) / getattr(own, k) - 1.0) <= BEARING_SIZE_REL
+            for k in ("pitch_diameter", "element_diameter")
+        )
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return
+    if not same:
+        warnings.warn(
+            f"rig {r.name!r} was identified on records of the {r.bearing} (pitch diameter "
+            f"{1e3 * own.pitch_diameter:.4g} mm, {own.n_elements} elements); this run's "
+            f"bearing {run.get('id') or ''} is another size (pitch diameter "
+            f"{1e3 * float(run['pitch_diameter']):.4g} mm, {int(run['n_elements'])} elements): "
+            "it sits in another housing, whose modes and background the rig does not have",
+            RigBearingWarning,
+            stacklevel=3,
+        )
+
+
 class RigGainWarning(UserWarning):
     """A rig's model gain was identified with another defect profile than the run's: it
     matched that profile's level to the records, not this run's."""
@@ -1032,6 +1094,7 @@ def apply_rig(
     if mg is not None:
         _warn_gain_profile(mg, r.name, result.meta)
     r = r.for_model(model)
+    _warn_bearing(r, result.meta)
     if r.input_channel not in result.channels:
         raise ConfigError(
             f"rig {r.name!r}: input_channel {r.input_channel!r} is not a channel of the result; "

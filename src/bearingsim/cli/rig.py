@@ -6,6 +6,7 @@ from __future__ import annotations
 import shlex
 import sys
 import tomllib
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -250,6 +251,14 @@ def identify_cmd(
         and all(Path(p).suffix.lower() == ".mat" for p in records) else None,
     )  # fmt: skip
     rig = ir.rig
+    # the bearing the records were taken on, where known: a CWRU end's, or the one catalogue
+    # bearing of every --conditions row (a run of another size through the rig is warned)
+    if rig.end is not None:
+        from ..io.cwru import cwru_bearing
+
+        rig = replace(rig, bearing=cwru_bearing(rig.end))
+    elif user and len({c.get("bearing") for _r, c in user}) == 1 and "bearing" in user[0][1]:
+        rig = replace(rig, bearing=user[0][1]["bearing"])
     if model_gains:
         from .. import side_by_side as sbs
 
@@ -333,6 +342,11 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     click.echo(f"  provenance: {r.provenance}")
     end = f"; sensor at the {r.end} end" if r.end else ""
     click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}{end}")
+    if r.bearing is not None:
+        click.echo(
+            f"  identified on records of the {r.bearing} (a run's bearing of another size is "
+            "warned)"
+        )
     if r.fs_hz is not None:
         click.echo(
             f"  identified from records at {r.fs_hz:g} Hz: a scenario with this rig and no "
