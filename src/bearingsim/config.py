@@ -587,14 +587,12 @@ def _check_rig(sc: Any, channels: tuple[str, ...]) -> None:
     r = sc.__dict__.get("loaded_rig") or load_rig(sc.rig)  # loaded once when it set fs_hz
     if is_rig_file(sc.rig):  # a file by its absolute path: the scenario a result stores reruns
         object.__setattr__(sc, "rig", str(Path(sc.rig).resolve()))  # from any folder
-    try:
-        r.check_rate(sc.fs_hz)
-    except ConfigError as exc:  # the remedy is the run's rate, not the rig file's value
-        why = str(exc).split("; valid", 1)[0]  # what the rate misses, without the file's range
+    bad = r.rate_problem(sc.fs_hz)
+    if bad is not None:  # the remedy is the run's rate, not the rig file's value
         raise ConfigError(
-            f"fs_hz = {sc.fs_hz:g} Hz is too low for rig {r.name!r} ({why}); valid: fs_hz above "
-            f"{r.min_rate_hz():.6g} Hz, or a rig identified at this rate"
-        ) from None
+            f"fs_hz = {sc.fs_hz:g} Hz is too low for rig {r.name!r} ({bad[0]}); valid: fs_hz "
+            f"above {r.min_rate_hz():.6g} Hz, or a rig identified at this rate"
+        )
     if r.input_channel not in channels:
         raise ConfigError(
             f"rig {r.name!r}: input_channel {r.input_channel!r} is not an acceleration output of "

@@ -221,25 +221,36 @@ class Mode:
         z = self.damping_ratio
         return self.frequency_hz * (np.sqrt(1.0 + z * z) + z)
 
-    def check_rate(self, fs: float, where: str, rate: str = "the output rate") -> None:
-        """Refuse a rate ``fs`` [Hz] whose Nyquist frequency the mode or its half-power band
-        reaches: the digital resonator of :meth:`sos` has no such band (its poles leave the
-        unit circle once the band is as wide as the Nyquist band, and the signal grows without
-        bound). ``where`` names the mode in the message, ``rate`` the rate."""
+    def rate_problem(
+        self, fs: float, where: str, rate: str = "the output rate"
+    ) -> tuple[str, str] | None:
+        """What is wrong with the rate ``fs`` [Hz] for this mode, as ``(reason, valid)``, or
+        None: its Nyquist frequency reaches the mode or its half-power band (the digital
+        resonator of :meth:`sos` has no such band: its poles leave the unit circle once the
+        band is as wide as the Nyquist band, and the signal grows without bound). ``where``
+        names the mode in the reason, ``rate`` the rate."""
         ny = 0.5 * fs
         if self.frequency_hz >= ny:
-            raise ConfigError(
+            return (
                 f"{where}.frequency_hz = {self.frequency_hz:g} Hz is at or above the Nyquist "
-                f"frequency of {rate} ({ny:g} Hz); valid range (0, {ny:g}) Hz"
+                f"frequency of {rate} ({ny:g} Hz)",
+                f"valid range (0, {ny:g}) Hz",
             )
         if self.upper_half_power_hz >= ny:
             r = ny / self.frequency_hz  # f_n (sqrt(1 + z^2) + z) = ny  <=>  z = (r^2 - 1) / 2r
-            raise ConfigError(
+            return (
                 f"{where}.damping_ratio = {self.damping_ratio:.6g}: the half-power band of the "
                 f"mode at {self.frequency_hz:g} Hz reaches {self.upper_half_power_hz:.6g} Hz, at "
-                f"or above the Nyquist frequency of {rate} ({ny:g} Hz); valid range "
-                f"[{MIN_DAMPING:g}, {(r * r - 1.0) / (2.0 * r):.6g}) at this rate"
+                f"or above the Nyquist frequency of {rate} ({ny:g} Hz)",
+                f"valid range [{MIN_DAMPING:g}, {(r * r - 1.0) / (2.0 * r):.6g}) at this rate",
             )
+        return None
+
+    def check_rate(self, fs: float, where: str, rate: str = "the output rate") -> None:
+        """Refuse (one line) a rate ``fs`` [Hz] with a :meth:`rate_problem`."""
+        bad = self.rate_problem(fs, where, rate)
+        if bad is not None:
+            raise ConfigError("; ".join(bad))
 
     def sos(self, fs: float) -> NDArray[np.float64]:
         """Second-order section of the mode at sample rate ``fs`` [Hz]: the digital resonator
@@ -770,31 +781,41 @@ class Rig:
             f.append(float(self.background.frequency_hz[0]))
         return 2.0 * float(max(f, default=0.0))
 
-    def check_rate(self, fs: float) -> None:
-        """Refuse a mode (or its half-power band, :meth:`Mode.check_rate`) or a fixed-frequency
-        tone at or above the Nyquist frequency of the output rate ``fs`` [Hz], and a background
-        table lying wholly there (it would add nothing). (A tone given as an order is left out
-        of a signal whose shaft speed puts it there, as a recorder's anti-aliasing filter
-        removes it: that depends on the signal, not on the rig.)"""
+    def rate_problem(self, fs: float) -> tuple[str, str] | None:
+        """What is wrong with the output rate ``fs`` [Hz] for this rig, as ``(reason,
+        valid)``, or None: a mode (or its half-power band, :meth:`Mode.rate_problem`) or a
+        fixed-frequency tone at or above its Nyquist frequency, or a background table lying
+        wholly there (it would add nothing). (A tone given as an order is left out of a signal
+        whose shaft speed puts it there, as a recorder's anti-aliasing filter removes it: that
+        depends on the signal, not on the rig.)"""
+        who = self.source or self.name
         for i, m in enumerate(self.modes):
-            m.check_rate(fs, f"{self.source or self.name}: mode[{i}]")
-        items = [(f"tone[{i}]", t.frequency_hz) for i, t in enumerate(self.tones)
-                 if t.frequency_hz is not None]  # fmt: skip
-        for where, f in items:
-            if f >= 0.5 * fs:
-                raise ConfigError(
-                    f"{self.source or self.name}: {where}.frequency_hz = {f:g} Hz "
-                    f"is at or above the Nyquist frequency of the output rate ({0.5 * fs:g} Hz); "
-                    f"valid range (0, {0.5 * fs:g}) Hz"
+            bad = m.rate_problem(fs, f"{who}: mode[{i}]")
+            if bad is not None:
+                return bad
+        ny = 0.5 * fs
+        for i, t in enumerate(self.tones):
+            if t.frequency_hz is not None and t.frequency_hz >= ny:
+                return (
+                    f"{who}: tone[{i}].frequency_hz = {t.frequency_hz:g} Hz is at or above the "
+                    f"Nyquist frequency of the output rate ({ny:g} Hz)",
+                    f"valid range (0, {ny:g}) Hz",
                 )
         bg = self.background
-        if bg is not None and bg.frequency_hz[0] >= 0.5 * fs:
-            raise ConfigError(
-                f"{self.source or self.name}: background.frequency_hz[0] = {bg.frequency_hz[0]:g}"
-                f" Hz: the whole background table lies at or above the Nyquist frequency of the "
-                f"output rate ({0.5 * fs:g} Hz) and would add nothing; valid: a table that "
-                f"starts below {0.5 * fs:g} Hz"
+        if bg is not None and bg.frequency_hz[0] >= ny:
+            return (
+                f"{who}: background.frequency_hz[0] = {bg.frequency_hz[0]:g} Hz: the whole "
+                f"background table lies at or above the Nyquist frequency of the output rate "
+                f"({ny:g} Hz) and would add nothing",
+                f"valid: a table that starts below {ny:g} Hz",
             )
+        return None
+
+    def check_rate(self, fs: float) -> None:
+        """Refuse (one line) an output rate ``fs`` [Hz] with a :meth:`rate_problem`."""
+        bad = self.rate_problem(fs)
+        if bad is not None:
+            raise ConfigError("; ".join(bad))
 
     def transfer(self, f: NDArray[np.float64], fs: float) -> NDArray[np.complex128]:
         """Frequency response of the path (direct gain plus modes, as discretised at ``fs``)
