@@ -75,6 +75,16 @@ N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
 
 
+def check_ball_bearing(bearing) -> None:
+    """Refuse (one line) a bearing that is not a ball bearing: the ring models' contacts and
+    defects are those of balls."""
+    if not isinstance(bearing, BallBearing):
+        raise ConfigError(
+            f"bearing = {getattr(bearing, 'id', bearing)!r} is not a ball bearing; the "
+            "VSM/DEM/TVSM models need a ball bearing"
+        )
+
+
 @dataclass(frozen=True)
 class ModelInputs:
     """Physical inputs common to the VSM, TVSM and DEM (SI units).
@@ -186,11 +196,7 @@ class ModelInputs:
 
     def __post_init__(self) -> None:
         b = self.bearing
-        if not isinstance(b, BallBearing):
-            raise ConfigError(
-                f"bearing = {getattr(b, 'id', b)!r} is not a ball bearing; the VSM/DEM/TVSM "
-                "models need a ball bearing"
-            )
+        check_ball_bearing(b)
         fx = check_range("fx_n", self.fx, unit="N") + 0.0  # -0.0 -> 0.0 (the load direction)
         fy = check_range("fy_n", self.fy, unit="N") + 0.0
         cl = None if self.clearance is None else check_range("clearance_m", self.clearance)

@@ -34,6 +34,7 @@ from .base import (
     MODEL_FACTS,
     ModelInputs,
     ModelKernel,
+    check_ball_bearing,
     integrate_model,
     integrate_model_adaptive,
     max_frequency,
@@ -88,6 +89,8 @@ def _facts(model: Model) -> tuple[bool, str]:
 def model_inputs(scenario: RingScenario) -> ModelInputs:
     """Physical inputs of a VSM/DEM/TVSM scenario (bearing resolved, defect validated)."""
     bearing = resolve_bearing(scenario.bearing, scenario.bearing_file)
+    check_ball_bearing(bearing)  # before the defect keys (NU204-ECP: "this defect geometry
+    # needs balls" without a fault; exploratory testing, twenty-fourth session)
     defect = None
     if scenario.fault != "none":  # the scenario gives seed VSM's left edge beta_0
         defect = defect_at_edge(
