@@ -150,6 +150,12 @@ def test_the_backgrounds_growth_with_speed_is_identified():
     at = np.median(p[(f > 4000.0) & (f < 5000.0)]) / white(1800.0)
     assert 0.7 < at < 1.6, at
     assert load_rig_text(rig_to_toml(ir.rig)) == ir.rig
+    # the plot draws the table at rpm_ref and the background at the records' ends
+    labels = [ln.get_label() for ln in ir.plot().axes[0].get_lines()]
+    assert f"identified background (table at {b.rpm_ref:.5g} r/min)" in labels, labels
+    assert (
+        "the same at 900 r/min (speed^2)" in labels and "the same at 1800 r/min (speed^2)" in labels
+    )
 
 
 @pytest.mark.parametrize(

@@ -176,7 +176,16 @@ class IdentifiedRig:
         bg = self.rig.background
         if bg is not None:
             fb = np.asarray(bg.frequency_hz)
-            a.loglog(fb, bg.psd, "b.-", lw=1.2, ms=3, label="identified background (table)")
+            at = "" if bg.rpm_ref is None else f" at {bg.rpm_ref:.5g} r/min"
+            a.loglog(fb, bg.psd, "b.-", lw=1.2, ms=3,
+                     label=f"identified background (table{at})")  # fmt: skip
+            if bg.speed_exponent is not None:  # the table is the background at rpm_ref; the
+                # records' own speeds span rpm_range: draw it at both ends too
+                lo, hi = self.rig.rpm_range or (bg.rpm_ref, bg.rpm_ref)
+                for n, ls in ((lo, ":"), (hi, "--")):
+                    k2 = bg.speed_factor(n / 60.0) ** 2
+                    law = f"the same at {n:.5g} r/min (speed^{bg.speed_exponent:.2g})"
+                    a.loglog(fb, k2 * np.asarray(bg.psd), "b", ls=ls, lw=0.8, label=law)
         a.set_ylabel("PSD [(m/s²)²/Hz]")
         a.set_title(f"rig {self.rig.name}: measured spectra, identified background and path")
         h2 = np.abs(self.rig.transfer(f, fs)) ** 2
