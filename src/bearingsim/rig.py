@@ -389,6 +389,26 @@ class Background:
 
     KEYS = ("frequency_hz", "psd_m2_per_s4_per_hz", "speed_exponent", "rpm_ref", "provenance")
 
+    def __post_init__(self) -> None:  # a file's table and a background built in code alike
+        n, ref = self.speed_exponent, self.rpm_ref
+        if (n is None) != (ref is None):
+            given, missing = ("speed_exponent", "rpm_ref") if ref is None else (
+                "rpm_ref", "speed_exponent")  # fmt: skip
+            raise ConfigError(
+                f"background.{missing} is missing ({given} is given); valid: speed_exponent "
+                "and rpm_ref together, or neither"
+            )
+        if n is not None:
+            object.__setattr__(
+                self,
+                "speed_exponent",
+                check_range(
+                    "background.speed_exponent", n, -MAX_SPEED_EXPONENT, MAX_SPEED_EXPONENT
+                ),
+            )
+            object.__setattr__(self, "rpm_ref",
+                               check_positive("background.rpm_ref", ref, "r/min"))  # fmt: skip
+
     def speed_factor(self, shaft_hz: float | None) -> float:
         """The background's amplitude at shaft speed ``shaft_hz`` [Hz] over the table's [-]:
         1 without a speed law or a speed (inf where the power overflows)."""
@@ -402,24 +422,7 @@ class Background:
     @classmethod
     def from_dict(cls, d: Any, where: str) -> Background:
         d = _keys(d, cls.KEYS, where)
-        if ("speed_exponent" in d) != ("rpm_ref" in d):
-            given, missing = (
-                ("speed_exponent", "rpm_ref") if "speed_exponent" in d else
-                ("rpm_ref", "speed_exponent")
-            )  # fmt: skip
-            raise ConfigError(
-                f"{where}.{missing} is missing ({given} is given); valid: speed_exponent and "
-                "rpm_ref together, or neither"
-            )
-        law = {}
-        if "speed_exponent" in d:
-            law = {
-                "speed_exponent": check_range(
-                    f"{where}.speed_exponent", d["speed_exponent"], -MAX_SPEED_EXPONENT,
-                    MAX_SPEED_EXPONENT
-                ),
-                "rpm_ref": check_positive(f"{where}.rpm_ref", d["rpm_ref"], "r/min"),
-            }  # fmt: skip
+        law = {k: d[k] for k in ("speed_exponent", "rpm_ref") if k in d}  # __post_init__ checks
         f, s = d.get("frequency_hz"), d.get("psd_m2_per_s4_per_hz")
         if not isinstance(f, list) or not isinstance(s, list) or len(f) != len(s) or len(f) < 2:
             raise ConfigError(
