@@ -676,3 +676,21 @@ def test_a_bearing_overriding_the_results_own_is_noted(run_cli, tmp_path):
     assert (d["bearing"], d["bearing_file"]) == ("6203-cwru", "6205-cwru")
     r = run_cli("analyze", str(p), "--bearing", "6205-cwru")  # its own: no note
     assert "overrides the" not in r.out
+
+
+def test_a_short_low_speed_record_does_not_take_a_cage_line_for_the_shaft(run_cli, tmp_path):
+    """Exploratory testing (twenty-fourth session): a 0.014 in ball fault of the 6205 at 600
+    r/min, 1 s through ``cwru-de-12k``: the shaft line's search, two 1 Hz bins about 10 Hz,
+    took 2 x FTF at 8 Hz for f_r, and labelled 16 Hz "2xfr" (order 1.6) and the shaft
+    harmonics after it. The shaft line is now searched within one bin (SHAFT_TOL_BINS): every
+    shaft line reported lies at an integer order."""
+    p = tmp_path / "b600.nc"
+    r = run_cli("simulate", "--model", "vsm", "--bearing", "6205", "--fault", "ball",
+                "--defect-width-m", "3.556e-4", "--rpm", "600", "--duration-s", "1", "--rig",
+                "cwru-de-12k", "-o", str(p))  # fmt: skip
+    assert r.code == 0, r.err
+    d = run_cli("analyze", str(p), "--json").json()
+    d = d[0] if isinstance(d, list) else d
+    shaft = [q for q in d["peaks"] if q["detected"] and q["label"].endswith("fr")
+             and "BP" not in q["label"] and "BSF" not in q["label"]]  # fmt: skip
+    assert all(abs(q["order"] - round(q["order"])) < 0.05 for q in shaft), shaft

@@ -867,9 +867,15 @@ def test_a_run_far_from_the_rigs_speeds_is_warned(tmp_path):
         lo, hi = load_rig(name).rpm_range
         assert 1700.0 <= lo <= hi <= 1800.0
     base = dict(model="vsm", duration_s=0.01, rig="cwru-de-12k")
-    with pytest.warns(RigSpeedWarning, match=r"identified at 1723-1796 r/min; this run turns "
-                      r"at 3000 r/min"):  # fmt: skip
-        simulate(dict(base, rpm=3000.0))
+    # the message does not name the run's speed: a sweep groups warnings by message
+    # (exploratory testing, twenty-fourth session: one line per value of a speed axis)
+    msg = []
+    for rpm in (3000.0, 3600.0):
+        with pytest.warns(RigSpeedWarning, match=r"identified at 1723-1796 r/min; this run "
+                          r"turns more than 10% outside those speeds") as w:  # fmt: skip
+            simulate(dict(base, rpm=rpm))
+        msg.append(str(w[0].message))
+    assert msg[0] == msg[1]
     with warnings.catch_warnings():
         warnings.simplefilter("error", RigSpeedWarning)
         simulate(dict(base, rpm=1796.0 * 1.09))  # within 10 % of the range
@@ -1009,3 +1015,10 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
         load_rig(p)
     r = _cli("rig", "show", "cwru-fe-12k", cwd=tmp_path)
     assert "identified on records of the 6203-cwru" in r.stdout, r.stdout
+    # and the speeds a RigSpeedWarning is judged by (--json had them, the text did not)
+    assert "  identified at 1728-1797 r/min: a run more than 10 % outside" in r.stdout, r.stdout
+    p.write_text(RIG_TOML.replace('input_channel = "acc_y"',
+                                  'input_channel = "acc_y"\nbearing = 6205'))  # fmt: skip
+    with pytest.raises(ConfigError, match=r"^r.toml: rig.bearing = 6205 is not text; valid: a "
+                       r'catalogue id in quotes \(bearing = "6205-cwru"\)$'):  # fmt: skip
+        load_rig(p)

@@ -538,3 +538,42 @@ def test_a_group_of_runs_that_cannot_start_is_recorded_failed(client, tmp_path, 
     assert X.shape == (2, 1, 40)
     r = run_cli("sweep", "summary", str(tmp_path / "g.zarr"))
     assert r.code == 0 and "wider than the ball" in r.out, r.out
+
+
+RIG_SWEEP_TOML = """
+[base]
+model = "vsm"
+duration_s = 0.005
+rig = "cwru-de-12k"
+fault = "none"
+[axes]
+bearing = ["6205-cwru", "6206"]
+rpm = [900.0, 1750.0]
+"""
+
+
+@pytest.mark.filterwarnings("default")
+def test_plan_lists_the_rig_warnings_the_runs_will_give(tmp_path, run_cli, capsys):
+    """Exploratory testing (twenty-fourth session): ``sweep plan`` printed its timing runs'
+    warnings as raw Python warnings, three times each, and none of the other runs'. It now
+    lists the measurement chain's warnings of every run, found without running it (a bearing
+    of another size than the rig's, a speed far from its), grouped by message; the speed
+    warning does not name the run's speed, so a speed axis groups into one line."""
+    p = tmp_path / "rig.toml"
+    p.write_text(RIG_SWEEP_TOML)
+    plan = plan_sweep(SweepSpec.from_toml(p), timing_runs=2, timing_duration_s=0.005)
+    assert capsys.readouterr().err == ""  # the timing runs' warnings are not printed raw
+    got = {k.split(":")[0] + (" 6206" if "6206" in k else ""): v
+           for k, v in plan.run_warnings.items()}  # fmt: skip
+    assert got == {"RigBearingWarning 6206": [2, 3], "RigSpeedWarning": [0, 2]}, got
+    r = run_cli("sweep", "plan", str(p), "--timing-runs", "0")
+    assert r.code == 0 and "  2 of 4 runs will warn (runs 0, 2): RigSpeedWarning: rig " in r.out
+    d = run_cli("sweep", "plan", str(p), "--timing-runs", "0", "--json").json()
+    assert sorted(map(sorted, d["run_warnings"].values())) == [[0, 2], [2, 3]]
+    # what the runs then record: the same messages, the same runs
+    out = tmp_path / "out"
+    r = run_cli("sweep", "run", str(p), "-o", str(out), "--workers", "1")
+    assert r.code == 0, r.err
+    s = open_dataset(out).summary()
+    assert {k: sorted(v) for k, v in s["warnings"].items()} == plan.run_warnings
+    assert list(s["by_axis"]["rpm"]) == ["900.0", "1750.0"]  # numbers in order, not as text

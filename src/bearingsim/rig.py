@@ -626,6 +626,11 @@ class Rig:
                 from .catalog import _catalog_files
 
                 ids = sorted(_catalog_files())
+                if not isinstance(bearing, str):  # bearing = 6205, unquoted: a number
+                    raise ConfigError(
+                        f"rig.bearing = {bearing!r} is not text; valid: a catalogue id in "
+                        'quotes (bearing = "6205-cwru")'
+                    )
                 if bearing not in ids:
                     raise ConfigError(
                         f"rig.bearing = {bearing!r} is not a catalogue bearing; valid: "
@@ -953,15 +958,16 @@ class RigSpeedWarning(UserWarning):
 RPM_MARGIN = 0.1
 
 
-def _warn_speed(r: Rig, fsh: float | None) -> None:
-    """Warn when the shaft speed ``fsh`` [Hz] lies more than :data:`RPM_MARGIN` outside
-    ``r.rpm_range``."""
-    if r.rpm_range is None or fsh is None:
-        return
+def speed_note(r: Rig, rpm: float | None) -> str | None:
+    """The :class:`RigSpeedWarning` a run at shaft speed ``rpm`` [r/min] through ``r`` gets
+    (more than :data:`RPM_MARGIN` outside ``r.rpm_range``), or None. The message does not
+    name the run's speed: a sweep groups its runs' warnings by message, and a speed axis gave
+    one line per speed (exploratory testing, twenty-fourth session)."""
+    if r.rpm_range is None or rpm is None:
+        return None
     lo, hi = r.rpm_range
-    rpm = 60.0 * fsh
     if lo * (1.0 - RPM_MARGIN) <= rpm <= hi * (1.0 + RPM_MARGIN):
-        return
+        return None
     bg = r.background
     if bg is not None and bg.speed_exponent is not None:  # scaled, but beyond what was measured
         what = (
@@ -974,12 +980,17 @@ def _warn_speed(r: Rig, fsh: float | None) -> None:
             "model's own vibration follows the run's (a healthy bearing's ball-pass line grows "
             "with speed and can stand out of a background that does not)"
         )
-    warnings.warn(
-        f"rig {r.name!r} was identified at {lo:g}-{hi:g} r/min; this run turns at {rpm:g} "
-        f"r/min: {what}",
-        RigSpeedWarning,
-        stacklevel=3,
+    return (
+        f"rig {r.name!r} was identified at {lo:g}-{hi:g} r/min; this run turns more than "
+        f"{RPM_MARGIN:.0%} outside those speeds: {what}"
     )
+
+
+def _warn_speed(r: Rig, fsh: float | None) -> None:
+    """Warn (:func:`speed_note`) for the shaft speed ``fsh`` [Hz]."""
+    note = speed_note(r, None if fsh is None else 60.0 * fsh)
+    if note is not None:
+        warnings.warn(note, RigSpeedWarning, stacklevel=3)
 
 
 class RigBearingWarning(UserWarning):
@@ -993,15 +1004,13 @@ class RigBearingWarning(UserWarning):
 BEARING_SIZE_REL = 0.02
 
 
-def _warn_bearing(r: Rig, meta: dict) -> None:
-    """Warn when the result's bearing (``meta["bearing"]``, or ``meta["bearing_fe"]`` for a
-    rig fed by the fan-end housing) is another size than ``r.bearing``."""
-    if r.bearing is None:
-        return
-    key = "bearing_fe" if r.input_channel.endswith("_fe") else "bearing"
-    run = meta.get(key)
-    if not isinstance(run, dict):
-        return
+def bearing_note(r: Rig, run: dict | None) -> str | None:
+    """The :class:`RigBearingWarning` a run whose bearing is ``run`` (the fields of a
+    :class:`~bearingsim.geometry.BallBearing` as a result's ``meta["bearing"]`` holds them:
+    ``id``, ``n_elements``, ``pitch_diameter``, ``element_diameter`` [m]) gets through ``r``,
+    or None: another size than ``r.bearing`` (:data:`BEARING_SIZE_REL`)."""
+    if r.bearing is None or not isinstance(run, dict):
+        return None
     from .catalog import get_bearing
 
     own = get_bearing(r.bearing)
@@ -1011,17 +1020,26 @@ def _warn_bearing(r: Rig, meta: dict) -> None:
             for k in ("pitch_diameter", "element_diameter")
         )
     except (KeyError, TypeError, ValueError, ZeroDivisionError):
-        return
-    if not same:
-        warnings.warn(
-            f"rig {r.name!r} was identified on records of the {r.bearing} (pitch diameter "
-            f"{1e3 * own.pitch_diameter:.4g} mm, {own.n_elements} elements); this run's "
-            f"bearing {run.get('id') or ''} is another size (pitch diameter "
-            f"{1e3 * float(run['pitch_diameter']):.4g} mm, {int(run['n_elements'])} elements): "
-            "it sits in another housing, whose modes and background the rig does not have",
-            RigBearingWarning,
-            stacklevel=3,
-        )
+        return None
+    if same:
+        return None
+    return (
+        f"rig {r.name!r} was identified on records of the {r.bearing} (pitch diameter "
+        f"{1e3 * own.pitch_diameter:.4g} mm, {own.n_elements} elements); this run's "
+        f"bearing {run.get('id') or ''} is another size (pitch diameter "
+        f"{1e3 * float(run['pitch_diameter']):.4g} mm, {int(run['n_elements'])} elements): "
+        "it sits in another housing, whose modes and background the rig does not have"
+    )
+
+
+def _warn_bearing(r: Rig, meta: dict) -> None:
+    """Warn (:func:`bearing_note`) when the result's bearing (``meta["bearing"]``, or
+    ``meta["bearing_fe"]`` for a rig fed by the fan-end housing) is another size than
+    ``r.bearing``."""
+    key = "bearing_fe" if r.input_channel.endswith("_fe") else "bearing"
+    note = bearing_note(r, meta.get(key))
+    if note is not None:
+        warnings.warn(note, RigBearingWarning, stacklevel=3)
 
 
 class RigGainWarning(UserWarning):

@@ -352,6 +352,12 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
             f"  identified from records at {r.fs_hz:g} Hz: a scenario with this rig and no "
             "fs_hz of its own is sampled at it"
         )
+    if r.rpm_range is not None:
+        lo, hi = r.rpm_range
+        click.echo(
+            f"  identified at {lo:g}-{hi:g} r/min: a run more than 10 % outside gets a "
+            "RigSpeedWarning"
+        )
     for m in r.modes:
         click.echo(f"  mode {m.frequency_hz:.1f} Hz, zeta {m.damping_ratio:.4f}, gain {m.gain:.3g}")
     for t in r.tones:

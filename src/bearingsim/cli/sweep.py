@@ -115,13 +115,17 @@ def plan_cmd(
         click.echo(
             f"  estimate from {len(plan.timing)} timing runs: {_human_s(plan.compute_s_per_run)} "
             f"per run, {_human_s(plan.compute_s_total)} on 1 worker, "
-            f"~{_human_s(plan.wall_s)} on {plan.workers} workers (ideal scaling, at least the "
+            f"~{_human_s(plan.wall_s)} on {plan.workers} worker{'s' if plan.workers != 1 else ''} "
+            "(ideal scaling, at least the "
             "longest run)"
         )
     click.echo(
         f"  disk ~{_human_bytes(plan.bytes_estimate)} ({_human_bytes(plan.bytes_raw)} uncompressed)"
     )
     _echo_invalid(plan.invalid_runs, plan.n_runs)
+    for w, runs in plan.run_warnings.items():
+        first = ", ".join(str(i) for i in runs[:5]) + (", ..." if len(runs) > 5 else "")
+        click.echo(f"  {len(runs)} of {plan.n_runs} runs will warn (runs {first}): {w}")
 
 
 #: distinct errors of runs that cannot start that ``sweep plan`` prints (``--json`` lists all)

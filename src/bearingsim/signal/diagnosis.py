@@ -333,6 +333,11 @@ _FUNDAMENTALS = (
 #: relative frequency within which two searched targets of a shared line count as equally near
 #: (then the kinematic positions decide) [-]
 TIE_REL = 1e-4
+#: smallest tolerance of the shaft line's search [bins]: the shaft speed is the record's to
+#: within the speed's uncertainty, not a fault line's slip, and two bins of a short record at
+#: a low speed took a cage harmonic for it (600 r/min, 1 s: 2 x FTF at 8 Hz for f_r at 10 Hz,
+#: and every shaft harmonic and sideband after it; exploratory testing, twenty-fourth session)
+SHAFT_TOL_BINS = 1.0
 #: sidebands: family fundamental -> modulating line
 _SIDEBANDS = {"BPFO": SHAFT, "BPFI": SHAFT, "2xBSF": "FTF"}
 
@@ -358,15 +363,19 @@ def find_lines(
     k = characteristic_frequencies(bearing, shaft_hz)
     first = [(name, mult * getattr(k, attr)) for name, attr, mult in _FUNDAMENTALS]
     first = [(n, f) for n, f in first if f < f_limit]
-    peaks = match_peaks(
-        es,
-        _windows(first, bearing, shaft_hz, rule),
-        shaft_hz,
-        tol_rel=rule.tol_rel,
-        tol_min_bins=rule.tol_min_bins,
-        noise_rel=rule.noise_rel,
-        threshold_db=rule.threshold_db,
-    )
+    win = _windows(first, bearing, shaft_hz, rule)
+    peaks = []
+    for targets, bins in (([w for w in win if w[0] != SHAFT], rule.tol_min_bins),
+                          ([w for w in win if w[0] == SHAFT], SHAFT_TOL_BINS)):  # fmt: skip
+        peaks += match_peaks(
+            es,
+            targets,
+            shaft_hz,
+            tol_rel=rule.tol_rel,
+            tol_min_bins=bins,
+            noise_rel=rule.noise_rel,
+            threshold_db=rule.threshold_db,
+        )
     found = {p.label: (p.freq_hz if p.detected else p.target_hz) for p in peaks}
     nominal = dict(first)  # the kinematic positions, for attributing shared lines
     for name, f in first:

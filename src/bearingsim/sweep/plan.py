@@ -106,6 +106,38 @@ def start_error(scenario: Scenario | dict[str, Any]) -> str | None:
     return None
 
 
+def rig_warnings(scenarios: list[Scenario], skip: set[int] = frozenset()) -> dict[str, list[int]]:
+    """The measurement-chain warnings the runs will give (a bearing of another size than the
+    rig's, :func:`bearingsim.rig.bearing_note`; a speed far from the rig's,
+    :func:`bearingsim.rig.speed_note`), found without running them: ``"Category: message"``
+    -> the runs (not those in ``skip``). Before, ``sweep plan`` printed the timing runs'
+    warnings raw and repeated, and said nothing of the other runs' (exploratory testing,
+    twenty-fourth session)."""
+    from ..catalog import resolve_bearing
+    from ..rig import bearing_note, load_rig, speed_note
+
+    out: dict[str, list[int]] = {}
+    rigs: dict[str, Any] = {}
+    for i, sc in enumerate(scenarios):
+        name = getattr(sc, "rig", None)
+        if i in skip or not name:
+            continue
+        r = rigs.get(name) or rigs.setdefault(name, load_rig(name))
+        if hasattr(sc, "de_bearing"):  # the rotor: the bearing of the housing the rig reads
+            fe = r.end == "FE" or r.input_channel.endswith("_fe")
+            b = resolve_bearing(sc.fe_bearing if fe else sc.de_bearing, None)
+        else:
+            b = resolve_bearing(sc.bearing, sc.bearing_file)
+        run = {"id": b.id, "n_elements": b.n_elements, "pitch_diameter": b.pitch_diameter,
+               "element_diameter": b.element_diameter}  # fmt: skip
+        notes = (("RigBearingWarning", bearing_note(r, run)),
+                 ("RigSpeedWarning", speed_note(r, getattr(sc, "rpm", None))))  # fmt: skip
+        for cat, note in notes:
+            if note is not None:
+                out.setdefault(f"{cat}: {note}", []).append(i)
+    return out
+
+
 # ------------------------------------------------------------------------------ timing
 def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | None:
     """Time ``scenario`` for 2 samples and for ``min(duration_s, max_duration_s)`` (in this
@@ -121,7 +153,8 @@ def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | No
     for d in (d0, d0, d1):
         t0 = time.perf_counter()
         try:
-            res = simulate(scenario.replace(duration_s=d))
+            with collect_warnings():  # the runs' own warnings: rig_warnings lists them
+                res = simulate(scenario.replace(duration_s=d))
         except BearingsimError:
             return None
         t.append(time.perf_counter() - t0)
@@ -264,6 +297,9 @@ class SweepPlan:
     invalid_runs : list of dict
         The runs that cannot start (:func:`check_runs`): ``run``, ``values`` (its axis values)
         and ``error`` (the one-line message ``sweep run`` would record for it).
+    run_warnings : dict
+        The measurement-chain warnings the runs that start will give (:func:`rig_warnings`):
+        ``"Category: message"`` -> the runs.
     """
 
     n_runs: int
@@ -280,6 +316,7 @@ class SweepPlan:
     timing: list[dict[str, Any]] = field(default_factory=list)
     spec_hash: str = ""
     invalid_runs: list[dict[str, Any]] = field(default_factory=list)
+    run_warnings: dict[str, list[int]] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
         """Plain dict (JSON)."""
@@ -389,6 +426,7 @@ def plan_sweep(
         timing=timing,
         spec_hash=spec.spec_hash,
         invalid_runs=invalid,
+        run_warnings=rig_warnings(scenarios, bad),
     )
 
 
