@@ -120,7 +120,8 @@ def plan_cmd(
             "longest run)"
         )
     click.echo(
-        f"  disk ~{_human_bytes(plan.bytes_estimate)} ({_human_bytes(plan.bytes_raw)} uncompressed)"
+        f"  disk ~{_human_bytes(plan.bytes_estimate)} (signals {_human_bytes(plan.bytes_raw)} "
+        "uncompressed, plus each run's record)"
     )
     _echo_invalid(plan.invalid_runs, plan.n_runs)
     for w, runs in plan.run_warnings.items():
