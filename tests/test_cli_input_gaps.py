@@ -338,3 +338,33 @@ def test_a_bearing_option_the_model_does_not_take_is_named_as_given(run_cli, tmp
         "error: bearing = 'NU204-ECP' is not a ball bearing; the VSM/DEM/TVSM models need a "
         "ball bearing\n"
     ), r.err
+
+
+def test_a_csvs_acceleration_column_is_the_one_named_so_and_a_time_ramp_is_refused(
+    run_cli, tmp_path
+):
+    """Exploratory testing (twenty-fourth session), a user's CSV records: with the columns
+    ``time_s,speed_rpm,acc_mps2`` the first column after the time (the speed) was read as the
+    acceleration, without a word; and with the time column misspelt (``tiem_s``), the "no
+    time column; give fs_hz" error led to ``--fs-hz``, which read the time ramp as the
+    signal (``rig identify`` made a rig of it, exit 0). The one column named acc... is now
+    the signal, and an even ramp is refused as a time column."""
+    import numpy as np
+
+    fs, n = 12000.0, 12000
+    t = np.arange(n) / fs
+    acc = np.random.default_rng(0).standard_normal(n) + np.sin(2 * np.pi * 107.0 * t)
+    p = tmp_path / "r.csv"
+    np.savetxt(p, np.column_stack([t, np.full(n, 1750.0), acc]), delimiter=",",
+               header="time_s,speed_rpm,acc_mps2", comments="")  # fmt: skip
+    d = run_cli("analyze", str(p), "--bearing", "6205-cwru", "--rpm", "1750", "--json").json()
+    d = d[0] if isinstance(d, list) else d
+    assert d["channel"] == "acc_mps2", d["channel"]
+    q = tmp_path / "typo.csv"  # (with acc_mps2 as the second column it is now taken)
+    np.savetxt(q, np.column_stack([t, acc]), delimiter=",", header="tiem_s,vib",
+               comments="")  # fmt: skip
+    r = run_cli("analyze", str(q), "--bearing", "6205-cwru", "--rpm", "1750", "--fs-hz",
+                "12000")  # fmt: skip
+    assert r.code == 2 and r.err.startswith("error: file = 'typo.csv', channel 'tiem_s' "
+                                            "changes in even steps"), r.err  # fmt: skip
+    assert r.err.count("\n") == 1

@@ -400,7 +400,11 @@ def _read_text(
         rest = [i for i in range(len(header)) if i not in skip]
         if not rest:
             raise ConfigError(f"file = {str(p)!r} has no signal column")
-        xcol = rest[0]
+        # the one column named as an acceleration (acc...), else the first: by position a
+        # speed column named speed_rpm, or a misspelt rpm, before it was read as the signal
+        # (exploratory testing, twenty-fourth session)
+        acc = [i for i in rest if header[i].strip().lower().startswith("acc")]
+        xcol = acc[0] if len(acc) == 1 else rest[0]
     x = data[:, xcol]
     unit = _SIGNAL_UNIT.search(header[xcol].strip())
     if unit is not None:

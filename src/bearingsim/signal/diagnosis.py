@@ -842,6 +842,16 @@ def check_samples(rec: SignalRecord) -> SignalRecord:
         raise ConfigError(
             f"{where}: all {x.size} samples equal {hi:.6g}; valid: a vibration signal"
         )
+    d = np.diff(x)
+    if x.size > 2 and (np.all(d > 0) or np.all(d < 0)) and np.ptp(d) <= 1e-6 * abs(d.mean()):
+        # a time column whose name was not recognised (tiem_s) read as the signal with
+        # --fs-hz, as the "no time column" error suggested: it made a rig out of a straight
+        # line (exploratory testing, twenty-fourth session)
+        raise ConfigError(
+            f"{where} changes in even steps ({d.mean():.6g} per sample): a time or counter "
+            "column, not a vibration signal; valid: a vibration channel (--channel), and a "
+            "time column named time_s, time or t"
+        )
     for v, side in ((hi, "largest"), (lo, "smallest")):
         at = np.concatenate(([0], (x == v).astype(np.int8), [0]))
         step = np.diff(at)
