@@ -476,7 +476,10 @@ def test_cli_identify_reads_each_csv_records_speed_column(tmp_path):
     d = json.loads(r.stdout)
     assert [t["order"] for t in d["tones"]][:1] == [1.0], d["tones"]
     assert d["tones"][0]["amplitude_m_per_s2"] == pytest.approx(1.0, rel=0.05)
-    assert d["background_speed_exponent"] == pytest.approx(2.0, abs=0.15)
+    # 1.85 for a background built as speed^2: the impacts (the same at every speed) and the
+    # 1 x line pull the fit toward 0, the bias docs/models.md reports ("Speed law"); the
+    # records' own scatter is the +/- only
+    assert 1.8 < d["background_speed_exponent"] < 2.0
     assert 0.0 < d["background_speed_exponent_stderr"] < 0.5
     assert load_rig(tmp_path / "cols.toml").rpm_range == (900.0, 2400.0)
     r = _cli("rig", "identify", *paths, "--name", "cols", "--rpm", "1500", "-o", "x.toml",
