@@ -663,6 +663,10 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
                       "blank.csv, line 2: bearing"),
         "nosuch.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,nosuch.toml,1e-4\n",
                        "nosuch.csv, line 2: bearing_file"),
+        # exploratory testing (twenty-fourth session): a row's rpm the record refutes was
+        # accepted, and the gain was fitted to another condition
+        "speed.csv": ("file,fault,bearing,defect_width_m,rpm\nrun1.mat,outer,6205,1e-4,1500\n",
+                      "speed.csv: rpm = 1500 r/min for 'run1.mat', whose own speed is"),
     }  # fmt: skip
     (mine / "latin1.csv").write_bytes(
         b"file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,1e-4 # caf\xe9\n"

@@ -395,6 +395,7 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
     every record listed once by file name, a known fault and bearing, positive sizes."""
     import csv
 
+    from ..rig_identify import _record_rpm
     from ..side_by_side import FAULT_FAMILIES
 
     if "rotor" in models:
@@ -459,6 +460,16 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
             raise ConfigError(
                 f"--conditions {path}: record {Path(p).name!r} is not listed; valid: one row "
                 "per record (column file: its file name)"
+            )
+        own = _record_rpm(rec)  # its rpm, or its speed column's median
+        if "rpm" in cond and own and abs(cond["rpm"] / own - 1.0) > RPM_OPTION_REL:
+            # the model gain simulates the row's speed: one the record refutes fits the gain
+            # to another condition (exploratory testing, twenty-fourth session: accepted, and
+            # the gain moved 0.0130 -> 0.0091)
+            raise ConfigError(
+                f"--conditions {path}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, "
+                f"whose own speed is {own:.6g} r/min; valid: the record's speed (or an empty "
+                "rpm, to take it)"
             )
         if cond["fault"] != "none":
             pairs.append((rec, cond))
