@@ -1022,3 +1022,24 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
     with pytest.raises(ConfigError, match=r"^r.toml: rig.bearing = 6205 is not text; valid: a "
                        r'catalogue id in quotes \(bearing = "6205-cwru"\)$'):  # fmt: skip
         load_rig(p)
+
+
+def test_a_ring_model_without_its_own_path_through_a_rig_with_anothers_is_warned():
+    """Exploratory testing (twenty-fourth session): a VSM run through a user's rig that has a
+    model-based path for the DEM only passed at the output-only gain 1 (102 m/s^2 RMS against
+    the records' 1.7) without a word. It now gets a RigGainWarning; a rig with only a rotor
+    gain (the shipped profiles) does not warn ring-model runs, nor a DEM run its own path."""
+    import warnings
+
+    from bearingsim.rig import ModelGain, RigGainWarning
+
+    base = load_rig("cwru-de-12k")
+    dem = replace(base, model_gains=(*base.model_gains, ModelGain("dem", 0.02, "t")))
+    sc = dict(duration_s=0.01, fault="none")
+    res = simulate(dict(sc, model="vsm", rig="cwru-de-12k"))
+    with pytest.warns(RigGainWarning, match=r"has a model-based path for dem but none for vsm"):
+        apply_rig(res, dem, channel="s2")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigGainWarning)
+        apply_rig(simulate(dict(sc, model="dem", rig="cwru-de-12k")), dem, channel="s2")
+        apply_rig(res, base, channel="s2")

@@ -653,7 +653,7 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
         "width.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205-cwru,-1\n",
                       "width.csv, line 2: defect_width_m = -1 is out of range"),
         "other.csv": ("file,fault,bearing,defect_width_m\nrun9.mat,outer,6205-cwru,1e-4\n",
-                      "record 'run1.mat' is not listed"),
+                      "record 'run1.mat' is not listed (rows name 'run9.mat')"),
         "colour.csv": ("file,fault,bearing,defect_width_m,colour\nrun1.mat,outer,6205,1e-4,red\n",
                        "unknown column 'colour'"),
         # exploratory testing (fourteenth session): tracebacks or messages without a place
@@ -688,6 +688,31 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
                  "g", *extra, "-o", "rig.toml", cwd=mine)  # fmt: skip
         assert r.returncode == 2 and message in r.stderr, r.stderr
         assert not out.exists()
+
+
+def test_a_conditions_file_without_one_catalogue_bearing_says_the_rig_names_none(tmp_path):
+    """Exploratory testing (twenty-fourth session): with a --conditions file naming a bearing
+    TOML (or several bearings) the rig records no ``bearing``, and a later run of another
+    size through it is not warned: the command now says so, after writing the rig."""
+    import shutil
+
+    paths = []
+    for s in range(2):
+        rec = _impacts(seed=s)
+        p = tmp_path / f"m{s}.csv"
+        np.savetxt(p, rec.x, header="acc_m_per_s2", comments="")
+        paths.append(p.name)
+    shutil.copy(Path(bearingsim.__file__).parent / "catalog" / "6205-cwru.toml",
+                tmp_path / "mine.toml")  # fmt: skip
+    (tmp_path / "c.csv").write_text(
+        "file,fault,bearing,defect_width_m\nm0.csv,outer,mine.toml,3e-4\nm1.csv,none,,\n"
+    )
+    r = _cli("rig", "identify", *paths, "--name", "b", "--fs-hz", "12000", "--rpm", "1750",
+             "--model-gain", "vsm", "--conditions", "c.csv", "-o", "b.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert load_rig(tmp_path / "b.toml").bearing is None
+    assert "note: the rig names no bearing (the conditions give mine.toml;" in r.stderr, r.stderr
 
 
 def test_shipped_profiles_load_and_carry_their_command():

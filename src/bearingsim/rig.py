@@ -1042,9 +1042,32 @@ def _warn_bearing(r: Rig, meta: dict) -> None:
         warnings.warn(note, RigBearingWarning, stacklevel=3)
 
 
+def _warn_no_gain(r: Rig, model: str | None) -> None:
+    """Warn (:class:`RigGainWarning`) when ``r`` has a model-based path for another ring model
+    but none for ``model`` (a ring model): the run passes through the output-only path (gain
+    1), whose level the other ring model's gain says is not the records' (exploratory testing,
+    twenty-fourth session: a VSM run through a rig with a DEM path, 102 m/s^2 RMS against the
+    records' 1.7, without a word). A rig with only a rotor gain (the shipped profiles) does not
+    warn: the ring models' output passes at gain 1 by design there."""
+    ring = ("vsm", "dem", "tvsm")
+    if model not in ring:
+        return
+    others = [g.model for g in r.model_gains if g.model in ring]
+    if others:
+        warnings.warn(
+            f"rig {r.name!r} has a model-based path for {', '.join(others)} but none for "
+            f"{model}: this run passes through the output-only path (gain 1), not at the "
+            f"records' level; valid: a [[model_gain]] for {model} (rig identify --model-gain "
+            f"{model}) or model = {others[0]!r}",
+            RigGainWarning,
+            stacklevel=3,
+        )
+
+
 class RigGainWarning(UserWarning):
-    """A rig's model gain was identified with another defect profile than the run's: it
-    matched that profile's level to the records, not this run's."""
+    """A rig's model gain was identified with another defect profile than the run's (it
+    matched that profile's level to the records, not this run's), or the rig has a gain for
+    another ring model but none for the run's (it passes at the output-only gain 1)."""
 
 
 def _defect_profiles(meta: dict) -> list[str]:
@@ -1135,6 +1158,8 @@ def apply_rig(
     mg = r.model_gain(model)
     if mg is not None:
         _warn_gain_profile(mg, r.name, result.meta)
+    else:
+        _warn_no_gain(r, model)
     r = r.for_model(model)
     _warn_bearing(r, result.meta)
     if r.input_channel not in result.channels:

@@ -259,6 +259,14 @@ def identify_cmd(
         rig = replace(rig, bearing=cwru_bearing(rig.end))
     elif user and len({c.get("bearing") for _r, c in user}) == 1 and "bearing" in user[0][1]:
         rig = replace(rig, bearing=user[0][1]["bearing"])
+    no_bearing = None  # said after the rig is written: why it names no bearing
+    if user and rig.bearing is None:
+        named = sorted({c.get("bearing") or Path(c["bearing_file"]).name for _r, c in user})
+        no_bearing = (
+            f"note: the rig names no bearing (the conditions give {', '.join(named)}; one "
+            "catalogue bearing is recorded): a run with a bearing of another size through it "
+            "is not warned"
+        )
     if model_gains:
         from .. import side_by_side as sbs
 
@@ -289,6 +297,8 @@ def identify_cmd(
             "the rig got no shaft-order tones from them",
             err=True,
         )
+    if no_bearing:
+        click.echo(no_bearing, err=True)
     out = {
         "output": str(output),
         "name": name,
@@ -457,9 +467,12 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
     for p, rec in zip(records, recs, strict=True):
         cond = by_name.get(Path(p).name)
         if cond is None:
+            listed = ", ".join(repr(n) for n in list(by_name)[:5]) + (
+                ", ..." if len(by_name) > 5 else "")  # fmt: skip
             raise ConfigError(
-                f"--conditions {path}: record {Path(p).name!r} is not listed; valid: one row "
-                "per record (column file: its file name)"
+                f"--conditions {path}: record {Path(p).name!r} is not listed (rows name "
+                f"{listed or 'nothing'}); valid: one row per record (column file: its file "
+                "name, without a folder)"
             )
         own = _record_rpm(rec)  # its rpm, or its speed column's median
         if "rpm" in cond and own and abs(cond["rpm"] / own - 1.0) > RPM_OPTION_REL:
