@@ -610,19 +610,26 @@ _MODULATION = {"inner": SHAFT, "ball": "FTF"}
 
 
 def _rival_evidence(
-    fam: str, top: str, by: dict[str, Peak], rule: DiagnosisRule, res: float, notes: list[str]
+    fam: str,
+    top: str,
+    by: dict[str, Peak],
+    evidence: dict[str, float],
+    rule: DiagnosisRule,
+    res: float,
+    notes: list[str],
 ) -> float:
-    """The harmonic amplitude sum of family ``fam``'s detected lines, without those that lie
-    on a modulation sideband of the supported family ``top`` (``h F_top +/- m f_mod``,
-    ``m <= MAX_SIDEBAND_ORDER``, within the sideband search's ``max(tol_min_bins, h + 1)``
-    bins of ``res`` [Hz]): such a line is ``top``'s own. On the 6203, 2 x and 3 x (2 x BSF) lie
-    0.3 Hz from BPFI + 3 f_r and 2 BPFI + 2 f_r at 1797 r/min, and a simulated inner-race
-    fault read "uncertain" in every view (twenty-third session, docs/validation.md)."""
+    """The harmonic amplitude sum of family ``fam``'s detected lines (``evidence[fam]``),
+    without those that lie on a modulation sideband of the supported family ``top``
+    (``h F_top +/- m f_mod``, ``m <= MAX_SIDEBAND_ORDER``, within the sideband search's
+    ``max(tol_min_bins, h + 1)`` bins of ``res`` [Hz]): such a line is ``top``'s own. On the
+    6203, 2 x and 3 x (2 x BSF) lie 0.3 Hz from BPFI + 3 f_r and 2 BPFI + 2 f_r at 1797 r/min,
+    and a simulated inner-race fault read "uncertain" in every view (twenty-third session,
+    docs/validation.md)."""
     mod = _MODULATION.get(top)
     fund = by.get(FAMILY_LINE[top])
     fm = by.get(mod) if mod else None
     if fund is None or fm is None:
-        return _amplitude_sum(fam, by, rule)
+        return evidence[fam]
     f_top = fund.freq_hz if fund.detected else fund.target_hz
     f_mod = fm.freq_hz if fm.detected else fm.target_hz
     amp, on = 0.0, []
@@ -646,12 +653,6 @@ def _rival_evidence(
         notes.append(f"{fam} lines on {top}'s modulation sidebands, not counted against it: "
                      + ", ".join(on))  # fmt: skip
     return amp
-
-
-def _amplitude_sum(fam: str, by: dict[str, Peak], rule: DiagnosisRule) -> float:
-    """The amplitude sum of family ``fam``'s detected harmonics."""
-    hs = (by.get(_label(FAMILY_LINE[fam], h)) for h in range(1, rule.n_harmonics + 1))
-    return float(sum(p.amplitude for p in hs if p is not None and p.detected))
 
 
 def diagnose_spectrum(
@@ -749,8 +750,8 @@ def diagnose_spectrum(
     if supported:
         top = max(supported, key=lambda f: evidence[f])
         rival = max(
-            (_rival_evidence(f, top, by, rule, es.resolution, notes) for f in FAMILIES
-             if f != top),
+            (_rival_evidence(f, top, by, evidence, rule, es.resolution, notes)
+             for f in FAMILIES if f != top),
             default=0.0,
         )  # fmt: skip
         if rule.dominance * rival > evidence[top]:
