@@ -441,13 +441,18 @@ class Background:
             )
         return cls(tuple(fv), tuple(sv), _provenance(d, where), **law)
 
-    def psd_at(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
-        """PSD [(m/s^2)^2/Hz] at frequencies ``f`` [Hz] (log-log interpolation, 0 outside)."""
+    def psd_at(self, f: NDArray[np.float64], shaft_hz: float | None = None) -> NDArray[np.float64]:
+        """PSD [(m/s^2)^2/Hz] at frequencies ``f`` [Hz] (log-log interpolation, 0 outside), at
+        the shaft speed ``shaft_hz`` [Hz] (the square of :meth:`speed_factor` times the
+        table's; the table's without a speed law or a speed)."""
         f = np.asarray(f, dtype=float)
         fp, sp_ = np.log(self.frequency_hz), np.log(self.psd)
         out = np.zeros_like(f)
         inside = (f >= self.frequency_hz[0]) & (f <= self.frequency_hz[-1])
         out[inside] = np.exp(np.interp(np.log(f[inside]), fp, sp_))
+        k = self.speed_factor(shaft_hz)
+        if k != 1.0:  # without a speed law the values are bit for bit those of before
+            out *= k * k
         return out
 
     def rms(self, f_hi: float | None = None) -> float:
@@ -468,10 +473,7 @@ class Background:
         with ``E|X_k|^2 = S(f_k) fs n / 2``, so the periodogram ``2 |X_k|^2 / (fs n)`` has
         expectation ``S(f_k)``."""
         f = np.fft.rfftfreq(n, 1.0 / fs)
-        amp = np.sqrt(self.psd_at(f) * fs * n / 4.0)
-        k = self.speed_factor(shaft_hz)
-        if k != 1.0:  # without a speed law the samples are bit for bit those of before
-            amp = k * amp
+        amp = np.sqrt(self.psd_at(f, shaft_hz) * fs * n / 4.0)
         X = amp * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size))
         X[0] = 0.0
         if n % 2 == 0:

@@ -183,12 +183,10 @@ class IdentifiedRig:
             a.loglog(fb, bg.psd, "b.-", lw=1.2, ms=3,
                      label=f"identified background (table{at})")  # fmt: skip
             if bg.speed_exponent is not None:  # the table is the background at rpm_ref; the
-                # records' own speeds span rpm_range: draw it at both ends too
-                lo, hi = self.rig.rpm_range or (bg.rpm_ref, bg.rpm_ref)
-                for n, ls in ((lo, ":"), (hi, "--")):
-                    k2 = bg.speed_factor(n / 60.0) ** 2
+                # records' own speeds span rpm_range (a law needs it): draw it at both ends too
+                for n, ls in zip(self.rig.rpm_range, (":", "--"), strict=True):
                     law = f"the same at {n:.5g} r/min (speed^{bg.speed_exponent:.2g})"
-                    a.loglog(fb, k2 * np.asarray(bg.psd), "b", ls=ls, lw=0.8, label=law)
+                    a.loglog(fb, bg.psd_at(fb, n / 60.0), "b", ls=ls, lw=0.8, label=law)
         a.set_ylabel("PSD [(m/s²)²/Hz]")
         a.set_title(f"rig {self.rig.name}: measured spectra, identified background and path")
         h2 = np.abs(self.rig.transfer(f, fs)) ** 2
@@ -862,7 +860,7 @@ def fit_path_gains(
         pb = np.zeros(fb.size)
         if rig.background is not None:
             n = rpms[i] if rpms is not None else None
-            pb = rig.background.psd_at(fb) * rig.background.speed_factor(n and n / 60.0) ** 2
+            pb = rig.background.psd_at(fb, None if n is None else n / 60.0)
         resp = [sosfreqz(dc_replace(m, gain=1.0).sos(fs), worN=fb, fs=fs)[1] for m in rig.modes]
         data.append((py[band], px[band], pb, np.array(resp).reshape(len(rig.modes), fb.size)))
     # a floor for S and P_y where a Welch ordinate is exactly 0 (not a spectrum): 1e-12 of the
