@@ -736,6 +736,14 @@ class Rig:
             out["model_gain"] = [g.to_dict() for g in self.model_gains]
         return out
 
+    def for_rotor(self) -> Rig:
+        """The rig as the rotor model applies it: a fan-end rig (``end = "FE"``) whose input
+        is a drive-end name (``acc_x``, ``acc_y``) reads the fan-end housing's channel
+        (``acc_x_fe``, ``acc_y_fe``)."""
+        if self.end == "FE" and self.input_channel in ("acc_x", "acc_y"):
+            return dataclasses.replace(self, input_channel=f"{self.input_channel}_fe")
+        return self
+
     def model_gain(self, model: str | None) -> ModelGain | None:
         """The model-based path gain of ``model``, or None when the rig has none for it."""
         return next((g for g in self.model_gains if g.model == model), None)

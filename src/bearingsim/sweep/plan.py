@@ -8,6 +8,7 @@ of every group of runs into the :class:`~bearingsim.sweep_store.Layout` of the d
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import time
@@ -117,20 +118,23 @@ def rig_warnings(scenarios: list[Scenario], skip: set[int] = frozenset()) -> dic
     from ..rig import bearing_note, load_rig, speed_note
 
     out: dict[str, list[int]] = {}
-    rigs: dict[str, Any] = {}
+    rigs: dict[tuple[str, bool], Any] = {}
+    bearings: dict[tuple, dict] = {}  # a bearing file is read once, not once a run
     for i, sc in enumerate(scenarios):
         name = getattr(sc, "rig", None)
         if i in skip or not name:
             continue
-        r = rigs.get(name) or rigs.setdefault(name, load_rig(name))
-        if hasattr(sc, "de_bearing"):  # the rotor: the bearing of the housing the rig reads
-            fe = r.end == "FE" or r.input_channel.endswith("_fe")
-            b = resolve_bearing(sc.fe_bearing if fe else sc.de_bearing, None)
+        rotor = hasattr(sc, "de_bearing")
+        if (name, rotor) not in rigs:  # the rotor feeds the housing its rig reads
+            rigs[name, rotor] = load_rig(name).for_rotor() if rotor else load_rig(name)
+        r = rigs[name, rotor]
+        if rotor:
+            key = (sc.fe_bearing if r.input_channel.endswith("_fe") else sc.de_bearing, None)
         else:
-            b = resolve_bearing(sc.bearing, sc.bearing_file)
-        run = {"id": b.id, "n_elements": b.n_elements, "pitch_diameter": b.pitch_diameter,
-               "element_diameter": b.element_diameter}  # fmt: skip
-        notes = (("RigBearingWarning", bearing_note(r, run)),
+            key = (sc.bearing, sc.bearing_file)
+        if key not in bearings:  # as a result's meta["bearing"] holds it
+            bearings[key] = dataclasses.asdict(resolve_bearing(*key))
+        notes = (("RigBearingWarning", bearing_note(r, bearings[key])),
                  ("RigSpeedWarning", speed_note(r, getattr(sc, "rpm", None))))  # fmt: skip
         for cat, note in notes:
             if note is not None:

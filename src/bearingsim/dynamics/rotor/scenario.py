@@ -262,8 +262,5 @@ def run_rotor(
     if scenario.rig is not None:  # the measurement chain (channel acc_sensor)
         from ...rig import apply_rig, load_rig
 
-        rig = load_rig(scenario.rig)
-        if rig.end == "FE" and rig.input_channel in ("acc_x", "acc_y"):  # a fan-end sensor:
-            rig = dataclasses.replace(rig, input_channel=f"{rig.input_channel}_fe")  # its housing
-        res = apply_rig(res, rig, noise=noise)
+        res = apply_rig(res, load_rig(scenario.rig).for_rotor(), noise=noise)
     return res
