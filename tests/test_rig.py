@@ -1020,8 +1020,31 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
     p.write_text(RIG_TOML.replace('input_channel = "acc_y"',
                                   'input_channel = "acc_y"\nbearing = 6205'))  # fmt: skip
     with pytest.raises(ConfigError, match=r"^r.toml: rig.bearing = 6205 is not text; valid: a "
-                       r'catalogue id in quotes \(bearing = "6205-cwru"\)$'):  # fmt: skip
+                       r'catalogue id in quotes \(bearing = "6205-cwru"\), or a \[bearing\] '
+                       r"table of id, n_elements, pitch_diameter_m, "
+                       r"element_diameter_m$"):  # fmt: skip
         load_rig(p)
+    # twenty-fifth session: a bearing outside the catalogue is a [bearing] table of its size
+    good = ('[bearing]\nid = "mine"\nn_elements = 9\npitch_diameter_m = 0.039\n'
+            "element_diameter_m = 0.0079\n")  # fmt: skip
+    for table, message in (
+        (good.replace("9", "2", 1), r"bearing.n_elements = 2 is invalid; valid range \[3, inf\)"),
+        (good.replace("0.0079", "0.02"), r"bearing.element_diameter_m = 0.02 m is out of range; "
+                                         r"valid range \(0, 0.0133"),
+        (good.replace('"mine"', '""'), "bearing.id = '' is invalid; valid: printable text"),
+        (good.replace("n_elements = 9\n", ""), r"bearing.n_elements is missing"),
+        (good + "width_m = 1\n", "bearing: unknown key 'width_m'; valid keys: id, "),
+    ):  # fmt: skip
+        p.write_text(RIG_TOML + "\n" + table)
+        with pytest.raises(ConfigError, match=r"^r.toml: " + message):
+            load_rig(p)
+    p.write_text(RIG_TOML + "\n" + good)
+    with pytest.warns(RigBearingWarning, match=r"^rig '.*' was identified on records of the "
+                      r"mine \(pitch diameter 39 mm, 9 elements\)"):  # fmt: skip
+        simulate(dict(base, bearing="6206", rig=str(p), fs_hz=12000.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigBearingWarning)
+        simulate(dict(base, bearing="6205", rig=str(p), fs_hz=12000.0))
 
 
 def test_a_ring_model_without_its_own_path_through_a_rig_with_anothers_is_warned():

@@ -18,6 +18,8 @@ from hypothesis import strategies as st
 from scipy.signal import welch
 
 import bearingsim
+import bearingsim.catalog
+from bearingsim import simulate
 from bearingsim.errors import ConfigError
 from bearingsim.io.signal import SignalRecord, read_signal
 from bearingsim.rig import load_rig
@@ -690,11 +692,15 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
         assert not out.exists()
 
 
-def test_a_conditions_file_without_one_catalogue_bearing_says_the_rig_names_none(tmp_path):
+def test_a_conditions_files_own_bearing_is_recorded_by_its_size(tmp_path):
     """Exploratory testing (twenty-fourth session): with a --conditions file naming a bearing
-    TOML (or several bearings) the rig records no ``bearing``, and a later run of another
-    size through it is not warned: the command now says so, after writing the rig."""
+    TOML the rig recorded no ``bearing``, and a later run of another size through it was not
+    warned. The rig now records that bearing's size (a ``[bearing]`` table); rows of different
+    sizes record none, and the command says so after writing the rig."""
     import shutil
+    import warnings
+
+    from bearingsim.rig import RigBearing, RigBearingWarning
 
     paths = []
     for s in range(2):
@@ -711,8 +717,28 @@ def test_a_conditions_file_without_one_catalogue_bearing_says_the_rig_names_none
              "--model-gain", "vsm", "--conditions", "c.csv", "-o", "b.toml",
              cwd=tmp_path)  # fmt: skip
     assert r.returncode == 0, r.stderr
-    assert load_rig(tmp_path / "b.toml").bearing is None
-    assert "note: the rig names no bearing (the conditions give mine.toml;" in r.stderr, r.stderr
+    assert "names no bearing" not in r.stderr, r.stderr
+    cw = bearingsim.catalog.get_bearing("6205-cwru")
+    rig = load_rig(tmp_path / "b.toml")
+    assert rig.bearing == RigBearing(cw.id, 9, cw.pitch_diameter, cw.element_diameter)
+    assert "[bearing]" in (tmp_path / "b.toml").read_text()
+    r = _cli("rig", "show", "b.toml", cwd=tmp_path)
+    assert ("identified on records of the 6205-cwru (pitch diameter 39.04 mm, 9 elements of "
+            "7.94 mm)") in r.stdout, r.stdout  # fmt: skip
+    with pytest.warns(RigBearingWarning, match="identified on records of the 6205-cwru"):
+        simulate(dict(model="vsm", duration_s=0.01, bearing="6206", rig=str(tmp_path / "b.toml")))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RigBearingWarning)
+        simulate(dict(model="vsm", duration_s=0.01, bearing="6205", rig=str(tmp_path / "b.toml")))
+    # rows of two sizes record none (the command then says so); one catalogue id is kept as
+    # its id, and a file of a catalogue bearing's size under the catalogue's name is one size
+    from bearingsim.cli.rig import _conditions_bearing
+
+    f = str(tmp_path / "mine.toml")
+    assert _conditions_bearing([{"bearing_file": f}, {"bearing": "6206"}]) is None
+    assert _conditions_bearing([{"bearing": "6206"}, {"bearing": "6206"}, {}]) == "6206"
+    assert _conditions_bearing([{"bearing_file": f}, {"bearing": "6205-cwru"}]) == rig.bearing
+    assert _conditions_bearing([{}]) is None
 
 
 def test_shipped_profiles_load_and_carry_their_command():

@@ -35,7 +35,9 @@ TOML layout (SI units in the key names)::
     end = "FE"                       # optional: the machine end whose housing the sensor is on
                                      # (DE|FE; the rotor model then reads that housing)
     bearing = "6203-cwru"            # optional: catalogue id of the bearing the records were
-                                     # taken on (a run's bearing of another size is warned)
+                                     # taken on (a run's bearing of another size is warned);
+                                     # one outside the catalogue is a [bearing] table of id,
+                                     # n_elements, pitch_diameter_m, element_diameter_m
     fs_hz = 12000.0                  # optional: the sampling rate of the records it was
                                      # identified from [Hz]; a scenario with this rig and no
                                      # fs_hz of its own is sampled at it
@@ -120,6 +122,7 @@ __all__ = [
     "Mode",
     "ModelGain",
     "Rig",
+    "RigBearing",
     "RigBearingWarning",
     "RigGainWarning",
     "RigRateWarning",
@@ -181,6 +184,57 @@ def _keys(
         if k not in table:
             raise ConfigError(f"{where}.{k} is missing")
     return table
+
+
+@dataclass(frozen=True)
+class RigBearing:
+    """The size of a bearing outside the catalogue that a rig's records were taken on: what
+    :func:`bearing_note` compares a run's bearing with. ``id`` [-] names it (a user's bearing
+    file's ``id``), ``n_elements`` [-], ``pitch_diameter_m`` and ``element_diameter_m`` [m].
+
+    In a rig file it is the ``[bearing]`` table (a catalogue bearing is ``bearing = "ID"``)."""
+
+    id: str
+    n_elements: int
+    pitch_diameter_m: float
+    element_diameter_m: float
+
+    KEYS = ("id", "n_elements", "pitch_diameter_m", "element_diameter_m")
+
+    @classmethod
+    def from_dict(cls, d: Any, where: str = "bearing") -> RigBearing:
+        """Build and validate from the ``[bearing]`` table (one-line errors)."""
+        from .geometry import PITCH_DIAMETER_RANGE, Z_MAX
+
+        d = _keys(d, cls.KEYS, where, required=cls.KEYS)
+        bid = d["id"]
+        if not isinstance(bid, str) or not bid.strip() or not bid.isprintable():
+            raise ConfigError(f"{where}.id = {bid!r} is invalid; valid: printable text")
+        n = check_int(f"{where}.n_elements", d["n_elements"], 3)
+        if n > Z_MAX:
+            raise ConfigError(
+                f"{where}.n_elements = {n} is out of range; valid range [3, {Z_MAX}] integer"
+            )
+        pd = check_range(f"{where}.pitch_diameter_m", d["pitch_diameter_m"],
+                         *PITCH_DIAMETER_RANGE, unit="m")  # fmt: skip
+        # neighbouring elements must not overlap on the pitch circle (geometry._check_common)
+        top = pd * math.sin(math.pi / n)
+        ed = check_range(f"{where}.element_diameter_m", d["element_diameter_m"], 0.0, top,
+                         lo_open=True, hi_open=True, unit="m")  # fmt: skip
+        return cls(bid.strip(), n, pd, ed)
+
+    @classmethod
+    def of(cls, bearing: Any) -> RigBearing:
+        """The size of a :class:`~bearingsim.geometry.BallBearing` (or roller bearing)."""
+        return cls(bearing.id, int(bearing.n_elements), float(bearing.pitch_diameter),
+                   float(bearing.element_diameter))  # fmt: skip
+
+    def describe(self) -> str:
+        """``ID (pitch diameter P mm, Z elements of D mm)``."""
+        return (
+            f"{self.id} (pitch diameter {1e3 * self.pitch_diameter_m:.4g} mm, {self.n_elements} "
+            f"elements of {1e3 * self.element_diameter_m:.4g} mm)"
+        )
 
 
 #: smallest damping ratio of a mode [-]: no structure is damped less (a steel tuning fork's
@@ -538,10 +592,10 @@ class Rig:
     #: [r/min] (None: not said); its background and tones are those speeds' (a run far outside
     #: them gets a :class:`RigSpeedWarning`)
     rpm_range: tuple[float, float] | None = None
-    #: catalogue id of the bearing the records were taken on (None: not said); a run whose
-    #: bearing is of another size gets a :class:`RigBearingWarning` (another bearing sits in
-    #: another housing, with other modes)
-    bearing: str | None = None
+    #: the bearing the records were taken on: a catalogue id, or the size of one outside the
+    #: catalogue (None: not said); a run whose bearing is of another size gets a
+    #: :class:`RigBearingWarning` (another bearing sits in another housing, with other modes)
+    bearing: str | RigBearing | None = None
     gain: float = 1.0
     gain_provenance: str = "default: the model's output passes unchanged"
     modes: tuple[Mode, ...] = ()
@@ -624,19 +678,24 @@ class Rig:
             if end is not None and end not in ("DE", "FE"):
                 raise ConfigError(f"rig.end = {end!r} is invalid; valid: DE, FE")
             bearing = d.get("bearing")
-            if bearing is not None:
+            if isinstance(bearing, dict):  # a bearing outside the catalogue: its size
+                bearing = RigBearing.from_dict(bearing)
+            elif bearing is not None:
                 from .catalog import _catalog_files
 
                 ids = sorted(_catalog_files())
                 if not isinstance(bearing, str):  # bearing = 6205, unquoted: a number
                     raise ConfigError(
                         f"rig.bearing = {bearing!r} is not text; valid: a catalogue id in "
-                        'quotes (bearing = "6205-cwru")'
+                        'quotes (bearing = "6205-cwru"), or a [bearing] table of id, '
+                        "n_elements, pitch_diameter_m, element_diameter_m"
                     )
                 if bearing not in ids:
                     raise ConfigError(
                         f"rig.bearing = {bearing!r} is not a catalogue bearing; valid: "
                         + ", ".join(ids)
+                        + " (a bearing of your own: a [bearing] table of id, n_elements, "
+                        "pitch_diameter_m, element_diameter_m)"
                     )
             gain, gprov = 1.0, cls.gain_provenance
             if "path" in d:
@@ -706,7 +765,9 @@ class Rig:
         }
         if self.end is not None:
             out["end"] = self.end
-        if self.bearing is not None:
+        if isinstance(self.bearing, RigBearing):
+            out["bearing"] = dataclasses.asdict(self.bearing)
+        elif self.bearing is not None:
             out["bearing"] = self.bearing
         if self.fs_hz is not None:
             out["fs_hz"] = self.fs_hz
@@ -1021,12 +1082,15 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
     or None: another size than ``r.bearing`` (:data:`BEARING_SIZE_REL`)."""
     if r.bearing is None or not isinstance(run, dict):
         return None
-    from .catalog import get_bearing
+    if isinstance(r.bearing, RigBearing):
+        own = r.bearing
+    else:
+        from .catalog import get_bearing
 
-    own = get_bearing(r.bearing)
+        own = RigBearing.of(get_bearing(r.bearing))
     try:
         same = int(run["n_elements"]) == own.n_elements and all(
-            abs(float(run[k]) / getattr(own, k) - 1.0) <= BEARING_SIZE_REL
+            abs(float(run[k]) / getattr(own, f"{k}_m") - 1.0) <= BEARING_SIZE_REL
             for k in ("pitch_diameter", "element_diameter")
         )
     except (KeyError, TypeError, ValueError, ZeroDivisionError):
@@ -1034,8 +1098,8 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
     if same:
         return None
     return (
-        f"rig {r.name!r} was identified on records of the {r.bearing} (pitch diameter "
-        f"{1e3 * own.pitch_diameter:.4g} mm, {own.n_elements} elements); this run's "
+        f"rig {r.name!r} was identified on records of the {own.id} (pitch diameter "
+        f"{1e3 * own.pitch_diameter_m:.4g} mm, {own.n_elements} elements); this run's "
         f"bearing {run.get('id') or ''} is another size (pitch diameter "
         f"{1e3 * float(run['pitch_diameter']):.4g} mm, {int(run['n_elements'])} elements): "
         "it sits in another housing, whose modes and background the rig does not have"

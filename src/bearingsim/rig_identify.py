@@ -971,8 +971,8 @@ def rig_to_toml(rig: Rig) -> str:
     lines = [f"{k} = {val(v)}" for k, v in d.items()
              if not isinstance(v, dict) and not (isinstance(v, list) and v and
                                                   isinstance(v[0], dict))]  # fmt: skip
-    for table in ("path", "background", "sensor"):
-        if table in d:
+    for table in ("bearing", "path", "background", "sensor"):
+        if isinstance(d.get(table), dict):  # bearing: a catalogue id is a top-level value
             lines += ["", f"[{table}]"] + [f"{k} = {val(v)}" for k, v in d[table].items()]
     for arr in ("mode", "tone", "model_gain"):
         for item in d.get(arr, []):

@@ -8,11 +8,15 @@ import sys
 import tomllib
 from dataclasses import replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from ..errors import ConfigError
 from .common import Number, check_outputs, cli, emit_json, json_option, output_option
+
+if TYPE_CHECKING:
+    from ..rig import RigBearing
 
 
 @cli.group("rig")
@@ -257,15 +261,15 @@ def identify_cmd(
         from ..io.cwru import cwru_bearing
 
         rig = replace(rig, bearing=cwru_bearing(rig.end))
-    elif user and len({c.get("bearing") for _r, c in user}) == 1 and "bearing" in user[0][1]:
-        rig = replace(rig, bearing=user[0][1]["bearing"])
+    elif user:
+        rig = replace(rig, bearing=_conditions_bearing(c for _r, c in user))
     no_bearing = None  # said after the rig is written: why it names no bearing
     if user and rig.bearing is None:
         named = sorted({c.get("bearing") or Path(c["bearing_file"]).name for _r, c in user})
         no_bearing = (
-            f"note: the rig names no bearing (the conditions give {', '.join(named)}; one "
-            "catalogue bearing is recorded): a run with a bearing of another size through it "
-            "is not warned"
+            f"note: the rig names no bearing (the conditions give {', '.join(named)}, of "
+            "different sizes; one bearing is recorded): a run with a bearing of another size "
+            "through it is not warned"
         )
     if model_gains:
         from .. import side_by_side as sbs
@@ -353,9 +357,9 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
     end = f"; sensor at the {r.end} end" if r.end else ""
     click.echo(f"  direct gain {r.gain:g}; input channel {r.input_channel}{end}")
     if r.bearing is not None:
+        what = r.bearing if isinstance(r.bearing, str) else r.bearing.describe()
         click.echo(
-            f"  identified on records of the {r.bearing} (a run's bearing of another size is "
-            "warned)"
+            f"  identified on records of the {what} (a run's bearing of another size is warned)"
         )
     if r.fs_hz is not None:
         click.echo(
@@ -492,6 +496,28 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
             "inner or ball row (a model gain is matched to a fault's power)"
         )
     return pairs
+
+
+def _conditions_bearing(conds) -> str | RigBearing | None:
+    """The bearing a rig identified from ``--conditions`` rows was taken on: the rows' one
+    catalogue id, or the size (:class:`~bearingsim.rig.RigBearing`) of the one size that
+    their bearing files (and ids) give; None where the rows give bearings of different sizes."""
+    from ..catalog import get_bearing, load_bearing_file
+    from ..rig import RigBearing
+
+    conds = [c for c in conds if "bearing" in c or "bearing_file" in c]
+    ids = {c.get("bearing") for c in conds}
+    if not conds or (len(ids) == 1 and None not in ids):
+        return ids.pop() if conds else None
+    sizes = {
+        RigBearing.of(get_bearing(c["bearing"]) if "bearing" in c
+                      else load_bearing_file(c["bearing_file"]))
+        for c in conds
+    }  # fmt: skip
+    # one size under several names (a file and its catalogue twin) is still one size
+    if len({(s.n_elements, s.pitch_diameter_m, s.element_diameter_m) for s in sizes}) != 1:
+        return None
+    return min(sizes, key=lambda s: s.id)
 
 
 def _condition_values(row: dict, path: str) -> dict:
