@@ -591,11 +591,11 @@ def test_claims_are_reread_and_only_move_the_end_earlier(noisy, tmp_path, monkey
         write_claim(out, "t1", first)
         calls = []
 
-        def sim(sc, during=during, calls=calls):
+        def sim(sc, during=during, calls=calls, **kw):
             calls.append(sc)
             if len(calls) == 1:
                 write_claim(out, "t1", during)
-            return real(sc)
+            return real(sc, **kw)
 
         monkeypatch.setattr(bearingsim.simulation, "simulate", sim)
         task = {**base, "dataset": str(out), "uuid": read_attrs(out)["uuid"], "id": "t1"}

@@ -483,6 +483,48 @@ def test_plan_checks_a_pit_and_a_load_at_the_model_level(tmp_path):
     assert "fy_n" in errs[3] and "C0" in errs[3], errs[3]
 
 
+OVERLOAD_TOML = """
+[sweep]
+allow_overload = true
+[base]
+model = "vsm"
+duration_s = 0.005
+fs_hz = 4000.0
+[axes]
+fy_n = [50.0, 25000.0]
+"""
+
+
+@pytest.mark.integration
+@pytest.mark.filterwarnings("default")  # StaticCapacityWarning: the overloaded run's own
+def test_a_sweep_may_allow_overload(client, tmp_path):
+    """Left for planning (twenty-fourth session): a load above twice the static capacity C0
+    failed its run, and the single run's ``allow_overload`` (which the error names) was not a
+    sweep option. ``[sweep] allow_overload = true`` now runs it (25 kN on the 6205-cwru, C0
+    9.37 kN, ISO 76 via :func:`bearingsim.contact.capacity.static_capacity`), in the plan's
+    checks and on the workers; a sweep without it keeps its spec hash."""
+    p = tmp_path / "o.toml"
+    p.write_text(OVERLOAD_TOML)
+    spec = SweepSpec.from_toml(p)
+    assert spec.allow_overload and plan_sweep(spec, timing_runs=0).invalid_runs == []
+    q = tmp_path / "n.toml"
+    q.write_text(OVERLOAD_TOML.replace("allow_overload = true", ""))
+    no = SweepSpec.from_toml(q)
+    errs = plan_sweep(no, timing_runs=0).invalid_runs
+    assert [d["run"] for d in errs] == [1] and "C0" in errs[0]["error"], errs
+    assert "allow_overload" not in no.canonical() and no.spec_hash != spec.spec_hash
+    q.write_text(OVERLOAD_TOML.replace("allow_overload = true", "allow_overload = false"))
+    assert SweepSpec.from_toml(q).spec_hash == no.spec_hash
+    q.write_text(OVERLOAD_TOML.replace("allow_overload = true", "allow_overload = 1"))
+    with pytest.raises(ConfigError) as e:
+        SweepSpec.from_toml(q)
+    assert one_line(e).endswith("sweep.allow_overload = 1 is invalid; valid: true or false")
+    rep = run_sweep(spec, tmp_path / "o.zarr", client=client)
+    assert (rep.n_ok, rep.n_failed) == (2, 0)
+    rep = run_sweep(no, tmp_path / "n.zarr", client=client)
+    assert (rep.n_ok, rep.n_failed) == (1, 1)
+
+
 @pytest.mark.integration
 def test_a_run_starts_when_its_first_runs_cannot(client, tmp_path):
     """``sweep run`` probed the first three runs of a model for the dataset's channels and

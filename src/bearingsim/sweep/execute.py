@@ -291,7 +291,9 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
 
     ``task``: ``dataset`` (absolute path), ``uuid``, ``version``, ``channels`` (names or
     ``None`` = all), ``writer`` (``"auto"`` | ``"client"``), ``retry_failed`` (bool), ``runs``
-    (list of (run, scenario dict)), optionally ``id`` (the name of its claim file). Returns one
+    (list of (run, scenario dict)), optionally ``id`` (the name of its claim file) and
+    ``allow_overload`` (the sweep's, :attr:`~bearingsim.sweep.spec.SweepSpec.allow_overload`;
+    default false). Returns one
     record per run: ``run``, ``status`` (1 ok, 2 failed, ``"skipped"`` when already committed,
     ``"handed"`` when left to a helper task), ``compute_s``, ``error``, ``commit_s``, and when
     the client must commit: ``record`` and ``channels``.
@@ -313,6 +315,7 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
     keep: int | None = None  # runs[keep:] were handed to a helper task
     names = task["channels"]
     retry = task["retry_failed"]
+    allow = bool(task.get("allow_overload", False))
     out: list[dict[str, Any]] = []
     runs = task["runs"]
     # the previous run's commit in flight: (future, its result record, record, channels)
@@ -352,7 +355,8 @@ def run_task(task: dict[str, Any]) -> list[dict[str, Any]]:
         if not err:
             try:  # the run's warnings go into its record, not onto the worker's stderr
                 with collect_warnings() as caught:
-                    res = simulate(Scenario.from_dict(sd, origin=f"run {i}"))
+                    res = simulate(Scenario.from_dict(sd, origin=f"run {i}"),
+                                   allow_overload=allow)  # fmt: skip
             except Exception as exc:  # every failure is recorded; the sweep goes on
                 err = _error_text(exc)
         compute = _t.perf_counter() - t0
@@ -548,30 +552,34 @@ PROBE_BATCH = 3
 
 
 def _batches(cl: Any, fn: Callable, idx: list[int], sdicts: list[dict[str, Any]], start: int,
-             size: int) -> Iterator[tuple[list[int], Any]]:  # fmt: skip
-    """``(part, fn(its scenario dicts))`` on a worker for the runs ``idx[start:]`` in batches
-    of ``size``, then twice as many at a time (the caller stops at the first it needs)."""
+             size: int, allow: bool) -> Iterator[tuple[list[int], Any]]:  # fmt: skip
+    """``(part, fn(its scenario dicts, allow))`` on a worker for the runs ``idx[start:]`` in
+    batches of ``size``, then twice as many at a time (the caller stops at the first it
+    needs); ``allow``: the sweep's ``allow_overload``."""
     while start < len(idx):
         part = idx[start : start + size]
-        yield part, cl.submit(fn, [sdicts[i] for i in part], pure=False).result()
+        yield part, cl.submit(fn, [sdicts[i] for i in part], allow, pure=False).result()
         start, size = start + size, 2 * size
 
 
 def _probe_rest(
-    cl: Any, first: dict[str, Any] | str, idx: list[int], sdicts: list[dict[str, Any]]
-) -> dict[str, Any] | str:
+    cl: Any, first: dict[str, Any] | str, idx: list[int], sdicts: list[dict[str, Any]],
+    allow: bool,
+) -> dict[str, Any] | str:  # fmt: skip
     """The probe of a group whose first :data:`PROBE_BATCH` runs gave ``first``: when none of
     them started, the group's later runs in growing batches until one starts; the first run's
     error text when none does (the group's runs are then recorded as failed)."""
     if not isinstance(first, str):
         return first
-    for _part, p in _batches(cl, probe_first, idx, sdicts, PROBE_BATCH, 2 * PROBE_BATCH):
+    for _part, p in _batches(cl, probe_first, idx, sdicts, PROBE_BATCH, 2 * PROBE_BATCH, allow):
         if not isinstance(p, str):
             return p
     return first
 
 
-def _longest_valid(cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, Any]]) -> int:
+def _longest_valid(
+    cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, Any]], allow: bool
+) -> int:
     """Samples of the longest run that passes its check (the dataset's time axis; a run that
     cannot start stores nothing): the runs from the longest down, checked on a worker in
     growing batches (usually the first passes). Every run's length when they are all equal;
@@ -580,7 +588,7 @@ def _longest_valid(cl: Any, scenarios: list[Scenario], sdicts: list[dict[str, An
     if min(ns) == max(ns):
         return ns[0]
     order = sorted(range(len(ns)), key=lambda i: -ns[i])
-    for part, k in _batches(cl, first_valid, order, sdicts, 0, PROBE_BATCH):
+    for part, k in _batches(cl, first_valid, order, sdicts, 0, PROBE_BATCH, allow):
         if k >= 0:
             return ns[part[k]]
     return max(ns)
@@ -690,6 +698,7 @@ def run_sweep(
         check_cluster_args(workers, scheduler)
     scenarios = spec.scenarios()
     sdicts = [s.to_dict() for s in scenarios]  # what the tasks carry (and the dataset stores)
+    allow = spec.allow_overload
     canonical = spec.canonical()
     h = canonical_hash(canonical)
     path = Path(out).absolute()
@@ -735,15 +744,17 @@ def run_sweep(
             if not path.exists() or replace_old:
                 groups = probe_groups(scenarios)
                 futs = {
-                    k: cl.submit(probe_first, [sdicts[i] for i in idx[:PROBE_BATCH]], pure=False)
+                    k: cl.submit(probe_first, [sdicts[i] for i in idx[:PROBE_BATCH]], allow,
+                                 pure=False)
                     for k, idx in groups.items()
-                }
-                tried = {k: _probe_rest(cl, f.result(), groups[k], sdicts) for k, f in futs.items()}
+                }  # fmt: skip
+                tried = {k: _probe_rest(cl, f.result(), groups[k], sdicts, allow)
+                         for k, f in futs.items()}  # fmt: skip
                 probes = {k: v for k, v in tried.items() if not isinstance(v, str)}
                 if not probes:  # the groups of runs that cannot start are recorded as failed
                     k0 = next(iter(groups))
                     raise ConfigError(f"no run can start; run {groups[k0][0]}: {tried[k0]}")
-                n_time = _longest_valid(cl, scenarios, sdicts)
+                n_time = _longest_valid(cl, scenarios, sdicts, allow)
                 layout = make_layout(spec, scenarios, probes, n_time)
                 if replace_old:  # read_attrs() above proved it is a sweep dataset
                     _remove_dataset(path)
@@ -787,7 +798,7 @@ def run_sweep(
             offsets = records_offsets(path)
             counted: set[int] = set()
             if runs_per_task is None and todo:
-                rep.estimate_s = _estimate_run_s(cl, [scenarios[i] for i in todo], futs)
+                rep.estimate_s = _estimate_run_s(cl, [scenarios[i] for i in todo], futs, allow)
             rep.setup_s = time.perf_counter() - t_start
             try:
                 _execute(
@@ -898,7 +909,7 @@ def _exact_counts(
     rep.n_failed_now = sum(1 for i in computed if st1[i] == FAILED)
 
 
-def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any]) -> float | None:
+def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any], allow: bool) -> float | None:
     """Mean compute time of the runs ``todo`` [s] from one timing probe per model on the
     workers (:func:`~bearingsim.sweep_plan.timing_probe`); ``None`` when every probe raises.
     The probes' futures go into ``keep``: releasing them right before the first tasks would
@@ -909,7 +920,7 @@ def _estimate_run_s(cl, todo: list[Scenario], keep: dict[Any, Any]) -> float | N
     for sc in todo:
         first.setdefault(sc.model.value, sc)
     futs = {
-        m: cl.submit(timing_probe, sc.to_dict(), TIMING_PROBE_S, pure=False)
+        m: cl.submit(timing_probe, sc.to_dict(), TIMING_PROBE_S, allow, pure=False)
         for m, sc in first.items()
     }
     fit = {}
@@ -1029,6 +1040,7 @@ def _execute(
             "runs": [(i, sdicts[i]) for i in runs],
             "id": tid,
             "overlap_commit": worker in overlap,
+            "allow_overload": spec.allow_overload,
         }
         # placed by this loop (the scheduler does not know how long a task is), loosely: a task
         # whose worker is gone goes to another

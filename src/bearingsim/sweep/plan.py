@@ -41,14 +41,16 @@ __all__ = [
 ]
 
 
-def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
-    """Two-sample run of ``scenario``: channel names, units and trailing shapes."""
+def probe_run(scenario: dict[str, Any], allow_overload: bool = False) -> dict[str, Any]:
+    """Two-sample run of ``scenario``: channel names, units and trailing shapes
+    (``allow_overload``: the sweep's, :attr:`~bearingsim.sweep.spec.SweepSpec.allow_overload`)."""
     from ..simulation import simulate
 
     sc = Scenario.from_dict(scenario)
     quiet = {"noise_rms_m_per_s2": 0.0} if hasattr(sc, "noise_rms_m_per_s2") else {}
     with collect_warnings():  # the runs' own warnings: each run records them
-        res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet))
+        res = simulate(sc.replace(duration_s=2.0 / sc.fs_hz, **quiet),
+                       allow_overload=allow_overload)  # fmt: skip
     out = {}
     for name, x in res.channels.items():
         a = np.asarray(x)
@@ -61,20 +63,24 @@ def probe_run(scenario: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def probe_first(candidates: list[dict[str, Any]]) -> dict[str, Any] | str:
+def probe_first(
+    candidates: list[dict[str, Any]], allow_overload: bool = False
+) -> dict[str, Any] | str:
     """Probe the first candidate that starts; the first candidate's error text when none does
     (a run that cannot start fails at its check, before any work, so trying every run of a
     group costs little)."""
     err = ""
     for sd in candidates:
         try:
-            return probe_run(sd)
+            return probe_run(sd, allow_overload)
         except BearingsimError as exc:
             err = err or " ".join(str(exc).split())
     return err
 
 
-def check_runs(scenarios: list[Scenario], progress: bool = False) -> list[dict[str, Any]]:
+def check_runs(
+    scenarios: list[Scenario], progress: bool = False, allow_overload: bool = False
+) -> list[dict[str, Any]]:
     """Every run's own check, before any work: :func:`bearingsim.simulation.validate_scenario`
     with the defaults a sweep runs with (each input against the model — a defect wider than the
     ball, a pit shallower than the contact's approach, a load above twice the static capacity —
@@ -89,19 +95,19 @@ def check_runs(scenarios: list[Scenario], progress: bool = False) -> list[dict[s
         for i, sc in enumerate(
             tqdm(scenarios, desc="checking runs", unit="run", disable=None if progress else True)
         ):
-            err = start_error(sc)
+            err = start_error(sc, allow_overload)
             if err is not None:
                 bad.append({"run": i, "error": err})
     return bad
 
 
-def start_error(scenario: Scenario | dict[str, Any]) -> str | None:
+def start_error(scenario: Scenario | dict[str, Any], allow_overload: bool = False) -> str | None:
     """The one-line error a run of ``scenario`` would stop at before any work
     (:func:`bearingsim.simulation.validate_scenario` with a sweep's defaults), or None."""
     from ..simulation import as_scenario, validate_scenario
 
     try:
-        validate_scenario(as_scenario(scenario))
+        validate_scenario(as_scenario(scenario), allow_overload=allow_overload)
     except BearingsimError as exc:
         return " ".join(str(exc).split())
     return None
@@ -143,7 +149,9 @@ def rig_warnings(scenarios: list[Scenario], skip: set[int] = frozenset()) -> dic
 
 
 # ------------------------------------------------------------------------------ timing
-def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | None:
+def timing_run(
+    scenario: Scenario, max_duration_s: float, allow_overload: bool = False
+) -> dict[str, Any] | None:
     """Time ``scenario`` for 2 samples and for ``min(duration_s, max_duration_s)`` (in this
     process): ``fixed_s`` [s] (the two-sample run, the faster of two: the first call of a
     configuration fills caches), ``rate_s_per_s`` (wall time per simulated second beyond it)
@@ -158,7 +166,7 @@ def timing_run(scenario: Scenario, max_duration_s: float) -> dict[str, Any] | No
         t0 = time.perf_counter()
         try:
             with collect_warnings():  # the runs' own warnings: rig_warnings lists them
-                res = simulate(scenario.replace(duration_s=d))
+                res = simulate(scenario.replace(duration_s=d), allow_overload=allow_overload)
         except BearingsimError:
             return None
         t.append(time.perf_counter() - t0)
@@ -184,12 +192,14 @@ def extrapolate(
     return est
 
 
-def timing_probe(scenario: dict[str, Any], max_duration_s: float) -> tuple[float, float] | None:
+def timing_probe(
+    scenario: dict[str, Any], max_duration_s: float, allow_overload: bool = False
+) -> tuple[float, float] | None:
     """On a worker: ``(fixed_s, rate_s_per_s)`` of ``scenario`` from :func:`timing_run`, or
     ``None`` when it raises anything (the run itself then records its error in the sweep)."""
     try:  # its warnings are the runs' own: each run records them
         with collect_warnings():
-            tr = timing_run(Scenario.from_dict(scenario), max_duration_s)
+            tr = timing_run(Scenario.from_dict(scenario), max_duration_s, allow_overload)
     except Exception:
         return None
     return None if tr is None else (tr["fixed_s"], tr["rate_s_per_s"])
@@ -200,11 +210,13 @@ def _group_key(sd: dict[str, Any]) -> tuple:
     return (sd["model"], sd.get("per_ball"), sd.get("bearing"), sd.get("bearing_file"))
 
 
-def first_valid(candidates: list[dict[str, Any]]) -> int:
+def first_valid(candidates: list[dict[str, Any]], allow_overload: bool = False) -> int:
     """Position in ``candidates`` (scenario dicts) of the first that passes its check
     (:func:`bearingsim.simulation.validate_scenario`), or -1 when none does."""
     with collect_warnings():
-        return next((k for k, sd in enumerate(candidates) if start_error(sd) is None), -1)
+        return next(
+            (k for k, sd in enumerate(candidates) if start_error(sd, allow_overload) is None), -1
+        )
 
 
 def probe_groups(
@@ -367,14 +379,15 @@ def plan_sweep(
     import numcodecs
 
     scenarios = spec.scenarios()
-    invalid = check_runs(scenarios, progress)
+    allow = spec.allow_overload
+    invalid = check_runs(scenarios, progress, allow)
     bad = {d["run"] for d in invalid}
     if len(bad) == len(scenarios):
         raise ConfigError(f"no run can start; run 0: {invalid[0]['error']}")
     for d in invalid:
         d["values"] = spec.run_values(d["run"])
     groups = probe_groups(scenarios, bad)
-    probes = {k: _probe_local(scenarios, idx) for k, idx in groups.items()}
+    probes = {k: _probe_local(scenarios, idx, allow) for k, idx in groups.items()}
     n = len(scenarios)
     ok = [i for i in range(n) if i not in bad]
     n_ok = len(ok)  # a run that cannot start stores no signal
@@ -395,7 +408,7 @@ def plan_sweep(
         fit: dict[str, list[tuple[float, float]]] = {}
         for i in picks:
             sc = scenarios[i]
-            tr = timing_run(sc, timing_duration_s)
+            tr = timing_run(sc, timing_duration_s, allow)
             if tr is None:
                 timing.append({"run": i, "failed": True})
                 continue
@@ -434,11 +447,11 @@ def plan_sweep(
     )
 
 
-def _probe_local(scenarios: list[Scenario], idx: list[int]) -> dict[str, Any]:
+def _probe_local(scenarios: list[Scenario], idx: list[int], allow: bool) -> dict[str, Any]:
     err: BearingsimError | None = None
     for i in idx:
         try:
-            return probe_run(scenarios[i].to_dict())
+            return probe_run(scenarios[i].to_dict(), allow)
         except BearingsimError as exc:
             err = exc
     raise ConfigError(f"run {idx[0]} cannot start: {' '.join(str(err).split())}")

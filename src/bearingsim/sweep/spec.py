@@ -11,6 +11,8 @@ A sweep file is TOML with three tables::
     label = "fault"              # scenario key(s) used as the class label (summary, ML loader;
                                  # default: fault, de_fault (rotor), spall_width_m (IAS))
     per_run_seed = false         # true: noise seed of run i = base seed + i
+    allow_overload = false       # true: run loads above twice the static capacity C0
+                                 # (simulate --allow-overload; a warning above C0 either way)
     base_file = "scenario.toml"  # optional scenario file under [base] (relative to this file)
     name = "..."                 # free text
 
@@ -97,6 +99,7 @@ SWEEP_KEYS = (
     "channels",
     "label",
     "per_run_seed",
+    "allow_overload",
     "base_file",
     "name",
 )
@@ -370,6 +373,9 @@ class SweepSpec:
         Scenario keys forming the class label.
     per_run_seed : bool
         Noise seed of run ``i`` = base seed + ``i``.
+    allow_overload : bool
+        Run a radial load above twice the bearing's static capacity C0 (ISO 76) instead of
+        failing that run (:func:`bearingsim.simulate`'s ``allow_overload``).
     name : str
         Free text.
     origin : str
@@ -384,6 +390,7 @@ class SweepSpec:
     channels: tuple[str, ...] | None = ("acc_x", "acc_y")
     label: tuple[str, ...] = ("fault",)
     per_run_seed: bool = False
+    allow_overload: bool = False
     name: str = ""
     origin: str = "<sweep>"
 
@@ -581,7 +588,10 @@ class SweepSpec:
             "channels": None if self.channels is None else list(self.channels),
             "per_run_seed": self.per_run_seed,
             "bearings": bearings,
-        } | ({"rigs": rig_tables} if rig_tables else {})
+        } | ({"rigs": rig_tables} if rig_tables else {}) | (
+            # only when set: the hash of every sweep without it is that of before
+            {"allow_overload": True} if self.allow_overload else {}
+        )  # fmt: skip
 
     @property
     def spec_hash(self) -> str:
@@ -693,6 +703,11 @@ class SweepSpec:
         prs = sw.get("per_run_seed", False)
         if not isinstance(prs, bool):
             raise ConfigError(f"{origin}: sweep.per_run_seed = {prs!r} is invalid; valid: bool")
+        allow = sw.get("allow_overload", False)
+        if not isinstance(allow, bool):
+            raise ConfigError(
+                f"{origin}: sweep.allow_overload = {allow!r} is invalid; valid: true or false"
+            )
         name = sw.get("name", "")
         axes = []
         keys = type(base_sc).KEYS
@@ -721,6 +736,7 @@ class SweepSpec:
             channels=chans,
             label=tuple(label),
             per_run_seed=prs,
+            allow_overload=allow,
             name=str(name),
             origin=origin,
         )
