@@ -252,7 +252,8 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     type=Number(0, integer=True),
     default=None,
     show_default=_d("seed"),
-    help="Seed of the measurement noise.",
+    help="Seed of every random part of the run: measurement noise, random slip and pocket "
+    "jitter, ball-size spread, a rig's background and tone phases.",
 )
 @click.option(
     "--noise-rms-m-per-s2",
@@ -300,7 +301,8 @@ def _scenario(path: str | None, overrides: dict[str, Any]):
     multiple=True,
     metavar="KEY=VALUE",
     help="Set any scenario key of the model's family (repeatable), e.g. --set "
-    "spall_width_m=2e-3 for --model ias; VALUE is a TOML value.",
+    "slip_percent=1.5 (random slip of the ring and rotor models) or --set spall_width_m=2e-3 "
+    "for --model ias; VALUE is a TOML value.",
 )
 @click.option(
     "--rig",

@@ -250,6 +250,19 @@ def run_rotor(
             "acc_x, acc_y, acc_x_fe, acc_y_fe; the rig's input channel's added to the sensor's "
             "signal after the rig's path",
         },
+        # as the ring models' meta["slip"] (exploratory testing, twenty-fifth session: a rotor
+        # result did not say its slip; through a rig only meta["defaults"] had it)
+        "slip": {
+            "interval_sd_percent": scenario.slip_percent,
+            "pocket_jitter_percent": scenario.pocket_jitter_percent,
+            "seed": scenario.seed,
+            "model": "each bearing's cage (end e: 0 DE, 1 FE) at speed w_cage (1 + s_k) over "
+            "each ball-pass period, s_k ~ N(0, slip^2) clipped to +-0.5 from "
+            "numpy.random.SeedSequence([seed, 1, e]), the intervals divided by E[1/(1 + s_k)] "
+            "(the kinematic pass rate on average); pocket jitter: each pass instant moved by "
+            "e_k T, e_k ~ N(0, jitter^2/2) from SeedSequence([seed, 1, e, 3]) "
+            "(dynamics.rotor.model._with_slip, dynamics.slip)",
+        },
         "defaults": scenario.defaults_record,
         "defect": {
             "DE": defect_meta(cfg.de.bearing, cfg.de.fault),
