@@ -137,6 +137,36 @@ def test_rotor_ball_fault_signature():
     assert diagnose_fused(x, fs, b, fr).diagnosis == "ball"
 
 
+def test_the_slots_spin_angle_means_the_same_in_the_ring_and_rotor_models():
+    """Exploratory testing (twenty-fifth session): the slot's spin angle (0 = facing the outer
+    race, advancing as the ball spins) was taken with the opposite sign by the rotor model, so
+    at 90 deg its first strike was on the outer race and the DEM's on the inner. Both now reach
+    the inner race after a quarter spin turn (the slot at 90 deg, 90 deg from the inner
+    contact) and the outer race after three quarters: ball 1's load drops at T/4 and 3T/4 (T
+    = 1/BSF), deeper at the inner race (convex: the chord rule's loss is larger there,
+    test_ball_defect_geometry_is_the_chord_rule_with_roles_swapped). Preloaded (-10 um), so
+    ball 1 is loaded at both."""
+    common = dict(duration_s=0.03, fs_hz=48000.0, per_ball=True, defect_width_m=WIDTH)
+    for sc, name in (
+        (dict(model="dem", fault="ball", defect_edge_angle_deg=90.0, clearance_m=-1e-5),
+         "ball_load"),
+        (dict(model="rotor", de_fault="ball", de_defect_angle_deg=90.0, de_clearance_m=-1e-5),
+         "ball_load_inner_de"),
+    ):  # fmt: skip
+        r = simulate(sc | common)
+        q, t = np.asarray(r[name])[:, 0], r.time
+        period = 1.0 / r.meta["kinematics"]["bsf_hz"]
+        base = np.median(q[t < period])
+
+        def drop(lo, hi, q=q, t=t, period=period, base=base):
+            m = (t >= lo * period) & (t < hi * period)
+            return base - q[m].min(), t[m][np.argmin(q[m])] / period
+
+        (d_in, at_in), (d_out, at_out) = drop(0.125, 0.375), drop(0.625, 0.875)
+        assert at_in == pytest.approx(0.25, abs=0.01) and at_out == pytest.approx(0.75, abs=0.01)
+        assert d_in > d_out > 0.0, (sc["model"], d_in, d_out)
+
+
 def test_healthy_and_race_faults_unchanged_by_the_ball_branch():
     """The raceway-defect and healthy paths are the golden cases (tests/test_golden.py); here
     the scenario keys: 'ball' is a fault of the ring and rotor families."""

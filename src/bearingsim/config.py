@@ -929,7 +929,8 @@ class RotorScenario(Scenario):
     ``de_defect_angle_deg``,            180.0           defect **centre** azimuth at t = 0 [deg]
     ``fe_defect_angle_deg``                             (180 = 6 o'clock, CWRU ``OR@6``; ball:
                                                         the slot's spin angle, 0 = facing the
-                                                        outer race)
+                                                        outer race, advancing as the ball
+                                                        spins, as the ring models' edge angle)
     ``rpm``                             1750.0          shaft speed [r/min]
     ``duration_s``, ``fs_hz``           1.0, 48000.0    simulated time [s], output sample rate [Hz]
                                         (``fs_hz``:     (a rig's ``fs_hz``: the rate of the records

@@ -93,7 +93,9 @@ def _shared_options(f, every_family: bool):
             type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("defect_edge_angle_deg", others=every_family),
-            help="Azimuth of the defect's left edge at t = 0, beta_0 [deg] (seed VSM table 1).",
+            help="Azimuth of the defect's left edge at t = 0, beta_0 [deg] (seed VSM table 1); "
+            "a ball fault: the slot's spin angle at t = 0, 0 = facing the outer race, advancing "
+            "as the ball spins (90: the inner race after a quarter turn).",
         ),
         deprecated("--defect-angle-deg", "--defect-edge-angle-deg"),
         click.option(

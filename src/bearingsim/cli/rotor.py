@@ -86,14 +86,16 @@ def rotor_simulate_options(f: Callable) -> Callable:
             type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("de_defect_angle_deg"),
-            help="DE defect centre azimuth at t = 0 from +y towards +x [deg] (180 = 6 o'clock).",
+            help="DE defect centre azimuth at t = 0 from +y towards +x [deg] (180 = 6 o'clock); "
+            "a ball fault: the slot's spin angle at t = 0, 0 = facing the outer race, advancing "
+            "as the ball spins.",
         ),
         click.option(
             "--fe-defect-angle-deg",
             type=Number(-360.0, 360.0, unit="deg"),
             default=None,
             show_default=_d("fe_defect_angle_deg"),
-            help="FE defect centre azimuth at t = 0 [deg].",
+            help="FE defect centre azimuth at t = 0 [deg] (as --de-defect-angle-deg).",
         ),
         click.option(
             "--disks",

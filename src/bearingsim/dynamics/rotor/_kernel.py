@@ -289,7 +289,7 @@ def _bearing(t, y, p, o, nr, ib, node, hous, dydt, aux, aux_off, want_ball, grav
         if fault == 3:
             if j == 0:  # ball 1's slot: spin angle of its centre from the outer contact
                 spin = p[o + B_SPIN]
-                phi = _wrap(spin * (psi - p[o + B_PSI0]) - fang)
+                phi = _wrap(spin * (psi - p[o + B_PSI0]) + fang)
                 rb = p[o + B_RBALL]
                 h_out, dh = defect_drop_on(p, o, phi, rb, p[o + B_RRACE], -1.0, p[o + B_HMAX])
                 hd_out = dh * spin * wc
@@ -394,7 +394,7 @@ def _qs_balls(t, y, p, o, nr, npos, node, hous, aux, aux_off, want_ball, axial):
         if fault == 3:
             if j == 0:  # ball 1's slot meets the outer race, half a spin turn later the inner
                 spin = p[o + B_SPIN]
-                phi = _wrap(spin * (psi - p[o + B_PSI0]) - fang)
+                phi = _wrap(spin * (psi - p[o + B_PSI0]) + fang)
                 rb = p[o + B_RBALL]
                 h, dh = defect_drop_on(p, o, phi, rb, p[o + B_RRACE], -1.0, p[o + B_HMAX])
                 h_i, dh_i = defect_drop_on(
