@@ -2,7 +2,7 @@
 (issue 16, item 6; first version).
 
     python examples/sim_to_real.py --predict FILE... [--json] [--cache DIR] [--rpm R]
-        [--fs-hz F] [--channel CH]
+        [--fs-hz F] [--channel CH] [--bearing ID|FILE.toml]
     python examples/sim_to_real.py --evaluate [--data ../shared/data/cwru] [--path-fit]
 
 1. **Dataset** (cached in a Zarr group, so a second call trains in seconds): DEM simulations of
@@ -34,8 +34,9 @@
    ``ball`` (the ring models' ball defect, issue 16 item 2).
 
 ``--predict`` prints one JSON object per line, ``{"file", "predicted", "probabilities",
-"rpm", "rpm_source", "fs_hz", "fs_source"}`` (and ``"warning"`` when the speed lies outside
-the trained ones), ``--fs-hz`` and ``--channel`` passed to the reader (:func:`_record`); a
+"rpm", "rpm_source", "fs_hz", "fs_source", "channel", "bearing", "bearing_source"}`` (and
+``"warning"`` when the speed lies outside the trained ones, ...), ``--fs-hz``, ``--channel``
+and ``--bearing`` passed to the reader (:func:`_record`); a
 record longer than the simulations is cut into pieces of their length (``DURATION_S``) and the
 pieces' class probabilities are averaged (:func:`segments`).
 ``--evaluate`` labels every record of the CWRU folder, prints the accuracy per class and
@@ -314,7 +315,12 @@ def build_datasets(
     simulation. Returns ``({name: (X, y)}, meta)``; ``meta["rigs"]`` holds the sets' rigs."""
     import zarr
 
-    path = Path(cache) / "sim_to_real.zarr"
+    # one store per variant of the grid: an experiment (--defect-profile pit, --slip-form
+    # jitter) no longer replaces the default dataset, which took minutes to rebuild
+    variant = "".join(
+        f"-{v}" for v, d in ((DEFECT_PROFILE, "geometric"), (SLIP_FORM, "walk")) if v != d
+    )
+    path = Path(cache) / f"sim_to_real{variant}.zarr"
     grid = [MODEL, RPMS, SIZES_IN, SLIPS, SPREADS_M, UNBALANCE, CLEARANCES_M, ROUGHNESS_M]
     grid += [AXIAL_K]
     grid += [PROFILES]
@@ -607,6 +613,7 @@ def _record(
     channel: str | None = None,
     fs_hz: float | None = None,
     info: dict | None = None,
+    bearing=None,
 ):
     """Signal, fs, shaft speed [r/min], where the speed came from, and bearing of a record
     (``bearingsim.signal.diagnosis.load_signal_and_speed``, the rule of ``bearingsim analyze``).
@@ -623,10 +630,15 @@ def _record(
       per-sample speed column (``rpm`` or ``speed_hz``) is judged at its median when its
       1st-99th percentile span is within :data:`SPEED_SPREAD_MAX` of it, else refused.
 
-    ``info`` (a dict) receives the reader's ``fs_source``."""
+    ``bearing`` (a Bearing, ``--bearing``) replaces the bearing of any of these. The samples
+    pass ``bearing analyze``'s checks (:func:`bearingsim.signal.diagnosis.check_samples`: not
+    finite, constant, clipped, or a time or counter column read as the signal).
+
+    ``info`` (a dict) receives the reader's ``fs_source``, the ``channel`` read and where the
+    bearing came from (``bearing_source``)."""
     from bearingsim.errors import ConfigError
     from bearingsim.io.cwru import cwru_bearing, cwru_end
-    from bearingsim.signal.diagnosis import load_signal_and_speed
+    from bearingsim.signal.diagnosis import check_samples, load_signal_and_speed
 
     end = cwru_end(path)
     suffix = Path(path).suffix.lower()
@@ -634,16 +646,14 @@ def _record(
     if suffix == ".mat" and ch is None:
         ch = end
     r, source = load_signal_and_speed(path, channel=ch, fs_hz=fs_hz, rpm=rpm)
-    if info is not None:
-        info.update(r.info)
-        info.setdefault("fs_source", "option" if fs_hz is not None else "file")
+    # exploratory testing (twenty-fifth session): a time column without a header, read with
+    # --fs-hz, was classified ("none", 0.85) where `analyze` refuses it
+    check_samples(r)
+    info = {} if info is None else info
+    info.update(r.info)
+    info.setdefault("fs_source", "option" if fs_hz is not None else "file")
+    info["channel"] = r.channel
     x = np.asarray(r.x, dtype=float)
-    if not np.all(np.isfinite(x)):
-        bad = int(np.count_nonzero(~np.isfinite(x)))
-        raise ConfigError(
-            f"file = {Path(path).name!r}: {bad} of {x.size} samples are not finite; valid: "
-            "finite samples"
-        )
     speed = r.rpm
     if speed is None:  # a per-sample speed column: judged at its median if it barely varies
         v = np.asarray(r.speed_hz, dtype=float) * 60.0
@@ -664,12 +674,15 @@ def _record(
             )
         speed = med
         source = f"median of the speed column ({100 * spread:.1f} % spread)"
-    if r.bearing is not None:  # a bearingsim result states its bearing
-        bearing = r.bearing
+    if bearing is not None:
+        info["bearing_source"] = "option"
+    elif r.bearing is not None:  # a bearingsim result states its bearing
+        bearing, info["bearing_source"] = r.bearing, "file"
     elif suffix == ".mat" and r.channel in ("DE", "FE"):
-        bearing = cwru_bearing(r.channel)
+        bearing, info["bearing_source"] = cwru_bearing(r.channel), "CWRU channel"
     else:
         bearing = cwru_bearing(end)
+        info["bearing_source"] = "file name (Fan_End)" if end == "FE" else "default (CWRU DE)"
     return x, float(r.fs), float(speed), source, bearing
 
 
@@ -686,25 +699,33 @@ def segments(x, fs: float) -> list[np.ndarray]:
     return [x[i : i + n] for i in range(0, x.size - n + 1, n)]
 
 
-def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
+def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None, bearing=None):
     """One result per file: ``{"file", "predicted", "probabilities", "rpm", "rpm_source",
-    "fs_hz", "fs_source"}`` (and ``"warning"`` when the speed lies outside the trained ones),
-    or ``{"file", "predicted": None, "probabilities": None, "error"}``."""
+    "fs_hz", "fs_source", "channel", "bearing", "bearing_source"}`` (and ``"warning"`` when
+    the speed lies outside the trained ones, ...), or ``{"file", "predicted": None,
+    "probabilities": None, "error"}``; ``"file"`` is the path as given. ``bearing`` (a
+    catalogue id, a Bearing or a bearing TOML path) replaces every file's own."""
     lo, hi = min(RPMS), max(RPMS)
     for f in files:
         p = Path(f)
         try:
             info: dict = {}
-            x, fs, rpm_used, source, bearing = _record(
-                p, rpm, channel=channel, fs_hz=fs_hz, info=info
+            own = _bearing_option(bearing)
+            x, fs, rpm_used, source, bearing_used = _record(
+                p, rpm, channel=channel, fs_hz=fs_hz, info=info, bearing=own
             )
-            _check_length(x, fs, rpm_used, bearing)
-            warn = _length_warning(x, fs) + _speed_warning(x, fs, rpm_used, rpm) + _rate_warning(fs)
+            _check_length(x, fs, rpm_used, bearing_used)
+            warn = (
+                _length_warning(x, fs)
+                + _speed_warning(x, fs, rpm_used, rpm if rpm is not None else _named(source))
+                + _rate_warning(fs)
+                + _bearing_warning(p, info["bearing_source"], bearing_used)
+            )
             segs = segments(x, fs)
             feats = []
             for k, seg in enumerate(segs):
                 try:
-                    v = features(seg, fs, rpm_used, bearing)
+                    v = features(seg, fs, rpm_used, bearing_used)
                     if not np.all(np.isfinite(v)):
                         raise ValueError("its features are not finite")
                 except Exception as exc:
@@ -717,14 +738,16 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None):
             prob = clf.predict_proba(np.array(feats)).mean(axis=0)
         except Exception as exc:  # one bad file is its own line
             err = " ".join(str(exc).split()) or type(exc).__name__
-            yield {"file": str(p), "predicted": None, "probabilities": None, "error": err}
+            yield {"file": str(f), "predicted": None, "probabilities": None, "error": err}
             continue
         probs = dict.fromkeys(LABELS, 0.0)
         probs |= {LABELS[c]: float(v) for c, v in zip(clf.classes_, prob, strict=True)}
         best = max(probs, key=probs.get)
-        o = {"file": str(p), "predicted": best, "probabilities": probs, "rpm": rpm_used,
-             "rpm_source": source, "fs_hz": fs,
-             "fs_source": info["fs_source"]}  # fmt: skip
+        bid = bearing_used if isinstance(bearing_used, str) else bearing_used.id
+        o = {"file": str(f), "predicted": best, "probabilities": probs, "rpm": rpm_used,
+             "rpm_source": source, "fs_hz": fs, "fs_source": info["fs_source"],
+             "channel": info["channel"], "bearing": bid,
+             "bearing_source": info["bearing_source"]}  # fmt: skip
         if not (lo * (1.0 - RPM_MARGIN) <= rpm_used <= hi * (1.0 + RPM_MARGIN)):
             warn.append(
                 f"rpm = {rpm_used:g} r/min is outside the trained speeds ({lo:g}-{hi:g} r/min, "
@@ -748,7 +771,12 @@ def _check_length(x, fs: float, rpm: float, bearing) -> None:
     from bearingsim.catalog import as_bearing
     from bearingsim.errors import ConfigError
     from bearingsim.geometry import characteristic_frequencies
+    from bearingsim.signal.diagnosis import DiagnosisRule, min_band_width
 
+    # a rate too low for the fault lines (a time column in ms read as s: fs 12 Hz) ended in a
+    # kurtogram's error or "signal has 12 samples" (exploratory testing, twenty-fifth
+    # session); this is `analyze`'s check and message
+    min_band_width(as_bearing(bearing), rpm / 60.0, fs, DiagnosisRule())
     ftf = characteristic_frequencies(as_bearing(bearing), rpm / 60.0).ftf_hz
     t, need = np.asarray(x).size / fs, MIN_CAGE_TURNS / ftf
     if t < need:
@@ -785,8 +813,17 @@ def _length_warning(x, fs: float) -> list[str]:
     ]
 
 
+def _named(source: str) -> float | None:
+    """A truthy stand-in for a speed given when ``source`` says the speed is the nominal one
+    of the load in the file's name (:func:`_speed_warning` checks those too: a name such as
+    ``line4_3_07.csv`` matches the CWRU pattern and gave CWRU record 169, at 1796 r/min,
+    1730 r/min and "outer" without a word; exploratory testing, twenty-fifth session)."""
+    return 1.0 if source.startswith("name") else None
+
+
 def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> list[str]:
-    """A warning when a speed given (``--rpm``) is refuted by the record's own shaft harmonics
+    """A warning when a speed given (``--rpm``, or the nominal speed of a name: ``rpm_option``
+    not None) is refuted by the record's own shaft harmonics
     (:func:`bearingsim.signal.contact_angle.refuted_speed`): the features read the fault lines
     at the wrong speed (record 109 at --rpm 1730 instead of its 1796 r/min read "outer")."""
     if rpm_option is None:
@@ -801,6 +838,31 @@ def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> l
         f"rpm = {rpm_used:g} r/min: the record's shaft harmonics put its speed at {own:.6g} "
         f"r/min ({100.0 * (own / rpm_used - 1.0):+.2f} %); the fault lines were read at the "
         "wrong speed (check --rpm)"
+    ]
+
+
+def _bearing_option(bearing):
+    """``--bearing``: None, a Bearing, a catalogue id or a bearing TOML path -> a Bearing."""
+    from bearingsim.catalog import get_bearing, load_bearing_file
+
+    if bearing is None or not isinstance(bearing, str | Path):
+        return bearing
+    if str(bearing).lower().endswith(".toml"):
+        return load_bearing_file(bearing)
+    return get_bearing(str(bearing))
+
+
+def _bearing_warning(path: Path, source: str, bearing) -> list[str]:
+    """A warning when a text record gets a CWRU bearing by default (``bearing_source``
+    ``default``/``file name``): its fault lines are read at that bearing's frequencies, and a
+    record of another bearing is mislabelled (a 6203 outer-race fault read as the default
+    6205: "ball"; exploratory testing, twenty-fifth session)."""
+    if Path(path).suffix.lower() not in (".csv", ".txt") or source in ("option", "file"):
+        return []
+    bid = bearing if isinstance(bearing, str) else bearing.id
+    return [
+        f"bearing {bid} taken from the {source}: the fault lines are read at its frequencies; "
+        "give --bearing ID|FILE.toml for a record of another bearing"
     ]
 
 
@@ -899,8 +961,18 @@ def _emit(o: dict, as_json: bool) -> None:
             print(f"{o['file']}: warning: {o['warning']}", file=sys.stderr, flush=True)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with a one-line usage error (``sim_to_real.py: error: ...``, exit 2), as
+    bearingsim's own commands print; argparse's printed the usage block first (five lines;
+    exploratory testing, twenty-fifth session)."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: error: {' '.join(message.split())}", file=sys.stderr)
+        raise SystemExit(2)
+
+
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _Parser(description=__doc__.splitlines()[0])
     ap.add_argument("--predict", nargs="+", metavar="FILE")
     ap.add_argument("--evaluate", action="store_true")
     ap.add_argument("--json", action="store_true", help="one JSON object per line")
@@ -916,6 +988,10 @@ def main() -> int:
                     help="channel of --predict files: DE, FE or BA (.mat; default the fault's "
                     "end in the name), a column (CSV/TXT), x, y or sensor (.nc; default sensor "
                     "if present, else y)")  # fmt: skip
+    ap.add_argument("--bearing", default=None, metavar="ID|FILE.toml",
+                    help="bearing of every --predict file: a catalogue id or a bearing TOML "
+                    "(default: the one a bearingsim result states, else the CWRU bearing of "
+                    "the end in the file name: 6203-cwru for Fan_End, else 6205-cwru)")  # fmt: skip
     ap.add_argument("--path-fit", action="store_true",
                     help="an experiment: fit each rig's gains with the DEM's output as the "
                     "known input (bearingsim.side_by_side.model_path_fit) on the CWRU records "
@@ -935,6 +1011,13 @@ def main() -> int:
         ap.error(f"--rpm = {a.rpm:g} r/min; valid range (0, 1e6] r/min")
     if a.fs_hz is not None and not (math.isfinite(a.fs_hz) and 0.0 < a.fs_hz <= 1e8):
         ap.error(f"--fs-hz = {a.fs_hz:g} Hz; valid range (0, 1e8] Hz")
+    if a.bearing is not None:
+        from bearingsim.errors import BearingsimError
+
+        try:
+            _bearing_option(a.bearing)
+        except BearingsimError as exc:  # before minutes of simulation, not after them
+            ap.error(f"--bearing: {exc}")
     names = ["shipped", *(f"without-{s}" for s in HELD_OUT)] if a.evaluate else ["shipped"]
     try:
         sets, meta = build_datasets(
@@ -946,7 +1029,7 @@ def main() -> int:
     clfs = {n: train(*sets[n]) for n in names}
     bad = 0
     if a.predict:
-        kw = dict(channel=a.channel, fs_hz=a.fs_hz)
+        kw = dict(channel=a.channel, fs_hz=a.fs_hz, bearing=a.bearing)
         for o in predict(clfs["shipped"], a.predict, a.rpm, **kw):
             bad += "error" in o
             _emit(o, a.json)
@@ -959,6 +1042,9 @@ def _run() -> int:
     """:func:`main`; a reader that closes the pipe (``| head -1``) ends it quietly."""
     try:
         return main()
+    except KeyboardInterrupt:  # Ctrl-C: one line and 130, as bearingsim's commands (docs/cli.md)
+        print("error: aborted", file=sys.stderr)
+        return 130
     except BrokenPipeError:
         # the rest of the output has nowhere to go: point stdout at devnull so that the
         # interpreter's final flush does not raise again (Python docs, "Note on SIGPIPE")

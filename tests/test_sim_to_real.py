@@ -583,3 +583,93 @@ def test_a_rate_the_classifier_was_not_trained_at_carries_a_warning(small, tmp_p
     assert "fs = 20000 Hz is not a rate the classifier was trained at (12000 Hz)" in o["warning"]
     (o,) = small.predict(_Stub(), [_signal().save(tmp_path / "sim.nc")])
     assert "warning" not in o  # 12 kHz, the small grid's rate
+
+
+def test_what_a_users_own_record_is_judged_as_is_said_and_can_be_set(small, tmp_path):
+    """Exploratory testing (twenty-fifth session), each silent before:
+    * a time column without a header, read with --fs-hz, was classified ("none", 0.85):
+      refused, as `analyze` refuses it (check_samples);
+    * a speed taken from a name that only looks like CWRU's (``_0_07``: load 0, 1797 r/min)
+      was never checked against the record's own shaft lines (1750 r/min): now warned;
+    * the bearing (and channel) a file was judged as was not reported and could not be set:
+      ``bearing``, ``bearing_source``, ``channel`` in every result, ``bearing=`` (--bearing),
+      and a text record judged as a CWRU bearing by default is warned;
+    * a time column in milliseconds (fs 12 Hz) ended in "signal has 12 samples": `analyze`'s
+      rate check and message;
+    * ``file`` is the path as given (``./x.nc`` lost its ``./``);
+    * a constant record's error named 0 (the mean removed) instead of its value."""
+    y = _signal()["acc_y"]
+    t = np.arange(y.size) / 12000.0
+    bare = tmp_path / "bare.csv"
+    np.savetxt(bare, np.c_[t, y], delimiter=",")
+    (o,) = small.predict(_Stub(), [bare], 1750.0, fs_hz=12000.0)
+    assert "'col0' changes in even steps" in o["error"], o
+    from bearingsim.io.cwru import read_cwru_mat
+
+    de = read_cwru_mat(REC).acceleration("DE")  # record 132 at 1750 r/min
+    named = tmp_path / "line_0_07.csv"
+    np.savetxt(named, np.c_[np.arange(de.size) / 12000.0, de], delimiter=",",
+               header="time_s,acc", comments="")  # fmt: skip
+    (o,) = small.predict(_Stub(), [named])
+    assert o["rpm"] == 1797.0 and o["rpm_source"].startswith("name")
+    assert "shaft harmonics put its speed at 17" in o["warning"], o
+    assert (o["bearing"], o["bearing_source"], o["channel"]) == (
+        "6205-cwru", "default (CWRU DE)", "acc")  # fmt: skip
+    assert "bearing 6205-cwru taken from the default (CWRU DE)" in o["warning"]
+    (o,) = small.predict(_Stub(), [named], 1750.0, bearing="6206")
+    assert (o["bearing"], o["bearing_source"]) == ("6206", "option")
+    assert "warning" not in o, o
+    ms = tmp_path / "ms.csv"
+    np.savetxt(ms, np.c_[1e3 * t, y], delimiter=",", header="time,acc", comments="")
+    (o,) = small.predict(_Stub(), [ms], 1750.0)
+    assert o["error"].startswith("fs_hz = 12 Hz is too low for an envelope band of "), o
+    const = tmp_path / "const.csv"
+    np.savetxt(const, np.c_[t, np.ones_like(t)], delimiter=",", header="t,acc", comments="")
+    (o,) = small.predict(_Stub(), [const], 1750.0)
+    assert o["error"].endswith(f"all {t.size} samples equal 1; valid: a vibration signal"), o
+    path = _signal().save(tmp_path / "sim.nc")
+    rel = os.path.relpath(path)
+    (o,) = small.predict(_Stub(), [f"./{rel}"])
+    assert o["file"] == f"./{rel}" and o["bearing_source"] == "file"
+
+
+def test_cli_usage_errors_are_one_line_and_ctrl_c_says_aborted(small, monkeypatch, capsys):
+    """Exploratory testing (twenty-fifth session): argparse printed its usage block before the
+    error (six lines), a bad --bearing was found only after the dataset, and Ctrl-C during
+    the build printed a 36-line traceback. Now one line, exit 2; Ctrl-C ``error: aborted``,
+    130 (docs/cli.md)."""
+    for args, message in (
+        (["--predict", "x.mat", "--rpm", "-5"], "--rpm = -5 r/min; valid range (0, 1e6]"),
+        (["--predict", "x.mat", "--bearing", "9999"], "--bearing: bearing = '9999' is not in"),
+        ([], "give --predict FILE... or --evaluate"),
+    ):
+        monkeypatch.setattr(sys, "argv", ["sim_to_real.py", *args])
+        with pytest.raises(SystemExit) as e:
+            small.main()
+        err = capsys.readouterr().err
+        assert e.value.code == 2 and err.count("\n") == 1 and message in err, err
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(small, "main", interrupted)
+    assert small._run() == 130 and capsys.readouterr().err == "error: aborted\n"
+
+
+def test_an_experiments_dataset_does_not_replace_the_default_one(small, tmp_path, monkeypatch):
+    """Exploratory testing (twenty-fifth session): one call with --defect-profile pit replaced
+    the cached default dataset, and the next plain call rebuilt it for minutes. Each variant
+    of the grid now has its own store."""
+    monkeypatch.setattr(small, "simulate_runs", _fake_runs)
+    small.build_dataset(tmp_path, progress=False)
+    monkeypatch.setattr(small, "DEFECT_PROFILE", "pit")
+    small.build_dataset(tmp_path, progress=False)
+    assert sorted(p.name for p in tmp_path.glob("*.zarr")) == [
+        "sim_to_real-pit.zarr", "sim_to_real.zarr"]  # fmt: skip
+
+    def boom(*a, **k):
+        raise AssertionError("rebuilt")
+
+    monkeypatch.setattr(small, "simulate_runs", boom)
+    monkeypatch.setattr(small, "DEFECT_PROFILE", "geometric")
+    small.build_dataset(tmp_path, progress=False)  # read from its own store
