@@ -622,6 +622,15 @@ def diagnose_fused(
         return _res("uncertain", 0.0, top, None, margin)
     p = calibration(margin)
     if not _agree(views, top):
+        # a family that scores higher but is no candidate: say why it does not lead (the
+        # scores alone read as a contradiction; exploratory testing, twenty-fifth session)
+        above = [
+            f"{f} scores higher ({fused[f]:.2f}) but is supported in "
+            f"{sum(f in v.supported for v in views)} view(s), a candidate needs "
+            f"{min(MIN_VIEWS, nv)}"
+            for f in FAMILIES
+            if f not in supported and fused[f] > fused[top]
+        ]
         notes.append(
             f"leading family {top} (margin {margin:.3f}, p {p:.2f}) is no method's own reading ("
             + ", ".join(f"{v.name} {v.diagnosis.diagnosis}" for v in views)
@@ -630,6 +639,7 @@ def diagnose_fused(
                 if all(v.diagnosis.diagnosis == "uncertain" for v in views)
                 else "): the methods disagree"
             )
+            + "".join(f"; {t}" for t in above)
         )
         return _res("uncertain", 0.0, top, p, margin)
     if p >= 0.5:
