@@ -669,6 +669,9 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
         # accepted, and the gain was fitted to another condition
         "speed.csv": ("file,fault,bearing,defect_width_m,rpm\nrun1.mat,outer,6205,1e-4,1500\n",
                       "speed.csv: rpm = 1500 r/min for 'run1.mat', whose own speed is"),
+        # a width the model refuses named neither file nor line (twenty-fifth session)
+        "wide.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,0.02\n",
+                     "wide.csv, line 2: defect_width_m = 0.02 m is wider than the ball"),
     }  # fmt: skip
     (mine / "latin1.csv").write_bytes(
         b"file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,1e-4 # caf\xe9\n"

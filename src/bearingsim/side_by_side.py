@@ -570,21 +570,32 @@ def _user_simulations(records, conditions, model, duration_s, realism, seed, pro
             )
         fs = float(rec.fs)
         dur = min(duration_s, rec.x.size / fs)
-        which = {"bearing_file": cond["bearing_file"]} if "bearing_file" in cond else {}
-        sc = dict(
-            model=model,
-            **(which or {"bearing": cond["bearing"]}),
-            fault=cond["fault"],
-            defect_width_m=cond["defect_width_m"],
-            **({"defect_depth_m": cond["defect_depth_m"]} if cond.get("defect_depth_m") else {}),
-            rpm=float(rpm),
-            duration_s=dur,
-            fs_hz=fs,
-            seed=seed,
-            antialias=True,
-            **keys,
-        )
+        sc = condition_scenario(model, cond, rpm, dur, fs, seed, keys)
         yield Path(rec.source).name, np.asarray(rec.x, dtype=float), simulate(sc)
+
+
+def condition_scenario(
+    model: str, cond: dict, rpm: float, duration_s: float, fs_hz: float, seed: int, keys: dict
+) -> dict:
+    """The scenario (a dict of :mod:`bearingsim.config` keys) that simulates a user's record
+    in its condition ``cond`` (:func:`model_path_scale_conditions`) with ``model`` at ``rpm``
+    [r/min] for ``duration_s`` [s] at ``fs_hz`` [Hz], anti-aliased, with the realism keys
+    ``keys``; ``bearingsim rig identify --conditions`` checks each row with it before any
+    work."""
+    which = {"bearing_file": cond["bearing_file"]} if "bearing_file" in cond else {}
+    return dict(
+        model=model,
+        **(which or {"bearing": cond["bearing"]}),
+        fault=cond["fault"],
+        defect_width_m=cond["defect_width_m"],
+        **({"defect_depth_m": cond["defect_depth_m"]} if cond.get("defect_depth_m") else {}),
+        rpm=float(rpm),
+        duration_s=duration_s,
+        fs_hz=fs_hz,
+        seed=seed,
+        antialias=True,
+        **keys,
+    )
 
 
 def cwru_row(record: str | Path) -> dict[str, str] | None:

@@ -450,8 +450,10 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
             + ", ".join(_COND_REQUIRED + _COND_OPTIONAL)
         )
     by_name: dict[str, dict] = {}
+    lines: dict[str, int] = {}
     for i, row in enumerate(rows, start=2):  # line numbers of the file (header = 1)
         name = (row["file"] or "").strip()
+        lines[name] = i
         if name in by_name:
             raise ConfigError(f"--conditions {path}, line {i}: file {name!r} is listed twice")
         fault = (row["fault"] or "").strip().lower()
@@ -489,6 +491,8 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
                 "rpm, to take it)"
             )
         if cond["fault"] != "none":
+            _check_condition(cond, own, rec, models, f"--conditions {path}, line "
+                             f"{lines[Path(p).name]}")  # fmt: skip
             pairs.append((rec, cond))
     if not pairs:
         raise ConfigError(
@@ -518,6 +522,31 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
     if len({(s.n_elements, s.pitch_diameter_m, s.element_diameter_m) for s in sizes}) != 1:
         return None
     return min(sizes, key=lambda s: s.id)
+
+
+def _check_condition(cond: dict, own: float | None, rec, models, where: str) -> None:
+    """Each model's own check of the scenario that will simulate a --conditions row (a defect
+    wider than the ball, a pit shallower than the contact's approach, ...), before any work,
+    its error prefixed with the row (exploratory testing, twenty-fourth session: a width wider
+    than the ball was refused naming neither the file nor the line)."""
+    import warnings
+
+    from ..config import REALISM
+    from ..errors import BearingsimError
+    from ..side_by_side import condition_scenario
+    from ..simulation import as_scenario, validate_scenario
+
+    rpm = cond.get("rpm") or own
+    if rpm is None:  # the gain's own error names the record without a speed
+        return
+    for m in dict.fromkeys(models):
+        sc = condition_scenario(m, cond, rpm, 2.0 / float(rec.fs), float(rec.fs), 0, REALISM)
+        try:
+            with warnings.catch_warnings():  # the runs give their own warnings
+                warnings.simplefilter("ignore")
+                validate_scenario(as_scenario(sc))
+        except BearingsimError as exc:
+            raise ConfigError(f"{where}: {' '.join(str(exc).split())}") from None
 
 
 def _condition_values(row: dict, path: str) -> dict:
