@@ -956,7 +956,12 @@ def _emit(o: dict, as_json: bool) -> None:
         print(f"{o['file']}: error: {o['error']}", file=sys.stderr, flush=True)
     else:
         p = ", ".join(f"{k} {v:.2f}" for k, v in o["probabilities"].items())
-        print(f"{o['file']}: {o['predicted']} ({p})", flush=True)
+        # what the record was judged as (the JSON's keys; the text said none of it before)
+        how = (
+            f"{o['bearing']}, channel {o['channel']}, {o['rpm']:g} r/min ({o['rpm_source']}), "
+            f"{o['fs_hz']:g} Hz ({o['fs_source']})"
+        )
+        print(f"{o['file']}: {o['predicted']} ({p}) [{how}]", flush=True)
         if "warning" in o:
             print(f"{o['file']}: warning: {o['warning']}", file=sys.stderr, flush=True)
 

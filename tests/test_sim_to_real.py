@@ -510,6 +510,10 @@ def test_cli_text_mode_puts_errors_and_warnings_on_stderr(fake_cache, tmp_path):
     r = _cli("--predict", path, tmp_path / "missing.mat", path, "--rpm", "600", cache=fake_cache)
     assert r.returncode == 1, r.stderr
     assert r.stdout.count("\n") == 2 and ": error:" not in r.stdout
+    # what the record was judged as (twenty-fifth session: the text said none of it)
+    assert r.stdout.splitlines()[0].endswith(
+        "[6205, channel y, 600 r/min (option), 12000 Hz (file)]"
+    ), r.stdout
     lines = r.stderr.splitlines()
     assert len(lines) == 3 and "Traceback" not in r.stderr
     assert lines[1].startswith(f"{tmp_path / 'missing.mat'}: error: file = ")
