@@ -296,6 +296,27 @@ def test_rpm_from_the_name_of_a_csv_and_no_rpm_at_all(run_cli, tmp_path):
     assert b["file"] == str(plain) and "'rig.csv'" in b["error"] and "--rpm" in b["error"]
 
 
+def test_an_rpm_the_speed_column_refutes_is_refused(run_cli, tmp_path):
+    """Exploratory testing (twenty-fifth session): a CSV with an ``rpm`` column of 1748 r/min
+    and ``--rpm 1500`` was read at 1500 r/min, silently ("none" for an inner-race fault). A
+    speed outside the column's (1st-99th percentile, +/- 1 %) is now refused in one line; one
+    a run-up passed through is taken (judged at it, as docs/sim_to_real.md says)."""
+    t = np.arange(6000) / 12000.0
+    x = np.sin(2 * np.pi * 500.0 * t) + 0.01 * np.random.default_rng(17).standard_normal(t.size)
+    steady, runup = tmp_path / "steady.csv", tmp_path / "runup.csv"
+    for path, rpm in ((steady, np.full(t.size, 1748.0)), (runup, np.linspace(1000, 2000, t.size))):
+        np.savetxt(path, np.c_[t, x, rpm], delimiter=",", header="time_s,acc,rpm", comments="")
+    r = run_cli("analyze", steady, "--rpm", "1500")
+    assert r.code == 2 and r.err == (
+        "error: rpm = 1500 r/min contradicts the speed column of 'steady.csv' (1748 r/min); "
+        "valid: a speed it holds, or no --rpm (the column is then order tracked)\n"
+    ), r.err
+    assert run_cli("analyze", steady, "--rpm", "1760").code == 0  # within 1 %
+    r = run_cli("analyze", runup, "--rpm", "2500")
+    assert "(1010-1990 r/min, 1st-99th percentile)" in r.err, r.err
+    assert run_cli("analyze", runup, "--rpm", "1500").code == 0
+
+
 # ------------------------------------------------------------------------- options
 
 

@@ -508,7 +508,7 @@ def test_cli_identify_reads_each_csv_records_speed_column(tmp_path):
     r = _cli("rig", "identify", *paths, "--name", "cols", "--rpm", "1500", "-o", "x.toml",
              cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2 and r.stderr == (
-        "error: rpm = 1500 r/min contradicts the speed column of 'r0.csv' (median 900 r/min); "
+        "error: rpm = 1500 r/min contradicts the speed column of 'r0.csv' (900 r/min); "
         "valid: the records' speed (or no --rpm, to take each file's)\n"
     ), r.stderr
     for bad in (-900.0, 0.0):

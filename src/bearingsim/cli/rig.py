@@ -169,19 +169,17 @@ def identify_cmd(
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
+        from ..io.signal import column_speed_refutes, speed_span_text
         from ..signal.contact_angle import refuted_speed
 
         for r in recs:
-            if r.speed_hz is not None:  # a speed column: --rpm would override it unseen
-                import numpy as np
-
-                own = 60.0 * float(np.median(r.speed_hz))
-                if abs(own / rpm - 1.0) > RPM_OPTION_REL:
-                    raise ConfigError(
-                        f"rpm = {rpm:.6g} r/min contradicts the speed column of "
-                        f"{Path(r.source).name!r} (median {own:.6g} r/min); valid: the "
-                        "records' speed (or no --rpm, to take each file's)"
-                    )
+            # a speed column: --rpm would override it unseen (analyze's rule, load_signal)
+            if (span := column_speed_refutes(r, rpm)) is not None:
+                raise ConfigError(
+                    f"rpm = {rpm:.6g} r/min contradicts the speed column of "
+                    f"{Path(r.source).name!r} ({speed_span_text(span)}); valid: the records' "
+                    "speed (or no --rpm, to take each file's)"
+                )
             c = refuted_speed(r.x, r.fs, rpm / 60.0)
             if c is not None:
                 off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
@@ -397,9 +395,6 @@ def show_cmd(rig_name: str, as_json: bool) -> None:
 
 #: columns of a --conditions file: required, then optional
 _COND_REQUIRED = ("file", "fault", "bearing", "defect_width_m")
-#: how far ``--rpm`` may lie from a record's own speed column (its median) [-]: the 1 % a
-#: diagnosis allows for the speed's uncertainty
-RPM_OPTION_REL = 0.01
 _COND_OPTIONAL = ("defect_depth_m", "rpm")
 
 
@@ -409,6 +404,7 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
     every record listed once by file name, a known fault and bearing, positive sizes."""
     import csv
 
+    from ..io.signal import RPM_OPTION_REL
     from ..rig_identify import _record_rpm
     from ..side_by_side import FAULT_FAMILIES
 

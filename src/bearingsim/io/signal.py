@@ -19,7 +19,13 @@ from .text import read_table
 if TYPE_CHECKING:
     from ..geometry import Bearing
 
-__all__ = ["CWRU_DEFAULT_FS", "SignalRecord", "read_signal"]
+__all__ = [
+    "CWRU_DEFAULT_FS",
+    "SignalRecord",
+    "column_speed_refutes",
+    "read_signal",
+    "speed_span_text",
+]
 
 #: the sample rate the CWRU normal baselines (``normal_0_97.mat``, no rate in the name) and 48k
 #: drive-end records have (/work/shared/data/cwru/SOURCES.md) [Hz]. No longer a default: a
@@ -312,6 +318,38 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
         # above fs/2 alias into the band (docs/models.md "Sampling")
         info["antialiased"] = int(res.meta["oversampling"]) > 1
     return SignalRecord(x, fs_file, r, str(p), ch, _bearing_from_meta(meta), None, info)
+
+
+#: how far a speed given (``--rpm``) may lie outside the speeds a record's own speed column
+#: holds (its 1st-99th percentile range) [-]: a CSV's ``rpm`` column of 1748 r/min and
+#: ``--rpm 1500`` were read at 1500, silently, and a fault read "none" (exploratory testing,
+#: twenty-fifth session); a run-up's column takes any speed it passed through
+RPM_OPTION_REL = 0.01
+
+
+def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] | None:
+    """The 1st-99th percentile range ``(lo, hi)`` [r/min] of ``rec``'s speed column when the
+    speed ``rpm`` [r/min] lies outside it by more than :data:`RPM_OPTION_REL`, else None (also
+    without a speed column)."""
+    if rec.speed_hz is None:
+        return None
+    v = 60.0 * np.asarray(rec.speed_hz, dtype=float)
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return None
+    lo, hi = (float(q) for q in np.percentile(v, [1.0, 99.0]))
+    if lo * (1.0 - RPM_OPTION_REL) <= rpm <= hi * (1.0 + RPM_OPTION_REL):
+        return None
+    return lo, hi
+
+
+def speed_span_text(span: tuple[float, float]) -> str:
+    """A :func:`column_speed_refutes` range as the messages write it: ``1748 r/min``, or
+    ``1000-2000 r/min, 1st-99th percentile``."""
+    lo, hi = span
+    if f"{lo:.5g}" == f"{hi:.5g}":
+        return f"{lo:.5g} r/min"
+    return f"{lo:.5g}-{hi:.5g} r/min, 1st-99th percentile"
 
 
 def _bearing_from_meta(meta: dict[str, Any]) -> Bearing | None:

@@ -55,7 +55,7 @@ from numpy.typing import NDArray
 
 from ..errors import ConfigError, check_positive
 from ..geometry import BallBearing, Bearing, characteristic_frequencies, parse_enum
-from ..io.signal import SignalRecord, read_signal
+from ..io.signal import SignalRecord, column_speed_refutes, read_signal, speed_span_text
 from .envelope import check_band, envelope_spectrum
 from .kurtogram import Kurtogram, fast_kurtogram
 from .order import Interpolation, angle_from_speed, resample_to_angle
@@ -893,6 +893,12 @@ def load_signal(
     """
     rec = read_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
     name = Path(path).name
+    if rpm is not None and (span := column_speed_refutes(rec, rpm)) is not None:
+        raise ConfigError(
+            f"rpm = {rpm:.6g} r/min contradicts the speed column of {name!r} "
+            f"({speed_span_text(span)}); valid: a speed it holds, or no --rpm (the column is then "
+            "order tracked)"
+        )
     if rec.rpm is None and rec.speed_hz is None:
         what = "no X###RPM key" if rec.source.lower().endswith(".mat") else "no rpm/speed_hz column"
         raise ConfigError(
