@@ -715,3 +715,22 @@ def test_a_family_scoring_above_the_leader_says_why_it_does_not_lead(run_cli, tm
         f"; ball scores higher ({d['scores']['ball']:.2f}) but is supported in 1 view(s), a "
         "candidate needs 2"
     ), d["why"]
+
+
+def test_a_ball_fault_whose_cage_sideband_lies_on_bpfo_reads_ball(run_cli, tmp_path):
+    """The VSM ball fault of docs/validation.md (0.007 in, 6205-cwru, 1772 r/min, seed 0, 1 s
+    through ``cwru-de-12k``) read "uncertain", leading outer: its 2 x BSF - 3 FTF lies 2 Hz from
+    BPFO (= Z FTF), within BPFO's search, and counted as the outer race's fundamental. A
+    modulated family's 2nd and 3rd sidebands are now searched too, and the nearer target takes
+    such a line (twenty-fifth session): it reads "ball". A helper's matrix of 324 runs (ring
+    models, CWRU's three widths, 1730-1797 r/min, seeds 0-3, both drive-end rigs) went from
+    197 to 216 of 216 ball faults right, the other 108 unchanged, and no CWRU verdict changed
+    (whole records, halves, quarters)."""
+    p = tmp_path / "b.nc"
+    r = run_cli("simulate", "--model", "vsm", "--bearing", "6205-cwru", "--fault", "ball",
+                "--rpm", "1772", "--seed", "0", "--duration-s", "1", "--rig", "cwru-de-12k",
+                "-o", str(p))  # fmt: skip
+    assert r.code == 0, r.err
+    d = run_cli("analyze", str(p), "--json").json()
+    d = d[0] if isinstance(d, list) else d
+    assert d["diagnosis"] == "ball" and d["confidence"] > 0.9, (d["diagnosis"], d["why"])

@@ -240,10 +240,49 @@ def test_a_fault_line_nearer_a_shaft_harmonic_goes_to_the_shaft():
     assert 89.0 - 3 * fr < k.bpfo_hz - 89.0, "the premise: 89 Hz nearer 3 f_r than BPFO"
     d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=DiagnosisRule(shaft_cursors=True))
     peaks = {p.label: p for p in d.peaks}
-    assert peaks["3xfr"].freq_hz == 87.0 and peaks["3xfr"].detected, "3 f_r took the sideband"
+    assert peaks["3xfr"].freq_hz == 87.0, "3 f_r took the sideband"
+    # twenty-fifth session: the inner race's second sideband, searched where BPFI and a first
+    # sideband are detected, is nearer, and takes it back from the shaft
+    assert peaks["BPFI-2xfr"].detected and not peaks["3xfr"].detected
     assert peaks["BPFO"].freq_hz == 89.0, "BPFO's window found the shaft's line"
     assert not peaks["BPFO"].detected, "... which goes to the shaft"
     assert d.supported == ["inner"], (d.supported, d.notes)
+
+
+def test_a_ball_faults_third_cage_sideband_is_not_taken_for_bpfo():
+    """The CWRU 6205 at 1772 r/min on a 1 s record (1 Hz lines): BPFO = Z FTF = 105.9 Hz, and
+    a ball fault's 2 x BSF - 3 FTF = 103.9 Hz lies within BPFO's search (+/- 2 bins). With the
+    ball's carrier and first sidebands detected, its second and third sidebands are searched
+    too, and the nearer target takes the line: no outer-race fundamental is counted (before,
+    the VSM ball fault of docs/validation.md read "uncertain", leading outer; twenty-fifth
+    session). With MAX_SIDEBAND_ORDER = 1 (the search before) BPFO takes it."""
+    import bearingsim.signal.diagnosis as dg
+    from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
+
+    bearing = get_bearing("6205-cwru")
+    fr = 1772.0 / 60.0
+    k = characteristic_frequencies(bearing, fr)
+    b2, c = 2 * k.bsf_hz, k.ftf_hz
+    f = np.arange(0.0, 1500.0, 1.0)
+    a = np.full(f.size, 1e-3)
+    lines = {c: 2.0, 2 * c: 1.5, 3 * c: 1.0, b2: 1.0, b2 - c: 1.2, b2 + c: 0.8, b2 - 3 * c: 0.9}
+    lines |= {2 * b2 - c: 0.5, 2 * b2 + c: 0.5, 2 * round(b2 - 3 * c): 0.4}
+    for fl, amp in lines.items():
+        a[int(round(fl))] = amp
+    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    assert abs(round(b2 - 3 * c) - k.bpfo_hz) <= 2.0, "the premise: within BPFO's 2 bins"
+    rule = DiagnosisRule(shaft_cursors=True)
+    d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=rule)
+    peaks = {p.label: p for p in d.peaks}
+    assert peaks["2xBSF-3xFTF"].detected and not peaks["BPFO"].detected
+    assert "outer" not in d.supported, (d.supported, d.notes)
+    old = dg.MAX_SIDEBAND_ORDER
+    try:
+        dg.MAX_SIDEBAND_ORDER = 1
+        d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=rule)
+    finally:
+        dg.MAX_SIDEBAND_ORDER = old
+    assert "outer" in d.supported, (d.supported, d.notes)
 
 
 def test_kinematic_check_needs_the_measured_speed():

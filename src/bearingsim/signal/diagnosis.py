@@ -429,6 +429,36 @@ def find_lines(
             noise_rel=rule.noise_rel,
             threshold_db=rule.threshold_db,
         )
+    # the fundamental's higher sidebands (m = 2 .. MAX_SIDEBAND_ORDER) of a modulated family,
+    # where its fundamental and a first sideband are detected: a line another family's search
+    # took there goes to the nearer target (_attribute). A ball fault's cage modulation puts
+    # 2 x BSF - 3 FTF 2 Hz from BPFO on the CWRU 6205 (BPFO = Z FTF: its whole comb of FTF
+    # harmonics lands on the BPFO series), and a 1 s record's BPFO search (+/- 2 bins) took it
+    # for the outer race (twenty-fifth session, docs/validation.md)
+    det = {p.label for p in peaks if p.detected}
+    tg = []
+    for n, mod in _SIDEBANDS.items():
+        first_sb = {f"{n}-{mod}", f"{n}+{mod}"}
+        if n == "BPFO" or n not in det or not (first_sb & det):  # a fixed race: no modulation
+            continue
+        for m in range(2, MAX_SIDEBAND_ORDER + 1):
+            for sign in (-1, 1):
+                f = found[n] + sign * m * found[mod]
+                nominal[f"{n}{'+' if sign > 0 else '-'}{m}x{mod}"] = (
+                    nominal[n] + sign * m * nominal[mod]
+                )
+                if 0 < f < f_limit:
+                    tg.append((f"{n}{'+' if sign > 0 else '-'}{m}x{mod}", f))
+    if tg:
+        peaks += match_peaks(
+            es,
+            tg,
+            shaft_hz,
+            tol_rel=0.0,
+            tol_min_bins=rule.tol_min_bins,
+            noise_rel=rule.noise_rel,
+            threshold_db=rule.threshold_db,
+        )
     return _attribute(peaks, nominal)
 
 
