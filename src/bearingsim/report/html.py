@@ -150,6 +150,9 @@ def write_html(path: Path, sections, quick: bool) -> None:
                 rel = html.escape(r.size) or "–"
             else:
                 rel = f"{100 * r.rel_diff:+.2f} %"
+                if r.tolerance is not None:  # the bound it was judged by (a helper's review:
+                    # identical offsets read match and mismatch with no tolerance shown)
+                    rel += f"<br><small>tolerance ±{100 * r.tolerance:.3g} %</small>"
             status = r.status
             if r.verified_by:
                 status += f"<br><small>verified by {html.escape(r.verified_by)}</small>"

@@ -54,6 +54,8 @@ ROTOR_NOTE = "see docs/validation.md, 'The rotor model beside the records'"
 
 
 def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
+    from ...side_by_side import ratios, signal_metrics
+
     fig, axs = new_figure(
         len(cases), 3, width=FULL_WIDTH, row_height=2.2, squeeze=False, sharex="col"
     )
@@ -71,7 +73,16 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
             amp = es.amplitude[sel] / np.median(es.amplitude[sel])
             axs[i, 2].semilogy(es.freq[sel], amp, color=col, lw=0.6)
         name = c["record"].replace(".mat", "")
-        axs[i, 0].set_title(f"{name} ({c['fault']})", fontsize=9, loc="left")
+        # the panels are normalised (shapes side by side): the level misses the table judges
+        # are said in the title, so the figure does not read as agreement (a helper's review)
+        r = ratios(signal_metrics(c["measured"], fs, c["fault_hz"]),
+                   signal_metrics(c["simulated"], fs, c["fault_hz"]))  # fmt: skip
+        axs[i, 0].set_title(
+            f"{name} ({c['fault']}): simulated RMS {r['rms']:.3g}×, fault line "
+            f"{r['line']:.3g}× the record's",
+            fontsize=9,
+            loc="left",
+        )
         axs[i, 0].set_ylabel("acceleration / RMS [-]")
         axs[i, 1].set_ylabel("amplitude [m/s²]")
         axs[i, 2].set_ylabel("SES / its median [-]")
@@ -89,10 +100,13 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
     sec.figures.append(
         (
             fname,
-            "Measured (black) and simulated through the leave-one-mounting-out rig (red): the "
-            "first 0.1 s normalised by the RMS, the amplitude spectrum, and the whole-band "
+            "Measured (black) and simulated through the leave-one-mounting-out rig (red), one "
+            "drive-end record of each fault type (every record is judged in the table above): "
+            "the first 0.1 s normalised by the RMS, the amplitude spectrum, and the whole-band "
             "squared envelope spectrum over its median below 600 Hz (dashed: the record's fault "
-            "line, BPFO, BPFI or 2×BSF, as its legend says).",
+            "line, BPFO, BPFI or 2×BSF, as its legend says). The normalised panels show shapes, "
+            "not levels: each title gives the simulated RMS and fault-line amplitude over the "
+            "record's (the line in each signal's own kurtogram band, as the table's rows).",
         )
     )
 
@@ -138,17 +152,34 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
             )
         )
 
-    # issue 16, item 5 also lists the crest factor and the ringing band, without a bound: shown
-    def shown(x) -> str:
-        return f"crest {x.crest:.3g}, band {x.band_lo_hz / 1e3:.2f}–{x.band_hi_hz / 1e3:.2f} kHz"
+    # issue 16, item 5 also lists the crest factor and the ringing band, without a bound. The
+    # crest factor is shown; the ringing band is judged by whether the simulated band overlaps
+    # the record's (the rig exists to put the ringing where the records ring: issue 16's "why",
+    # the rotor's housing rang at 1 kHz where the records ring at 3.35 kHz). Both were "info",
+    # which hid band misses against measurements (a helper's review, twenty-fifth session)
+    def band(x) -> str:
+        return f"{x.band_lo_hz / 1e3:.2f}–{x.band_hi_hz / 1e3:.2f} kHz"
 
+    head = f"CWRU {num} ({c['fault']} {c['size_in']:.3f} in, {c['end']}, {c['fs_hz'] / 1e3:g} kHz)"
     sec.rows.append(
         info(
-            f"CWRU {num} ({c['fault']} {c['size_in']:.3f} in, {c['end']}, "
-            f"{c['fs_hz'] / 1e3:g} kHz): crest factor [-] and ringing band (fast kurtogram), "
-            f"{what}, beside the measured {shown(m)} (no bound in issue 16)",
+            f"{head}: crest factor [-], {what}, beside the measured {m.crest:.3g} (no bound in "
+            "issue 16)",
             f"CWRU {num} {c['end']} (measured)",
-            shown(s),
+            f"{s.crest:.3g}",
+        )
+    )
+    overlap = min(m.band_hi_hz, s.band_hi_hz) - max(m.band_lo_hz, s.band_lo_hz)
+    sec.rows.append(
+        judge(
+            f"{head}: ringing band (fast kurtogram) [kHz], {what} (bound: it overlaps the "
+            "record's)",
+            f"CWRU {num} {c['end']} (measured)",
+            band(m),
+            band(s),
+            overlap > 0.0,
+            "" if overlap > 0.0 else note,
+            kind="measured",
         )
     )
     return ok
