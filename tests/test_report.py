@@ -106,11 +106,14 @@ def test_levels_in_db_get_their_size_and_rank_among_the_misses():
     """A prominence in dB was stored as text, so its row had no size ('–') and the report
     listed it last among the misses; now the two levels are numbers whose difference is the
     size (-> the amplitude ratio it stands for), and a 34.9 dB miss ranks above a 5x one."""
-    from bearingsim.report import Section, judge
+    from bearingsim.report import Section, compare, judge
     from bearingsim.report.html import _summary
 
     r = judge("prominence [dB]", "CWRU 197", 14.3, 49.2, False, kind="measured", db_level=True)
-    assert r.size == "55.6× high (+34.9 dB)" and r.factor == pytest.approx(10 ** (34.9 / 20))
+    # its size is the difference in dB (twenty-fifth session: it read "55.6× high (+34.9 dB)",
+    # a ratio of levels that are already logarithmic); it still ranks by the ratio it stands for
+    assert r.size == "+34.9 dB" and r.factor == pytest.approx(10 ** (34.9 / 20))
+    assert compare("f [Hz]", "paper", 100.0, 100.4, 0.01, kind="paper").size == "+0.4 %"
     five = judge("RMS [m/s²]", "CWRU 132", 1.0, 5.0, False, kind="measured")
     assert five.size == "5× high (+14.0 dB)"
     html = "".join(_summary([Section("signals", "t", rows=[five, r])]))

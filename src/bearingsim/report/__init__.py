@@ -134,14 +134,19 @@ class Row:
 
     @property
     def size(self) -> str:
-        """How far ``ours`` is from ``published``: ``"58.1× low (-35.3 dB)"``, or in per cent
-        within 10 % (``"+0.39 % (+0.03 dB)"``); ``""`` when :attr:`factor` is undefined."""
+        """How far ``ours`` is from ``published``: ``"58.1× low (-35.3 dB)"``, in per cent
+        within 10 % (``"+0.39 %"``), or for levels in dB (:attr:`db_level`) their difference
+        (``"+34.1 dB"``); ``""`` when :attr:`factor` is undefined. (A helper's review of the
+        report, twenty-fifth session: a prominence of 3.7 against 37.8 dB read "50.5× high",
+        and a frequency 0.4 % off carried "(+0.03 dB)".)"""
         r = self.factor
         if r is None:
             return ""
         db = 20.0 * math.log10(r)
+        if self.db_level:
+            return f"{db:+.1f} dB"
         if 1 / 1.1 < r < 1.1:  # a small miss reads better in per cent
-            return f"{100 * (r - 1):+.2g} % ({db:+.2f} dB)"
+            return f"{100 * (r - 1):+.2g} %"
         word = f"{r:.3g}× high" if r >= 1 else f"{1 / r:.3g}× low"
         return f"{word} ({db:+.1f} dB)"
 

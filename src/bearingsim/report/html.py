@@ -108,6 +108,34 @@ def figure_html(out_dir: Path, fname: str, caption: str) -> str:
     )
 
 
+#: the terms the rows use, explained once at the top of the report (HTML list items)
+GLOSSARY = "".join(
+    f"<li><b>{html.escape(k)}</b>: {html.escape(v)}</li>"
+    for k, v in (
+        ("VSM, TVSM, DEM",
+         "the ring models of seed VSM: a 2-DOF inner ring on the balls' Hertz contacts with "
+         "a secant (variable-stiffness, VSM) or tangent (TVSM) stiffness, or the full "
+         "nonlinear contact forces (dynamic equivalent model, DEM); docs/models.md"),
+        ("rotor", "the bearing-rotor-housing model of the CWRU motor (seed ROTOR)"),
+        ("rig", "a measurement chain: the transfer path's modes, background, tones and sensor "
+         "noise between a model's output and the accelerometer, identified from records"),
+        ("SES", "squared envelope spectrum: the spectrum of the squared envelope of the signal "
+         "in a band, where a fault's repetition rate shows as lines"),
+        ("S&R grade", "Smith & Randall (2015)'s diagnosability of a CWRU record: Y1/Y2 "
+         "diagnosable (classic / non-classic symptoms), P1/P2 partially, N not"),
+        ("development set", "the CWRU 0.014 in records, used to develop and calibrate the "
+         "diagnosis; the 0.007 in records judge it"),
+        ("mounting", "a faulty bearing as installed once on the CWRU rig (end, fault type, "
+         "size, outer-race position; its 12 and 48 kHz records are one mounting). Leave one "
+         "mounting out: the diagnosis's calibration is fitted without the record's mounting; "
+         "the side-by-side's rig is identified from the same end's and rate's records of the "
+         "other fault size"),
+        ("kind", "what a row is compared with: measured (a record, a test), paper, standard, "
+         "or none"),
+    )
+)  # fmt: skip
+
+
 def write_html(path: Path, sections, quick: bool) -> None:
     """Write the report page."""
     css = (
@@ -134,9 +162,27 @@ def write_html(path: Path, sections, quick: bool) -> None:
         "(outside it; always so against a measurement, whatever the reason), <b>info</b> (no "
         "reference). See docs/validation.md.</p>",
     ]
+    from . import STATUSES
+
+    # a table of contents with each section's counts, anchors (report.html#signals) and the
+    # terms the rows use (a helper's review, twenty-fifth session: a 48 000 px page without
+    # either, and S&R grades, VSM/DEM/TVSM, SES, "mounting" never explained)
+    toc = []
+    for s in sections:
+        c = {st: sum(r.status == st for r in s.rows) for st in STATUSES}
+        counts = ", ".join(f"{c[st]} {st}" for st in STATUSES if c[st])
+        toc.append(
+            f"<li><a href='#{html.escape(s.name)}'>{html.escape(s.title)}</a>"
+            f"{f' <small>({counts})</small>' if counts else ''}</li>"
+        )
+    parts.append("<h2>Sections</h2><ul>" + "".join(toc) + "</ul>")
+    parts.append(f"<h3>Terms</h3><ul>{GLOSSARY}</ul>")
     parts += _summary(sections)
     for s in sections:
-        parts.append(f"<h2>{html.escape(s.title)}</h2><p><small>{s.wall_s:.1f} s</small></p>")
+        parts.append(
+            f"<h2 id='{html.escape(s.name)}'>{html.escape(s.title)}</h2><p><small>section run "
+            f"time {s.wall_s:.1f} s</small></p>"
+        )
         if s.text:
             parts.append(f"<p>{html.escape(s.text)}</p>")
         parts.append(

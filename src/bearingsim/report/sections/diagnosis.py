@@ -105,13 +105,20 @@ def run(ctx: Context) -> Section:
         ok = r["verdict"] == r["truth"]
         grade = f", S&R {r['grade']}" if r["grade"] != "-" else ""
         why = "wrong fault type" if wrong_type(r) else "missed"
+        # an "uncertain" with a leading family says which and at what probability: "(0.00)"
+        # hid a near-wrong answer, 120 led with inner at p 0.84 (a helper's review)
+        lead = (
+            f"; leading {r['leading']} at p {r['p']:.2f}"
+            if r["verdict"] == "uncertain" and r.get("leading") and r.get("p") is not None
+            else ""
+        )
         sec.rows.append(
             judge(
                 f"CWRU {_num(r['file'])} ({r['file'].replace('.mat', '')}; {r['truth']}{grade}): "
                 "fused diagnosis (confidence)",
                 "CWRU label of the record (measured)",
                 r["truth"],
-                f"{r['verdict']} ({r['confidence']:.2f})",
+                f"{r['verdict']} ({r['confidence']:.2f}{lead})",
                 ok,
                 "" if ok else f"{why}; {NOTE}",
                 kind="measured",

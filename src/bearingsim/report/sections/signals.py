@@ -245,6 +245,10 @@ def run(ctx: Context) -> Section:
         f"measured), {SLIP_PERCENT:g} % random slip, {DEFECT_PROFILE} drop profile, "
         "anti-aliased. Rigs identified "
         "leave-one-mounting-out; the fan end has one fault size "
-        "here and gets no rig, so its records are not judged."
+        "here and gets no rig, so its records are not judged. This section alone: "
+        f"`bearingsim reproduce --section signals{' --quick' if ctx.quick else ''} -o OUT`; "
+        "the 2 s tables of docs/validation.md: `python scripts/side_by_side.py`. Each "
+        "signal's envelope is taken in its own fast-kurtogram band, which for a measured "
+        "record can move with the length read (docs/validation.md, 'Counts')."
     )
     return sec
