@@ -271,7 +271,17 @@ def _dynamics(ctx: Context, sec: Section) -> None:
                 f"Seed VSM fig. {14 if fault == 'outer' else 15} style: CWRU "
                 f"record {rec_id} (drive end) beside the VSM, DEM and TVSM "
                 f"({kw['rpm']:g} r/min, defect {kw['defect_width_m'] * 1e3:.4g} mm "
-                "x 0.2794 mm)",
+                "x 0.2794 mm"
+                + (
+                    ", the paper's 0.014 in; CWRU 107 has a 0.007 in fault, the paper's record "
+                    "is not in shared/data"
+                    if fault == "inner"
+                    else ""
+                )
+                + "). The simulations are drawn at their 48 kHz, their envelopes in their own "
+                "kurtogram bands (which may lie above the record's Nyquist frequency); the "
+                "peak rows compare them decimated to the record's rate, and each panel has its "
+                "own axis: the table gives the levels.",
             )
         )
         # published envelope peaks (seed VSM §2.5) vs the measured record and the VSM
