@@ -375,3 +375,30 @@ def test_fused_diagnosis_is_scale_free_within_its_peak_range(synthetic, scale):
     out = 100.0 * scale if scale > 1.0 else 0.01 * scale  # beyond the range's end
     with pytest.raises(ConfigError, match=re.escape(f"peak magnitude of {out:.3g}; valid range")):
         diagnose_fused(x * (out / np.max(np.abs(x))), FS, BEARING, SHAFT)
+
+
+def test_a_line_between_two_bins_is_one_line_for_the_attribution():
+    """The DEM ball fault at 1730 r/min (seed 5) of docs/validation.md: 2 x BSF - 3 FTF lies
+    at 101.5 Hz, between two 1 Hz bins; BPFO's search (103.4 Hz +/- 2 bins) took bin 102 and
+    the sideband's own search bin 101, two "lines" for one. Detected lines one bin apart now
+    count as one for the nearer-target rule (twenty-fifth session): BPFO is not counted."""
+    from bearingsim.signal.diagnosis import DiagnosisRule, diagnose_spectrum
+
+    bearing = get_bearing("6205-cwru")
+    fr = 1730.0 / 60.0
+    k = characteristic_frequencies(bearing, fr)
+    b2, c = 2 * k.bsf_hz, k.ftf_hz
+    f = np.arange(0.0, 1500.0, 1.0)
+    a = np.full(f.size, 1e-3)
+    lines = {c: 2.0, 2 * c: 1.5, 3 * c: 1.0, b2: 1.0, b2 - c: 1.2, b2 + c: 0.8}
+    lines |= {2 * b2 - c: 0.5, 2 * b2 + c: 0.5, 204.0: 0.4}
+    for fl, amp in lines.items():
+        a[int(round(fl))] = amp
+    side = b2 - 3 * c  # 101.5 Hz: its energy in the two bins about it
+    a[int(np.floor(side))], a[int(np.ceil(side))] = 0.9, 0.85
+    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=DiagnosisRule(shaft_cursors=True))
+    peaks = {p.label: p for p in d.peaks}
+    assert peaks["BPFO"].freq_hz == np.ceil(side), "the premise: BPFO's search took bin 102"
+    assert peaks["2xBSF-3xFTF"].freq_hz == np.floor(side) and peaks["2xBSF-3xFTF"].detected
+    assert not peaks["BPFO"].detected and "outer" not in d.supported, (d.supported, d.notes)

@@ -441,9 +441,14 @@ def find_lines(
         first_sb = {f"{n}-{mod}", f"{n}+{mod}"}
         if n == "BPFO" or n not in det or not (first_sb & det):  # a fixed race: no modulation
             continue
+        # the spacing: the kinematic modulation rate scaled as the found carrier is from its
+        # kinematic position (the same speed and slip move both). The found FTF of a 1 s
+        # record is off by up to half a bin, 3 times that at m = 3 (12 Hz for 11.6 put
+        # 2 x BSF - 3 FTF 1.2 Hz low, and BPFO's nearer target kept the line)
+        step = nominal[mod] * found[n] / nominal[n] if nominal[n] > 0 else found[mod]
         for m in range(2, MAX_SIDEBAND_ORDER + 1):
             for sign in (-1, 1):
-                f = found[n] + sign * m * found[mod]
+                f = found[n] + sign * m * step
                 nominal[f"{n}{'+' if sign > 0 else '-'}{m}x{mod}"] = (
                     nominal[n] + sign * m * nominal[mod]
                 )
@@ -459,7 +464,7 @@ def find_lines(
             noise_rel=rule.noise_rel,
             threshold_db=rule.threshold_db,
         )
-    return _attribute(peaks, nominal)
+    return _attribute(peaks, nominal, es.resolution)
 
 
 #: the fundamentals a contact angle moves, and the attribute of their position
@@ -486,7 +491,9 @@ def _windows(first, bearing: Bearing, shaft_hz: float, rule: DiagnosisRule) -> l
     return out
 
 
-def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> list[Peak]:
+def _attribute(
+    peaks: list[Peak], nominal: dict[str, float] | None = None, res: float = 0.0
+) -> list[Peak]:
     """A detected line claimed by targets of different families counts only for the family
     whose searched target (a multiple of the *found* fundamental) is nearer. When the two
     targets are equally near (within :data:`TIE_REL` of the line's frequency; 3×BPFO of a
@@ -510,7 +517,13 @@ def _attribute(peaks: list[Peak], nominal: dict[str, float] | None = None) -> li
         fam = _family(p.label)
         stolen = p.detected and any(
             _family(q.label) != fam
-            and abs(q.freq_hz - p.freq_hz) <= 1e-9 * max(1.0, p.freq_hz)
+            and (
+                abs(q.freq_hz - p.freq_hz) <= 1e-9 * max(1.0, p.freq_hz)
+                # a line between two bins: two searches may take its two bins (a ball fault's
+                # 2 x BSF - 3 FTF at 101.5 Hz, BPFO's search took 102 and its own 101; the DEM
+                # run of docs/validation.md), one line all the same
+                or (q.detected and abs(q.freq_hz - p.freq_hz) <= res * (1.0 + 1e-9))
+            )
             and _beats(p, q)
             for q in peaks
             if q is not p
