@@ -676,6 +676,8 @@ def _record(
         source = f"median of the speed column ({100 * spread:.1f} % spread)"
     if bearing is not None:
         info["bearing_source"] = "option"
+        if r.bearing is not None and r.bearing != bearing:  # as `analyze` notes it
+            info["bearing_overrides"] = r.bearing.id
     elif r.bearing is not None:  # a bearingsim result states its bearing
         bearing, info["bearing_source"] = r.bearing, "file"
     elif suffix == ".mat" and r.channel in ("DE", "FE"):
@@ -720,6 +722,7 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None, b
                 + _speed_warning(x, fs, rpm_used, rpm if rpm is not None else _named(source))
                 + _rate_warning(fs)
                 + _bearing_warning(p, info["bearing_source"], bearing_used)
+                + _override_warning(info, bearing_used)
             )
             segs = segments(x, fs)
             feats = []
@@ -787,11 +790,18 @@ def _check_length(x, fs: float, rpm: float, bearing) -> None:
         )
 
 
+#: relative difference of a record's sample rate from a training rate that counts as that rate
+#: [-] (a time column written to 9 digits gives 12 kHz to 2e-9)
+RATE_REL = 1e-6
+
+
 def _rate_warning(fs: float) -> list[str]:
     """A warning for a sample rate none of the training's rigs has (:data:`PROFILES`): the
     kurtogram's bands and the rig's ringing the classifier learned are those rates'."""
     rates = sorted({float(r) for _, r in PROFILES.values()})
-    if float(fs) in rates:
+    # a time column's rate is the mean step's: 11999.99998 Hz is 12 kHz (exploratory testing,
+    # twenty-fifth session: "fs = 12000 Hz is not a rate ... (12000, 48000 Hz)")
+    if any(abs(float(fs) / r - 1.0) <= RATE_REL for r in rates):
         return []
     return [
         f"fs = {fs:g} Hz is not a rate the classifier was trained at ("
@@ -839,6 +849,15 @@ def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> l
         f"r/min ({100.0 * (own / rpm_used - 1.0):+.2f} %); the fault lines were read at the "
         "wrong speed (check --rpm)"
     ]
+
+
+def _override_warning(info: dict, bearing) -> list[str]:
+    """A warning when ``--bearing`` replaced the bearing a bearingsim result states (``info``'s
+    ``bearing_overrides``, :func:`_record`), as ``bearingsim analyze`` notes it."""
+    if "bearing_overrides" not in info:
+        return []
+    return [f"--bearing {bearing.id} overrides the {info['bearing_overrides']} the result was "
+            "simulated with"]  # fmt: skip
 
 
 def _bearing_option(bearing):
@@ -958,8 +977,8 @@ def _emit(o: dict, as_json: bool) -> None:
         p = ", ".join(f"{k} {v:.2f}" for k, v in o["probabilities"].items())
         # what the record was judged as (the JSON's keys; the text said none of it before)
         how = (
-            f"{o['bearing']}, channel {o['channel']}, {o['rpm']:g} r/min ({o['rpm_source']}), "
-            f"{o['fs_hz']:g} Hz ({o['fs_source']})"
+            f"{o['bearing']} ({o['bearing_source']}), channel {o['channel']}, {o['rpm']:g} r/min "
+            f"({o['rpm_source']}), {o['fs_hz']:g} Hz ({o['fs_source']})"
         )
         print(f"{o['file']}: {o['predicted']} ({p}) [{how}]", flush=True)
         if "warning" in o:

@@ -309,12 +309,23 @@ def test_an_rpm_the_speed_column_refutes_is_refused(run_cli, tmp_path):
     r = run_cli("analyze", steady, "--rpm", "1500")
     assert r.code == 2 and r.err == (
         "error: rpm = 1500 r/min contradicts the speed column of 'steady.csv' (1748 r/min); "
-        "valid: a speed it holds, or no --rpm (the column is then order tracked)\n"
+        "valid: a speed it holds, or no --rpm (the column is then read)\n"
     ), r.err
     assert run_cli("analyze", steady, "--rpm", "1760").code == 0  # within 1 %
     r = run_cli("analyze", runup, "--rpm", "2500")
     assert "(1010-1990 r/min, 1st-99th percentile)" in r.err, r.err
     assert run_cli("analyze", runup, "--rpm", "1500").code == 0
+    # a tachometer's dropouts to 0 (more than 1 % of the samples) are no speed: they made the
+    # 1st percentile 0, and any lower --rpm passed; a column in Hz named rpm gets a hint
+    drop = np.full(t.size, 1748.0)
+    drop[::20] = 0.0
+    hz = np.full(t.size, 1748.0 / 60.0)
+    for path, col in ((tmp_path / "drop.csv", drop), (tmp_path / "hz.csv", hz)):
+        np.savetxt(path, np.c_[t, x, col], delimiter=",", header="time_s,acc,rpm", comments="")
+    r = run_cli("analyze", tmp_path / "drop.csv", "--rpm", "1500")
+    assert r.code == 2 and "(1748 r/min)" in r.err, r.err
+    r = run_cli("analyze", tmp_path / "hz.csv", "--rpm", "1748")
+    assert r.code == 2 and "it reads like the speed in Hz: name such a column speed_hz" in r.err
 
 
 # ------------------------------------------------------------------------- options

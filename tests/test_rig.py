@@ -997,8 +997,9 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
         "6205-cwru", "6205-cwru", "6203-cwru"]  # fmt: skip
     base = dict(model="vsm", duration_s=0.01)
     with pytest.warns(RigBearingWarning, match=r"^rig 'cwru-fe-12k' was identified on records "
-                      r"of the 6203-cwru \(pitch diameter 28\.5 mm, 8 elements\); this run's "
-                      r"bearing 6205-cwru is another size \(pitch diameter 39\.04 mm"):  # fmt: skip
+                      r"of the 6203-cwru \(pitch diameter 28\.5 mm, 8 elements of 6\.746 mm\); "
+                      r"this run's bearing 6205-cwru is another size \(pitch diameter 39\.04 "
+                      r"mm"):  # fmt: skip
         simulate(dict(base, bearing="6205-cwru", rig="cwru-fe-12k"))
     with pytest.warns(RigBearingWarning, match="identified on records of the 6205-cwru"):
         simulate(dict(base, bearing="6206", rig="cwru-de-12k"))
@@ -1028,7 +1029,8 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
     good = ('[bearing]\nid = "mine"\nn_elements = 9\npitch_diameter_m = 0.039\n'
             "element_diameter_m = 0.0079\n")  # fmt: skip
     for table, message in (
-        (good.replace("9", "2", 1), r"bearing.n_elements = 2 is invalid; valid range \[3, inf\)"),
+        (good.replace("9", "2", 1), r"bearing.n_elements = 2 is invalid; valid range \[3, 1000\]"),
+        (good.replace("9", "9.5", 1), r"bearing.n_elements = 9.5 is invalid; valid range \[3, "),
         (good.replace("0.0079", "0.02"), r"bearing.element_diameter_m = 0.02 m is out of range; "
                                          r"valid range \(0, 0.0133"),
         (good.replace('"mine"', '""'), "bearing.id = '' is invalid; valid: printable text"),
@@ -1038,13 +1040,21 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
         p.write_text(RIG_TOML + "\n" + table)
         with pytest.raises(ConfigError, match=r"^r.toml: " + message):
             load_rig(p)
+    p.write_text(RIG_TOML + "\n" + good.replace("9", "9.0", 1))  # as a bearing file takes it
+    assert load_rig(p).bearing.n_elements == 9
     p.write_text(RIG_TOML + "\n" + good)
     with pytest.warns(RigBearingWarning, match=r"^rig '.*' was identified on records of the "
-                      r"mine \(pitch diameter 39 mm, 9 elements\)"):  # fmt: skip
+                      r"mine \(pitch diameter 39 mm, 9 elements of 7\.9 mm\)"):  # fmt: skip
         simulate(dict(base, bearing="6206", rig=str(p), fs_hz=12000.0))
     with warnings.catch_warnings():
         warnings.simplefilter("error", RigBearingWarning)
         simulate(dict(base, bearing="6205", rig=str(p), fs_hz=12000.0))
+    # an element diameter alone differing printed two identical sizes (twenty-fifth session)
+    p.write_text(RIG_TOML + "\n" + good.replace("0.039", "0.039040").replace("0.0079", "0.0070"))
+    with pytest.warns(RigBearingWarning, match=r"9 elements of 7 mm\); this run's bearing "
+                      r"6205-cwru is another size \(pitch diameter 39\.04 mm, 9 elements of "
+                      r"7\.94 mm\)"):  # fmt: skip
+        simulate(dict(base, bearing="6205-cwru", rig=str(p), fs_hz=12000.0))
 
 
 def test_a_ring_model_without_its_own_path_through_a_rig_with_anothers_is_warned():

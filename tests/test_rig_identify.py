@@ -685,6 +685,29 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
                  cwd=mine)  # fmt: skip
         assert r.returncode == 2 and message in r.stderr, (name, r.stderr)
         assert r.stderr.count("\n") == 1 and not out.exists()
+    # a pit row is checked as a pit with --defect-profile pit (twenty-fifth session: the check
+    # took the slot's profile, and the pit's error came after the other rows' simulations,
+    # naming no row)
+    (mine / "pit.csv").write_text(
+        "file,fault,bearing,defect_width_m,defect_depth_m\nrun1.mat,outer,6205,3e-4,1e-9\n"
+    )
+    r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name", "g",
+             "--model-gain", "dem", "--defect-profile", "pit", "--conditions", "pit.csv", "-o",
+             "rig.toml", cwd=mine)  # fmt: skip
+    assert r.returncode == 2 and r.stderr.startswith(
+        "error: --conditions pit.csv, line 2: defect_depth_m = 1e-09 m is not deeper than a "
+        "ball sinks"
+    ), r.stderr
+    # CWRU-format records of another machine: the rows' bearing is the rig's, not the CWRU
+    # end's 6205-cwru (twenty-fifth session: the end's won, and runs of the rows' own size
+    # through the rig were warned)
+    (mine / "b6206.csv").write_text("file,fault,bearing,defect_width_m\nrun1.mat,outer,6206,3e-4\n")
+    r = _cli("rig", "identify", "run1.mat", "--channel", "DE", "--fs-hz", "48000", "--name", "g",
+             "--model-gain", "vsm", "--conditions", "b6206.csv", "-o", "rig.toml",
+             cwd=mine)  # fmt: skip
+    assert r.returncode == 0 and "RigBearingWarning" not in r.stderr, r.stderr
+    assert load_rig(out).bearing == "6206"
+    out.unlink()
     for extra, message in (
         (("--model-gain", "rotor", "--conditions", "conditions.csv"), "rotor model is the CWRU"),
         (("--conditions", "conditions.csv"), "--conditions is only read with --model-gain"),
@@ -740,7 +763,10 @@ def test_a_conditions_files_own_bearing_is_recorded_by_its_size(tmp_path):
     f = str(tmp_path / "mine.toml")
     assert _conditions_bearing([{"bearing_file": f}, {"bearing": "6206"}]) is None
     assert _conditions_bearing([{"bearing": "6206"}, {"bearing": "6206"}, {}]) == "6206"
-    assert _conditions_bearing([{"bearing_file": f}, {"bearing": "6205-cwru"}]) == rig.bearing
+    # one size under two names: the catalogue's id is recorded; the 6205 and the CWRU's 6205
+    # (0.1 % apart) are one size, as RigBearingWarning judges (twenty-fifth session)
+    assert _conditions_bearing([{"bearing_file": f}, {"bearing": "6205-cwru"}]) == "6205-cwru"
+    assert _conditions_bearing([{"bearing": "6205"}, {"bearing": "6205-cwru"}]) == "6205"
     assert _conditions_bearing([{}]) is None
 
 

@@ -512,7 +512,7 @@ def test_cli_text_mode_puts_errors_and_warnings_on_stderr(fake_cache, tmp_path):
     assert r.stdout.count("\n") == 2 and ": error:" not in r.stdout
     # what the record was judged as (twenty-fifth session: the text said none of it)
     assert r.stdout.splitlines()[0].endswith(
-        "[6205, channel y, 600 r/min (option), 12000 Hz (file)]"
+        "[6205 (file), channel y, 600 r/min (option), 12000 Hz (file)]"
     ), r.stdout
     lines = r.stderr.splitlines()
     assert len(lines) == 3 and "Traceback" not in r.stderr
@@ -635,6 +635,11 @@ def test_what_a_users_own_record_is_judged_as_is_said_and_can_be_set(small, tmp_
     rel = os.path.relpath(path)
     (o,) = small.predict(_Stub(), [f"./{rel}"])
     assert o["file"] == f"./{rel}" and o["bearing_source"] == "file"
+    # --bearing over a result's own is said, as `analyze` says it
+    (o,) = small.predict(_Stub(), [path], bearing="6206")
+    assert "--bearing 6206 overrides the 6205 the result was simulated with" in o["warning"]
+    # a time column's rate 12 kHz to round-off is the trained 12 kHz (it was warned about)
+    assert small._rate_warning(11999.99998) == [] and small._rate_warning(25600.0)
 
 
 def test_cli_usage_errors_are_one_line_and_ctrl_c_says_aborted(small, monkeypatch, capsys):

@@ -512,6 +512,9 @@ def test_a_sweep_may_allow_overload(client, tmp_path):
     no = SweepSpec.from_toml(q)
     errs = plan_sweep(no, timing_runs=0).invalid_runs
     assert [d["run"] for d in errs] == [1] and "C0" in errs[0]["error"], errs
+    # the way past it is the sweep's key, not the single run's flag (twenty-fifth session)
+    assert errs[0]["error"].endswith("; [sweep] allow_overload = true in the sweep file runs it "
+                                     "anyway"), errs[0]["error"]  # fmt: skip
     assert "allow_overload" not in no.canonical() and no.spec_hash != spec.spec_hash
     q.write_text(OVERLOAD_TOML.replace("allow_overload = true", "allow_overload = false"))
     assert SweepSpec.from_toml(q).spec_hash == no.spec_hash
@@ -523,6 +526,10 @@ def test_a_sweep_may_allow_overload(client, tmp_path):
     assert (rep.n_ok, rep.n_failed) == (2, 0)
     rep = run_sweep(no, tmp_path / "n.zarr", client=client)
     assert (rep.n_ok, rep.n_failed) == (1, 1)
+    from bearingsim.sweep.dataset import open_dataset
+
+    (f,) = open_dataset(tmp_path / "n.zarr").summary()["failures"]
+    assert "[sweep] allow_overload = true" in f["error"], f
 
 
 @pytest.mark.integration

@@ -210,11 +210,17 @@ class RigBearing:
         bid = d["id"]
         if not isinstance(bid, str) or not bid.strip() or not bid.isprintable():
             raise ConfigError(f"{where}.id = {bid!r} is invalid; valid: printable text")
-        n = check_int(f"{where}.n_elements", d["n_elements"], 3)
-        if n > Z_MAX:
+        n = d["n_elements"]  # as a bearing file takes it: an integer, 9.0 too (not a bool)
+        if (
+            isinstance(n, bool)
+            or not isinstance(n, int | float)
+            or not float(n).is_integer()
+            or not 3 <= n <= Z_MAX
+        ):
             raise ConfigError(
-                f"{where}.n_elements = {n} is out of range; valid range [3, {Z_MAX}] integer"
+                f"{where}.n_elements = {n!r} is invalid; valid range [3, {Z_MAX}] integer"
             )
+        n = int(n)
         pd = check_range(f"{where}.pitch_diameter_m", d["pitch_diameter_m"],
                          *PITCH_DIAMETER_RANGE, unit="m")  # fmt: skip
         # neighbouring elements must not overlap on the pitch circle (geometry._check_common)
@@ -1097,11 +1103,14 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
         return None
     if same:
         return None
+    # the three sizes compared, each side (an element diameter alone differing printed two
+    # identical sizes; exploratory testing, twenty-fifth session)
     return (
         f"rig {r.name!r} was identified on records of the {own.id} (pitch diameter "
-        f"{1e3 * own.pitch_diameter_m:.4g} mm, {own.n_elements} elements); this run's "
-        f"bearing {run.get('id') or ''} is another size (pitch diameter "
-        f"{1e3 * float(run['pitch_diameter']):.4g} mm, {int(run['n_elements'])} elements): "
+        f"{1e3 * own.pitch_diameter_m:.4g} mm, {own.n_elements} elements of "
+        f"{1e3 * own.element_diameter_m:.4g} mm); this run's bearing {run.get('id') or ''} is "
+        f"another size (pitch diameter {1e3 * float(run['pitch_diameter']):.4g} mm, "
+        f"{int(run['n_elements'])} elements of {1e3 * float(run['element_diameter']):.4g} mm): "
         "it sits in another housing, whose modes and background the rig does not have"
     )
 

@@ -177,7 +177,7 @@ def identify_cmd(
             if (span := column_speed_refutes(r, rpm)) is not None:
                 raise ConfigError(
                     f"rpm = {rpm:.6g} r/min contradicts the speed column of "
-                    f"{Path(r.source).name!r} ({speed_span_text(span)}); valid: the records' "
+                    f"{Path(r.source).name!r} ({speed_span_text(span, rpm)}); valid: the records' "
                     "speed (or no --rpm, to take each file's)"
                 )
             c = refuted_speed(r.x, r.fs, rpm / 60.0)
@@ -204,7 +204,8 @@ def identify_cmd(
             f"--gain-method {gain_method} is only read with --model-gain; give both or neither"
         )
     if conditions is not None:
-        user = _user_conditions(conditions, records, recs, model_gains)
+        realism = {"defect_profile": defect_profile} if defect_profile else {}
+        user = _user_conditions(conditions, records, recs, model_gains, realism)
         named = {  # a bearing file the CSV names is an input too
             Path(c["bearing_file"]).resolve(): c["bearing_file"]
             for _r, c in user
@@ -255,18 +256,18 @@ def identify_cmd(
     rig = ir.rig
     # the bearing the records were taken on, where known: a CWRU end's, or the one catalogue
     # bearing of every --conditions row (a run of another size through the rig is warned)
-    if rig.end is not None:
+    if user:  # the rows say which bearing, also for CWRU-format records of another machine
+        rig = replace(rig, bearing=_conditions_bearing(c for _r, c in user))
+    elif rig.end is not None:
         from ..io.cwru import cwru_bearing
 
         rig = replace(rig, bearing=cwru_bearing(rig.end))
-    elif user:
-        rig = replace(rig, bearing=_conditions_bearing(c for _r, c in user))
     no_bearing = None  # said after the rig is written: why it names no bearing
     if user and rig.bearing is None:
         named = sorted({c.get("bearing") or Path(c["bearing_file"]).name for _r, c in user})
         no_bearing = (
             f"note: the rig names no bearing (the conditions give {', '.join(named)}, of "
-            "different sizes; one bearing is recorded): a run with a bearing of another size "
+            "different sizes, and a rig records one): a run with a bearing of another size "
             "through it is not warned"
         )
     if model_gains:
@@ -398,7 +399,9 @@ _COND_REQUIRED = ("file", "fault", "bearing", "defect_width_m")
 _COND_OPTIONAL = ("defect_depth_m", "rpm")
 
 
-def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tuple[str, ...]):
+def _user_conditions(
+    path: str, records: tuple[str, ...], recs: list, models: tuple[str, ...], realism: dict
+):
     """The (record, condition) pairs of the fault records for a model gain on a user's own
     records, read from the --conditions CSV and checked before any work (one-line errors):
     every record listed once by file name, a known fault and bearing, positive sizes."""
@@ -487,7 +490,7 @@ def _user_conditions(path: str, records: tuple[str, ...], recs: list, models: tu
                 "rpm, to take it)"
             )
         if cond["fault"] != "none":
-            _check_condition(cond, own, rec, models, f"--conditions {path}, line "
+            _check_condition(cond, own, rec, models, realism, f"--conditions {path}, line "
                              f"{lines[Path(p).name]}")  # fmt: skip
             pairs.append((rec, cond))
     if not pairs:
@@ -502,29 +505,46 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
     """The bearing a rig identified from ``--conditions`` rows was taken on: the rows' one
     catalogue id, or the size (:class:`~bearingsim.rig.RigBearing`) of the one size that
     their bearing files (and ids) give; None where the rows give bearings of different sizes."""
+    import dataclasses
+
     from ..catalog import get_bearing, load_bearing_file
-    from ..rig import RigBearing
+    from ..rig import BEARING_SIZE_REL, RigBearing
 
     conds = [c for c in conds if "bearing" in c or "bearing_file" in c]
     ids = {c.get("bearing") for c in conds}
     if not conds or (len(ids) == 1 and None not in ids):
         return ids.pop() if conds else None
-    sizes = {
-        RigBearing.of(get_bearing(c["bearing"]) if "bearing" in c
-                      else load_bearing_file(c["bearing_file"]))
-        for c in conds
-    }  # fmt: skip
-    # one size under several names (a file and its catalogue twin) is still one size
-    if len({(s.n_elements, s.pitch_diameter_m, s.element_diameter_m) for s in sizes}) != 1:
+    sizes = {}
+    for c in conds:
+        b = get_bearing(c["bearing"]) if "bearing" in c else load_bearing_file(c["bearing_file"])
+        try:  # the rig's own check, before any work (an id the rig refuses failed at the end)
+            sizes[b.id] = RigBearing.from_dict(dataclasses.asdict(RigBearing.of(b)))
+        except ConfigError as exc:
+            raise ConfigError(
+                f"--conditions: the bearing of {c.get('bearing_file') or c['bearing']!r} cannot "
+                f"name a rig's bearing: {exc}"
+            ) from None
+    # one size under several names (a file and its catalogue twin, the 6205 and the CWRU's
+    # 6205 0.1 % apart) is one size, as RigBearingWarning judges sizes (BEARING_SIZE_REL)
+    ref = min(sizes.values(), key=lambda s: s.id)
+    same = all(
+        s.n_elements == ref.n_elements
+        and abs(s.pitch_diameter_m / ref.pitch_diameter_m - 1.0) <= BEARING_SIZE_REL
+        and abs(s.element_diameter_m / ref.element_diameter_m - 1.0) <= BEARING_SIZE_REL
+        for s in sizes.values()
+    )
+    if not same:
         return None
-    return min(sizes, key=lambda s: s.id)
+    cat = sorted(i for i in ids if i is not None)  # a catalogue id, where the rows give one
+    return cat[0] if cat else ref
 
 
-def _check_condition(cond: dict, own: float | None, rec, models, where: str) -> None:
+def _check_condition(cond: dict, own: float | None, rec, models, realism: dict, where: str) -> None:
     """Each model's own check of the scenario that will simulate a --conditions row (a defect
-    wider than the ball, a pit shallower than the contact's approach, ...), before any work,
-    its error prefixed with the row (exploratory testing, twenty-fourth session: a width wider
-    than the ball was refused naming neither the file nor the line)."""
+    wider than the ball, a pit shallower than the contact's approach, ...) with the gain fit's
+    ``realism`` keys (``--defect-profile``), before any work, its error prefixed with the row
+    (exploratory testing, twenty-fourth session: a width wider than the ball was refused
+    naming neither the file nor the line; twenty-fifth: a pit's depth was checked as a slot's)."""
     import warnings
 
     from ..config import REALISM
@@ -536,7 +556,8 @@ def _check_condition(cond: dict, own: float | None, rec, models, where: str) -> 
     if rpm is None:  # the gain's own error names the record without a speed
         return
     for m in dict.fromkeys(models):
-        sc = condition_scenario(m, cond, rpm, 2.0 / float(rec.fs), float(rec.fs), 0, REALISM)
+        sc = condition_scenario(m, cond, rpm, 2.0 / float(rec.fs), float(rec.fs), 0,
+                                REALISM | realism)  # fmt: skip
         try:
             with warnings.catch_warnings():  # the runs give their own warnings
                 warnings.simplefilter("ignore")

@@ -334,7 +334,10 @@ def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] |
     if rec.speed_hz is None:
         return None
     v = 60.0 * np.asarray(rec.speed_hz, dtype=float)
-    v = v[np.isfinite(v)]
+    # a tachometer's dropouts (zeros) and invalid samples are no speed the machine ran at: with
+    # more than 1 % of them the 1st percentile was 0 and any lower --rpm passed (exploratory
+    # testing, twenty-fifth session); a column with no positive sample gives no range at all
+    v = v[np.isfinite(v) & (v > 0.0)]
     if not v.size:
         return None
     lo, hi = (float(q) for q in np.percentile(v, [1.0, 99.0]))
@@ -343,13 +346,18 @@ def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] |
     return lo, hi
 
 
-def speed_span_text(span: tuple[float, float]) -> str:
+def speed_span_text(span: tuple[float, float], rpm: float | None = None) -> str:
     """A :func:`column_speed_refutes` range as the messages write it: ``1748 r/min``, or
-    ``1000-2000 r/min, 1st-99th percentile``."""
+    ``1000-2000 r/min, 1st-99th percentile``; with the speed given ``rpm`` [r/min], a hint
+    when the column reads like that speed in Hz (a column named ``rpm`` holding Hz)."""
     lo, hi = span
-    if f"{lo:.5g}" == f"{hi:.5g}":
-        return f"{lo:.5g} r/min"
-    return f"{lo:.5g}-{hi:.5g} r/min, 1st-99th percentile"
+    text = (
+        f"{lo:.5g} r/min" if f"{lo:.5g}" == f"{hi:.5g}"
+        else f"{lo:.5g}-{hi:.5g} r/min, 1st-99th percentile"
+    )  # fmt: skip
+    if rpm is not None and lo * (1.0 - RPM_OPTION_REL) <= rpm / 60.0 <= hi * (1.0 + RPM_OPTION_REL):
+        text += "; it reads like the speed in Hz: name such a column speed_hz"
+    return text
 
 
 def _bearing_from_meta(meta: dict[str, Any]) -> Bearing | None:

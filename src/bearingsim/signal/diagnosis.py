@@ -939,8 +939,8 @@ def load_signal(
     if rpm is not None and (span := column_speed_refutes(rec, rpm)) is not None:
         raise ConfigError(
             f"rpm = {rpm:.6g} r/min contradicts the speed column of {name!r} "
-            f"({speed_span_text(span)}); valid: a speed it holds, or no --rpm (the column is then "
-            "order tracked)"
+            f"({speed_span_text(span, rpm)}); valid: a speed it holds, or no --rpm (the column "
+            "is then read)"
         )
     if rec.rpm is None and rec.speed_hz is None:
         what = "no X###RPM key" if rec.source.lower().endswith(".mat") else "no rpm/speed_hz column"

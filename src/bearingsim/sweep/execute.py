@@ -241,7 +241,9 @@ def spare_core_workers(hello: dict[str, dict[str, Any]], nthreads: dict[str, int
 
 
 def _error_text(exc: BaseException) -> str:
-    return f"{type(exc).__name__}: {' '.join(str(exc).split())}"
+    from .plan import sweep_text
+
+    return f"{type(exc).__name__}: {sweep_text(' '.join(str(exc).split()))}"
 
 
 _COMMIT_POOL: concurrent.futures.ThreadPoolExecutor | None = None

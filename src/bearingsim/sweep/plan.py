@@ -109,8 +109,20 @@ def start_error(scenario: Scenario | dict[str, Any], allow_overload: bool = Fals
     try:
         validate_scenario(as_scenario(scenario), allow_overload=allow_overload)
     except BearingsimError as exc:
-        return " ".join(str(exc).split())
+        return sweep_text(" ".join(str(exc).split()))
     return None
+
+
+def sweep_text(message: str) -> str:
+    """A run's error as a sweep says it: the single run's way past an overload
+    (``allow_overload=True (--allow-overload)``) is the sweep file's ``[sweep] allow_overload =
+    true`` (exploratory testing, twenty-fifth session: a user put it under ``[base]``, an
+    unknown key there)."""
+    from ..contact.capacity import _OVERLOAD_HINT
+
+    return message.replace(
+        _OVERLOAD_HINT, "; [sweep] allow_overload = true in the sweep file runs it anyway"
+    )
 
 
 def rig_warnings(scenarios: list[Scenario], skip: set[int] = frozenset()) -> dict[str, list[int]]:
