@@ -324,6 +324,12 @@ def test_an_rpm_the_speed_column_refutes_is_refused(run_cli, tmp_path):
         np.savetxt(path, np.c_[t, x, col], delimiter=",", header="time_s,acc,rpm", comments="")
     r = run_cli("analyze", tmp_path / "drop.csv", "--rpm", "1500")
     assert r.code == 2 and "(1748 r/min)" in r.err, r.err
+    r = run_cli("analyze", tmp_path / "drop.csv")  # the dropouts cannot be order tracked
+    assert r.code == 2 and r.err.startswith(
+        "error: file = 'drop.csv': the speed column cannot be order tracked (300 of its 6000 "
+        "samples are not finite and > 0); valid:"
+    ), r.err
+    assert run_cli("analyze", tmp_path / "drop.csv", "--rpm", "1748").code == 0
     r = run_cli("analyze", tmp_path / "hz.csv", "--rpm", "1748")
     assert r.code == 2 and "it reads like the speed in Hz: name such a column speed_hz" in r.err
 
