@@ -402,3 +402,31 @@ def test_a_line_between_two_bins_is_one_line_for_the_attribution():
     assert peaks["BPFO"].freq_hz == np.ceil(side), "the premise: BPFO's search took bin 102"
     assert peaks["2xBSF-3xFTF"].freq_hz == np.floor(side) and peaks["2xBSF-3xFTF"].detected
     assert not peaks["BPFO"].detected and "outer" not in d.supported, (d.supported, d.notes)
+
+
+def test_an_outer_race_faults_shaft_sidebands_do_not_open_the_inner_races_search():
+    """The 6203 at 1728 r/min on a 0.5 s record (2 Hz lines): an outer-race fault with shaft
+    sidebands puts BPFO + 2 f_r (145.5 Hz) in BPFI's window (142.5 Hz + 2 bins) and BPFO + f_r
+    in BPFI - f_r's. The attribution gives those lines to the outer race, so no inner-race
+    fundamental is detected; the inner race's higher sidebands are not searched (a search
+    opened by the lines before the attribution put BPFI - 2 f_r on BPFO itself: a helper's
+    stress test, twenty-fifth session)."""
+    from bearingsim.signal.diagnosis import DiagnosisRule, find_lines
+
+    bearing = get_bearing("6203-cwru")
+    fr = 1728.0 / 60.0
+    k = characteristic_frequencies(bearing, fr)
+    f = np.arange(0.0, 1500.0, 2.0)
+    a = np.full(f.size, 1e-3)
+    lines = {fr: 0.5, 2 * fr: 0.5}
+    for h in (1, 2, 3):
+        for m, amp in ((0, 3.0), (1, 1.5), (-1, 1.5), (2, 1.0), (-2, 1.0)):
+            lines[h * k.bpfo_hz + m * fr] = amp / h
+    for fl, amp in lines.items():
+        i = int(round(fl / 2.0))
+        a[i] = max(a[i], amp)
+    es = Spectrum(f, a, domain="Hz", resolution=2.0)
+    peaks = {p.label: p for p in find_lines(es, bearing, fr, DiagnosisRule(shaft_cursors=True),
+                                            1400.0)}  # fmt: skip
+    assert peaks["BPFI"].freq_hz == 146.0 and not peaks["BPFI"].detected, "the premise"
+    assert not [lab for lab in peaks if lab.startswith("BPFI") and "xfr" in lab], sorted(peaks)

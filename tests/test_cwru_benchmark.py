@@ -272,3 +272,26 @@ def test_no_confident_wrong_fault_type_through_the_other_ends_accelerometer():
     wrong = [(p["file"], p["truth"], p["verdict"], round(p["confidence"], 2)) for p in parts
              if p["outcome"] == "wrong"]  # fmt: skip
     assert not wrong, wrong
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_short_pieces_of_a_fan_end_outer_race_record_stay_outer():
+    """A helper's stress test of the higher-sideband search (twenty-fifth session): on a 0.5 s
+    piece of CWRU 312 (fan end, 6203, outer race @3), the outer race's BPFO + 2 f_r and
+    BPFO + f_r fall in BPFI's and BPFI - f_r's windows; counted as detected before the
+    attribution, they opened the inner race's search, whose BPFI - 2 f_r target landed on
+    BPFO itself: pieces 1 and 14 of 20 read "inner" (0.71, 0.76; outer 0.78, 0.80 before).
+    Two changes keep them "outer": the higher sidebands are spaced by the carrier-scaled
+    kinematic rate (either alone suffices here), and the search is opened by the lines as
+    attributed (test_benchmark_methods.py::
+    test_an_outer_race_faults_shaft_sidebands_do_not_open_the_inner_races_search)."""
+    from dataclasses import replace
+
+    from bearingsim.signal import analyze_record
+    from bearingsim.signal.diagnosis import load_signal
+
+    rec = load_signal(CWRU / "12k_Fan_End_OR014@3_3_312.mat", channel="FE")
+    n = rec.x.size // 20
+    for k in (0, 13):
+        d = analyze_record(replace(rec, x=rec.x[k * n : (k + 1) * n]), "6203-cwru")
+        assert d.diagnosis == "outer", (k + 1, d.diagnosis, d.confidence, d.why)

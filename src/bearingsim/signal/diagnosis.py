@@ -435,7 +435,12 @@ def find_lines(
     # 2 x BSF - 3 FTF 2 Hz from BPFO on the CWRU 6205 (BPFO = Z FTF: its whole comb of FTF
     # harmonics lands on the BPFO series), and a 1 s record's BPFO search (+/- 2 bins) took it
     # for the outer race (twenty-fifth session, docs/validation.md)
-    det = {p.label for p in peaks if p.detected}
+    # the gate on the lines as attributed: on a short 6203 record an outer-race fault's
+    # BPFO + 2 f_r and BPFO + f_r fall in BPFI's and BPFI - f_r's windows; those "detected"
+    # BPFI lines are the outer race's (or the shaft's) once attributed, and must not open a
+    # search whose BPFI - 2 f_r target then lands on BPFO itself (a helper's stress test,
+    # twenty-fifth session: CWRU 312 in 0.5 s pieces read "inner")
+    det = {p.label for p in _attribute(peaks, nominal, es.resolution) if p.detected}
     tg = []
     for n, mod in _SIDEBANDS.items():
         first_sb = {f"{n}-{mod}", f"{n}+{mod}"}
@@ -521,8 +526,14 @@ def _attribute(
                 abs(q.freq_hz - p.freq_hz) <= 1e-9 * max(1.0, p.freq_hz)
                 # a line between two bins: two searches may take its two bins (a ball fault's
                 # 2 x BSF - 3 FTF at 101.5 Hz, BPFO's search took 102 and its own 101; the DEM
-                # run of docs/validation.md), one line all the same
-                or (q.detected and abs(q.freq_hz - p.freq_hz) <= res * (1.0 + 1e-9))
+                # run of docs/validation.md), one line all the same. The smaller bin is the
+                # larger one's skirt: only it can go (a 0.32 s piece of CWRU 109 lost its
+                # inner-race peak to a ball line in the next bin otherwise)
+                or (
+                    q.detected
+                    and abs(q.freq_hz - p.freq_hz) <= res * (1.0 + 1e-9)
+                    and q.amplitude >= p.amplitude
+                )
             )
             and _beats(p, q)
             for q in peaks
