@@ -1036,6 +1036,9 @@ def test_a_bearing_of_another_size_than_the_rigs_is_warned(tmp_path):
         (good.replace('"mine"', '""'), "bearing.id = '' is invalid; valid: printable text"),
         (good.replace("n_elements = 9\n", ""), r"bearing.n_elements is missing"),
         (good + "width_m = 1\n", "bearing: unknown key 'width_m'; valid keys: id, "),
+        # a catalogue id with another size (twenty-fifth session)
+        (good.replace('"mine"', '"6205-cwru"').replace("9", "12", 1),
+         r"bearing.id = '6205-cwru' names a catalogue bearing of another size \(6205-cwru "),
     ):  # fmt: skip
         p.write_text(RIG_TOML + "\n" + table)
         with pytest.raises(ConfigError, match=r"^r.toml: " + message):

@@ -668,7 +668,7 @@ def test_cli_identify_model_gain_from_a_users_conditions_file(tmp_path):
         # exploratory testing (twenty-fourth session): a row's rpm the record refutes was
         # accepted, and the gain was fitted to another condition
         "speed.csv": ("file,fault,bearing,defect_width_m,rpm\nrun1.mat,outer,6205,1e-4,1500\n",
-                      "speed.csv: rpm = 1500 r/min for 'run1.mat', whose own speed is"),
+                      "speed.csv, line 2: rpm = 1500 r/min for 'run1.mat', whose own speed is"),
         # a width the model refuses named neither file nor line (twenty-fifth session)
         "wide.csv": ("file,fault,bearing,defect_width_m\nrun1.mat,outer,6205,0.02\n",
                      "wide.csv, line 2: defect_width_m = 0.02 m is wider than the ball"),
@@ -912,3 +912,30 @@ def test_an_output_that_is_a_bearing_file_the_conditions_name_is_refused(tmp_pat
              cwd=tmp_path)  # fmt: skip
     assert r.returncode == 2 and "that --conditions names" in r.stderr, r.stderr
     assert brg.read_text(encoding="utf-8") == before
+
+
+def test_a_conditions_rows_speed_is_judged_by_its_records_speed_column(tmp_path):
+    """A row's ``rpm`` against its record's speed column takes the rule ``--rpm`` has (a
+    speed outside the column's 1st-99th percentile range by more than 1 % is refused; a
+    run-up takes any speed it passed through), and the error names the line (twenty-fifth
+    session: it compared with the column's median and named no line)."""
+    rec = _impacts(seed=0)
+    t = np.arange(rec.x.size) / 12000.0
+    for name, rpm in (("steady.csv", np.full(t.size, 1500.0)),
+                      ("runup.csv", np.linspace(1000.0, 2000.0, t.size))):  # fmt: skip
+        np.savetxt(tmp_path / name, np.c_[t, rec.x, rpm], delimiter=",",
+                   header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    for name, rpm, ok in (("steady.csv", 1000, False), ("runup.csv", 1200, True)):
+        (tmp_path / "c.csv").write_text(
+            f"file,fault,bearing,defect_width_m,rpm\n{name},outer,6205,3e-4,{rpm}\n"
+        )
+        r = _cli("rig", "identify", name, "--name", "s", "--model-gain", "vsm", "--conditions",
+                 "c.csv", "-o", "s.toml", cwd=tmp_path)  # fmt: skip
+        if ok:
+            assert "contradicts" not in r.stderr and "speed column holds" not in r.stderr, r.stderr
+        else:
+            assert r.returncode == 2 and r.stderr == (
+                "error: --conditions c.csv, line 2: rpm = 1000 r/min for 'steady.csv', whose "
+                "speed column holds 1500 r/min; valid: a speed it holds (or an empty rpm, to "
+                "take its median)\n"
+            ), r.stderr

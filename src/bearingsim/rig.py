@@ -686,6 +686,7 @@ class Rig:
             bearing = d.get("bearing")
             if isinstance(bearing, dict):  # a bearing outside the catalogue: its size
                 bearing = RigBearing.from_dict(bearing)
+                _check_not_a_catalogue_twin(bearing)
             elif bearing is not None:
                 from .catalog import _catalog_files
 
@@ -1112,6 +1113,26 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
         f"another size (pitch diameter {1e3 * float(run['pitch_diameter']):.4g} mm, "
         f"{int(run['n_elements'])} elements of {1e3 * float(run['element_diameter']):.4g} mm): "
         "it sits in another housing, whose modes and background the rig does not have"
+    )
+
+
+def _check_not_a_catalogue_twin(b: RigBearing) -> None:
+    """Refuse a ``[bearing]`` table whose ``id`` names a catalogue bearing of another size (a
+    run of that catalogue bearing was then warned that "the 6205-cwru is another size than the
+    6205-cwru"; exploratory testing, twenty-fifth session)."""
+    from .catalog import _catalog_files, get_bearing
+
+    if b.id not in _catalog_files():
+        return
+    cat = RigBearing.of(get_bearing(b.id))
+    if cat.n_elements == b.n_elements and all(
+        abs(getattr(b, k) / getattr(cat, k) - 1.0) <= BEARING_SIZE_REL
+        for k in ("pitch_diameter_m", "element_diameter_m")
+    ):
+        return
+    raise ConfigError(
+        f"bearing.id = {b.id!r} names a catalogue bearing of another size ({cat.describe()}); "
+        f'valid: bearing = "{b.id}" for that bearing, or another id for your own'
     )
 
 

@@ -407,7 +407,7 @@ def _user_conditions(
     every record listed once by file name, a known fault and bearing, positive sizes."""
     import csv
 
-    from ..io.signal import RPM_OPTION_REL
+    from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
     from ..rig_identify import _record_rpm
     from ..side_by_side import FAULT_FAMILIES
 
@@ -480,18 +480,25 @@ def _user_conditions(
                 "name, without a folder)"
             )
         own = _record_rpm(rec)  # its rpm, or its speed column's median
-        if "rpm" in cond and own and abs(cond["rpm"] / own - 1.0) > RPM_OPTION_REL:
-            # the model gain simulates the row's speed: one the record refutes fits the gain
-            # to another condition (exploratory testing, twenty-fourth session: accepted, and
-            # the gain moved 0.0130 -> 0.0091)
+        where = f"--conditions {path}, line {lines[Path(p).name]}"
+        # the model gain simulates the row's speed: one the record refutes fits the gain to
+        # another condition (exploratory testing, twenty-fourth session: accepted, and the
+        # gain moved 0.0130 -> 0.0091). A speed column: the rule --rpm has (a run-up takes a
+        # speed it passed through; twenty-fifth session)
+        if "rpm" in cond and rec.speed_hz is not None:
+            if (span := column_speed_refutes(rec, cond["rpm"])) is not None:
+                raise ConfigError(
+                    f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose speed "
+                    f"column holds {speed_span_text(span, cond['rpm'])}; valid: a speed it "
+                    "holds (or an empty rpm, to take its median)"
+                )
+        elif "rpm" in cond and own and abs(cond["rpm"] / own - 1.0) > RPM_OPTION_REL:
             raise ConfigError(
-                f"--conditions {path}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, "
-                f"whose own speed is {own:.6g} r/min; valid: the record's speed (or an empty "
-                "rpm, to take it)"
+                f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose own speed "
+                f"is {own:.6g} r/min; valid: the record's speed (or an empty rpm, to take it)"
             )
         if cond["fault"] != "none":
-            _check_condition(cond, own, rec, models, realism, f"--conditions {path}, line "
-                             f"{lines[Path(p).name]}")  # fmt: skip
+            _check_condition(cond, own, rec, models, realism, where)
             pairs.append((rec, cond))
     if not pairs:
         raise ConfigError(
@@ -508,7 +515,7 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
     import dataclasses
 
     from ..catalog import get_bearing, load_bearing_file
-    from ..rig import BEARING_SIZE_REL, RigBearing
+    from ..rig import BEARING_SIZE_REL, RigBearing, _check_not_a_catalogue_twin
 
     conds = [c for c in conds if "bearing" in c or "bearing_file" in c]
     ids = {c.get("bearing") for c in conds}
@@ -519,6 +526,8 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
         b = get_bearing(c["bearing"]) if "bearing" in c else load_bearing_file(c["bearing_file"])
         try:  # the rig's own check, before any work (an id the rig refuses failed at the end)
             sizes[b.id] = RigBearing.from_dict(dataclasses.asdict(RigBearing.of(b)))
+            if "bearing_file" in c:  # a file's id that names a catalogue bearing of another size
+                _check_not_a_catalogue_twin(sizes[b.id])
         except ConfigError as exc:
             raise ConfigError(
                 f"--conditions: the bearing of {c.get('bearing_file') or c['bearing']!r} cannot "
