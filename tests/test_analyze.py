@@ -696,6 +696,18 @@ def test_a_short_low_speed_record_does_not_take_a_cage_line_for_the_shaft(run_cl
     assert all(abs(q["order"] - round(q["order"])) < 0.05 for q in shaft), shaft
 
 
+def _ball_fault_verdict(run_cli, tmp_path, model: str, rpm: str, seed: str) -> dict:
+    """``analyze --json`` of a 0.007 in ball fault of the 6205-cwru (the CLI's default width),
+    1 s through ``cwru-de-12k``, simulated with ``model`` at ``rpm`` and ``seed``."""
+    p = tmp_path / "b.nc"
+    r = run_cli("simulate", "--model", model, "--bearing", "6205-cwru", "--fault", "ball",
+                "--rpm", rpm, "--seed", seed, "--duration-s", "1", "--rig", "cwru-de-12k",
+                "-o", str(p))  # fmt: skip
+    assert r.code == 0, r.err
+    d = run_cli("analyze", str(p), "--json").json()
+    return d[0] if isinstance(d, list) else d
+
+
 def test_a_family_scoring_above_the_leader_says_why_it_does_not_lead(
     run_cli, tmp_path, monkeypatch
 ):
@@ -708,13 +720,7 @@ def test_a_family_scoring_above_the_leader_says_why_it_does_not_lead(
     import bearingsim.signal.diagnosis as dg
 
     monkeypatch.setattr(dg, "MAX_SIDEBAND_ORDER", 1)
-    p = tmp_path / "b.nc"
-    r = run_cli("simulate", "--model", "dem", "--bearing", "6205-cwru", "--fault", "ball",
-                "--rpm", "1730", "--seed", "5", "--duration-s", "1", "--rig", "cwru-de-12k",
-                "-o", str(p))  # fmt: skip
-    assert r.code == 0, r.err
-    d = run_cli("analyze", str(p), "--json").json()
-    d = d[0] if isinstance(d, list) else d
+    d = _ball_fault_verdict(run_cli, tmp_path, "dem", "1730", "5")
     assert (d["diagnosis"], d["leading"]) == ("uncertain", "outer"), d["diagnosis"]
     assert d["scores"]["ball"] > d["scores"]["outer"], d["scores"]
     assert d["why"].endswith(
@@ -732,11 +738,5 @@ def test_a_ball_fault_whose_cage_sideband_lies_on_bpfo_reads_ball(run_cli, tmp_p
     models, CWRU's three widths, 1730-1797 r/min, seeds 0-3, both drive-end rigs) went from
     197 to 216 of 216 ball faults right, the other 108 unchanged, and no CWRU verdict changed
     (whole records, halves, quarters)."""
-    p = tmp_path / "b.nc"
-    r = run_cli("simulate", "--model", "vsm", "--bearing", "6205-cwru", "--fault", "ball",
-                "--rpm", "1772", "--seed", "0", "--duration-s", "1", "--rig", "cwru-de-12k",
-                "-o", str(p))  # fmt: skip
-    assert r.code == 0, r.err
-    d = run_cli("analyze", str(p), "--json").json()
-    d = d[0] if isinstance(d, list) else d
+    d = _ball_fault_verdict(run_cli, tmp_path, "vsm", "1772", "0")
     assert d["diagnosis"] == "ball" and d["confidence"] > 0.9, (d["diagnosis"], d["why"])

@@ -171,13 +171,21 @@ def test_noise_alone_is_none():
     assert d.diagnosis == "none", d.notes
 
 
-def _lines_spectrum(lines: dict[float, float], res: float = 0.005) -> Spectrum:
-    """An order-domain envelope spectrum [orders]: a floor of 1e-3 and the given lines."""
-    f = np.arange(0.0, 40.0, res)
+def _lines_spectrum(
+    lines: dict[float, float], res: float = 0.005, top: float = 40.0, domain: str = "order"
+) -> Spectrum:
+    """An envelope spectrum up to ``top`` on a grid of ``res`` [orders, or Hz with ``domain =
+    "Hz"``]: a floor of 1e-3 and the given lines, each in its nearest bin."""
+    f = np.arange(0.0, top, res)
     a = np.full(f.size, 1e-3)
-    for order, amp in lines.items():
-        a[int(round(order / res))] = amp
-    return Spectrum(f, a, domain="order", resolution=res)
+    for x, amp in lines.items():
+        a[int(round(x / res))] = amp
+    return Spectrum(f, a, domain=domain, resolution=res)
+
+
+def _hz_spectrum(lines: dict[float, float], res: float = 1.0) -> Spectrum:
+    """:func:`_lines_spectrum` in Hz, to 1500 Hz (a 1/res s record's envelope spectrum)."""
+    return _lines_spectrum(lines, res, 1500.0, "Hz")
 
 
 @pytest.mark.parametrize("consistent", [False, True])
@@ -229,14 +237,10 @@ def test_a_fault_line_nearer_a_shaft_harmonic_goes_to_the_shaft():
     bearing = get_bearing("6203-cwru")
     fr = 29.5
     k = characteristic_frequencies(bearing, fr)
-    f = np.arange(0.0, 1500.0, 1.0)
-    a = np.full(f.size, 1e-3)
     lines = {fr: 1.0, 2 * fr: 1.0, 89.0: 1.0}  # the shaft; its third harmonic's line at 89 Hz
     lines |= {h * k.bpfi_hz: 3.0 for h in (1, 2, 3)}
     lines |= {k.bpfi_hz - fr: 1.5, k.bpfi_hz + fr: 1.5, k.bpfi_hz - 2 * fr: 2.0}
-    for fl, amp in lines.items():
-        a[int(round(fl))] = amp
-    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    es = _hz_spectrum(lines)
     assert 89.0 - 3 * fr < k.bpfo_hz - 89.0, "the premise: 89 Hz nearer 3 f_r than BPFO"
     d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=DiagnosisRule(shaft_cursors=True))
     peaks = {p.label: p for p in d.peaks}
@@ -263,13 +267,9 @@ def test_a_ball_faults_third_cage_sideband_is_not_taken_for_bpfo():
     fr = 1772.0 / 60.0
     k = characteristic_frequencies(bearing, fr)
     b2, c = 2 * k.bsf_hz, k.ftf_hz
-    f = np.arange(0.0, 1500.0, 1.0)
-    a = np.full(f.size, 1e-3)
     lines = {c: 2.0, 2 * c: 1.5, 3 * c: 1.0, b2: 1.0, b2 - c: 1.2, b2 + c: 0.8, b2 - 3 * c: 0.9}
     lines |= {2 * b2 - c: 0.5, 2 * b2 + c: 0.5, 2 * round(b2 - 3 * c): 0.4}
-    for fl, amp in lines.items():
-        a[int(round(fl))] = amp
-    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    es = _hz_spectrum(lines)
     assert abs(round(b2 - 3 * c) - k.bpfo_hz) <= 2.0, "the premise: within BPFO's 2 bins"
     rule = DiagnosisRule(shaft_cursors=True)
     d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=rule)
@@ -388,15 +388,11 @@ def test_a_line_between_two_bins_is_one_line_for_the_attribution():
     fr = 1730.0 / 60.0
     k = characteristic_frequencies(bearing, fr)
     b2, c = 2 * k.bsf_hz, k.ftf_hz
-    f = np.arange(0.0, 1500.0, 1.0)
-    a = np.full(f.size, 1e-3)
     lines = {c: 2.0, 2 * c: 1.5, 3 * c: 1.0, b2: 1.0, b2 - c: 1.2, b2 + c: 0.8}
     lines |= {2 * b2 - c: 0.5, 2 * b2 + c: 0.5, 204.0: 0.4}
-    for fl, amp in lines.items():
-        a[int(round(fl))] = amp
     side = b2 - 3 * c  # 101.5 Hz: its energy in the two bins about it
-    a[int(np.floor(side))], a[int(np.ceil(side))] = 0.9, 0.85
-    es = Spectrum(f, a, domain="Hz", resolution=1.0)
+    lines |= {float(np.floor(side)): 0.9, float(np.ceil(side)): 0.85}
+    es = _hz_spectrum(lines)
     d = diagnose_spectrum(es, bearing, fr, (0.0, 6000.0), rule=DiagnosisRule(shaft_cursors=True))
     peaks = {p.label: p for p in d.peaks}
     assert peaks["BPFO"].freq_hz == np.ceil(side), "the premise: BPFO's search took bin 102"
@@ -416,16 +412,11 @@ def test_an_outer_race_faults_shaft_sidebands_do_not_open_the_inner_races_search
     bearing = get_bearing("6203-cwru")
     fr = 1728.0 / 60.0
     k = characteristic_frequencies(bearing, fr)
-    f = np.arange(0.0, 1500.0, 2.0)
-    a = np.full(f.size, 1e-3)
     lines = {fr: 0.5, 2 * fr: 0.5}
     for h in (1, 2, 3):
         for m, amp in ((0, 3.0), (1, 1.5), (-1, 1.5), (2, 1.0), (-2, 1.0)):
             lines[h * k.bpfo_hz + m * fr] = amp / h
-    for fl, amp in lines.items():
-        i = int(round(fl / 2.0))
-        a[i] = max(a[i], amp)
-    es = Spectrum(f, a, domain="Hz", resolution=2.0)
+    es = _hz_spectrum(lines, res=2.0)
     peaks = {p.label: p for p in find_lines(es, bearing, fr, DiagnosisRule(shaft_cursors=True),
                                             1400.0)}  # fmt: skip
     assert peaks["BPFI"].freq_hz == 146.0 and not peaks["BPFI"].detected, "the premise"

@@ -235,11 +235,24 @@ class RigBearing:
         return cls(bearing.id, int(bearing.n_elements), float(bearing.pitch_diameter),
                    float(bearing.element_diameter))  # fmt: skip
 
+    def sizes(self) -> str:
+        """``pitch diameter P mm, Z elements of D mm``."""
+        return (
+            f"pitch diameter {1e3 * self.pitch_diameter_m:.4g} mm, {self.n_elements} elements "
+            f"of {1e3 * self.element_diameter_m:.4g} mm"
+        )
+
     def describe(self) -> str:
         """``ID (pitch diameter P mm, Z elements of D mm)``."""
-        return (
-            f"{self.id} (pitch diameter {1e3 * self.pitch_diameter_m:.4g} mm, {self.n_elements} "
-            f"elements of {1e3 * self.element_diameter_m:.4g} mm)"
+        return f"{self.id} ({self.sizes()})"
+
+    def same_size(self, other: RigBearing) -> bool:
+        """The same number of elements, and pitch and element diameters within
+        :data:`BEARING_SIZE_REL` of ``other``'s: one size, as :class:`RigBearingWarning`
+        judges it (the seed's 6205 and the CWRU's, 0.1 % apart, are one)."""
+        return self.n_elements == other.n_elements and all(
+            abs(getattr(other, k) / getattr(self, k) - 1.0) <= BEARING_SIZE_REL
+            for k in ("pitch_diameter_m", "element_diameter_m")
         )
 
 
@@ -1096,23 +1109,22 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
 
         own = RigBearing.of(get_bearing(r.bearing))
     try:
-        same = int(run["n_elements"]) == own.n_elements and all(
-            abs(float(run[k]) / getattr(own, f"{k}_m") - 1.0) <= BEARING_SIZE_REL
-            for k in ("pitch_diameter", "element_diameter")
+        theirs = RigBearing(
+            run.get("id") or "",
+            int(run["n_elements"]),
+            float(run["pitch_diameter"]),
+            float(run["element_diameter"]),
         )
+        if own.same_size(theirs):
+            return None
     except (KeyError, TypeError, ValueError, ZeroDivisionError):
-        return None
-    if same:
         return None
     # the three sizes compared, each side (an element diameter alone differing printed two
     # identical sizes; exploratory testing, twenty-fifth session)
     return (
-        f"rig {r.name!r} was identified on records of the {own.id} (pitch diameter "
-        f"{1e3 * own.pitch_diameter_m:.4g} mm, {own.n_elements} elements of "
-        f"{1e3 * own.element_diameter_m:.4g} mm); this run's bearing {run.get('id') or ''} is "
-        f"another size (pitch diameter {1e3 * float(run['pitch_diameter']):.4g} mm, "
-        f"{int(run['n_elements'])} elements of {1e3 * float(run['element_diameter']):.4g} mm): "
-        "it sits in another housing, whose modes and background the rig does not have"
+        f"rig {r.name!r} was identified on records of the {own.describe()}; this run's "
+        f"bearing {theirs.id} is another size ({theirs.sizes()}): it sits in another housing, "
+        "whose modes and background the rig does not have"
     )
 
 
@@ -1125,10 +1137,7 @@ def _check_not_a_catalogue_twin(b: RigBearing) -> None:
     if b.id not in _catalog_files():
         return
     cat = RigBearing.of(get_bearing(b.id))
-    if cat.n_elements == b.n_elements and all(
-        abs(getattr(b, k) / getattr(cat, k) - 1.0) <= BEARING_SIZE_REL
-        for k in ("pitch_diameter_m", "element_diameter_m")
-    ):
+    if cat.same_size(b):
         return
     raise ConfigError(
         f"bearing.id = {b.id!r} names a catalogue bearing of another size ({cat.describe()}); "

@@ -515,7 +515,7 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
     import dataclasses
 
     from ..catalog import get_bearing, load_bearing_file
-    from ..rig import BEARING_SIZE_REL, RigBearing, _check_not_a_catalogue_twin
+    from ..rig import RigBearing, _check_not_a_catalogue_twin
 
     conds = [c for c in conds if "bearing" in c or "bearing_file" in c]
     ids = {c.get("bearing") for c in conds}
@@ -534,15 +534,9 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
                 f"name a rig's bearing: {exc}"
             ) from None
     # one size under several names (a file and its catalogue twin, the 6205 and the CWRU's
-    # 6205 0.1 % apart) is one size, as RigBearingWarning judges sizes (BEARING_SIZE_REL)
+    # 6205 0.1 % apart) is one size, as RigBearingWarning judges sizes
     ref = min(sizes.values(), key=lambda s: s.id)
-    same = all(
-        s.n_elements == ref.n_elements
-        and abs(s.pitch_diameter_m / ref.pitch_diameter_m - 1.0) <= BEARING_SIZE_REL
-        and abs(s.element_diameter_m / ref.element_diameter_m - 1.0) <= BEARING_SIZE_REL
-        for s in sizes.values()
-    )
-    if not same:
+    if not all(ref.same_size(s) for s in sizes.values()):
         return None
     cat = sorted(i for i in ids if i is not None)  # a catalogue id, where the rows give one
     return cat[0] if cat else ref

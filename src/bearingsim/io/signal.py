@@ -340,10 +340,13 @@ def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] |
     v = v[np.isfinite(v) & (v > 0.0)]
     if not v.size:
         return None
-    lo, hi = (float(q) for q in np.percentile(v, [1.0, 99.0]))
-    if lo * (1.0 - RPM_OPTION_REL) <= rpm <= hi * (1.0 + RPM_OPTION_REL):
-        return None
-    return lo, hi
+    span = tuple(float(q) for q in np.percentile(v, [1.0, 99.0]))
+    return None if _holds(span, rpm) else span
+
+
+def _holds(span: tuple[float, float], rpm: float) -> bool:
+    """``rpm`` lies within :data:`RPM_OPTION_REL` of the range ``span`` [r/min]."""
+    return span[0] * (1.0 - RPM_OPTION_REL) <= rpm <= span[1] * (1.0 + RPM_OPTION_REL)
 
 
 def speed_span_text(span: tuple[float, float], rpm: float | None = None) -> str:
@@ -355,7 +358,7 @@ def speed_span_text(span: tuple[float, float], rpm: float | None = None) -> str:
         f"{lo:.5g} r/min" if f"{lo:.5g}" == f"{hi:.5g}"
         else f"{lo:.5g}-{hi:.5g} r/min, 1st-99th percentile"
     )  # fmt: skip
-    if rpm is not None and lo * (1.0 - RPM_OPTION_REL) <= rpm / 60.0 <= hi * (1.0 + RPM_OPTION_REL):
+    if rpm is not None and _holds(span, rpm / 60.0):
         text += "; it reads like the speed in Hz: name such a column speed_hz"
     return text
 

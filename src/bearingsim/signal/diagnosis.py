@@ -440,7 +440,8 @@ def find_lines(
     # BPFI lines are the outer race's (or the shaft's) once attributed, and must not open a
     # search whose BPFI - 2 f_r target then lands on BPFO itself (a helper's stress test,
     # twenty-fifth session: CWRU 312 in 0.5 s pieces read "inner")
-    det = {p.label for p in _attribute(peaks, nominal, es.resolution) if p.detected}
+    attributed = _attribute(peaks, nominal, es.resolution)
+    det = {p.label for p in attributed if p.detected}
     tg = []
     for n, mod in _SIDEBANDS.items():
         first_sb = {f"{n}-{mod}", f"{n}+{mod}"}
@@ -453,22 +454,22 @@ def find_lines(
         step = nominal[mod] * found[n] / nominal[n] if nominal[n] > 0 else found[mod]
         for m in range(2, MAX_SIDEBAND_ORDER + 1):
             for sign in (-1, 1):
+                lab = f"{n}{'+' if sign > 0 else '-'}{m}x{mod}"
+                nominal[lab] = nominal[n] + sign * m * nominal[mod]
                 f = found[n] + sign * m * step
-                nominal[f"{n}{'+' if sign > 0 else '-'}{m}x{mod}"] = (
-                    nominal[n] + sign * m * nominal[mod]
-                )
                 if 0 < f < f_limit:
-                    tg.append((f"{n}{'+' if sign > 0 else '-'}{m}x{mod}", f))
-    if tg:
-        peaks += match_peaks(
-            es,
-            tg,
-            shaft_hz,
-            tol_rel=0.0,
-            tol_min_bins=rule.tol_min_bins,
-            noise_rel=rule.noise_rel,
-            threshold_db=rule.threshold_db,
-        )
+                    tg.append((lab, f))
+    if not tg:  # nothing more searched: the attribution above is the answer
+        return attributed
+    peaks += match_peaks(
+        es,
+        tg,
+        shaft_hz,
+        tol_rel=0.0,
+        tol_min_bins=rule.tol_min_bins,
+        noise_rel=rule.noise_rel,
+        threshold_db=rule.threshold_db,
+    )
     return _attribute(peaks, nominal, es.resolution)
 
 

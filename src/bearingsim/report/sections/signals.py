@@ -54,8 +54,6 @@ ROTOR_NOTE = "see docs/validation.md, 'The rotor model beside the records'"
 
 
 def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
-    from ...side_by_side import ratios, signal_metrics
-
     fig, axs = new_figure(
         len(cases), 3, width=FULL_WIDTH, row_height=2.2, squeeze=False, sharex="col"
     )
@@ -75,8 +73,7 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
         name = c["record"].replace(".mat", "")
         # the panels are normalised (shapes side by side): the level misses the table judges
         # are said in the title, so the figure does not read as agreement (a helper's review)
-        r = ratios(signal_metrics(c["measured"], fs, c["fault_hz"]),
-                   signal_metrics(c["simulated"], fs, c["fault_hz"]))  # fmt: skip
+        r = c["ratios"]  # the rows' (_judge_rows)
         axs[i, 0].set_title(
             f"{name} ({c['fault']}): simulated RMS {r['rms']:.3g}×, fault line "
             f"{r['line']:.3g}× the record's",
@@ -126,12 +123,14 @@ def _size_text(key: str, value: float, bound: float, ok: bool) -> str:
 
 def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
     """Append the four rows of one simulated record ``c`` (:func:`simulate_record`) against its
-    measurement, the simulation named ``what``; returns which bounds it meets."""
+    measurement, the simulation named ``what``; returns which bounds it meets, and keeps the
+    ratios in ``c["ratios"]`` (the figure's titles)."""
     from ...side_by_side import BOUNDS, ratios, signal_metrics, within_bounds
 
     m = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
     s = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
     ratio = ratios(m, s)
+    c["ratios"] = ratio  # the figure's titles give them (_figure)
     ok = within_bounds(ratio)
     num = cwru_record_number(c["record"])
     for k, label, unit in METRICS:
