@@ -862,13 +862,13 @@ def _override_warning(info: dict, bearing) -> list[str]:
 
 def _bearing_option(bearing):
     """``--bearing``: None, a Bearing, a catalogue id or a bearing TOML path -> a Bearing."""
-    from bearingsim.catalog import get_bearing, load_bearing_file
+    from bearingsim.catalog import resolve_bearing
 
     if bearing is None or not isinstance(bearing, str | Path):
         return bearing
     if str(bearing).lower().endswith(".toml"):
-        return load_bearing_file(bearing)
-    return get_bearing(str(bearing))
+        return resolve_bearing(bearing_file=bearing)
+    return resolve_bearing(str(bearing))
 
 
 def _bearing_warning(path: Path, source: str, bearing) -> list[str]:

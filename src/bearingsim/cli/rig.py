@@ -514,7 +514,7 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
     their bearing files (and ids) give; None where the rows give bearings of different sizes."""
     import dataclasses
 
-    from ..catalog import get_bearing, load_bearing_file
+    from ..catalog import resolve_bearing
     from ..rig import RigBearing, _check_not_a_catalogue_twin
 
     conds = [c for c in conds if "bearing" in c or "bearing_file" in c]
@@ -523,7 +523,7 @@ def _conditions_bearing(conds) -> str | RigBearing | None:
         return ids.pop() if conds else None
     sizes = {}
     for c in conds:
-        b = get_bearing(c["bearing"]) if "bearing" in c else load_bearing_file(c["bearing_file"])
+        b = resolve_bearing(c.get("bearing"), c.get("bearing_file"))
         try:  # the rig's own check, before any work (an id the rig refuses failed at the end)
             sizes[b.id] = RigBearing.from_dict(dataclasses.asdict(RigBearing.of(b)))
             if "bearing_file" in c:  # a file's id that names a catalogue bearing of another size
