@@ -842,7 +842,10 @@ def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> l
 
     c = refuted_speed(x, fs, rpm_used / 60.0)
     if c is None:
-        return []
+        from bearingsim.signal.contact_angle import hz_given_as_rpm, hz_warning
+
+        h = hz_given_as_rpm(x, fs, rpm_used / 60.0)  # a speed in Hz typed for --rpm
+        return [hz_warning(rpm_used, h)] if h is not None else []
     own = 60.0 * c.shaft_hz
     return [
         f"rpm = {rpm_used:g} r/min: the record's shaft harmonics put its speed at {own:.6g} "

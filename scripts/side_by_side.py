@@ -88,6 +88,13 @@ def main() -> int:
         help="replace the identified rig's direct gain (1: output-only identification; 0: the "
         "sensor sees the identified modes only); --model-gain then scales it with the modes",
     )
+    ap.add_argument(
+        "--band",
+        choices=["own", "measured"],
+        default="own",
+        help="where each signal's envelope (fault line, prominence) is taken: own: each "
+        "signal's own fast-kurtogram band; measured: both in the measured record's",
+    )
     ap.add_argument("--data", type=Path, default=DATA)
     ap.add_argument("--json", type=Path, default=None, help="also write the rows as JSON")
     ap.add_argument(
@@ -179,6 +186,7 @@ def main() -> int:
                 model=a.model,
                 duration_s=a.duration_s,
                 realism=realism,
+                band=a.band,
             )
         except ConfigError as exc:
             out.append(base | {"status": f"error: {exc}"})

@@ -740,3 +740,43 @@ def test_a_ball_fault_whose_cage_sideband_lies_on_bpfo_reads_ball(run_cli, tmp_p
     (whole records, halves, quarters)."""
     d = _ball_fault_verdict(run_cli, tmp_path, "vsm", "1772", "0")
     assert d["diagnosis"] == "ball" and d["confidence"] > 0.9, (d["diagnosis"], d["why"])
+
+
+def test_a_speed_in_hz_given_as_rpm_is_warned_not_refused(tmp_path, run_cli):
+    """Exploratory testing (twenty-fifth session): a speed in Hz typed where r/min is asked
+    (29.1 for 1746 r/min) passed every check and the lines were searched at 0.485 Hz. Ten
+    shaft harmonics at 29.1 Hz in noise: :func:`hz_given_as_rpm` finds them at 29.1 "r/min"
+    and says so, not at the true 1746 r/min, nor in noise, nor where the speed given has its
+    own comb beside the one at 60 times it (a gearbox output at 1/60 of a motor is a real
+    machine: a warning, never a refusal; below ~1 Hz a 10 s record cannot show a comb).
+    ``analyze --rpm 29.1`` on record 107 written without its speed notes it (text and JSON);
+    the same record at its speed does not."""
+    from bearingsim.io.signal import read_signal
+    from bearingsim.signal.contact_angle import hz_given_as_rpm, hz_warning
+
+    fs, f = 12000.0, 29.1
+    t = np.arange(int(10 * fs)) / fs
+    rng = np.random.default_rng(3)
+    noise = rng.standard_normal(t.size)
+    shaft = sum(0.05 * np.sin(2 * np.pi * k * f * t + k) for k in range(1, 11))
+    c = hz_given_as_rpm(noise + shaft, fs, f / 60.0)
+    assert c is not None and abs(c.shaft_hz / f - 1.0) < 2e-3 and c.gain_db >= 10.0
+    text = hz_warning(f, c)
+    assert "reads like the speed in Hz" in text and f"({60 * c.shaft_hz:.5g} r/min)" in text
+    assert hz_given_as_rpm(noise + shaft, fs, f) is None  # the true speed: 60 f above Nyquist/3
+    assert hz_given_as_rpm(noise, fs, f / 60.0) is None
+    # a 300 r/min shaft whose own comb stands beside a comb at 300 Hz (a gear's): not warned
+    own = sum(0.05 * np.sin(2 * np.pi * k * 5.0 * t + k) for k in range(1, 11))
+    gear = sum(0.05 * np.sin(2 * np.pi * k * 300.0 * t + k) for k in range(1, 11))
+    assert hz_given_as_rpm(noise + gear, fs, 5.0) is not None
+    assert hz_given_as_rpm(noise + gear + own, fs, 5.0) is None
+    rec = read_signal(cwru_record("107"), channel="DE")
+    csv = tmp_path / "mine.csv"
+    np.savetxt(csv, np.c_[np.arange(rec.x.size) / rec.fs, rec.x], delimiter=",",
+               header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    r = run_cli("analyze", str(csv), "--rpm", "29.1")
+    assert r.code == 0 and "note: rpm = 29.1 r/min reads like the speed in Hz" in r.out
+    d = run_cli("analyze", str(csv), "--rpm", "29.1", "--json").json()
+    assert any("reads like the speed in Hz" in n for n in d["notes"])
+    d = run_cli("analyze", str(csv), "--rpm", "1748", "--json").json()
+    assert not any("speed in Hz" in n for n in d["notes"]) and d["diagnosis"] == "inner"

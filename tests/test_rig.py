@@ -3,6 +3,7 @@ sensor noise applied to a model's output; rig files validated with one-line erro
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from dataclasses import replace
@@ -1079,3 +1080,24 @@ def test_a_ring_model_without_its_own_path_through_a_rig_with_anothers_is_warned
         warnings.simplefilter("error", RigGainWarning)
         apply_rig(simulate(dict(sc, model="dem", rig="cwru-de-12k")), dem, channel="s2")
         apply_rig(res, base, channel="s2")
+
+
+def test_a_rig_bearing_built_in_code_is_checked_as_a_files_table():
+    """``RigBearing(...)`` built in code validated nothing (twenty-fifth session's note): a
+    zero element diameter passed and divided by zero in ``same_size``. It now takes the
+    ``[bearing]`` table's checks, one line each naming the field."""
+    from bearingsim.rig import RigBearing
+
+    ok = RigBearing(" mine ", 9.0, 0.039, 0.0079)
+    assert (ok.id, ok.n_elements) == ("mine", 9) and isinstance(ok.n_elements, int)
+    for args, field in (
+        (("", 9, 0.039, 0.0079), "bearing.id = ''"),
+        (("x", 2, 0.039, 0.0079), "bearing.n_elements = 2"),
+        (("x", True, 0.039, 0.0079), "bearing.n_elements = True"),
+        (("x", 9, float("nan"), 0.0079), "bearing.pitch_diameter_m = nan"),
+        (("x", 9, 0.039, 0.0), "bearing.element_diameter_m = 0 m"),
+        (("x", 9, 0.039, 0.02), "bearing.element_diameter_m = 0.02 m"),  # balls overlap
+    ):
+        with pytest.raises(ConfigError, match=re.escape(field)) as e:
+            RigBearing(*args)
+        assert "\n" not in str(e.value) and "valid" in str(e.value)

@@ -939,3 +939,55 @@ def test_a_conditions_rows_speed_is_judged_by_its_records_speed_column(tmp_path)
                 "speed column holds 1500 r/min; valid: a speed it holds (or an empty rpm, to "
                 "take its median)\n"
             ), r.stderr
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_a_conditions_rows_speed_serves_a_record_without_one(tmp_path):
+    """Exploratory testing (twenty-fifth session): a --conditions row's ``rpm`` for a record
+    without a speed of its own reached the model gain only: the rig still warned "no shaft
+    speed", got no shaft-order tones and no ``rpm_range``; and a row typed in Hz (29.1 for
+    1748 r/min) was taken silently. Record 107's first 3 s written without its speed: the row's
+    1748 r/min now gives the tones and the range, unwarned; 29.1 is warned, naming the line
+    (a warning: a slow shaft may have a comb at 60 times its speed), as ``--rpm 29.1`` is; a
+    healthy row's rpm is read (and checked) too."""
+    from bearingsim.cli.rig import _user_conditions
+
+    rec = read_signal(CWRU / "12k_Drive_End_IR007_2_107.mat", channel="DE")
+    n = int(3 * rec.fs)
+    np.savetxt(tmp_path / "mine.csv", np.c_[np.arange(n) / rec.fs, rec.x[:n]], delimiter=",",
+               header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    (tmp_path / "ok.csv").write_text(
+        "file,fault,bearing,defect_width_m,rpm\nmine.csv,inner,6205-cwru,1.778e-4,1748\n"
+    )
+    r = _cli("rig", "identify", "mine.csv", "--name", "m", "--model-gain", "vsm",
+             "--conditions", "ok.csv", "-o", "m.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0 and "no shaft speed" not in r.stderr, r.stderr
+    rig = load_rig(tmp_path / "m.toml")
+    assert rig.rpm_range == (1748.0, 1748.0) and len(rig.tones) >= 1
+    r = _cli("rig", "identify", "mine.csv", "--name", "m", "-o", "h.toml", cwd=tmp_path)
+    assert r.returncode == 0 and "warning: no shaft speed for mine.csv" in r.stderr
+    assert load_rig(tmp_path / "h.toml").rpm_range is None
+    r = _cli("rig", "identify", "mine.csv", "--name", "m", "--rpm", "29.1", "-o", "h.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "warning: mine.csv: rpm = 29.1 r/min reads like the speed in Hz" in r.stderr
+    (tmp_path / "hz.csv").write_text(
+        "file,fault,bearing,defect_width_m,rpm\nmine.csv,inner,6205-cwru,1.778e-4,29.1\n"
+    )
+    recs = [read_signal(tmp_path / "mine.csv")]
+    warned: list[str] = []
+    (pair,) = _user_conditions(str(tmp_path / "hz.csv"), ("mine.csv",), recs, ("vsm",), {},
+                               warned)  # fmt: skip
+    assert pair[0].rpm == 29.1 and recs[0].rpm == 29.1  # taken, as written
+    assert len(warned) == 1 and warned[0].startswith(
+        f"warning: --conditions {tmp_path / 'hz.csv'}, line 2: mine.csv: rpm = 29.1 r/min "
+        "reads like the speed in Hz"
+    ), warned
+    (tmp_path / "none.csv").write_text(
+        "file,fault,bearing,defect_width_m,rpm\nmine.csv,none,,,fast\n"
+    )
+    r = _cli("rig", "identify", "mine.csv", "--name", "m", "--model-gain", "vsm",
+             "--conditions", "none.csv", "-o", "n.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and r.stderr == (
+        "error: --conditions none.csv, line 2: rpm = 'fast' is not a number\n"
+    ), r.stderr

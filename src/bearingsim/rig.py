@@ -201,12 +201,25 @@ class RigBearing:
 
     KEYS = ("id", "n_elements", "pitch_diameter_m", "element_diameter_m")
 
+    def __post_init__(self) -> None:
+        # a RigBearing built in code is checked as a file's [bearing] table is (twenty-sixth
+        # session: it validated nothing, and a zero diameter divided by zero in same_size)
+        bid, n, pd, ed = self._checked({k: getattr(self, k) for k in self.KEYS}, "bearing")
+        for k, v in zip(self.KEYS, (bid, n, pd, ed), strict=True):
+            object.__setattr__(self, k, v)
+
     @classmethod
     def from_dict(cls, d: Any, where: str = "bearing") -> RigBearing:
         """Build and validate from the ``[bearing]`` table (one-line errors)."""
+        d = _keys(d, cls.KEYS, where, required=cls.KEYS)
+        return cls(*cls._checked(d, where))
+
+    @staticmethod
+    def _checked(d: dict, where: str) -> tuple[str, int, float, float]:
+        """The checked ``(id, n_elements, pitch_diameter_m, element_diameter_m)`` of ``d``,
+        each error naming ``where``."""
         from .geometry import PITCH_DIAMETER_RANGE, Z_MAX
 
-        d = _keys(d, cls.KEYS, where, required=cls.KEYS)
         bid = d["id"]
         if not isinstance(bid, str) or not bid.strip() or not bid.isprintable():
             raise ConfigError(f"{where}.id = {bid!r} is invalid; valid: printable text")
@@ -227,7 +240,7 @@ class RigBearing:
         top = pd * math.sin(math.pi / n)
         ed = check_range(f"{where}.element_diameter_m", d["element_diameter_m"], 0.0, top,
                          lo_open=True, hi_open=True, unit="m")  # fmt: skip
-        return cls(bid.strip(), n, pd, ed)
+        return bid.strip(), n, pd, ed
 
     @classmethod
     def of(cls, bearing: Any) -> RigBearing:
@@ -1109,8 +1122,8 @@ def bearing_note(r: Rig, run: dict | None) -> str | None:
 
         own = RigBearing.of(get_bearing(r.bearing))
     try:
-        theirs = RigBearing(
-            run.get("id") or "",
+        theirs = RigBearing(  # a run's bearing of no id is still compared by its sizes
+            run.get("id") or "(no id)",
             int(run["n_elements"]),
             float(run["pitch_diameter"]),
             float(run["element_diameter"]),

@@ -86,9 +86,15 @@ class SignalMetrics:
     band_hi_hz: float  #: high edge [Hz]
 
 
-def signal_metrics(x: NDArray[np.float64], fs: float, fault_hz: float) -> SignalMetrics:
+def signal_metrics(
+    x: NDArray[np.float64],
+    fs: float,
+    fault_hz: float,
+    band: tuple[float, float] | None = None,
+) -> SignalMetrics:
     """:class:`SignalMetrics` of ``x`` [m/s^2] sampled at ``fs`` [Hz] for the fault frequency
-    ``fault_hz`` [Hz] (the envelope-spectrum maximum within +/- 2 % of it)."""
+    ``fault_hz`` [Hz] (the envelope-spectrum maximum within +/- 2 % of it), its envelope taken
+    in ``band`` [Hz] (low, high), or by default in the signal's own fast-kurtogram band."""
     from scipy.stats import kurtosis
 
     from .signal.envelope import envelope_spectrum
@@ -97,8 +103,10 @@ def signal_metrics(x: NDArray[np.float64], fs: float, fault_hz: float) -> Signal
     a = np.asarray(x, dtype=float)
     a = a - a.mean()
     rms = float(np.sqrt(np.mean(a * a)))
-    k = fast_kurtogram(a, fs, min_bandwidth_hz=max(4.0 * fault_hz, 200.0))
-    lo, hi = k.band
+    if band is None:
+        lo, hi = fast_kurtogram(a, fs, min_bandwidth_hz=max(4.0 * fault_hz, 200.0)).band
+    else:
+        lo, hi = (float(b) for b in band)
     spec = envelope_spectrum(a, fs, (lo, hi))
     f, amp = spec.freq, spec.amplitude
     w = (f >= 0.98 * fault_hz) & (f <= 1.02 * fault_hz)
@@ -225,6 +233,7 @@ def side_by_side(
     duration_s: float = 2.0,
     seed: int = 0,
     realism: dict | None = None,
+    band: str = "own",
 ) -> dict:
     """Simulate the condition of a CWRU fault record, pass it through ``rig`` and set the
     numbers of both side by side.
@@ -245,6 +254,11 @@ def side_by_side(
     realism : dict, optional
         Scenario keys replacing those of :data:`REALISM` (``slip_percent`` [%],
         ``defect_profile``, ``contact_roughness_m`` [m]).
+    band : {"own", "measured"}
+        Where each signal's envelope is taken (the fault line and its prominence): ``own``,
+        each signal's own fast-kurtogram band (the default, the tables of
+        docs/validation.md); ``measured``, both in the measured record's (one band for both:
+        the simulation judged where the record rings).
 
     Returns
     -------
@@ -255,6 +269,8 @@ def side_by_side(
         (simulated / measured; prominence as the difference in dB). The signals themselves
         are :func:`simulate_record`'s.
     """
+    if band not in ("own", "measured"):
+        raise ConfigError(f"band = {band!r} is invalid; valid: own, measured")
     c = simulate_record(
         record,
         rig,
@@ -264,7 +280,8 @@ def side_by_side(
         realism=realism,
     )
     m_meas = signal_metrics(c["measured"], c["fs_hz"], c["fault_hz"])
-    m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"])
+    common = (m_meas.band_lo_hz, m_meas.band_hi_hz) if band == "measured" else None
+    m_sim = signal_metrics(c["simulated"], c["fs_hz"], c["fault_hz"], band=common)
     ratio = ratios(m_meas, m_sim)
     return {
         # the signals stay out (the rig's background too: a whole record, not JSON-ready)

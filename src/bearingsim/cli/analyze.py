@@ -7,6 +7,7 @@ import csv
 import functools
 import io
 import math
+import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -305,6 +306,11 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
+    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
+        from ..signal.contact_angle import hz_given_as_rpm, hz_warning
+
+        if (c := hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
+            out["rpm_warning"] = hz_warning(rec.rpm, c)  # a speed in Hz typed for --rpm
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
@@ -313,9 +319,10 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 
 def _result_notes(out: dict[str, Any]) -> list[str]:
     """The notes about a simulated result, from what its reader recorded (``antialiased``,
-    ``noise_free``, ``rpm_file``, ``bearing_file``: keys of the file's output): added to
-    ``notes`` and printed by the text output."""
-    notes = []
+    ``noise_free``, ``rpm_file``, ``bearing_file``: keys of the file's output), and a --rpm
+    that reads like a speed in Hz (``rpm_warning``): added to ``notes`` and printed by the
+    text output."""
+    notes = [out["rpm_warning"]] if out.get("rpm_warning") else []
     if out.get("antialiased") is False:
         notes.append(ALIASING_NOTE)
     if out.get("noise_free"):
@@ -429,10 +436,17 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
                 f"  note: the line lies {100 * abs(ca['order'] / ca['order_alpha0'] - 1):.2f} % "
                 "on the far side of its alpha = 0 order (speed or line precision): read as 0 deg"
             )
-    for p in out["peaks"]:
-        if p["detected"]:
-            at = "" if orders else f"{p['freq_hz']:9.2f} Hz  "  # freq_hz is an order there
-            click.echo(f"  {p['label']:<12} {at}order {p['order']:7.3f}  SNR {p['snr_db']:5.1f} dB")
+    shown = [p for p in out["peaks"] if p["detected"]]
+    for p in shown:
+        at = "" if orders else f"{p['freq_hz']:9.2f} Hz  "  # freq_hz is an order there
+        click.echo(f"  {p['label']:<12} {at}order {p['order']:7.3f}  SNR {p['snr_db']:5.1f} dB")
+    # the labels' grammar where a higher sideband stands beside a harmonic's first one
+    # (BPFI-2xfr beside 2xBPFI-fr read alike; twenty-fifth session's note)
+    if any(re.search(r"[+-]\d+x", p["label"]) for p in shown):
+        click.echo(
+            "  (labels: 2xBPFI-fr = 2 x BPFI - fr, a harmonic's first sideband; BPFI-2xfr = "
+            'BPFI - 2 fr, a second sideband; docs/cli.md, "Line labels")'
+        )
 
 
 def _csv_row(out: dict[str, Any]) -> list[Any]:

@@ -168,9 +168,10 @@ def identify_cmd(
         seen[key] = p
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
+    speed_warnings: list[str] = []  # printed after the rig is written
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
         from ..io.signal import column_speed_refutes, speed_span_text
-        from ..signal.contact_angle import refuted_speed
+        from ..signal.contact_angle import hz_given_as_rpm, hz_warning, refuted_speed
 
         for r in recs:
             # a speed column: --rpm would override it unseen (analyze's rule, load_signal)
@@ -188,8 +189,8 @@ def identify_cmd(
                     f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} %); valid: the "
                     "records' speed (or no --rpm, to take each file's)"
                 )
-    # printed after the rig is written: a run that ends in an error prints the error alone
-    unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]
+            if r.speed_hz is None and (c := hz_given_as_rpm(r.x, r.fs, rpm / 60.0)):
+                speed_warnings.append(f"warning: {Path(r.source).name}: {hz_warning(rpm, c)}")
     faulty: list[Path] = []
     user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
     if conditions is not None and not model_gains:
@@ -205,7 +206,7 @@ def identify_cmd(
         )
     if conditions is not None:
         realism = {"defect_profile": defect_profile} if defect_profile else {}
-        user = _user_conditions(conditions, records, recs, model_gains, realism)
+        user = _user_conditions(conditions, records, recs, model_gains, realism, speed_warnings)
         named = {  # a bearing file the CSV names is an input too
             Path(c["bearing_file"]).resolve(): c["bearing_file"]
             for _r, c in user
@@ -238,6 +239,9 @@ def identify_cmd(
                 "inner-race or ball fault record (a model gain is matched to a fault's power; "
                 "healthy records are skipped)"
             )
+    # printed after the rig is written: a run that ends in an error prints the error alone
+    # (after --conditions, whose rows give a speed to records without one)
+    unknown = [Path(r.source).name for r in recs if r.rpm is None and r.speed_hz is None]
     how = "model_path_scale" if gain_method == "power" else "model_path_fit"
     # the exact command, as typed (run from the folder it names its files relative to)
     command = "bearingsim rig identify " + " ".join(shlex.quote(a) for a in sys.argv[3:])
@@ -296,12 +300,16 @@ def identify_cmd(
         save_figure(ir.plot(rig), plot)
     if unknown:
         click.echo(
-            f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file): "
+            f"warning: no shaft speed for {', '.join(unknown)} (no --rpm, no rpm in the file"
+            + (" or in its --conditions row" if conditions else "")
+            + "): "
             "the rig got no shaft-order tones from them",
             err=True,
         )
     if no_bearing:
         click.echo(no_bearing, err=True)
+    for w in speed_warnings:
+        click.echo(w, err=True)
     out = {
         "output": str(output),
         "name": name,
@@ -400,16 +408,24 @@ _COND_OPTIONAL = ("defect_depth_m", "rpm")
 
 
 def _user_conditions(
-    path: str, records: tuple[str, ...], recs: list, models: tuple[str, ...], realism: dict
+    path: str,
+    records: tuple[str, ...],
+    recs: list,
+    models: tuple[str, ...],
+    realism: dict,
+    warnings_out: list[str],
 ):
     """The (record, condition) pairs of the fault records for a model gain on a user's own
     records, read from the --conditions CSV and checked before any work (one-line errors):
-    every record listed once by file name, a known fault and bearing, positive sizes."""
+    every record listed once by file name, a known fault and bearing, positive sizes. A row's
+    speed becomes its record's where the record has none (``recs`` is updated in place: the
+    rig's tones and ``rpm_range`` take it); warnings are appended to ``warnings_out``."""
     import csv
 
     from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
     from ..rig_identify import _record_rpm
     from ..side_by_side import FAULT_FAMILIES
+    from ..signal.contact_angle import hz_given_as_rpm, hz_warning, refuted_speed
 
     if "rotor" in models:
         raise ConfigError(
@@ -463,13 +479,14 @@ def _user_conditions(
             )
         cond: dict = {"fault": fault}
         try:
-            if fault != "none":
-                cond.update(_condition_values(row, path))
+            # a healthy row's speed is read too: the rig's tones and rpm_range take it
+            cond.update(_condition_values(row, path) if fault != "none"
+                        else _row_numbers(row, ("rpm",)))  # fmt: skip
         except ConfigError as exc:
             raise ConfigError(f"--conditions {path}, line {i}: {exc}") from None
         by_name[name] = cond
     pairs = []
-    for p, rec in zip(records, recs, strict=True):
+    for i, (p, rec) in enumerate(zip(records, recs, strict=True)):
         cond = by_name.get(Path(p).name)
         if cond is None:
             listed = ", ".join(repr(n) for n in list(by_name)[:5]) + (
@@ -497,6 +514,27 @@ def _user_conditions(
                 f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose own speed "
                 f"is {own:.6g} r/min; valid: the record's speed (or an empty rpm, to take it)"
             )
+        elif (
+            "rpm" in cond
+            and own is None
+            and (c := refuted_speed(rec.x, rec.fs, cond["rpm"] / 60.0))
+        ):
+            # a record without a speed of its own: its shaft lines, as they refute --rpm
+            # (exploratory testing, twenty-fifth session: a row in Hz, 29.1 for 1746 r/min,
+            # was accepted and moved the gain 250-fold; the Hz case is warned below)
+            raise ConfigError(
+                f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose shaft "
+                f"harmonics put its speed at {60.0 * c.shaft_hz:.6g} r/min; valid: the record's "
+                "speed (or an empty rpm, where it has none of its own)"
+            )
+        elif (
+            "rpm" in cond
+            and own is None
+            and (c := hz_given_as_rpm(rec.x, rec.fs, cond["rpm"] / 60.0))
+        ):
+            warnings_out.append(f"warning: {where}: {Path(p).name}: {hz_warning(cond['rpm'], c)}")
+        if own is None and "rpm" in cond:  # the row's speed is the record's (tones, rpm_range)
+            rec = recs[i] = replace(rec, rpm=cond["rpm"], info={**rec.info, "rpm_source": where})
         if cond["fault"] != "none":
             _check_condition(cond, own, rec, models, realism, where)
             pairs.append((rec, cond))
@@ -569,10 +607,27 @@ def _check_condition(cond: dict, own: float | None, rec, models, realism: dict, 
             raise ConfigError(f"{where}: {' '.join(str(exc).split())}") from None
 
 
+def _row_numbers(row: dict, keys: tuple[str, ...], required: str | None = None) -> dict:
+    """The positive numbers of a --conditions row's columns ``keys`` that it gives (``required``
+    also when empty, as an error), one-line errors."""
+    from ..errors import check_range
+
+    out: dict = {}
+    for key in keys:
+        text = (row.get(key) or "").strip()
+        if key != required and not text:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            raise ConfigError(f"{key} = {text!r} is not a number") from None
+        out[key] = check_range(key, value, 0.0, lo_open=True)
+    return out
+
+
 def _condition_values(row: dict, path: str) -> dict:
     """The bearing and sizes of one fault row of a --conditions CSV (one-line errors)."""
     from ..catalog import get_bearing, load_bearing_file
-    from ..errors import check_range
 
     cond: dict = {}
     b = (row["bearing"] or "").strip()
@@ -582,16 +637,7 @@ def _condition_values(row: dict, path: str) -> dict:
         cond["bearing_file"] = str(f)
     else:
         cond["bearing"] = get_bearing(b).id
-    for key in ("defect_width_m",) + _COND_OPTIONAL:
-        text = (row.get(key) or "").strip()
-        if key != "defect_width_m" and not text:
-            continue
-        try:
-            value = float(text)
-        except ValueError:
-            raise ConfigError(f"{key} = {text!r} is not a number") from None
-        cond[key] = check_range(key, value, 0.0, lo_open=True)
-    return cond
+    return cond | _row_numbers(row, ("defect_width_m",) + _COND_OPTIONAL, "defect_width_m")
 
 
 def _channel(records: tuple[str, ...], channel: str | None) -> str | None:
