@@ -719,7 +719,13 @@ def predict(clf, files, rpm: float | None = None, *, channel=None, fs_hz=None, b
             _check_length(x, fs, rpm_used, bearing_used)
             warn = (
                 _length_warning(x, fs)
-                + _speed_warning(x, fs, rpm_used, rpm if rpm is not None else _named(source))
+                + _speed_warning(
+                    x,
+                    fs,
+                    rpm_used,
+                    rpm if rpm is not None else _named(source),
+                    info.get("rpm_file"),
+                )  # fmt: skip
                 + _rate_warning(fs)
                 + _bearing_warning(p, info["bearing_source"], bearing_used)
                 + _override_warning(info, bearing_used)
@@ -831,7 +837,9 @@ def _named(source: str) -> float | None:
     return 1.0 if source.startswith("name") else None
 
 
-def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> list[str]:
+def _speed_warning(
+    x, fs: float, rpm_used: float, rpm_option: float | None, stated: float | None = None
+) -> list[str]:
     """A warning when a speed given (``--rpm``, or the nominal speed of a name: ``rpm_option``
     not None) is refuted by the record's own shaft harmonics
     (:func:`bearingsim.signal.contact_angle.refuted_speed`): the features read the fault lines
@@ -840,7 +848,8 @@ def _speed_warning(x, fs: float, rpm_used: float, rpm_option: float | None) -> l
         return []
     from bearingsim.signal.contact_angle import refuted_speed
 
-    c = refuted_speed(x, fs, rpm_used / 60.0)
+    c = refuted_speed(x, fs, rpm_used / 60.0,
+                      stated_hz=None if stated is None else stated / 60.0)  # fmt: skip
     if c is None:
         from bearingsim.signal.contact_angle import hz_given_as_rpm, hz_warning
 

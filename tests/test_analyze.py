@@ -780,3 +780,43 @@ def test_a_speed_in_hz_given_as_rpm_is_warned_not_refused(tmp_path, run_cli):
     assert any("reads like the speed in Hz" in n for n in d["notes"])
     d = run_cli("analyze", str(csv), "--rpm", "1748", "--json").json()
     assert not any("speed in Hz" in n for n in d["notes"]) and d["diagnosis"] == "inner"
+
+
+def test_a_rpm_far_from_the_files_own_is_refuted_by_its_shaft_lines(run_cli):
+    """Exploratory testing (twenty-sixth session): ``analyze`` of record 107 (inner race, its
+    file's X107RPM 1748) at ``--rpm 2000`` read "ball" at p 0.996, unwarned: the shaft-comb
+    check searched ±5 % of the speed given only. The comb near the speed the file states now
+    counts too: 1000-3000 r/min read "uncertain", naming the record's 1747 r/min (3000 had
+    been said to run at 3147, a comb of harmonics' multiples); a speed within the line
+    search's 1 % is the file's. The override's note says the file states the speed (it said
+    "the result was simulated at" for a measured record)."""
+    for rpm in (1000, 2000, 3000):
+        d = run_cli("analyze", cwru_record("107"), "--rpm", rpm, "--json").json()
+        assert d["diagnosis"] == "uncertain" and d["confidence"] == 0.0, (rpm, d["diagnosis"])
+        assert "put the speed at 1747" in d["why"], d["why"]
+        assert any("overrides the 1748 r/min the record's file states" in n for n in d["notes"])
+    d = run_cli("analyze", cwru_record("107"), "--rpm", 1755, "--json").json()
+    assert d["diagnosis"] == "inner" and not d["why"]
+
+
+def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_cli, tmp_path):
+    """Exploratory testing (twenty-fifth session): ball faults at 300-600 r/min on 1 s records
+    read "none" or "uncertain" without a word. A ball fault's lines are told by their cage
+    sidebands: VSM ball faults through ``cwru-de-12k`` read "ball" from 6 cage revolutions
+    (900 r/min 1 s; 600 r/min 2 s; 300 r/min 4 s; seeds 0 and 1), not at 4 or fewer. A
+    "none" or "uncertain" on fewer than :data:`MIN_CAGE_REVOLUTIONS` says a ball fault is not
+    ruled out (text and JSON); a verdict on enough of them, or a fault found, says nothing."""
+    from bearingsim.cli.analyze import MIN_CAGE_REVOLUTIONS
+
+    d = _ball_fault_verdict(run_cli, tmp_path, "vsm", "300", "0")
+    assert d["diagnosis"] in ("none", "uncertain"), d["diagnosis"]
+    ftf_order = 0.5 * (1 - 7.94 / 39.04)  # 6205-cwru: FTF = f_s/2 (1 - d/D), alpha = 0
+    assert d["cage_revolutions"] == pytest.approx(5.0 * ftf_order, rel=0.01)
+    assert d["cage_revolutions"] < MIN_CAGE_REVOLUTIONS == 6.0
+    assert any("cage revolutions" in n and "not ruled out" in n for n in d["notes"])
+    r = run_cli("analyze", str(tmp_path / "b.nc"))
+    assert "note: the record holds 2 cage revolutions, fewer than the 6" in r.out, r.out
+    d = _ball_fault_verdict(run_cli, tmp_path, "vsm", "900", "0")  # 6 revolutions: "ball"
+    assert d["diagnosis"] == "ball" and "cage_revolutions" not in d
+    d = run_cli("analyze", cwru_record("97"), "--json").json()  # healthy, 10 s at 1797
+    assert d["diagnosis"] == "none" and "cage_revolutions" not in d

@@ -329,7 +329,7 @@ def test_a_bearing_option_the_model_does_not_take_is_named_as_given(run_cli, tmp
     r = run_cli("simulate", "--model", "rotor", "--bearing", "6206", "--duration-s", "0.01",
                 "-o", out)  # fmt: skip
     assert r.code == 2 and r.err.startswith(
-        "error: options: unknown key 'bearing' (a key of model vsm/dem/tvsm); this model's "
+        "error: options: unknown key 'bearing' (a key of model vsm/dem/tvsm/ias); this model's "
         "bearings are de_bearing and fe_bearing; valid keys: model, de_bearing, "
     ), r.err
     r = run_cli("simulate", "--model", "vsm", "--bearing", "NU204-ECP", "--duration-s", "0.01",

@@ -991,3 +991,25 @@ def test_a_conditions_rows_speed_serves_a_record_without_one(tmp_path):
     assert r.returncode == 2 and r.stderr == (
         "error: --conditions none.csv, line 2: rpm = 'fast' is not a number\n"
     ), r.stderr
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_identify_refuses_a_rpm_far_from_the_files_own(tmp_path):
+    """Exploratory testing (twenty-sixth session): ``rig identify`` of record 107 (X107RPM
+    1748) took ``--rpm`` 1000-2500 and wrote a rig whose tones and ``rpm_range`` sat at that
+    speed, while 1797 was refused: the shaft-comb check searched ±5 % of the speed given.
+    The comb near the file's speed refutes 2000 now, in one line, writing nothing; a record
+    whose shaft lines cannot tell (174, none stand out) is warned that the speed overrides
+    its file's."""
+    r = _cli("rig", "identify", str(CWRU / "12k_Drive_End_IR007_2_107.mat"), "--name", "a",
+             "--rpm", "2000", "-o", "a.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and r.stderr.startswith(
+        "error: rpm = 2000 r/min: the shaft harmonics of '12k_Drive_End_IR007_2_107.mat' put "
+        "its speed at 1747"
+    ), r.stderr
+    assert r.stderr.count("\n") == 1 and not (tmp_path / "a.toml").exists()
+    r = _cli("rig", "identify", str(CWRU / "48k_Drive_End_IR014_0_174.mat"), "--name", "b",
+             "--rpm", "1900", "-o", "b.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "warning: 48k_Drive_End_IR014_0_174.mat: rpm = 1900 r/min overrides the 1796 r/min" \
+        in r.stderr, r.stderr  # fmt: skip

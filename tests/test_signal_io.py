@@ -207,7 +207,8 @@ def test_read_signal_cwru_mat(tmp_path):
     assert_allclose(rec.x, np.arange(64.0) * G0, rtol=1e-15, err_msg="g -> m/s^2")
     fe = read_signal(_cwru_file(tmp_path, "r.mat"), channel="fe", fs_hz=48000.0, rpm=1750.0)
     assert fe.channel == "FE" and fe.fs == 48000.0 and fe.rpm == 1750.0
-    assert fe.info == {"rpm_source": "option", "fs_source": "option"}
+    # the file's own X###RPM, which the option overrode (analyze and rig identify judge it)
+    assert fe.info == {"rpm_source": "option", "fs_source": "option", "rpm_file": 1797.0}
     # no rate in the name: read off the shaft lines (io.cwru.infer_cwru_fs); a ramp has none
     with pytest.raises(ConfigError, match=r"cannot be told from its shaft lines.*--fs-hz"):
         read_signal(_cwru_file(tmp_path, "d.mat"))

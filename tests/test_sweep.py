@@ -761,3 +761,23 @@ def test_a_sweeps_rig_gives_its_rate_from_a_base_file_and_beside_the_sweep_file(
         {"base": {"model": "vsm", "duration_s": 0.1, "rig": "cwru-de-12k"}}, origin="x"
     )
     assert spec.scenario(0).fs_hz == 12000.0
+
+
+def test_a_sweep_run_records_the_rate_its_rig_chose_as_the_cli_run_does(client, tmp_path):
+    """Exploratory testing (twenty-sixth session): a sweep run whose rate its rig chose did
+    not record ``fs_hz`` among its defaults (the tasks carried the rate as a number, so the
+    worker took it as set), unlike ``simulate`` of the same scenario; docs/sweeps.md says
+    the rate is recorded. The arrays were and are the same."""
+    spec = SweepSpec.from_dict(
+        {
+            "base": {"model": "vsm", "fault": "ball", "duration_s": 0.05, "rig": "cwru-de-12k"},
+            "axes": {"seed": [1]},
+        },
+        origin="r.toml",
+    )
+    out = tmp_path / "r.zarr"
+    assert run_sweep(spec, out, client=client).n_ok == 1
+    r, s = open_dataset(out).result(0), simulate(spec.scenario(0))
+    assert s.meta["defaults"]["keys"]["fs_hz"] == 12000.0
+    assert r.meta["defaults"] == s.meta["defaults"]
+    assert_array_equal(r["acc_sensor"], s["acc_sensor"])

@@ -460,8 +460,8 @@ class Scenario:
                 # given; exploratory testing, twenty-fourth session)
                 k = next((u for u in unknown if data[u] is not None), unknown[0])
                 other = [f for f in _FAMILIES if k in f.KEYS]
-                where = (
-                    f" (a key of model {'/'.join(m.value for m in other[0].MODELS)})"
+                where = (  # every family that has it (rig: the ring models' and the rotor's)
+                    f" (a key of model {'/'.join(m.value for f in other for m in f.MODELS)})"
                     if other
                     else ""
                 )

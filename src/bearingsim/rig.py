@@ -1218,8 +1218,8 @@ def _warn_gain_profile(mg: ModelGain, rig_name: str, meta: dict) -> None:
 
 
 #: share of the output's Nyquist frequency below which a rig's background table may end
-#: before :func:`apply_rig` warns [-] (the shipped 12 kHz profiles end at 5.4 kHz, 0.9 of
-#: their records' Nyquist frequency)
+#: before :func:`apply_rig` warns [-] (the shipped 12 kHz profiles' tables reach their
+#: records' Nyquist frequency, 6 kHz, since the nineteenth session: a warning above 24 kHz)
 COVERAGE_WARN = 0.5
 
 

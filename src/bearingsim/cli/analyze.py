@@ -53,10 +53,30 @@ NOISE_FREE_NOTE = (
 SPEED_NOTE_REL = 0.01
 
 
-def speed_note(rpm: float, own: float) -> str:
-    """The note of a --rpm [r/min] that overrides a result simulated at ``own`` [r/min]."""
+#: fewest cage revolutions a record holds for its "none" or "uncertain" to rule out a ball
+#: fault [-]: VSM ball faults (6205, through cwru-de-12k, seeds 0 and 1) read "ball" from 6
+#: cage revolutions (900 r/min 1 s, 600 r/min 2 s, 300 r/min 4 s) and "none" or "uncertain"
+#: at 4 or fewer (300 r/min 1-2 s, 600 r/min 1 s): a ball fault's lines are told by their
+#: cage-rate sidebands (twenty-sixth session; docs/validation.md "Simulations through the
+#: rig, diagnosed")
+MIN_CAGE_REVOLUTIONS = 6.0
+
+
+def cage_note(revolutions: float) -> str:
+    """The note of a "none" or "uncertain" on a record of ``revolutions`` [-] cage turns."""
     return (
-        f"rpm = {rpm:g} r/min overrides the {own:g} r/min the result was simulated at "
+        f"the record holds {revolutions:.2g} cage revolutions, fewer than the "
+        f"{MIN_CAGE_REVOLUTIONS:g} from which simulated ball faults read 'ball': a ball fault "
+        "is not ruled out (a longer record can tell)"
+    )
+
+
+def speed_note(rpm: float, own: float, simulated: bool = True) -> str:
+    """The note of a --rpm [r/min] that overrides a result simulated at ``own`` [r/min] (or,
+    ``simulated`` False, the speed a measured record's file states)."""
+    what = "the result was simulated at" if simulated else "the record's file states"
+    return (
+        f"rpm = {rpm:g} r/min overrides the {own:g} r/min {what} "
         f"({100.0 * (rpm / own - 1.0):+.2f} %, more than the 1 % the line search allows for a "
         "speed error): the fault lines were searched at the speed given, in windows that also "
         "reach the orders of contact angles up to 20 deg, so a line may still be found off its "
@@ -306,6 +326,19 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
+    if d.diagnosis in ("none", "uncertain"):  # too short to rule a ball fault out?
+        import numpy as np
+
+        from ..geometry import characteristic_frequencies
+
+        shaft_revs = (  # the shaft turns the record spans
+            rec.rpm / 60.0 * rec.x.size / rec.fs
+            if rec.rpm is not None
+            else float(np.sum(rec.speed_hz)) / rec.fs
+        )
+        revs = shaft_revs * characteristic_frequencies(bearing, 1.0).ftf_hz
+        if revs < MIN_CAGE_REVOLUTIONS:
+            out["cage_revolutions"] = revs
     if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
         from ..signal.contact_angle import hz_given_as_rpm, hz_warning
 
@@ -319,17 +352,22 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 
 def _result_notes(out: dict[str, Any]) -> list[str]:
     """The notes about a simulated result, from what its reader recorded (``antialiased``,
-    ``noise_free``, ``rpm_file``, ``bearing_file``: keys of the file's output), and a --rpm
-    that reads like a speed in Hz (``rpm_warning``): added to ``notes`` and printed by the
-    text output."""
+    ``noise_free``, ``rpm_file``, ``bearing_file``: keys of the file's output), a --rpm that
+    reads like a speed in Hz (``rpm_warning``) and a "none" or "uncertain" on too few cage
+    revolutions (``cage_revolutions``): added to ``notes`` and printed by the text output."""
     notes = [out["rpm_warning"]] if out.get("rpm_warning") else []
+    if out.get("cage_revolutions") is not None:
+        notes.append(cage_note(out["cage_revolutions"]))
     if out.get("antialiased") is False:
         notes.append(ALIASING_NOTE)
     if out.get("noise_free"):
         notes.append(NOISE_FREE_NOTE)
     own = out.get("rpm_file")  # a result's own speed, when --rpm overrode it
     if own is not None and abs(out["rpm"] / own - 1.0) > SPEED_NOTE_REL:
-        notes.append(speed_note(out["rpm"], own))
+        from ..io.signal import RESULT_SUFFIXES
+
+        simulated = Path(out["file"]).suffix.lower() in RESULT_SUFFIXES
+        notes.append(speed_note(out["rpm"], own, simulated))
     if out.get("bearing_file"):  # a result's own bearing, when --bearing overrode it
         notes.append(bearing_note(out["bearing"], out["bearing_file"]))
     return notes

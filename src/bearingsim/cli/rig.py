@@ -32,7 +32,8 @@ def rig_group() -> None:
     "--channel",
     default=None,
     show_default="auto for .mat: FE when every name says Fan_End, else DE",
-    help="DE|FE|BA (CWRU .mat), x|y (result), or a CSV column; the same for every record.",
+    help="DE|FE|BA (CWRU .mat), sensor|x|y (result; a result with a rig: sensor), or a CSV "
+    "column; the same for every record.",
 )
 @click.option(
     "--rpm",
@@ -170,7 +171,7 @@ def identify_cmd(
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
     speed_warnings: list[str] = []  # printed after the rig is written
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
-        from ..io.signal import column_speed_refutes, speed_span_text
+        from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
         from ..signal.contact_angle import hz_given_as_rpm, hz_warning, refuted_speed
 
         for r in recs:
@@ -181,13 +182,23 @@ def identify_cmd(
                     f"{Path(r.source).name!r} ({speed_span_text(span, rpm)}); valid: the records' "
                     "speed (or no --rpm, to take each file's)"
                 )
-            c = refuted_speed(r.x, r.fs, rpm / 60.0)
+            stated = r.info.get("rpm_file")  # a CWRU file's X###RPM, which --rpm overrides
+            c = refuted_speed(r.x, r.fs, rpm / 60.0,
+                              stated_hz=None if stated is None else stated / 60.0)  # fmt: skip
             if c is not None:
                 off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
                 raise ConfigError(
                     f"rpm = {rpm:.6g} r/min: the shaft harmonics of {Path(r.source).name!r} put "
                     f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} %); valid: the "
                     "records' speed (or no --rpm, to take each file's)"
+                )
+            if stated is not None and abs(rpm / stated - 1.0) > RPM_OPTION_REL:
+                # its shaft lines neither confirm nor refute the file: said, not refused
+                # (exploratory testing, twenty-sixth session: 107 at 2000 r/min passed unsaid)
+                speed_warnings.append(
+                    f"warning: {Path(r.source).name}: rpm = {rpm:.6g} r/min overrides the "
+                    f"{stated:.6g} r/min its file states ({100.0 * (rpm / stated - 1.0):+.2f} %)"
+                    "; the rig's shaft-order tones and rpm_range take the speed given"
                 )
             if r.speed_hz is None and (c := hz_given_as_rpm(r.x, r.fs, rpm / 60.0)):
                 speed_warnings.append(f"warning: {Path(r.source).name}: {hz_warning(rpm, c)}")

@@ -106,7 +106,10 @@ def plan_cmd(
     if as_json:
         emit_json(d)
         return
-    axes = " x ".join(f"{k} {v}" for k, v in plan.axes.items()) or "no axes"
+    # zipped axes run side by side: "x" read as a product (a helper, twenty-sixth session)
+    zipped = plan.combine == "zip"
+    axes = (", " if zipped else " x ").join(f"{k} {v}" for k, v in plan.axes.items())
+    axes = (axes + (" side by side" if zipped and len(plan.axes) > 1 else "")) or "no axes"
     ns = plan.n_samples
     samples = f"{ns[0]}" if ns[0] == ns[1] else f"{ns[0]}-{ns[1]}"
     click.echo(f"{spec_file}: {plan.n_runs} runs ({plan.combine}: {axes})")

@@ -68,7 +68,8 @@ class SignalRecord:
     speed_hz : ndarray or None
         Shaft speed per sample [Hz] (text ``speed_hz`` or ``rpm`` column) for order tracking.
     info : dict
-        How fs/rpm were obtained (``fs_source``, ``rpm_source``).
+        How fs/rpm were obtained (``fs_source``, ``rpm_source``); ``rpm_file`` [r/min], the
+        speed the file states (a result's, a CWRU ``X###RPM``) where ``rpm`` overrode it.
     time : ndarray or None
         Sample times [s] (text time column).
     columns : tuple of str
@@ -204,6 +205,8 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
     if r is not None:
         info["rpm_source"] = "option" if rpm is not None else "file"
         r = check_positive("rpm", r, "r/min")
+    if rpm is not None and rec.rpm is not None:  # the file's own, which the option overrides
+        info["rpm_file"] = float(rec.rpm)
     named = _cwru_fs_from_name(p.name)
     if fs is None:
         fs = named

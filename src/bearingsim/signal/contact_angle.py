@@ -269,14 +269,33 @@ def refuted_speed(
     *,
     tol_rel: float = 0.01,
     spectrum: Spectrum | None = None,
+    stated_hz: float | None = None,
 ) -> SpeedComb | None:
     """The record's own speed when its shaft harmonics refute ``shaft_hz`` [Hz]: the comb of
     ten harmonics that stands highest within ±5 % (:func:`shaft_speed_comb`) lies more than
     ``tol_rel`` [-] away (the fault-line search's tolerance), stands
     :data:`COMB_PROMINENCE_DB` out and :data:`COMB_GAIN_DB` over the comb at the speed given.
-    Else None (also where the record has no shaft lines). ``spectrum``: the record's
+    Or, where the file states a speed ``stated_hz`` [Hz] more than ``tol_rel`` from
+    ``shaft_hz`` (a CWRU record's ``X###RPM`` that an option overrides), the comb found
+    within 1 % of it stands :data:`COMB_PROMINENCE_DB` out and :data:`COMB_GAIN_DB` more than
+    the one at the speed given (checked first: a speed far from the stated one lies outside
+    the ±5 % search, and 107 at 3000 r/min was said to run at 3147, a comb of its harmonics'
+    multiples; exploratory testing, twenty-sixth session, 107 at 1000-2500 passed). Else None
+    (also where the record has no shaft lines). ``spectrum``: the record's
     :func:`padded_spectrum` when the caller has it."""
-    c = shaft_speed_comb(x, fs, shaft_hz, spectrum=spectrum)
+    spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
+    c = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec)
+    if stated_hz is not None and abs(stated_hz / shaft_hz - 1.0) > tol_rel:
+        s = shaft_speed_comb(None, fs, stated_hz, spectrum=spec)
+        # the comb at the speed given itself (within ±0.5 %), not the best of its ±5 % search
+        base = c.prominence_db - c.gain_db if c is not None else 0.0
+        if (
+            s is not None
+            and abs(s.shaft_hz / stated_hz - 1.0) <= 0.01
+            and s.prominence_db >= COMB_PROMINENCE_DB
+            and s.prominence_db - base >= COMB_GAIN_DB
+        ):
+            return replace(s, gain_db=float(s.prominence_db - base))
     if (
         c is not None
         and abs(c.shaft_hz / shaft_hz - 1.0) > tol_rel

@@ -1099,9 +1099,11 @@ def analyze_record(
             sig.value, float(samples_per_rev), bearing, 1.0, band=band_v, rule=rule,
             domain=Domain.ORDER,
         )  # fmt: skip
+    stated = rec.info.get("rpm_file")  # the file's own speed, where --rpm overrode it
     return diagnose_fused(
-        rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band_v, rule=rule, **_supply(rec)
-    )
+        rec.x, rec.fs, bearing, rec.rpm / 60.0, band=band_v, rule=rule, **_supply(rec),
+        stated_hz=None if stated is None else float(stated) / 60.0,
+    )  # fmt: skip
 
 
 def _supply(rec: SignalRecord) -> dict:

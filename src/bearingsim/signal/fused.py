@@ -454,6 +454,7 @@ def diagnose_fused(
     domain: Domain | str = Domain.HZ,
     calibration: Calibration | None = CALIBRATION,
     supply_hz: tuple[float, ...] = SUPPLY_HZ,
+    stated_hz: float | None = None,
 ) -> FusedDiagnosis:
     """Fused diagnosis of ``x`` (module docstring).
 
@@ -481,6 +482,10 @@ def diagnose_fused(
     supply_hz : tuple of float
         Supply frequencies whose lines are searched and noted [Hz] (default 50 and 60 Hz; a
         simulation's: those its rig adds as fixed tones, usually none).
+    stated_hz : float, optional
+        The speed the record's file states [Hz] where ``shaft_hz`` overrides it: shaft
+        harmonics that confirm it and refute ``shaft_hz`` make the verdict "uncertain"
+        (:func:`.contact_angle.refuted_speed`).
     """
     from ..catalog import as_bearing
     from ..geometry import parse_enum
@@ -539,7 +544,7 @@ def diagnose_fused(
     kin_notes = _kinematic_check(
         views, spectra, _measured_speed(raw_sp, fs, shaft_hz), bearing, shaft_hz, rule
     )
-    refuted = _speed_refuted(raw_sp, fs, shaft_hz, rule)
+    refuted = _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz)
     cage_views = sum(v.cage for v in views)
     nv = len(views)
     fused = {}
@@ -677,15 +682,17 @@ def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:
         return None
 
 
-def _speed_refuted(raw_sp, fs, shaft_hz, rule):
+def _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz=None):
     """:func:`.contact_angle.refuted_speed` of the record (``raw_sp``, its
-    :func:`.contact_angle.padded_spectrum`) beyond ``rule.tol_rel``; None in the order domain
-    (``raw_sp`` None)."""
+    :func:`.contact_angle.padded_spectrum`) beyond ``rule.tol_rel``, ``stated_hz`` the speed
+    its file states [Hz]; None in the order domain (``raw_sp`` None)."""
     from .contact_angle import refuted_speed
 
     if raw_sp is None:
         return None
-    return refuted_speed(None, fs, shaft_hz, tol_rel=rule.tol_rel, spectrum=raw_sp)
+    return refuted_speed(
+        None, fs, shaft_hz, tol_rel=rule.tol_rel, spectrum=raw_sp, stated_hz=stated_hz
+    )
 
 
 def _kinematic_check(views, spectra, fr, bearing, shaft_hz, rule) -> list[str]:

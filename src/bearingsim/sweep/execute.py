@@ -806,7 +806,10 @@ def run_sweep(
                 _execute(
                     cl,
                     spec,
-                    sdicts,
+                    # the tasks carry a rate the rig chose as unset: the run resolves it again
+                    # and records it among its defaults, as the CLI's run does (exploratory
+                    # testing, twenty-sixth session: a sweep's meta["defaults"] lacked fs_hz)
+                    [sc.to_dict(rate=False) for sc in scenarios],
                     todo,
                     str(path),
                     uid,
@@ -1142,12 +1145,12 @@ def _execute(
                 rep.warnings[w] = rep.warnings.get(w, 0) + 1
             if r["status"] == FAILED:
                 rep.n_failed_now += 1
-        if bar is not None:
-            bar.update(n_new)
+        if bar is not None:  # the counts first: update() draws them (it showed the last batch's)
             bar.set_postfix_str(
                 f"ok={rep.n_computed - rep.n_failed_now} failed={rep.n_failed_now}",
                 refresh=False,
             )
+            bar.update(n_new)
         return n_new
 
     try:
