@@ -286,16 +286,9 @@ def refuted_speed(
     spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
     c = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec)
     if stated_hz is not None and abs(stated_hz / shaft_hz - 1.0) > tol_rel:
-        s = shaft_speed_comb(None, fs, stated_hz, spectrum=spec)
-        # the comb at the speed given itself (within ±0.5 %), not the best of its ±5 % search
-        base = c.prominence_db - c.gain_db if c is not None else 0.0
-        if (
-            s is not None
-            and abs(s.shaft_hz / stated_hz - 1.0) <= 0.01
-            and s.prominence_db >= COMB_PROMINENCE_DB
-            and s.prominence_db - base >= COMB_GAIN_DB
-        ):
-            return replace(s, gain_db=float(s.prominence_db - base))
+        s = _comb_over(spec, fs, stated_hz, c, COMB_PROMINENCE_DB, COMB_GAIN_DB)
+        if s is not None:
+            return s
     if (
         c is not None
         and abs(c.shaft_hz / shaft_hz - 1.0) > tol_rel
@@ -320,25 +313,41 @@ def hz_given_as_rpm(
     x: ArrayLike | None, fs: float, shaft_hz: float, *, spectrum: Spectrum | None = None
 ) -> SpeedComb | None:
     """The comb of ten harmonics within ±5 % of ``60 shaft_hz`` (:func:`shaft_speed_comb`)
-    when it stands :data:`HZ_COMB_DB` out and as much over the comb at ``shaft_hz`` [Hz], and
-    lies within 1 % of ``60 shaft_hz``: the speed given reads like its value in Hz given as
-    r/min (29.1 for 29.1 Hz, read as 0.485 Hz). Its ``gain_db`` is the difference of the two
-    combs' prominences. Else None, also where fewer than three harmonics of ``60 shaft_hz``
-    lie below the Nyquist frequency. For a warning only (:data:`HZ_COMB_DB`). Twenty-sixth
-    session: a ``--conditions`` row typed in Hz moved a model gain 250-fold, unwarned."""
+    when it stands :data:`HZ_COMB_DB` out and as much over the comb at ``shaft_hz`` [Hz]
+    itself, and lies within 1 % of ``60 shaft_hz``: the speed given reads like its value in
+    Hz given as r/min (29.1 for 29.1 Hz, read as 0.485 Hz). Its ``gain_db`` is the difference
+    of the two combs' prominences. Else None, also where fewer than three harmonics of
+    ``60 shaft_hz`` lie below the Nyquist frequency. For a warning only (:data:`HZ_COMB_DB`).
+    Twenty-sixth session: a ``--conditions`` row typed in Hz moved a model gain 250-fold,
+    unwarned."""
     fs = check_positive("fs_hz", fs, "Hz")
     hz = 60.0 * check_positive("shaft_hz", shaft_hz, "Hz")
     if 3.0 * hz * 1.05 * 1.1 >= fs / 2.0:  # shaft_speed_comb would find too few harmonics
         return None
     spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
-    c = shaft_speed_comb(None, fs, hz, spectrum=spec)
     given = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec)
-    base = given.prominence_db if given is not None else 0.0
+    return _comb_over(spec, fs, hz, given, HZ_COMB_DB, HZ_COMB_DB)
+
+
+def _comb_over(
+    spec: Spectrum,
+    fs: float,
+    target_hz: float,
+    given: SpeedComb | None,
+    level_db: float,
+    over_db: float,
+) -> SpeedComb | None:
+    """The comb found within ±5 % of ``target_hz`` [Hz] (:func:`shaft_speed_comb` on
+    ``spec``) when it lies within 1 % of it, stands ``level_db`` out and ``over_db`` [dB] over
+    the comb at the speed given itself (``given``, that speed's search: its best less its gain
+    over the best within ±0.5 %); its ``gain_db`` then that difference. Else None."""
+    c = shaft_speed_comb(None, fs, target_hz, spectrum=spec)
+    base = given.prominence_db - given.gain_db if given is not None else 0.0
     if (
         c is not None
-        and abs(c.shaft_hz / hz - 1.0) <= 0.01
-        and c.prominence_db >= HZ_COMB_DB
-        and c.prominence_db - base >= HZ_COMB_DB
+        and abs(c.shaft_hz / target_hz - 1.0) <= 0.01
+        and c.prominence_db >= level_db
+        and c.prominence_db - base >= over_db
     ):
         return replace(c, gain_db=float(c.prominence_db - base))
     return None
