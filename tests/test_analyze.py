@@ -815,8 +815,48 @@ def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_c
     assert d["cage_revolutions"] < MIN_CAGE_REVOLUTIONS == 6.0
     assert any("cage revolutions" in n and "not ruled out" in n for n in d["notes"])
     r = run_cli("analyze", str(tmp_path / "b.nc"))
-    assert "note: the record holds 2 cage revolutions, fewer than the 6" in r.out, r.out
+    assert "note: the record holds 1.99 cage revolutions, fewer than the 6" in r.out, r.out
     d = _ball_fault_verdict(run_cli, tmp_path, "vsm", "900", "0")  # 6 revolutions: "ball"
     assert d["diagnosis"] == "ball" and "cage_revolutions" not in d
     d = run_cli("analyze", cwru_record("97"), "--json").json()  # healthy, 10 s at 1797
     assert d["diagnosis"] == "none" and "cage_revolutions" not in d
+
+
+def test_multiples_of_the_files_speed_and_weak_shaft_combs_are_refuted(run_cli, tmp_path):
+    """Exploratory testing (twenty-sixth session), the stated-speed check's first form:
+    * 2x the file's speed was refuted on none of the 34 records (the comb at 2 f is the even
+      harmonics of f): 197 (outer race) at 3592 r/min read "inner". The harmonics between
+      those of the speed given refute it now; a speed k times lower is compared through its
+      own lines between the file's;
+    * 188's shaft comb stands 14.9 dB out, under the 20 dB of the check: at 1690 r/min (-2 %)
+      it read "ball"; the file's statement is checked at 12 dB;
+    * normal_0_97 (no rate in its name) at --rpm 1814 blamed the sample rate: the rate is now
+      read off the shaft lines at the file's speed;
+    * 107 at --rpm 29.1 noted both "reads like Hz" and "2 cage revolutions" (of 118): the
+      cage note is not given for a speed refuted or read as Hz."""
+    d = run_cli("analyze", cwru_record("197"), "--rpm", 3592, "--json").json()
+    assert d["diagnosis"] == "uncertain" and "between those of the speed used" in d["why"]
+    for num, rpm in (("199", 874.5), ("188", 1690), ("107", 582.7)):
+        d = run_cli("analyze", cwru_record(num), "--rpm", rpm, "--json").json()
+        assert d["diagnosis"] == "uncertain" and "shaft harmonics put" in d["why"], (num, rpm)
+    r = run_cli("analyze", cwru_record("97"), "--rpm", 1814)
+    assert r.code == 0 and "fs 12 kHz" not in r.err, r.err
+    d = run_cli("analyze", cwru_record("107"), "--rpm", 29.1, "--json").json()
+    assert any("reads like the speed in Hz" in n for n in d["notes"])
+    assert "cage_revolutions" not in d
+
+
+def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):
+    """Exploratory testing (twenty-sixth session): a CSV whose ``rpm`` column holds the speed
+    in Hz (29.13) was order tracked at 0.49 Hz and read "none" unsaid; its note now says the
+    column reads like the speed in Hz."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("107"), channel="DE")
+    t = np.arange(rec.x.size) / rec.fs
+    p = tmp_path / "hz.csv"
+    np.savetxt(p, np.c_[t, rec.x, np.full(t.size, 1748.0 / 60.0)], delimiter=",",
+               header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    d = run_cli("analyze", p, "--json").json()
+    assert any(n.startswith("the speed column (median 29.1") and "speed in Hz" in n
+               for n in d["notes"]), d["notes"]  # fmt: skip

@@ -1013,3 +1013,27 @@ def test_identify_refuses_a_rpm_far_from_the_files_own(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "warning: 48k_Drive_End_IR014_0_174.mat: rpm = 1900 r/min overrides the 1796 r/min" \
         in r.stderr, r.stderr  # fmt: skip
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_identify_speed_checks_on_short_and_weak_records(tmp_path):
+    """Exploratory testing (twenty-sixth session): ``--rpm 29.95`` on record 174 raised a
+    traceback (the shaft comb's ±0.5 % window held no grid point); 188 at 1690 r/min (its comb
+    14.9 dB out) was only warned; two CSVs of one 12 kHz logger (rates 11999.9998 and
+    11999.99996 Hz from their time columns) were refused as "12000 Hz, the first at 12000 Hz";
+    a speed column in Hz was taken as r/min silently."""
+    r = _cli("rig", "identify", str(CWRU / "48k_Drive_End_IR014_0_174.mat"), "--name", "t",
+             "--rpm", "29.95", "-o", "a.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+    assert "(-98.33 %; it reads like the speed in Hz)" in r.stderr, r.stderr
+    r = _cli("rig", "identify", str(CWRU / "12k_Drive_End_B014_3_188.mat"), "--name", "t",
+             "--rpm", "1690", "-o", "b.toml", cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "put its speed at 1722" in r.stderr, r.stderr
+    rec = read_signal(CWRU / "12k_Drive_End_IR007_2_107.mat", channel="DE")
+    for name, n, dt in (("a.csv", 24000, 1 / 11999.9998), ("b.csv", 12000, 1 / 11999.99996)):
+        np.savetxt(tmp_path / name, np.c_[np.arange(n) * dt, rec.x[:n], np.full(n, 29.13)],
+                   delimiter=",", header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    r = _cli("rig", "identify", "a.csv", "b.csv", "--name", "t", "-o", "c.toml", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "warning: a.csv: the speed column (median 29.13 r/min) reads like the speed in Hz" \
+        in r.stderr, r.stderr  # fmt: skip

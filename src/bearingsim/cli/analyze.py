@@ -65,7 +65,7 @@ MIN_CAGE_REVOLUTIONS = 6.0
 def cage_note(revolutions: float) -> str:
     """The note of a "none" or "uncertain" on a record of ``revolutions`` [-] cage turns."""
     return (
-        f"the record holds {revolutions:.2g} cage revolutions, fewer than the "
+        f"the record holds {revolutions:.3g} cage revolutions, fewer than the "
         f"{MIN_CAGE_REVOLUTIONS:g} from which simulated ball faults read 'ball': a ball fault "
         "is not ruled out (a longer record can tell)"
     )
@@ -326,7 +326,22 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
-    if d.diagnosis in ("none", "uncertain"):  # too short to rule a ball fault out?
+    hz_comb, column_rpm = None, None
+    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
+        from ..signal.contact_angle import hz_given_as_rpm
+
+        hz_comb = hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)
+    elif rec.speed_hz is not None and rec.rpm is None:  # a column in the wrong unit, too
+        from ..io.signal import column_median_rpm
+        from ..signal.contact_angle import hz_given_as_rpm
+
+        if (column_rpm := column_median_rpm(rec)) is not None:
+            hz_comb = hz_given_as_rpm(rec.x, rec.fs, column_rpm / 60.0)
+    # too short to rule a ball fault out? Not said where the speed itself is refuted or reads
+    # like Hz: its revolutions are the wrong speed's (a helper: "2 cage revolutions" beside
+    # "reads like the speed in Hz" on a 10 s record of 118)
+    wrong_speed = hz_comb is not None or "shaft harmonics put the speed" in (d.why or "")
+    if d.diagnosis in ("none", "uncertain") and not wrong_speed:
         import numpy as np
 
         from ..geometry import characteristic_frequencies
@@ -339,11 +354,11 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         revs = shaft_revs * characteristic_frequencies(bearing, 1.0).ftf_hz
         if revs < MIN_CAGE_REVOLUTIONS:
             out["cage_revolutions"] = revs
-    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
-        from ..signal.contact_angle import hz_given_as_rpm, hz_warning
+    if hz_comb is not None:  # a speed in Hz typed for --rpm, or a column of Hz named rpm
+        from ..signal.contact_angle import hz_warning
 
-        if (c := hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
-            out["rpm_warning"] = hz_warning(rec.rpm, c)  # a speed in Hz typed for --rpm
+        column = column_rpm is not None
+        out["rpm_warning"] = hz_warning(column_rpm if column else rec.rpm, hz_comb, column)
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
@@ -480,10 +495,13 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         click.echo(f"  {p['label']:<12} {at}order {p['order']:7.3f}  SNR {p['snr_db']:5.1f} dB")
     # the labels' grammar where a higher sideband stands beside a harmonic's first one
     # (BPFI-2xfr beside 2xBPFI-fr read alike; twenty-fifth session's note)
-    if any(re.search(r"[+-]\d+x", p["label"]) for p in shown):
+    higher = [m for p in shown if (m := re.fullmatch(r"(.+?)([+-])(\d+)x(\w+)", p["label"]))]
+    if higher:  # explained with a label of this record's (109 lists 2xBSF-2xFTF only)
+        carrier, sign, m, mod = higher[0].groups()
         click.echo(
-            "  (labels: 2xBPFI-fr = 2 x BPFI - fr, a harmonic's first sideband; BPFI-2xfr = "
-            'BPFI - 2 fr, a second sideband; docs/cli.md, "Line labels")'
+            f"  (labels: {higher[0].group(0)} = {carrier.replace('x', ' x ')} {sign} {m} {mod},"
+            f" a higher sideband; a prefix hx is a harmonic, {carrier}{sign}{mod} its first "
+            'sideband; docs/cli.md, "Line labels")'
         )
 
 

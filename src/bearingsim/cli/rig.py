@@ -170,9 +170,10 @@ def identify_cmd(
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
     speed_warnings: list[str] = []  # printed after the rig is written
+    _column_hz_warnings(recs, speed_warnings)
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
         from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
-        from ..signal.contact_angle import hz_given_as_rpm, hz_warning, refuted_speed
+        from ..signal.contact_angle import hz_given_as_rpm, hz_hint, hz_warning, refuted_speed
 
         for r in recs:
             # a speed column: --rpm would override it unseen (analyze's rule, load_signal)
@@ -189,16 +190,18 @@ def identify_cmd(
                 off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
                 raise ConfigError(
                     f"rpm = {rpm:.6g} r/min: the shaft harmonics of {Path(r.source).name!r} put "
-                    f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} %); valid: the "
-                    "records' speed (or no --rpm, to take each file's)"
+                    f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} % from the speed "
+                    f"given{hz_hint(rpm, 60.0 * c.shaft_hz)}); valid: the records' speed (or no "
+                    "--rpm, to take each file's)"
                 )
             if stated is not None and abs(rpm / stated - 1.0) > RPM_OPTION_REL:
                 # its shaft lines neither confirm nor refute the file: said, not refused
                 # (exploratory testing, twenty-sixth session: 107 at 2000 r/min passed unsaid)
                 speed_warnings.append(
                     f"warning: {Path(r.source).name}: rpm = {rpm:.6g} r/min overrides the "
-                    f"{stated:.6g} r/min its file states ({100.0 * (rpm / stated - 1.0):+.2f} %)"
-                    "; the rig's shaft-order tones and rpm_range take the speed given"
+                    f"{stated:.6g} r/min its file states ({100.0 * (rpm / stated - 1.0):+.2f} %"
+                    f"{hz_hint(rpm, stated)}); the rig's shaft-order tones and rpm_range take the "
+                    "speed given"
                 )
             if r.speed_hz is None and (c := hz_given_as_rpm(r.x, r.fs, rpm / 60.0)):
                 speed_warnings.append(f"warning: {Path(r.source).name}: {hz_warning(rpm, c)}")
@@ -616,6 +619,19 @@ def _check_condition(cond: dict, own: float | None, rec, models, realism: dict, 
                 validate_scenario(as_scenario(sc))
         except BearingsimError as exc:
             raise ConfigError(f"{where}: {' '.join(str(exc).split())}") from None
+
+
+def _column_hz_warnings(recs: list, out: list[str]) -> None:
+    """A warning in ``out`` for each record whose speed column reads like the speed in Hz
+    (a column named ``rpm`` holding Hz: the rig's tones and ``rpm_range`` took 29 r/min
+    silently; exploratory testing, twenty-sixth session)."""
+    from ..io.signal import column_median_rpm
+    from ..signal.contact_angle import hz_given_as_rpm, hz_warning
+
+    for r in recs:
+        n = column_median_rpm(r)
+        if n is not None and (c := hz_given_as_rpm(r.x, r.fs, n / 60.0)) is not None:
+            out.append(f"warning: {Path(r.source).name}: {hz_warning(n, c, column=True)}")
 
 
 def _row_numbers(row: dict, keys: tuple[str, ...], required: str | None = None) -> dict:

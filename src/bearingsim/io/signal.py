@@ -234,7 +234,9 @@ def _read_cwru(p: Path, channel: str | None, fs: float | None, rpm: float | None
                 "12000 or 48000) unless the rate can be read off the shaft lines"
             )
         flat()
-        fs, why = infer_cwru_fs(x, r)
+        # at the file's own speed where it states one: a --rpm 1 % off blamed the rate
+        # (exploratory testing, twenty-sixth session: normal_0_97 at --rpm 1814)
+        fs, why = infer_cwru_fs(x, rec.rpm if rec.rpm is not None else r)
         info["fs_source"] = f"inferred from the shaft lines ({why})"
     elif info["fs_source"] == "file name":  # the name's rate, unless the shaft lines refute it
         if check_speed is not None:
@@ -328,6 +330,16 @@ def _read_result(p: Path, channel: str | None, fs: float | None, rpm: float | No
 #: ``--rpm 1500`` were read at 1500, silently, and a fault read "none" (exploratory testing,
 #: twenty-fifth session); a run-up's column takes any speed it passed through
 RPM_OPTION_REL = 0.01
+
+
+def column_median_rpm(rec: SignalRecord) -> float | None:
+    """The median [r/min] of ``rec``'s speed column over its positive finite samples (a
+    tachometer's dropouts left out), None without a speed column or such a sample."""
+    if rec.speed_hz is None:
+        return None
+    v = 60.0 * np.asarray(rec.speed_hz, dtype=float)
+    v = v[np.isfinite(v) & (v > 0.0)]
+    return float(np.median(v)) if v.size else None
 
 
 def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] | None:

@@ -584,9 +584,14 @@ def diagnose_fused(
         # windows miss the fault lines and may take others (a record's 2xBPFO read as 7 f_r)
         p = calibration(margin) if top is not None and calibration is not None else None
         f_rec = refuted.shaft_hz
+        how = (
+            f"its harmonics between those of the speed used stand {refuted.prominence_db:.0f} "
+            "dB out"
+            if refuted.between > 1
+            else f"a comb of 10 stands {refuted.gain_db:.0f} dB over the one at the speed used"
+        )
         notes.append(
-            f"the record's shaft harmonics put the speed at {60.0 * f_rec:.6g} r/min (a comb of "
-            f"10 stands {refuted.gain_db:.0f} dB over the one at the speed used), "
+            f"the record's shaft harmonics put the speed at {60.0 * f_rec:.6g} r/min ({how}), "
             f"{100.0 * (f_rec / shaft_hz - 1.0):+.2f} % from the {60.0 * shaft_hz:.6g} r/min "
             f"used, beyond the line search's ±{100.0 * rule.tol_rel:g} %: the fault lines were "
             "searched at the wrong speed (check --rpm)"
