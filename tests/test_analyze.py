@@ -8,6 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from conftest import cwru_record
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
 from bearingsim import get_bearing
@@ -836,7 +838,8 @@ def test_multiples_of_the_files_speed_and_weak_shaft_combs_are_refuted(run_cli, 
       cage note is not given for a speed refuted or read as Hz."""
     d = run_cli("analyze", cwru_record("197"), "--rpm", 3592, "--json").json()
     assert d["diagnosis"] == "uncertain" and "between those of the speed used" in d["why"]
-    for num, rpm in (("199", 874.5), ("188", 1690), ("107", 582.7)):
+    # 1/2, -2 %, 1/3 and 3/2 of the file's speed
+    for num, rpm in (("199", 874.5), ("188", 1690), ("107", 582.7), ("188", 2584)):
         d = run_cli("analyze", cwru_record(num), "--rpm", rpm, "--json").json()
         assert d["diagnosis"] == "uncertain" and "shaft harmonics put" in d["why"], (num, rpm)
     r = run_cli("analyze", cwru_record("97"), "--rpm", 1814)
@@ -860,3 +863,21 @@ def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):
     d = run_cli("analyze", p, "--json").json()
     assert any(n.startswith("the speed column (median 29.1") and "speed in Hz" in n
                for n in d["notes"]), d["notes"]  # fmt: skip
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    shaft=st.floats(0.05, 2000.0),
+    stated=st.one_of(st.none(), st.floats(0.05, 2000.0)),
+)
+def test_refuted_speed_answers_for_any_pair_of_speeds(shaft, stated):
+    """Property: :func:`refuted_speed` returns a comb or None, never raises, for any speed
+    given and any speed a file states (a ratio below 1/6 gave ``Fraction(...)`` 0 and a
+    division by zero; a comb grid coarser than ±0.5 % an empty maximum)."""
+    from bearingsim.signal.contact_angle import padded_spectrum, refuted_speed
+
+    fs = 12000.0
+    x = np.random.default_rng(0).standard_normal(6000)
+    spec = padded_spectrum(x, fs)
+    c = refuted_speed(None, fs, shaft, spectrum=spec, stated_hz=stated)
+    assert c is None or (np.isfinite(c.shaft_hz) and c.shaft_hz > 0.0)
