@@ -863,6 +863,13 @@ def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):
     d = run_cli("analyze", p, "--json").json()
     assert any(n.startswith("the speed column (median 29.1") and "speed in Hz" in n
                for n in d["notes"]), d["notes"]  # fmt: skip
+    # the reverse: r/min in a column named speed_hz failed naming fs_hz alone
+    q = tmp_path / "rpm.csv"
+    np.savetxt(q, np.c_[t, rec.x, np.full(t.size, 1748.0)], delimiter=",",
+               header="time_s,acc_m_per_s2,speed_hz", comments="")  # fmt: skip
+    r = run_cli("analyze", q)
+    assert r.code == 2 and r.err.count("\n") == 1, r.err
+    assert "the speed column (median 104880 r/min) reads like the speed in r/min" in r.err
 
 
 @settings(max_examples=60, deadline=None)

@@ -1037,3 +1037,9 @@ def test_identify_speed_checks_on_short_and_weak_records(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "warning: a.csv: the speed column (median 29.13 r/min) reads like the speed in Hz" \
         in r.stderr, r.stderr  # fmt: skip
+    # the reverse, r/min named speed_hz: rpm_range = [104880, 104880] was written unsaid
+    n = 24000
+    np.savetxt(tmp_path / "r.csv", np.c_[np.arange(n) / 12000.0, rec.x[:n], np.full(n, 1748.0)],
+               delimiter=",", header="time_s,acc_m_per_s2,speed_hz", comments="")  # fmt: skip
+    r = _cli("rig", "identify", "r.csv", "--name", "t", "-o", "r.toml", cwd=tmp_path)
+    assert r.returncode == 0 and "reads like the speed in r/min in a column of Hz" in r.stderr

@@ -282,7 +282,10 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 
     rec, rpm_source, channel_source = _load_record(path, req)
     check_samples(rec)
-    check_resolvable(rec)
+    try:
+        check_resolvable(rec)
+    except ConfigError as exc:  # a speed column in r/min named speed_hz, said so
+        raise ConfigError(f"{exc}{_column_in_rpm_hint(rec)}") from None
     mat = Path(rec.source).suffix.lower() == ".mat"
     # a text file named like a CWRU fan-end record gets the fan end's bearing, as a .mat does
     end = rec.channel if mat else cwru_end(path)
@@ -299,9 +302,12 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     from ..dynamics.budget import Budget
 
     limit = Budget().memory_limit()[0]
-    d = analyze_record(
-        rec, bearing, band=req.band, max_memory=limit if math.isfinite(limit) else None
-    )
+    try:
+        d = analyze_record(
+            rec, bearing, band=req.band, max_memory=limit if math.isfinite(limit) else None
+        )
+    except ConfigError as exc:
+        raise ConfigError(f"{exc}{_column_in_rpm_hint(rec)}") from None
     if req.plot:
         from ..report.figures import save_figure
 
@@ -363,6 +369,18 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
     return to_jsonable(out)
+
+
+def _column_in_rpm_hint(rec: Any) -> str:
+    """``"; the speed column ... reads like r/min"`` where ``rec``'s speed column holds r/min
+    under a name read as Hz (``speed_hz`` holding 1748: the order tracking at 104880 r/min
+    failed naming fs_hz; exploratory testing, twenty-sixth session), else ``""``."""
+    from ..io.signal import column_median_rpm
+    from ..signal.contact_angle import hz_given_as_rpm, rpm_column_text
+
+    n = column_median_rpm(rec)
+    c = None if n is None else hz_given_as_rpm(rec.x, rec.fs, n / 60.0, factor=1.0 / 60.0)
+    return "" if c is None else f"; {rpm_column_text(n, c)}"
 
 
 def _result_notes(out: dict[str, Any]) -> list[str]:

@@ -626,12 +626,17 @@ def _column_hz_warnings(recs: list, out: list[str]) -> None:
     (a column named ``rpm`` holding Hz: the rig's tones and ``rpm_range`` took 29 r/min
     silently; exploratory testing, twenty-sixth session)."""
     from ..io.signal import column_median_rpm
-    from ..signal.contact_angle import hz_given_as_rpm, hz_warning
+    from ..signal.contact_angle import hz_given_as_rpm, hz_warning, rpm_column_text
 
     for r in recs:
         n = column_median_rpm(r)
-        if n is not None and (c := hz_given_as_rpm(r.x, r.fs, n / 60.0)) is not None:
+        if n is None:
+            continue
+        if (c := hz_given_as_rpm(r.x, r.fs, n / 60.0)) is not None:
             out.append(f"warning: {Path(r.source).name}: {hz_warning(n, c, column=True)}")
+        elif (c := hz_given_as_rpm(r.x, r.fs, n / 60.0, factor=1.0 / 60.0)) is not None:
+            # the reverse: r/min in a column read as Hz (rpm_range 104880 was written unsaid)
+            out.append(f"warning: {Path(r.source).name}: {rpm_column_text(n, c)}")
 
 
 def _row_numbers(row: dict, keys: tuple[str, ...], required: str | None = None) -> dict:

@@ -55,6 +55,7 @@ __all__ = [
     "hz_given_as_rpm",
     "hz_hint",
     "hz_warning",
+    "rpm_column_text",
     "measured_shaft_hz",
     "padded_spectrum",
     "refuted_speed",
@@ -358,7 +359,12 @@ HZ_COMB_DB = 10.0
 
 
 def hz_given_as_rpm(
-    x: ArrayLike | None, fs: float, shaft_hz: float, *, spectrum: Spectrum | None = None
+    x: ArrayLike | None,
+    fs: float,
+    shaft_hz: float,
+    *,
+    spectrum: Spectrum | None = None,
+    factor: float = 60.0,
 ) -> SpeedComb | None:
     """The comb of ten harmonics within ±5 % of ``60 shaft_hz`` (:func:`shaft_speed_comb`)
     when it stands :data:`HZ_COMB_DB` out and as much over the comb at ``shaft_hz`` [Hz]
@@ -367,9 +373,10 @@ def hz_given_as_rpm(
     of the two combs' prominences. Else None, also where fewer than three harmonics of
     ``60 shaft_hz`` lie below the Nyquist frequency. For a warning only (:data:`HZ_COMB_DB`).
     Twenty-sixth session: a ``--conditions`` row typed in Hz moved a model gain 250-fold,
-    unwarned."""
+    unwarned. ``factor`` 1/60: the reverse, a speed in r/min given as Hz (a ``speed_hz``
+    column holding r/min)."""
     fs = check_positive("fs_hz", fs, "Hz")
-    hz = 60.0 * check_positive("shaft_hz", shaft_hz, "Hz")
+    hz = factor * check_positive("shaft_hz", shaft_hz, "Hz")
     if 3.0 * hz * 1.05 * 1.1 >= fs / 2.0:  # shaft_speed_comb would find too few harmonics
         return None
     spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
@@ -406,6 +413,16 @@ def hz_hint(rpm: float, own_rpm: float) -> str:
     record's own ``own_rpm`` [r/min] over 60 (within 2 %), else ``""``: for the messages that
     refuse or warn about a speed (29.1 typed for 1746 r/min)."""
     return "; it reads like the speed in Hz" if abs(60.0 * rpm / own_rpm - 1.0) <= 0.02 else ""
+
+
+def rpm_column_text(rpm: float, comb: SpeedComb) -> str:
+    """The text of a :func:`hz_given_as_rpm` finding with ``factor`` 1/60 for a speed column
+    of median ``rpm`` [r/min] (its values r/min, its name read as Hz)."""
+    return (
+        f"the speed column (median {rpm:.6g} r/min) reads like the speed in r/min in a column "
+        f"of Hz: the record's shaft comb stands at {comb.shaft_hz:.5g} Hz "
+        f"({60.0 * comb.shaft_hz:.5g} r/min); name such a column rpm"
+    )
 
 
 def hz_warning(rpm: float, comb: SpeedComb, column: bool = False) -> str:
