@@ -846,15 +846,12 @@ def _speed_warning(
     at the wrong speed (record 109 at --rpm 1730 instead of its 1796 r/min read "outer")."""
     if rpm_option is None:
         return []
-    from bearingsim.signal.contact_angle import refuted_speed
+    from bearingsim.signal.contact_angle import check_speed_given, hz_warning
 
-    c = refuted_speed(x, fs, rpm_used / 60.0,
-                      stated_hz=None if stated is None else stated / 60.0)  # fmt: skip
-    if c is None:
-        from bearingsim.signal.contact_angle import hz_given_as_rpm, hz_warning
-
-        h = hz_given_as_rpm(x, fs, rpm_used / 60.0)  # a speed in Hz typed for --rpm
-        return [hz_warning(rpm_used, h)] if h is not None else []
+    c, in_hz = check_speed_given(x, fs, rpm_used / 60.0,
+                                 stated_hz=None if stated is None else stated / 60.0)  # fmt: skip
+    if c is None:  # a speed in Hz typed for --rpm is said too
+        return [hz_warning(rpm_used, in_hz)] if in_hz is not None else []
     own = 60.0 * c.shaft_hz
     return [
         f"rpm = {rpm_used:g} r/min: the record's shaft harmonics put its speed at {own:.6g} "

@@ -24,6 +24,7 @@ from .common import (
     deprecated,
     emit_json,
     map_in_processes,
+    speed_column_warning,
 )
 
 __all__ = ["analyze_cmd"]
@@ -332,21 +333,20 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     }
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
-    hz_comb, column_rpm = None, None
+    in_hz = None  # a speed in Hz typed for --rpm, or a column of Hz named rpm
     if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
-        from ..signal.contact_angle import hz_given_as_rpm
+        from ..signal.contact_angle import hz_given_as_rpm, hz_warning
 
-        hz_comb = hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)
-    elif rec.speed_hz is not None and rec.rpm is None:  # a column in the wrong unit, too
-        from ..io.signal import column_median_rpm
-        from ..signal.contact_angle import hz_given_as_rpm
-
-        if (column_rpm := column_median_rpm(rec)) is not None:
-            hz_comb = hz_given_as_rpm(rec.x, rec.fs, column_rpm / 60.0)
+        if (c := hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
+            in_hz = hz_warning(rec.rpm, c)
+    elif rec.speed_hz is not None and rec.rpm is None:
+        in_hz = speed_column_warning(rec, in_rpm=False)
     # too short to rule a ball fault out? Not said where the speed itself is refuted or reads
     # like Hz: its revolutions are the wrong speed's (a helper: "2 cage revolutions" beside
     # "reads like the speed in Hz" on a 10 s record of 118)
-    wrong_speed = hz_comb is not None or "shaft harmonics put the speed" in (d.why or "")
+    from ..signal.fused import SPEED_REFUTED
+
+    wrong_speed = in_hz is not None or SPEED_REFUTED in (d.why or "")
     if d.diagnosis in ("none", "uncertain") and not wrong_speed:
         import numpy as np
 
@@ -360,11 +360,8 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
         revs = shaft_revs * characteristic_frequencies(bearing, 1.0).ftf_hz
         if revs < MIN_CAGE_REVOLUTIONS:
             out["cage_revolutions"] = revs
-    if hz_comb is not None:  # a speed in Hz typed for --rpm, or a column of Hz named rpm
-        from ..signal.contact_angle import hz_warning
-
-        column = column_rpm is not None
-        out["rpm_warning"] = hz_warning(column_rpm if column else rec.rpm, hz_comb, column)
+    if in_hz is not None:
+        out["rpm_warning"] = in_hz
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
@@ -375,12 +372,8 @@ def _column_in_rpm_hint(rec: Any) -> str:
     """``"; the speed column ... reads like r/min"`` where ``rec``'s speed column holds r/min
     under a name read as Hz (``speed_hz`` holding 1748: the order tracking at 104880 r/min
     failed naming fs_hz; exploratory testing, twenty-sixth session), else ``""``."""
-    from ..io.signal import column_median_rpm
-    from ..signal.contact_angle import hz_given_as_rpm, rpm_column_text
-
-    n = column_median_rpm(rec)
-    c = None if n is None else hz_given_as_rpm(rec.x, rec.fs, n / 60.0, factor=1.0 / 60.0)
-    return "" if c is None else f"; {rpm_column_text(n, c)}"
+    text = speed_column_warning(rec, in_hz=False)
+    return "" if text is None else f"; {text}"
 
 
 def _result_notes(out: dict[str, Any]) -> list[str]:

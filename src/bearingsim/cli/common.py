@@ -591,3 +591,31 @@ __all__ = [
     "rad_to_deg",
     "scenario_default",
 ]
+
+
+def speed_column_warning(rec: Any, *, in_hz: bool = True, in_rpm: bool = True) -> str | None:
+    """The text where ``rec``'s speed column reads like the speed in the other unit, or None:
+    ``in_hz``, a column of r/min holding Hz (named ``rpm``, 29.1 for 1746 r/min); ``in_rpm``,
+    a column of Hz holding r/min (named ``speed_hz``, 1748). Both read off the record's shaft
+    comb (:func:`bearingsim.signal.contact_angle.hz_given_as_rpm`) on one padded spectrum."""
+    from ..io.signal import column_median_rpm
+    from ..signal.contact_angle import (
+        hz_given_as_rpm,
+        hz_warning,
+        padded_spectrum,
+        rpm_column_text,
+    )
+
+    n = column_median_rpm(rec)
+    if n is None:
+        return None
+    spec = padded_spectrum(rec.x, rec.fs)
+    if in_hz and (c := hz_given_as_rpm(None, rec.fs, n / 60.0, spectrum=spec)) is not None:
+        return hz_warning(n, c, column=True)
+    if (
+        in_rpm
+        and (c := hz_given_as_rpm(None, rec.fs, n / 60.0, spectrum=spec, factor=1.0 / 60.0))
+        is not None
+    ):
+        return rpm_column_text(n, c)
+    return None

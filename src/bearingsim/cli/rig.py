@@ -173,7 +173,7 @@ def identify_cmd(
     _column_hz_warnings(recs, speed_warnings)
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
         from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
-        from ..signal.contact_angle import hz_given_as_rpm, hz_hint, hz_warning, refuted_speed
+        from ..signal.contact_angle import check_speed_given, hz_hint, hz_warning
 
         for r in recs:
             # a speed column: --rpm would override it unseen (analyze's rule, load_signal)
@@ -184,8 +184,9 @@ def identify_cmd(
                     "speed (or no --rpm, to take each file's)"
                 )
             stated = r.info.get("rpm_file")  # a CWRU file's X###RPM, which --rpm overrides
-            c = refuted_speed(r.x, r.fs, rpm / 60.0,
-                              stated_hz=None if stated is None else stated / 60.0)  # fmt: skip
+            c, in_hz = check_speed_given(
+                r.x, r.fs, rpm / 60.0, stated_hz=None if stated is None else stated / 60.0
+            )
             if c is not None:
                 off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
                 raise ConfigError(
@@ -203,8 +204,8 @@ def identify_cmd(
                     f"{hz_hint(rpm, stated)}); the rig's shaft-order tones and rpm_range take the "
                     "speed given"
                 )
-            if r.speed_hz is None and (c := hz_given_as_rpm(r.x, r.fs, rpm / 60.0)):
-                speed_warnings.append(f"warning: {Path(r.source).name}: {hz_warning(rpm, c)}")
+            if r.speed_hz is None and in_hz is not None:
+                speed_warnings.append(f"warning: {Path(r.source).name}: {hz_warning(rpm, in_hz)}")
     faulty: list[Path] = []
     user: list[tuple[object, dict]] = []  # (record, condition) with --conditions
     if conditions is not None and not model_gains:
@@ -439,7 +440,7 @@ def _user_conditions(
     from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
     from ..rig_identify import _record_rpm
     from ..side_by_side import FAULT_FAMILIES
-    from ..signal.contact_angle import hz_given_as_rpm, hz_warning, refuted_speed
+    from ..signal.contact_angle import check_speed_given, hz_warning
 
     if "rotor" in models:
         raise ConfigError(
@@ -528,25 +529,21 @@ def _user_conditions(
                 f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose own speed "
                 f"is {own:.6g} r/min; valid: the record's speed (or an empty rpm, to take it)"
             )
-        elif (
-            "rpm" in cond
-            and own is None
-            and (c := refuted_speed(rec.x, rec.fs, cond["rpm"] / 60.0))
-        ):
+        elif "rpm" in cond and own is None:
             # a record without a speed of its own: its shaft lines, as they refute --rpm
             # (exploratory testing, twenty-fifth session: a row in Hz, 29.1 for 1746 r/min,
-            # was accepted and moved the gain 250-fold; the Hz case is warned below)
-            raise ConfigError(
-                f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose shaft "
-                f"harmonics put its speed at {60.0 * c.shaft_hz:.6g} r/min; valid: the record's "
-                "speed (or an empty rpm, where it has none of its own)"
-            )
-        elif (
-            "rpm" in cond
-            and own is None
-            and (c := hz_given_as_rpm(rec.x, rec.fs, cond["rpm"] / 60.0))
-        ):
-            warnings_out.append(f"warning: {where}: {Path(p).name}: {hz_warning(cond['rpm'], c)}")
+            # was accepted and moved the gain 250-fold; the Hz case is warned)
+            c, in_hz = check_speed_given(rec.x, rec.fs, cond["rpm"] / 60.0)
+            if c is not None:
+                raise ConfigError(
+                    f"{where}: rpm = {cond['rpm']:.6g} r/min for {Path(p).name!r}, whose shaft "
+                    f"harmonics put its speed at {60.0 * c.shaft_hz:.6g} r/min; valid: the "
+                    "record's speed (or an empty rpm, where it has none of its own)"
+                )
+            if in_hz is not None:
+                warnings_out.append(
+                    f"warning: {where}: {Path(p).name}: {hz_warning(cond['rpm'], in_hz)}"
+                )
         if own is None and "rpm" in cond:  # the row's speed is the record's (tones, rpm_range)
             rec = recs[i] = replace(rec, rpm=cond["rpm"], info={**rec.info, "rpm_source": where})
         if cond["fault"] != "none":
@@ -622,21 +619,15 @@ def _check_condition(cond: dict, own: float | None, rec, models, realism: dict, 
 
 
 def _column_hz_warnings(recs: list, out: list[str]) -> None:
-    """A warning in ``out`` for each record whose speed column reads like the speed in Hz
-    (a column named ``rpm`` holding Hz: the rig's tones and ``rpm_range`` took 29 r/min
+    """A warning in ``out`` for each record whose speed column reads like the speed in the
+    other unit (:func:`.common.speed_column_warning`: a column named ``rpm`` holding Hz, or
+    ``speed_hz`` holding r/min; the rig's tones and ``rpm_range`` took 29 or 104880 r/min
     silently; exploratory testing, twenty-sixth session)."""
-    from ..io.signal import column_median_rpm
-    from ..signal.contact_angle import hz_given_as_rpm, hz_warning, rpm_column_text
+    from .common import speed_column_warning
 
     for r in recs:
-        n = column_median_rpm(r)
-        if n is None:
-            continue
-        if (c := hz_given_as_rpm(r.x, r.fs, n / 60.0)) is not None:
-            out.append(f"warning: {Path(r.source).name}: {hz_warning(n, c, column=True)}")
-        elif (c := hz_given_as_rpm(r.x, r.fs, n / 60.0, factor=1.0 / 60.0)) is not None:
-            # the reverse: r/min in a column read as Hz (rpm_range 104880 was written unsaid)
-            out.append(f"warning: {Path(r.source).name}: {rpm_column_text(n, c)}")
+        if (text := speed_column_warning(r)) is not None:
+            out.append(f"warning: {Path(r.source).name}: {text}")
 
 
 def _row_numbers(row: dict, keys: tuple[str, ...], required: str | None = None) -> dict:

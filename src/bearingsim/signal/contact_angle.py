@@ -51,6 +51,7 @@ __all__ = [
     "ALPHA_SEARCH_MAX",
     "SLIP_ASSUMED",
     "ContactAngleEstimate",
+    "check_speed_given",
     "estimate_contact_angle",
     "hz_given_as_rpm",
     "hz_hint",
@@ -406,6 +407,19 @@ def _comb_over(
     ):
         return replace(c, gain_db=float(c.prominence_db - base))
     return None
+
+
+def check_speed_given(
+    x: ArrayLike, fs: float, shaft_hz: float, *, stated_hz: float | None = None
+) -> tuple[SpeedComb | None, SpeedComb | None]:
+    """``(refuted, in_hz)`` for a speed given ``shaft_hz`` [Hz] on one padded spectrum of
+    ``x``: :func:`refuted_speed` (``stated_hz``: the speed the file states [Hz]) and, where
+    that does not refute it, :func:`hz_given_as_rpm` (else None)."""
+    spec = padded_spectrum(x, fs)
+    c = refuted_speed(None, fs, shaft_hz, spectrum=spec, stated_hz=stated_hz)
+    if c is not None:
+        return c, None
+    return None, hz_given_as_rpm(None, fs, shaft_hz, spectrum=spec)
 
 
 def hz_hint(rpm: float, own_rpm: float) -> str:

@@ -591,7 +591,7 @@ def diagnose_fused(
             else f"a comb of 10 stands {refuted.gain_db:.0f} dB over the one at the speed used"
         )
         notes.append(
-            f"the record's shaft harmonics put the speed at {60.0 * f_rec:.6g} r/min ({how}), "
+            f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}), "
             f"{100.0 * (f_rec / shaft_hz - 1.0):+.2f} % from the {60.0 * shaft_hz:.6g} r/min "
             f"used, beyond the line search's ±{100.0 * rule.tol_rel:g} %: the fault lines were "
             "searched at the wrong speed (check --rpm)"
@@ -670,6 +670,11 @@ PEAK_RANGE = (1e-45, 1e45)
 #: tolerance of the kinematic check [spectral resolutions]: each found line is the bin of
 #: its largest amplitude (half a resolution off at most) and the speed varies over a record
 KINEMATIC_TOL = 3.0
+
+
+#: how the reason of an "uncertain" whose speed the record's shaft lines refute begins (its
+#: caller knows the speed was wrong: ``analyze`` gives no cage-revolution note then)
+SPEED_REFUTED = "the record's shaft harmonics put the speed at"
 
 
 def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:

@@ -126,14 +126,16 @@ def _figure(ctx: Context, sec: Section, cases: list[dict]) -> None:
 LOLO_NOTE = "see docs/validation.md, 'Leave-one-load-out: a rig of the record's own mounting'"
 
 
-def _other_loads(sec: Section, data, names: list[str], duration: float, rig_of, simulate) -> None:
+def _other_loads(sec: Section, data, names: list[str], duration: float) -> None:
     """Judge the records ``names``, whose mounting has no other fault size here (the fan
     end's), through a rig of their own mounting's records at the other loads
-    (:func:`bearingsim.side_by_side.rig_other_loads`, ``rig_of``), with a count of their own:
-    the fan end was not judged at all before (a helper's review, twenty-fifth session)."""
+    (:func:`bearingsim.side_by_side.rig_other_loads`), with a count of their own: the fan end
+    was not judged at all before (a helper's review, twenty-fifth session)."""
+    from ...side_by_side import rig_other_loads, simulate_record  # as run(): at run time
+
     n_within = n_judged = 0
     for name in names:
-        rig = rig_of(data, name)
+        rig = rig_other_loads(data, name)
         if rig is None:  # one record of its mounting (313): nothing to identify a rig on
             sec.rows.append(
                 info(
@@ -144,7 +146,7 @@ def _other_loads(sec: Section, data, names: list[str], duration: float, rig_of, 
                 )
             )
             continue
-        c = simulate(data / name, rig, duration_s=duration)
+        c = simulate_record(data / name, rig, duration_s=duration)
         ok = _judge_rows(sec, c, "VSM + rig (leave-one-load-out)", LOLO_NOTE)
         n_judged += 1
         n_within += all(ok.values())
@@ -244,13 +246,7 @@ def _judge_rows(sec: Section, c: dict, what: str, note: str) -> dict[str, bool]:
 def run(ctx: Context) -> Section:
     # side_by_side sits above the report layer (it runs the rig and the simulations): loaded
     # here, when the section runs, not at import time (tests/test_layers.py)
-    from ...side_by_side import (
-        DEFECT_PROFILE,
-        SLIP_PERCENT,
-        lomo_rig,
-        rig_other_loads,
-        simulate_record,
-    )
+    from ...side_by_side import DEFECT_PROFILE, SLIP_PERCENT, lomo_rig, simulate_record
 
     sec = Section("signals", TITLE)
     data = cwru_data_dir()
@@ -304,7 +300,7 @@ def run(ctx: Context) -> Section:
                 "yes" if all(ok.values()) else "no",
             )
         )
-    _other_loads(sec, data, no_lomo, duration, rig_other_loads, simulate_record)
+    _other_loads(sec, data, no_lomo, duration)
     if cases:
         cases.sort(key=lambda c: FIGURE_RECORDS.index(c["record"]))
         if worst is not None and _miss(worst) > max(_miss(c) for c in cases):
