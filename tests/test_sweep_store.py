@@ -405,6 +405,28 @@ def test_lock_without_hard_links_or_flock(store, monkeypatch):
         client_lock(store).acquire()
 
 
+def test_lock_temporary_removed_by_the_holders_cleaner_is_still_in_use(store, monkeypatch):
+    """The holder's ``remove_stale_temporaries`` deletes every ``records/.lock-*``, also the
+    temporary a second client is judging the lock with (CI, 2026-12-07: two clients at once on
+    a new dataset; the loser said "the lock cannot be written (No such file or directory)"
+    instead of "in use"). The temporary is written again; the answer is "in use"."""
+    link = ClientLock._link
+    removed = []
+
+    def link_then_clean(self, tmp):
+        ok = link(self, tmp)
+        if not ok and len(removed) < 3:  # the cleaner runs between the link and the look
+            removed.append(remove_stale_temporaries(store))
+        return ok
+
+    with client_lock(store):
+        monkeypatch.setattr(ClientLock, "_link", link_then_clean)
+        with pytest.raises(ConfigError, match=r"is in use by the sweep client .*running process"):
+            client_lock(store).acquire()
+    assert removed == [1, 1, 1]  # the temporary was there to be removed, three times
+    assert not list((store / "records").glob(".lock-*"))
+
+
 def test_judge_lock_rules():
     me = {"host": "a", "pid": os.getpid(), "start": this_process()["start"], "boot_id": "b1"}
     assert judge_lock(me, 0.0, me)[0] is False

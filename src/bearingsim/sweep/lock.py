@@ -329,8 +329,11 @@ class ClientLock:
                     f"lock {str(self.path)!r} of dataset {str(self.dataset)!r} cannot be read "
                     f"({exc.strerror})"
                 ) from None
-            os.utime(tmp)  # "now" on the file system's clock
-            age = os.stat(tmp).st_mtime - st.st_mtime
+            try:
+                os.utime(tmp)  # "now" on the file system's clock
+                age = os.stat(tmp).st_mtime - st.st_mtime
+            except FileNotFoundError:  # tmp removed by the holder's cleaner: written again
+                continue
             stale, why = judge_lock(owner, age, self.owner)
             if stale is None:  # empty and young: being written by another client
                 time.sleep(min(LOCK_EMPTY_GRACE_S, max(LOCK_EMPTY_GRACE_S - age, 0.0) + 0.05))
@@ -373,7 +376,10 @@ class ClientLock:
             os.rename(self.path, aside)
         except FileNotFoundError:
             return  # another client removed it first
-        st = os.lstat(aside)
+        try:
+            st = os.lstat(aside)
+        except FileNotFoundError:  # removed by the cleaner of a client that holds the lock now
+            return
         same = (st.st_ino, st.st_dev, st.st_mtime_ns) == (
             judged.st_ino,
             judged.st_dev,
