@@ -801,6 +801,26 @@ def test_a_rpm_far_from_the_files_own_is_refuted_by_its_shaft_lines(run_cli):
     assert d["diagnosis"] == "inner" and not d["why"]
 
 
+def test_a_rpm_well_off_a_csv_record_s_own_speed_is_refuted(run_cli, tmp_path):
+    """A record without a stated speed (record 107 written as a CSV, its shaft at 1747.5 r/min
+    by its harmonics): the shaft comb was searched within ±5 % of the speed given only, so a
+    speed 11 % off was not judged. It is searched within ±15 % now
+    (:data:`~bearingsim.signal.contact_angle.COMB_SEARCH_REL`): 1550 and 1950 r/min read
+    "uncertain", naming the record's speed; the record's own speed keeps its verdict."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("107"), channel="DE")
+    p = tmp_path / "r107.csv"
+    np.savetxt(p, np.c_[np.arange(rec.x.size) / rec.fs, rec.x], delimiter=",",
+               header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    for rpm in (1550, 1950):
+        d = run_cli("analyze", p, "--rpm", rpm, "--json").json()
+        assert d["diagnosis"] == "uncertain" and d["confidence"] == 0.0, (rpm, d["diagnosis"])
+        assert "put the speed at 1747" in d["why"], d["why"]
+    d = run_cli("analyze", p, "--rpm", 1748, "--json").json()
+    assert d["diagnosis"] == "inner" and not d["why"], d["why"]
+
+
 def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_cli, tmp_path):
     """Exploratory testing (twenty-fifth session): ball faults at 300-600 r/min on 1 s records
     read "none" or "uncertain" without a word. A ball fault's lines are told by their cage

@@ -71,7 +71,7 @@ lines are stronger in sum: a machine has one supply).
 
 * a speed the record refutes → ``uncertain`` (0), the leading family and ``p`` kept
   (sixteenth session): the fault lines are searched within ``tol_rel`` (1 %) of the speed
-  given; when the comb of ten shaft harmonics that stands highest within ±5 % of it
+  given; when the comb of ten shaft harmonics that stands highest within ±15 % of it
   (:func:`.contact_angle.shaft_speed_comb`) lies further away and stands
   :data:`.contact_angle.COMB_PROMINENCE_DB` out and :data:`.contact_angle.COMB_GAIN_DB` over
   the comb at the speed given,
