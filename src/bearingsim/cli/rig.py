@@ -188,11 +188,11 @@ def identify_cmd(
                 r.x, r.fs, rpm / 60.0, stated_hz=None if stated is None else stated / 60.0
             )
             if c is not None:
-                off = 100.0 * (60.0 * c.shaft_hz / rpm - 1.0)
+                off = 100.0 * (rpm / (60.0 * c.shaft_hz) - 1.0)  # as the override's warning
                 raise ConfigError(
                     f"rpm = {rpm:.6g} r/min: the shaft harmonics of {Path(r.source).name!r} put "
-                    f"its speed at {60.0 * c.shaft_hz:.6g} r/min ({off:+.2f} % from the speed "
-                    f"given{hz_hint(rpm, 60.0 * c.shaft_hz)}); valid: the records' speed (or no "
+                    f"its speed at {60.0 * c.shaft_hz:.6g} r/min (the speed given is {off:+.2f} % "
+                    f"off it{hz_hint(rpm, 60.0 * c.shaft_hz)}); valid: the records' speed (or no "
                     "--rpm, to take each file's)"
                 )
             if stated is not None and abs(rpm / stated - 1.0) > RPM_OPTION_REL:

@@ -591,10 +591,10 @@ def diagnose_fused(
             else f"a comb of 10 stands {refuted.gain_db:.0f} dB over the one at the speed used"
         )
         notes.append(
-            f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}), "
-            f"{100.0 * (f_rec / shaft_hz - 1.0):+.2f} % from the {60.0 * shaft_hz:.6g} r/min "
-            f"used, beyond the line search's ±{100.0 * rule.tol_rel:g} %: the fault lines were "
-            "searched at the wrong speed (check --rpm)"
+            f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} "
+            f"r/min used is {100.0 * (shaft_hz / f_rec - 1.0):+.2f} % off it, beyond the line "
+            f"search's ±{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong "
+            "speed (check --rpm)"
         )
         return _res("uncertain", 0.0, top, p, margin)
     if not supported:
