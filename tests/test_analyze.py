@@ -821,6 +821,33 @@ def test_a_rpm_well_off_a_csv_record_s_own_speed_is_refuted(run_cli, tmp_path):
     assert d["diagnosis"] == "inner" and not d["why"], d["why"]
 
 
+def test_supply_lines_do_not_refute_a_records_own_speed(run_cli, tmp_path):
+    """Exploratory testing (twenty-seventh session): record 132 (1750 r/min) with 60-300 Hz
+    supply lines of 0.72 m/s² added (1.1 m/s² RMS on its 5.6) was refuted at its own speed,
+    "put at 1800.24 r/min": the lines are the even harmonics of a 30 Hz comb. A comb that
+    refutes must stand out without its harmonics on 50/60 Hz multiples
+    (:func:`~bearingsim.signal.contact_angle.supply_harmonics`): 1750 r/min stands, with lines
+    of 0.72-10 m/s² (132, 311, 186 and 107 were refuted before), and a wrong speed is still
+    refuted naming the record's."""
+    from bearingsim.io.signal import read_signal
+    from bearingsim.signal.contact_angle import refuted_speed, supply_harmonics
+
+    assert supply_harmonics(30.0) == (2, 4, 5, 6, 8, 10)
+    assert supply_harmonics(1750.0 / 60.0) == ()
+    rec = read_signal(cwru_record("132"), channel="DE")
+    t = np.arange(rec.x.size) / rec.fs
+    hum = sum(np.sin(2 * np.pi * h * t + h) for h in (60, 120, 180, 240, 300))
+    for amp in (0.72, 10.0):
+        assert refuted_speed(rec.x + amp * hum, rec.fs, 1750.0 / 60.0) is None, amp
+    p = tmp_path / "hum.csv"
+    np.savetxt(p, np.c_[t, rec.x + 0.72 * hum], delimiter=",",
+               header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    d = run_cli("analyze", p, "--rpm", 1750, "--json").json()
+    assert d["diagnosis"] == "outer" and not d["why"], d["why"]
+    d = run_cli("analyze", p, "--rpm", 1900, "--json").json()
+    assert d["diagnosis"] == "uncertain" and "put the speed at 1749" in d["why"], d["why"]
+
+
 def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_cli, tmp_path):
     """Exploratory testing (twenty-fifth session): ball faults at 300-600 r/min on 1 s records
     read "none" or "uncertain" without a word. A ball fault's lines are told by their cage
