@@ -34,6 +34,7 @@ CSV_COLUMNS = [
     "error",
     "channel_source",
     "contact_angle_deg",
+    "why",
 ]
 #: what ``rpm_source`` says of a speed taken from a CWRU file name at motor load 2 hp
 NAME_LOAD_2 = "name (CWRU nominal speed at load 2 hp)"
@@ -114,6 +115,20 @@ def test_csv_header_and_rows(run_cli, three):
         assert c["channel_source"] == d["channel_source"]
         ca = d["contact_angle"]  # 132 outer, 310 outer, 107 inner: each reads its angle
         assert float(c["contact_angle_deg"]) == ca["contact_angle_deg"]
+        assert c["why"] == d["why"]
+
+
+def test_csv_says_why_a_refuted_speed_is_uncertain(run_cli):
+    """Exploratory testing (twenty-seventh session): ``--csv`` of records at a wrong ``--rpm``
+    gave "uncertain, leading ball, probability 0.996" and no reason, and the text line said
+    "leading family ball at p 1.00" beside the refutation. The ``why`` column gives the
+    reason; the text line leaves out a family that led at the wrong speed."""
+    r = run_cli("analyze", cwru_record("107"), "--rpm", 2000, "--csv")
+    c = dict(zip(CSV_COLUMNS, list(csv.reader(io.StringIO(r.out)))[1], strict=True))
+    assert c["diagnosis"] == "uncertain"
+    assert c["why"].startswith("the record's shaft harmonics put the speed at 1747"), c["why"]
+    t = run_cli("analyze", cwru_record("107"), "--rpm", 2000)
+    assert "leading family" not in t.out.splitlines()[0], t.out
 
 
 def test_text_output_one_line_per_file(run_cli, three):

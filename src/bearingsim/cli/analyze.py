@@ -114,7 +114,7 @@ def signal_unit(rec) -> str | None:
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
     *("leading", "probability", "band_lo_hz", "band_hi_hz", "error"),
-    *("channel_source", "contact_angle_deg"),
+    *("channel_source", "contact_angle_deg", "why"),
 )
 
 
@@ -459,8 +459,16 @@ def _echo_text(out: dict[str, Any], detail: bool) -> None:
         speed += f", channel {out['channel']} and {out['bearing']} from the file name"
     elif "bearing from the file name" in str(out.get("channel_source", "")):
         speed += f", {out['bearing']} from the file name"
+    from ..signal.fused import SPEED_REFUTED
+
     lead = ""
-    if out["diagnosis"] == "uncertain" and out.get("leading") and out.get("probability"):
+    refuted = SPEED_REFUTED in str(out.get("why") or "")  # a family led at the wrong speed
+    if (
+        out["diagnosis"] == "uncertain"
+        and out.get("leading")
+        and out.get("probability")
+        and not refuted
+    ):
         # an "uncertain" with a leading family: say which family led, at what probability
         lead = f", leading family {out['leading']} at p {out['probability']:.2f}"
     orders = out.get("domain") == "order"  # an order-tracked record: band and lines in orders
