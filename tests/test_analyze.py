@@ -896,6 +896,26 @@ def test_multiples_of_the_files_speed_and_weak_shaft_combs_are_refuted(run_cli, 
     assert "cage_revolutions" not in d
 
 
+def test_a_steady_speed_column_is_judged_by_the_records_shaft_lines(run_cli, tmp_path):
+    """Exploratory testing (twenty-seventh session): a speed column was never checked against
+    the record's shaft lines; record 172 (inner race, 1728 r/min) with a constant column of
+    1800 r/min read "ball" at 0.79, where ``--rpm 1800`` is refuted. A column steady within
+    the line search's 1 % is now judged at its median: "uncertain", naming the record's speed
+    and the column; the right column is order tracked as before."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("172"), channel="DE")
+    t = np.arange(rec.x.size) / rec.fs
+    for rpm in (1800.0, 1728.0):
+        np.savetxt(tmp_path / f"c{rpm:.0f}.csv", np.c_[t, rec.x, np.full(t.size, rpm)],
+                   delimiter=",", header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    d = run_cli("analyze", tmp_path / "c1800.csv", "--json").json()
+    assert d["diagnosis"] == "uncertain" and "put the speed at 1726" in d["why"], d["why"]
+    assert d["why"].endswith("(check the speed column)"), d["why"]
+    d = run_cli("analyze", tmp_path / "c1728.csv", "--json").json()
+    assert (d["diagnosis"], d["domain"]) == ("inner", "order"), (d["diagnosis"], d["why"])
+
+
 def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):
     """Exploratory testing (twenty-sixth session): a CSV whose ``rpm`` column holds the speed
     in Hz (29.13) was order tracked at 0.49 Hz and read "none" unsaid; its note now says the

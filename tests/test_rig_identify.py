@@ -1016,6 +1016,26 @@ def test_identify_refuses_a_rpm_far_from_the_files_own(tmp_path):
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
+def test_identify_refuses_a_steady_speed_column_the_shaft_lines_refute(tmp_path):
+    """Exploratory testing (twenty-seventh session): record 172 (1728 r/min) with a constant
+    speed column of 1800 r/min gave a rig with ``rpm_range = [1800, 1800]``; a steady column
+    is judged as ``--rpm`` is, in one line, writing nothing."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(CWRU / "12k_Drive_End_IR014_3_172.mat", channel="DE")
+    t = np.arange(rec.x.size) / rec.fs
+    np.savetxt(tmp_path / "c.csv", np.c_[t, rec.x, np.full(t.size, 1800.0)], delimiter=",",
+               header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    r = _cli("rig", "identify", "c.csv", "--name", "a", "-o", "a.toml", cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr == (
+        "error: the speed column of 'c.csv' (median 1800 r/min) is refuted by its shaft "
+        "harmonics, which put its speed at 1726.87 r/min (the column is +4.23 % off it); valid: "
+        "a column with the record's speed (or --rpm R)\n"
+    ), r.stderr
+    assert not (tmp_path / "a.toml").exists()
+
+
+@pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")
 def test_identify_speed_checks_on_short_and_weak_records(tmp_path):
     """Exploratory testing (twenty-sixth session): ``--rpm 29.95`` on record 174 raised a
     traceback (the shaft comb's ±0.5 % window held no grid point); 188 at 1690 r/min (its comb

@@ -171,6 +171,7 @@ def identify_cmd(
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
     speed_warnings: list[str] = []  # printed after the rig is written
     _column_hz_warnings(recs, speed_warnings)
+    _check_steady_columns(recs)
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
         from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
         from ..signal.contact_angle import check_speed_given, hz_hint, hz_warning
@@ -628,6 +629,34 @@ def _column_hz_warnings(recs: list, out: list[str]) -> None:
     for r in recs:
         if (text := speed_column_warning(r)) is not None:
             out.append(f"warning: {Path(r.source).name}: {text}")
+
+
+def _check_steady_columns(recs: list) -> None:
+    """Refuse a record whose speed column is steady (within 1 %, 1st-99th percentile) at a
+    speed its shaft harmonics refute, as ``--rpm`` is refused (exploratory testing,
+    twenty-seventh session: record 172, 1728 r/min, with a column of 1800 r/min wrote
+    ``rpm_range = [1800, 1800]`` and tones at 1800 r/min)."""
+    import numpy as np
+
+    from ..signal.contact_angle import refuted_speed
+
+    for r in recs:
+        if r.speed_hz is None or r.rpm is not None:
+            continue
+        sp = np.asarray(r.speed_hz, dtype=float)
+        lo, hi = np.percentile(sp, [1.0, 99.0])
+        med = float(np.median(sp))
+        if not (lo > 0.0 and hi / lo - 1.0 <= 0.01):
+            continue
+        c = refuted_speed(r.x, r.fs, med)
+        if c is not None:
+            off = 100.0 * (med / c.shaft_hz - 1.0)
+            raise ConfigError(
+                f"the speed column of {Path(r.source).name!r} (median {60.0 * med:.6g} r/min) "
+                f"is refuted by its shaft harmonics, which put its speed at "
+                f"{60.0 * c.shaft_hz:.6g} r/min (the column is {off:+.2f} % off it); valid: a "
+                "column with the record's speed (or --rpm R)"
+            )
 
 
 def _row_numbers(row: dict, keys: tuple[str, ...], required: str | None = None) -> dict:

@@ -1085,6 +1085,19 @@ def analyze_record(
                 f"({what}); valid: a speed > 0 at every sample (range (0, inf) Hz), or --rpm R "
                 "to judge the record at one speed"
             )
+        med = float(np.median(sp))
+        lo, hi = np.percentile(sp, [1.0, 99.0])
+        if hi / lo - 1.0 <= rule.tol_rel:  # steady: the shaft lines can judge the column
+            # (exploratory testing, twenty-seventh session: a constant column of 1800 r/min
+            # on record 172, 1728 r/min, read "ball" at 0.79, where --rpm 1800 is refuted)
+            from .contact_angle import refuted_speed
+
+            if refuted_speed(rec.x, rec.fs, med, tol_rel=rule.tol_rel) is not None:
+                b = None if band_v is None else (band_v[0] * med, band_v[1] * med)
+                return diagnose_fused(
+                    rec.x, rec.fs, bearing, med, band=b, rule=rule, **_supply(rec),
+                    speed_from="the speed column",
+                )  # fmt: skip
         t = np.arange(rec.x.size) / rec.fs
         if samples_per_rev is None:
             samples_per_rev = max(2 * int(rec.fs / float(sp.max()) / 2.0), MIN_SAMPLES_PER_REV)

@@ -455,6 +455,7 @@ def diagnose_fused(
     calibration: Calibration | None = CALIBRATION,
     supply_hz: tuple[float, ...] = SUPPLY_HZ,
     stated_hz: float | None = None,
+    speed_from: str = "--rpm",
 ) -> FusedDiagnosis:
     """Fused diagnosis of ``x`` (module docstring).
 
@@ -486,6 +487,8 @@ def diagnose_fused(
         The speed the record's file states [Hz] where ``shaft_hz`` overrides it: shaft
         harmonics that confirm it and refute ``shaft_hz`` make the verdict "uncertain"
         (:func:`.contact_angle.refuted_speed`).
+    speed_from : str
+        Where ``shaft_hz`` came from, for the reason of a refuted speed ("check --rpm").
     """
     from ..catalog import as_bearing
     from ..geometry import parse_enum
@@ -594,7 +597,7 @@ def diagnose_fused(
             f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} "
             f"r/min used is {100.0 * (shaft_hz / f_rec - 1.0):+.2f} % off it, beyond the line "
             f"search's ±{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong "
-            "speed (check --rpm)"
+            f"speed (check {speed_from})"
         )
         return _res("uncertain", 0.0, top, p, margin)
     if not supported:
