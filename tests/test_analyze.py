@@ -821,6 +821,27 @@ def test_a_rpm_well_off_a_csv_record_s_own_speed_is_refuted(run_cli, tmp_path):
     assert d["diagnosis"] == "inner" and not d["why"], d["why"]
 
 
+def test_a_speed_the_shaft_lines_cannot_judge_is_said_unchecked(run_cli, tmp_path):
+    """Exploratory testing (twenty-seventh session): a 2 s piece of record 172 (1728 r/min)
+    written as a CSV read "ball" at ``--rpm 1780`` (+3 %) without a word: its shaft comb
+    stands 14 dB out, under the 20 dB the check needs. A note (and ``rpm_unchecked``) says the
+    speed given is not checked; the whole record at its speed gets none."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("172"), channel="DE")
+    n = int(2 * rec.fs)
+    for name, x in (("piece.csv", rec.x[:n]), ("whole.csv", rec.x)):
+        np.savetxt(tmp_path / name, np.c_[np.arange(x.size) / rec.fs, x], delimiter=",",
+                   header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    d = run_cli("analyze", tmp_path / "piece.csv", "--rpm", 1780, "--json").json()
+    assert d["rpm_unchecked"].startswith(
+        "the speed given (1780 r/min) is not checked: the record has a shaft comb only 14 dB out"
+    ), d.get("rpm_unchecked")
+    assert d["rpm_unchecked"] in d["notes"]
+    d = run_cli("analyze", tmp_path / "whole.csv", "--rpm", 1728, "--json").json()
+    assert "rpm_unchecked" not in d and d["diagnosis"] == "inner"
+
+
 def test_supply_lines_do_not_refute_a_records_own_speed(run_cli, tmp_path):
     """Exploratory testing (twenty-seventh session): record 132 (1750 r/min) with 60-300 Hz
     supply lines of 0.72 m/s² added (1.1 m/s² RMS on its 5.6) was refuted at its own speed,

@@ -362,10 +362,27 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
             out["cage_revolutions"] = revs
     if in_hz is not None:
         out["rpm_warning"] = in_hz
+    elif (
+        rpm_source == "option"
+        and rec.speed_hz is None
+        and rec.info.get("rpm_file") is None
+        and not wrong_speed
+        and Path(rec.source).suffix.lower() not in _result_suffixes()
+    ):  # a measured record's only speed is the one given: could its shaft lines judge it?
+        from ..signal.contact_angle import unchecked_speed_note
+
+        if (text := unchecked_speed_note(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
+            out["rpm_unchecked"] = text
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
     return to_jsonable(out)
+
+
+def _result_suffixes() -> tuple[str, ...]:
+    from ..io.signal import RESULT_SUFFIXES
+
+    return tuple(RESULT_SUFFIXES)
 
 
 def _column_in_rpm_hint(rec: Any) -> str:
@@ -382,6 +399,8 @@ def _result_notes(out: dict[str, Any]) -> list[str]:
     reads like a speed in Hz (``rpm_warning``) and a "none" or "uncertain" on too few cage
     revolutions (``cage_revolutions``): added to ``notes`` and printed by the text output."""
     notes = [out["rpm_warning"]] if out.get("rpm_warning") else []
+    if out.get("rpm_unchecked"):
+        notes.append(out["rpm_unchecked"])
     if out.get("cage_revolutions") is not None:
         notes.append(cage_note(out["cage_revolutions"]))
     if out.get("antialiased") is False:
