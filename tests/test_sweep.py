@@ -280,6 +280,26 @@ def test_ctrl_c_with_workers_that_outlive_the_client(client, tmp_path):
     assert (rep.n_skipped, rep.n_computed, rep.n_ok, rep.n_pending) == (k, 12 - k, 12, 0)
 
 
+def test_ctrl_c_after_the_last_commit_says_nothing_is_left(client, tmp_path):
+    """Exploratory testing (twenty-seventh session): a Ctrl-C after the last run was committed
+    said "8 of 8 runs committed ...; run the same command again to resume"."""
+    from bearingsim.sweep.execute import SweepInterrupted
+
+    spec = make_spec({"rpm": [1700.0, 1750.0, 1797.0]})
+    out = tmp_path / "late.zarr"
+
+    def progress(rep) -> None:
+        if rep.n_computed == 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(SweepInterrupted) as ei:
+        run_sweep(spec, out, client=client, runs_per_task=1, progress=progress)
+    assert str(ei.value) == (
+        "interrupted: 3 of 3 runs committed (3 by this call); every run is committed, nothing "
+        "is left to resume"
+    )
+
+
 def test_spec_change_refused_or_replaced(client, noisy, tmp_path):
     import shutil
 

@@ -274,6 +274,54 @@ def test_run_prints_each_runs_warning_once_and_summary_lists_the_runs(run_cli, t
     assert r.code == 0 and "  warning in 2 run(s) (2, 3): RigRateWarning: rig" in r.out
 
 
+def test_a_dataset_removed_or_unwritable_during_a_sweep_is_one_line(
+    run_cli, spec_file, tmp_path, monkeypatch
+):
+    """Exploratory testing (twenty-seventh session): the dataset deleted while a sweep wrote it
+    ended in ``FileNotFoundError`` with a traceback, exit 1; a dataset whose ``signal/`` was
+    not writable in a ``PermissionError`` traceback. Both are one line, exit 2."""
+    import errno
+
+    from bearingsim.sweep import execute
+
+    out = tmp_path / "o.zarr"
+
+    def removed(*args, **kw):
+        raise FileNotFoundError(errno.ENOENT, "No such file or directory", str(out / "s" / "t"))
+
+    monkeypatch.setattr(execute, "run_sweep", removed)
+    r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1")
+    assert r.code == 2 and r.err == (
+        f"error: -o/--output = '{out}' was removed or moved while this sweep wrote it; run the "
+        "same command again to start it anew\n"
+    ), r.err
+
+    def denied(*args, **kw):
+        out.mkdir(exist_ok=True)
+        raise PermissionError(errno.EACCES, "Permission denied", str(out / "signal" / "t"))
+
+    monkeypatch.setattr(execute, "run_sweep", denied)
+    r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1")
+    assert r.code == 2 and r.err.count("\n") == 1, r.err
+    assert r.err.startswith(f"error: -o/--output = '{out}' cannot be written: permission denied")
+
+
+def test_the_working_folder_is_refused_as_the_output(run_cli, spec_file, tmp_path, monkeypatch):
+    """Exploratory testing (twenty-seventh session): ``-o .`` in an empty folder crashed with
+    ``OSError: Invalid argument: '.'``, and ``-o "$PWD"`` removed the working folder (an empty
+    folder is taken as a new dataset) before crashing; both, and a parent, are one line."""
+    work = tmp_path / "w" / "e"
+    work.mkdir(parents=True)
+    monkeypatch.chdir(work)
+    for out in (".", str(work), str(work.parent)):
+        r = run_cli("sweep", "run", spec_file, "-o", out, "--workers", "1")
+        assert r.code == 2 and r.err == (
+            f"error: -o/--output = {out!r} is the working folder or one of its parents; valid: "
+            "a dataset directory inside or beside it (e.g. -o sweep.zarr)\n"
+        ), r.err
+    assert work.is_dir()
+
+
 def test_a_full_disk_during_a_sweep_is_one_line(run_cli, spec_file, tmp_path, monkeypatch):
     # twenty-first session: zarr's OSError (errno 28) from the dataset's creation or a commit
     # came out as a traceback, exit 1 (reproduced on a 12 kB and a 400 kB tmpfs)

@@ -569,8 +569,25 @@ def test_stale_creation_directories_are_removed(tmp_path):
     new_store(out)
     left = sorted(p.name for p in tmp_path.iterdir())
     assert left == [".d.zarr.creating-live", ".d.zarr.creating-nolock", "d.zarr"]
-    _age(young, locks.LOCK_STALE_S + 1.0)
+    _age(young, locks.CREATION_LOCKLESS_S - 5.0)  # written to milliseconds ago: kept
+    assert locks.remove_stale_creations(out) == 0 and young.exists()
+    # 30 s, not 300: a Ctrl-C during creation left a lockless one that a rerun kept
+    # (exploratory testing, twenty-seventh session)
+    _age(young, locks.CREATION_LOCKLESS_S + 1.0)
     assert locks.remove_stale_creations(out) == 1 and not young.exists()
+
+
+def test_a_resume_removes_a_stale_creation_beside_the_dataset(store):
+    """A lockless ``.NAME.creating-*`` older than 30 s is removed by a run on the existing
+    dataset too (it was only by the next creation, which a dataset that exists never has)."""
+    w = RunWriter(store)
+    commit(w, 5)  # every run committed: the run needs no cluster
+    w.close()
+    old = store.parent / f".{store.name}.creating-x"
+    (old / "signal").mkdir(parents=True)
+    _age(old, locks.CREATION_LOCKLESS_S + 1.0)
+    rep = run_sweep(SPEC, store, client=_NoCluster())
+    assert rep.n_skipped == SPEC.n_runs and not old.exists()
 
 
 def test_resuming_a_dataset_in_use_is_refused_before_any_work(store):

@@ -217,6 +217,15 @@ def run_cmd(
     p = Path(out)
     if p.exists() and not p.is_dir():
         raise ConfigError(f"-o/--output = {out!r} is a file; valid: a dataset directory")
+    try:  # an empty working folder was removed as "a new dataset", then the run crashed
+        cwd = Path.cwd().resolve()  # (exploratory testing, twenty-seventh session: -o .)
+    except OSError:
+        cwd = None
+    if cwd is not None and (p.resolve() == cwd or p.resolve() in cwd.parents):
+        raise ConfigError(
+            f"-o/--output = {out!r} is the working folder or one of its parents; valid: a "
+            "dataset directory inside or beside it (e.g. -o sweep.zarr)"
+        )
     if force_new and p.is_dir() and p.resolve() in Path(spec_file).resolve().parents:
         # --force-new removes the dataset folder, and the sweep file with it
         raise ConfigError(
@@ -249,6 +258,17 @@ def run_cmd(
         from ..io.atomic import storage_reason  # consistent: the runs committed are kept)
 
         reason = storage_reason(exc, out)
+        if reason is None and not p.exists():  # removed or moved while the sweep wrote it
+            raise ConfigError(
+                f"-o/--output = {out!r} was removed or moved while this sweep wrote it; run the "
+                "same command again to start it anew"
+            ) from None
+        if reason is None and isinstance(exc, PermissionError):  # a folder of it not writable
+            raise ConfigError(
+                f"-o/--output = {out!r} cannot be written: permission denied for "
+                f"{str(exc.filename)!r}; valid: a dataset this user can write (the runs "
+                "committed are kept)"
+            ) from None
         if reason is None:
             raise
         raise ConfigError(

@@ -92,7 +92,7 @@ from ..config import Scenario
 from ..errors import BearingsimError, ConfigError, check_range, collect_warnings
 from ..geometry import parse_enum
 from ..io.jsonable import to_jsonable
-from .lock import ClientLock
+from .lock import ClientLock, remove_stale_creations
 from .plan import (
     SweepPlan,
     coordinates,
@@ -707,6 +707,8 @@ def run_sweep(
     replace_old = False
     rep = SweepReport(out=str(out), n_runs=len(scenarios))
     if path.exists():
+        remove_stale_creations(path)  # a killed creation's leftovers beside it (only at the
+        # next creation before: a Ctrl-C during creation, then a rerun, kept one for good)
         replace_old = _other_spec(path, h, canonical, out, force_new)
         if not replace_old:
             md = read_metadata(path)  # a damaged dataset is refused before any work
@@ -833,11 +835,19 @@ def run_sweep(
         _exact_counts(rep, path, todo_runs, st0, counted, offsets)
     if interrupted is not None:
         more = interrupted.left_running
+        done = rep.n_ok + rep.n_failed
+        # a Ctrl-C after the last commit: nothing is left (exploratory testing, twenty-seventh
+        # session: "8 of 8 runs committed ...; run the same command again to resume")
+        tail = (
+            "; run the same command again to resume"
+            if done < rep.n_runs or more
+            else "; every run is committed, nothing is left to resume"
+        )
         raise SweepInterrupted(
-            f"interrupted: {rep.n_ok + rep.n_failed} of {rep.n_runs} runs committed "
-            f"({rep.n_computed} by this call"
+            f"interrupted: {done} of {rep.n_runs} runs committed ({rep.n_computed} by this call"
             + (f"; {more} task(s) left running may commit one run each" if more else "")
-            + "); run the same command again to resume",
+            + ")"
+            + tail,
             rep,
         ) from None
     return rep
