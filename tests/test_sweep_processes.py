@@ -63,7 +63,7 @@ def committed_pids(out: Path) -> set[int]:
     return pids
 
 
-def start(args: list[str], log: Path) -> subprocess.Popen:
+def start(args: list[str], log: Path, sigint=signal.SIG_DFL) -> subprocess.Popen:
     with open(log, "wb") as fh:
         return subprocess.Popen(
             [sys.executable, *args],
@@ -73,7 +73,7 @@ def start(args: list[str], log: Path) -> subprocess.Popen:
             start_new_session=True,  # its own process group: killpg cleans up every child
             # a terminal's Ctrl-C always reaches the client; a test run started as a
             # background job inherits SIGINT ignored, which Python would keep
-            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+            preexec_fn=lambda: signal.signal(signal.SIGINT, sigint),
         )
 
 
@@ -185,6 +185,35 @@ def test_sigint_client_keeps_commits(slow_spec, tmp_path, target):
         "command again to resume\n"
     ), text  # the only output: no worker traceback
     assert not (out / "records" / ".lock").exists()  # released on the way out
+
+
+@pytest.mark.parametrize(
+    ("sig", "sigint"),
+    [(signal.SIGTERM, signal.SIG_DFL), (signal.SIGHUP, signal.SIG_DFL),
+     (signal.SIGTERM, signal.SIG_IGN)],  # a client started with & by a script: SIGINT ignored
+)  # fmt: skip
+def test_sigterm_or_sighup_stops_the_client_as_ctrl_c_does(slow_spec, tmp_path, sig, sigint):
+    """Exploratory testing (twenty-seventh session): SIGTERM (a batch system's time limit) and
+    SIGHUP (a closed terminal) ended the client at once, unsaid, leaving its lock (another
+    host then waited 300 s). They stop it as Ctrl-C does: one line with the counts, the lock
+    released, exit code 128 + the signal's number."""
+    out = tmp_path / "terminated.zarr"
+    log = tmp_path / "client.log"
+    proc = start(sweep_cmd(slow_spec, out, "--workers", "1"), log, sigint)
+    try:
+        wait_for(lambda: n_committed(out) >= 1, proc, "one committed run")
+        os.kill(proc.pid, sig)
+        proc.wait(timeout=60)
+    finally:
+        kill_group(proc)
+    assert proc.returncode == 128 + sig
+    k = n_committed(out)
+    text = log.read_text()
+    assert text == (
+        f"error: interrupted: {k} of {N_RUNS} runs committed ({k} by this call); run the same "
+        "command again to resume\n"
+    ), text
+    assert not (out / "records" / ".lock").exists()
 
 
 def test_two_clients_at_once_on_a_new_store(tmp_path):

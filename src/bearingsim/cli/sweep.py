@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 from typing import Any
 
@@ -235,10 +236,11 @@ def run_cmd(
     if p.is_dir() and not any(p.iterdir()):
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)
+    stopped: list[int] = []  # SIGTERM / SIGHUP received
     try:
         # warnings raised in this process, each once, as one line; the runs' own warnings are
         # recorded with each run and counted in the report (printed below)
-        with echo_warnings():
+        with echo_warnings(), _terminate_as_interrupt(stopped):
             rep = run_sweep(
                 spec,
                 out,
@@ -253,7 +255,7 @@ def run_cmd(
             )
     except SweepInterrupted as exc:
         click.echo(f"error: {exc}", err=True)
-        raise click.exceptions.Exit(130) from None
+        raise click.exceptions.Exit(128 + stopped[0] if stopped else 130) from None
     except OSError as exc:  # a full disk while the dataset is written: one line (it stays
         from ..io.atomic import storage_reason  # consistent: the runs committed are kept)
 
@@ -297,6 +299,42 @@ def run_cmd(
             + f" on {rep.cluster}"
         )
     click.echo(f"  dataset: {rep.n_ok} ok, {rep.n_failed} failed, {rep.n_pending} pending")
+
+
+@contextlib.contextmanager
+def _terminate_as_interrupt(stopped: list[int]):
+    """SIGTERM and SIGHUP (a batch system's time limit, a closed terminal) handled as Ctrl-C:
+    the client stops its runs, releases its lock and says what is committed; the exit code
+    is 128 + the signal's number. Exploratory testing, twenty-seventh session: the client
+    died at once, unsaid, and left its lock (another host then waited 300 s). The signal is
+    passed on as a SIGINT, so that the blocks that hold Ctrl-C (:mod:`bearingsim.interrupt`)
+    hold it too."""
+    import os
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def handler(signum, frame):
+        if not stopped:
+            stopped.append(signum)
+        if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:  # e.g. started with & by a
+            signal.signal(signal.SIGINT, signal.default_int_handler)  # script: still stop
+        os.kill(os.getpid(), signal.SIGINT)
+
+    old = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        if sig is not None:
+            with contextlib.suppress(ValueError, OSError):
+                old[sig] = signal.signal(sig, handler)
+    try:
+        yield
+    finally:
+        for sig, h in old.items():
+            signal.signal(sig, h)
 
 
 @sweep_group.command("summary")
