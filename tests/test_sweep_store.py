@@ -427,6 +427,24 @@ def test_lock_temporary_removed_by_the_holders_cleaner_is_still_in_use(store, mo
     assert not list((store / "records").glob(".lock-*"))
 
 
+def test_an_unreadable_file_is_not_called_damage():
+    """Exploratory testing (twenty-seventh session): a file of the dataset this user may not
+    read was reported as damage, "delete the dataset and run the sweep again": the wrong, and
+    a risky, advice on a shared machine. A permission error says so and what to do."""
+    import errno
+
+    from bearingsim.sweep.store import damaged_error
+
+    e = damaged_error("d.zarr", "d.zarr/status/3", "cannot be read",
+                      PermissionError(errno.EACCES, "Permission denied"))  # fmt: skip
+    assert str(e) == (
+        "dataset = 'd.zarr': 'd.zarr/status/3' cannot be read (permission denied); check its "
+        "permissions, or ask the dataset's owner"
+    )
+    e = damaged_error("d.zarr", "d.zarr/status/3", "is truncated")
+    assert "is damaged" in str(e) and "delete the dataset" in str(e)
+
+
 def test_judge_lock_rules():
     me = {"host": "a", "pid": os.getpid(), "start": this_process()["start"], "boot_id": "b1"}
     assert judge_lock(me, 0.0, me)[0] is False

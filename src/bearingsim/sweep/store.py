@@ -611,6 +611,12 @@ def damaged_error(
 ) -> ConfigError:
     """The one-line error of a damaged dataset: the file, what is wrong with it (and the
     decoding error ``exc``), what would be valid, what to do."""
+    if isinstance(exc, PermissionError):  # not damage: deleting would be the wrong advice
+        # (exploratory testing, twenty-seventh session: a file of another user's mode 000)
+        return ConfigError(
+            f"dataset = {str(dataset)!r}: {str(file)!r} cannot be read (permission denied); "
+            "check its permissions, or ask the dataset's owner"
+        )
     why = "" if exc is None else f" ({_error_text(exc)})"
     ok = "" if valid is None else f"; valid: {valid}"
     return ConfigError(
