@@ -711,6 +711,11 @@ def _load_json(dataset: str | Path, file: Path, missing: str) -> Any:
         with open(file, "rb") as fh:
             raw = fh.read()
     except OSError:
+        if not Path(dataset).exists():  # (exploratory testing, twenty-seventh session)
+            raise ConfigError(
+                f"dataset = {str(dataset)!r} does not exist; valid: a sweep dataset "
+                "directory (sweep run -o)"
+            ) from None
         raise ConfigError(
             f"dataset = {str(dataset)!r} is not a bearingsim sweep dataset ({missing})"
         ) from None
