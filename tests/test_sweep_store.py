@@ -455,6 +455,12 @@ def test_judge_lock_rules():
     assert judge_lock({**me, "host": "z"}, locks.LOCK_STALE_S, me)[0] is True
     assert judge_lock(None, 0.0, me)[0] is None  # empty and young: wait
     assert judge_lock({"pid": True, "host": "a"}, 0.0, me)[0] is False  # not a PID: by age
+    # ... and said so: it was "a lock of another host" (exploratory testing, 27th session)
+    assert (
+        "a lock without a readable PID is taken over"
+        in judge_lock({"pid": "abc", "host": "a"}, 5.0, me)[1]
+    )
+    assert "a lock of another host" in judge_lock({"pid": 1, "host": "z"}, 5.0, me)[1]
 
 
 def race(n: int, fn) -> list:

@@ -185,8 +185,11 @@ def judge_lock(
         return False, "a running process of this host"
     if age_s >= LOCK_STALE_S:
         return True, f"not refreshed for {age_s:.0f} s (stale after {LOCK_STALE_S:.0f} s)"
+    # a lock of this machine without a readable PID is judged by age too (it was called "a
+    # lock of another host"; exploratory testing, twenty-seventh session)
+    whose = "a lock without a readable PID" if same_machine else "a lock of another host"
     return False, (
-        f"refreshed {max(age_s, 0.0):.0f} s ago; a lock of another host is taken over once it "
+        f"refreshed {max(age_s, 0.0):.0f} s ago; {whose} is taken over once it "
         f"has not been refreshed for {LOCK_STALE_S:.0f} s"
     )
 
