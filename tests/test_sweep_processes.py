@@ -216,6 +216,28 @@ def test_sigterm_or_sighup_stops_the_client_as_ctrl_c_does(slow_spec, tmp_path, 
     assert not (out / "records" / ".lock").exists()
 
 
+def test_ctrl_c_while_waiting_for_an_unreachable_scheduler(slow_spec, tmp_path):
+    """Exploratory testing (twenty-seventh session): Ctrl-C while the client waited for an
+    unreachable ``--scheduler`` printed "aborted", hung 40 s, then printed a ``TimeoutError``
+    traceback of the half-made Dask client. The port is now waited for in 1 s steps first:
+    the Ctrl-C ends the client at once, with its one line."""
+    log = tmp_path / "client.log"
+    proc = start(sweep_cmd(slow_spec, tmp_path / "x.zarr", "--scheduler", "tcp://127.0.0.1:1"),
+                 log)  # fmt: skip
+    try:
+        time.sleep(3.0)
+        assert proc.poll() is None  # still waiting (20 s by default)
+        t0 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=30)
+        assert time.monotonic() - t0 < 5.0
+    finally:
+        kill_group(proc)
+    assert proc.returncode == 130
+    assert log.read_text().strip() == "error: aborted", log.read_text()
+    assert not (tmp_path / "x.zarr").exists()
+
+
 def test_two_clients_at_once_on_a_new_store(tmp_path):
     """Two clients started at once on a new dataset, three times (the issue: the loser
     crashed with ``OSError: Directory not empty`` in 3 of 10 tries). They share a scheduler,
