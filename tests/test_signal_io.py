@@ -317,3 +317,19 @@ def test_a_short_text_record_names_the_rate_and_speed_it_was_given(tmp_path):
     assert 240 / 12000.0 < MIN_REVOLUTIONS * 60.0 / 1750.0
     with pytest.raises(ConfigError, match=r"valid range fs_hz in \(0, "):
         check_resolvable(rec)
+
+
+def test_a_time_columns_rate_is_the_simplest_within_its_round_off():
+    """Exploratory testing (twenty-seventh session): times printed with ``%.9g`` gave 12000.00004
+    Hz (printed as such; record 120 read "inner" at that rate and "uncertain" at 12000). The
+    rate is the number with the fewest digits within the round-off the times carry; exact
+    times keep an odd rate, and a clock off its rate by more than 1e-6 keeps its own."""
+    from bearingsim.io.signal import rate_of_times
+
+    t = np.arange(121_846) / 12000.0
+    for fmt in ("%.6f", "%.9g", "%.12g", "%.18g"):
+        assert rate_of_times(np.array([float(fmt % v) for v in t])) == 12000.0, fmt
+    assert rate_of_times(np.arange(10_000) / 12000.3) == 12000.3
+    assert rate_of_times(np.arange(10_000) / 12345.678) == 12345.678
+    drift = np.arange(10_000) / 12000.0 * (1.0 + 1e-5 * np.linspace(0.0, 1.0, 10_000))
+    assert rate_of_times(drift) == pytest.approx(9_999 / drift[-1], rel=1e-9) != 12000.0
