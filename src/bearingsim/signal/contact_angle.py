@@ -297,9 +297,10 @@ COMB_GAIN_DB = 10.0
 #: near (a CSV of record 107 at 2000 r/min, 11 % off, read "ball"). On the 34 shared records
 #: (whole, halves, quarters) at their stored speeds the best comb within ±15 % that lies over
 #: 1 % away stands at most 19.4 dB out and 7.0 dB over the true speed's (313's quarters: a
-#: fault comb at 1.02 f_r); wrong speeds of 0.88-1.14 times theirs are refuted on 27-31 of the
+#: fault comb at 1.02 f_r); wrong speeds of 0.88-1.14 times theirs are refuted on 22-31 of the
 #: 34 (not on 174, without shaft lines, nor where the shaft comb stands 14-20 dB out: 187,
-#: 188, 199, 200, 288, 289). Wider is worse: within ±25 % a speed 1.3 times 132's was put
+#: 188, 199, 200, 288, 289; less often on the 1796 r/min records, whose supply-line rule
+#: leaves them four harmonics). Wider is worse: within ±25 % a speed 1.3 times 132's was put
 #: at 1.6 times it (a comb of 8/5 standing 22 dB out), and 6/5 shares every fifth harmonic
 COMB_SEARCH_REL = 0.15
 
@@ -323,8 +324,10 @@ def refuted_speed(
     within 1 % of it stands :data:`COMB_PROMINENCE_DB` out and :data:`COMB_GAIN_DB` more than
     the one at the speed given (checked first: a speed far from the stated one lies outside
     the search, and 107 at 3000 r/min was said to run at 3147, a comb of its harmonics'
-    multiples; exploratory testing, twenty-sixth session, 107 at 1000-2500 passed). Else None
-    (also where the record has no shaft lines). ``spectrum``: the record's
+    multiples; exploratory testing, twenty-sixth session, 107 at 1000-2500 passed). A comb with
+    harmonics on 50/60 Hz multiples (:func:`supply_harmonics`) must refute without them; where
+    it does not, the best comb of the spectrum with the supply lines taken out is judged. Else
+    None (also where the record has no shaft lines). ``spectrum``: the record's
     :func:`padded_spectrum` when the caller has it."""
     spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
     if stated_hz is not None and abs(stated_hz / shaft_hz - 1.0) > tol_rel:
