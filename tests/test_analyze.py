@@ -835,7 +835,7 @@ def test_a_speed_the_shaft_lines_cannot_judge_is_said_unchecked(run_cli, tmp_pat
                    header="time_s,acc_m_per_s2", comments="")  # fmt: skip
     d = run_cli("analyze", tmp_path / "piece.csv", "--rpm", 1780, "--json").json()
     assert d["rpm_unchecked"].startswith(
-        "the speed given (1780 r/min) is not checked: the record has a shaft comb only 14 dB out"
+        "the speed given (1780 r/min) is not checked: the record has a shaft comb only 14."
     ), d.get("rpm_unchecked")
     assert d["rpm_unchecked"] in d["notes"]
     d = run_cli("analyze", tmp_path / "whole.csv", "--rpm", 1728, "--json").json()
@@ -867,6 +867,31 @@ def test_supply_lines_do_not_refute_a_records_own_speed(run_cli, tmp_path):
     assert d["diagnosis"] == "outer" and not d["why"], d["why"]
     d = run_cli("analyze", p, "--rpm", 1900, "--json").json()
     assert d["diagnosis"] == "uncertain" and "put the speed at 1749" in d["why"], d["why"]
+
+
+def test_supply_lines_neither_name_a_speed_nor_hide_an_unchecked_one():
+    """A second round of exploratory testing (twenty-seventh session): the second half of
+    record 309 (fan end, 1774 r/min) with 3 m/s² of 60 Hz lines at --rpm 1596.6 was "put at
+    1809.21 r/min" (a comb 0.51 % off the 60 Hz multiples took the lines' skirts; at 1809 it
+    then read "ball" 0.87): within 1 % a harmonic counts as on the supply, and the record's
+    speed is named. And 1 m/s² of 60 Hz lines took the "not checked" note away from a 2 s
+    piece of 172 at 1780 r/min: a comb resting on supply lines judges nothing."""
+    from bearingsim.io.signal import read_signal
+    from bearingsim.signal.contact_angle import refuted_speed, unchecked_speed_note
+
+    def mains(x, fs, amp):
+        t = np.arange(x.size) / fs
+        return x + sum(amp * np.sin(2 * np.pi * 60.0 * k * t + k) for k in range(1, 7))
+
+    rec = read_signal(cwru_record("309"), channel="FE")
+    x = mains(rec.x[rec.x.size // 2 :], rec.fs, 3.0)
+    c = refuted_speed(x, rec.fs, 1596.6 / 60.0)
+    assert c is not None and abs(60.0 * c.shaft_hz / 1774.0 - 1.0) < 0.002, c
+    assert refuted_speed(x, rec.fs, 1774.0 / 60.0) is None
+    rec = read_signal(cwru_record("172"), channel="DE")
+    x = rec.x[: int(2 * rec.fs)]
+    for y in (x, mains(x, rec.fs, 1.0)):
+        assert unchecked_speed_note(y, rec.fs, 1780.0 / 60.0) is not None
 
 
 def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_cli, tmp_path):
