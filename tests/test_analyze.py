@@ -892,6 +892,12 @@ def test_supply_lines_neither_name_a_speed_nor_hide_an_unchecked_one():
     x = rec.x[: int(2 * rec.fs)]
     for y in (x, mains(x, rec.fs, 1.0)):
         assert unchecked_speed_note(y, rec.fs, 1780.0 / 60.0) is not None
+    # supply lines on the wrong speed's harmonics (2000 r/min: its 3rd, 6th, 9th) lifted its
+    # comb, and 107 (1748 r/min) with 2 m/s² of 60 Hz lines was not refuted at 2000: judged
+    # again without the supply lines, it is, naming the record's speed
+    rec = read_signal(cwru_record("107"), channel="DE")
+    c = refuted_speed(mains(rec.x, rec.fs, 2.0), rec.fs, 2000.0 / 60.0)
+    assert c is not None and abs(60.0 * c.shaft_hz / 1747.5 - 1.0) < 0.002, c
 
 
 def test_a_none_on_too_few_cage_revolutions_does_not_rule_out_a_ball_fault(run_cli, tmp_path):
