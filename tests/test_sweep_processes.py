@@ -236,6 +236,16 @@ def test_ctrl_c_while_waiting_for_an_unreachable_scheduler(slow_spec, tmp_path):
     assert proc.returncode == 130
     assert log.read_text().strip() == "error: aborted", log.read_text()
     assert not (tmp_path / "x.zarr").exists()
+    # SIGTERM there exited 130 too (a helper, twenty-seventh session): 143 as elsewhere
+    proc = start(sweep_cmd(slow_spec, tmp_path / "x.zarr", "--scheduler", "tcp://127.0.0.1:1"),
+                 log)  # fmt: skip
+    try:
+        time.sleep(2.0)
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(timeout=30)
+    finally:
+        kill_group(proc)
+    assert proc.returncode == 143 and log.read_text().strip() == "error: aborted"
 
 
 def test_two_clients_at_once_on_a_new_store(tmp_path):

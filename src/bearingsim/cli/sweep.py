@@ -256,6 +256,11 @@ def run_cmd(
     except SweepInterrupted as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(128 + stopped[0] if stopped else 130) from None
+    except KeyboardInterrupt:  # before any run (the cluster starting, a scheduler awaited)
+        if not stopped:
+            raise
+        click.echo("error: aborted", err=True)
+        raise click.exceptions.Exit(128 + stopped[0]) from None
     except OSError as exc:  # a full disk while the dataset is written: one line (it stays
         from ..io.atomic import storage_reason  # consistent: the runs committed are kept)
 
