@@ -869,6 +869,21 @@ def test_supply_lines_do_not_refute_a_records_own_speed(run_cli, tmp_path):
     assert d["diagnosis"] == "uncertain" and "put the speed at 1749" in d["why"], d["why"]
 
 
+def test_a_refuted_speed_is_not_also_read_as_hz(run_cli, tmp_path):
+    """A helper (twenty-seventh session): record 311 (fan end, 1751 r/min) as a CSV at
+    ``--rpm 1600`` was refuted naming 1751 r/min and noted "reads like the speed in Hz ...
+    (96569 r/min)" beside it; a refuted speed gets no Hz reading."""
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("311"), channel="FE")
+    p = tmp_path / "r311.csv"
+    np.savetxt(p, np.c_[np.arange(rec.x.size) / rec.fs, rec.x], delimiter=",",
+               header="time_s,acc_m_per_s2", comments="")  # fmt: skip
+    d = run_cli("analyze", p, "--bearing", "6203-cwru", "--rpm", 1600, "--json").json()
+    assert d["diagnosis"] == "uncertain" and "put the speed at 1751" in d["why"], d["why"]
+    assert "rpm_warning" not in d and not any("speed in Hz" in n for n in d["notes"])
+
+
 def test_supply_lines_neither_name_a_speed_nor_hide_an_unchecked_one():
     """A second round of exploratory testing (twenty-seventh session): the second half of
     record 309 (fan end, 1774 r/min) with 3 m/s² of 60 Hz lines at --rpm 1596.6 was "put at

@@ -334,7 +334,12 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
     in_hz = None  # a speed in Hz typed for --rpm, or a column of Hz named rpm
-    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
+    from ..signal.fused import SPEED_REFUTED
+
+    refuted = SPEED_REFUTED in (d.why or "")  # the record's own speed named: no Hz reading
+    # (a helper, twenty-seventh session: 311 at --rpm 1600 was refuted naming 1751 r/min and
+    # noted "reads like the speed in Hz ... (96569 r/min)" beside it)
+    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None and not refuted:
         from ..signal.contact_angle import hz_given_as_rpm, hz_warning
 
         if (c := hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
@@ -344,9 +349,7 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     # too short to rule a ball fault out? Not said where the speed itself is refuted or reads
     # like Hz: its revolutions are the wrong speed's (a helper: "2 cage revolutions" beside
     # "reads like the speed in Hz" on a 10 s record of 118)
-    from ..signal.fused import SPEED_REFUTED
-
-    wrong_speed = in_hz is not None or SPEED_REFUTED in (d.why or "")
+    wrong_speed = in_hz is not None or refuted
     if d.diagnosis in ("none", "uncertain") and not wrong_speed:
         import numpy as np
 
