@@ -334,15 +334,18 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
     in_hz = None  # a speed in Hz typed for --rpm, or a column of Hz named rpm
-    from ..signal.fused import SPEED_REFUTED
+    from ..signal.fused import refuted_rpm
 
-    refuted = SPEED_REFUTED in (d.why or "")  # the record's own speed named: no Hz reading
-    # (a helper, twenty-seventh session: 311 at --rpm 1600 was refuted naming 1751 r/min and
-    # noted "reads like the speed in Hz ... (96569 r/min)" beside it)
-    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None and not refuted:
+    own_rpm = refuted_rpm(d.why)  # the record's own speed, where it refutes the one used
+    refuted = own_rpm is not None
+    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
         from ..signal.contact_angle import hz_given_as_rpm, hz_warning
 
-        if (c := hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
+        c = hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)
+        # read as Hz only where that agrees with the record's own speed, if named (a helper,
+        # twenty-seventh session: 311 at --rpm 1600 was refuted naming 1751 r/min and noted
+        # "reads like the speed in Hz ... (96569 r/min)" beside it)
+        if c is not None and (own_rpm is None or abs(c.shaft_hz / (own_rpm / 60.0) - 1) < 0.02):
             in_hz = hz_warning(rec.rpm, c)
     elif rec.speed_hz is not None and rec.rpm is None:
         in_hz = speed_column_warning(rec, in_rpm=False)

@@ -680,6 +680,15 @@ KINEMATIC_TOL = 3.0
 SPEED_REFUTED = "the record's shaft harmonics put the speed at"
 
 
+def refuted_rpm(why: str | None) -> float | None:
+    """The record's own speed [r/min] that a reason beginning with :data:`SPEED_REFUTED`
+    names, else None."""
+    import re
+
+    m = re.search(re.escape(SPEED_REFUTED) + r" ([0-9.eE+-]+) r/min", why or "")
+    return float(m.group(1)) if m else None
+
+
 def _measured_speed(raw_sp, fs, shaft_hz) -> float | None:
     """The shaft speed [Hz] measured from the record's shaft harmonics within ±0.5 % of
     ``shaft_hz`` (:func:`.contact_angle.measured_shaft_hz` on ``raw_sp``, the record's
