@@ -3,6 +3,8 @@ three models; bad input."""
 
 from __future__ import annotations
 
+import csv
+import io
 from pathlib import Path
 
 import numpy as np
@@ -838,6 +840,9 @@ def test_a_speed_the_shaft_lines_cannot_judge_is_said_unchecked(run_cli, tmp_pat
         "the speed given (1780 r/min) is not checked: the record has a shaft comb only 14."
     ), d.get("rpm_unchecked")
     assert d["rpm_unchecked"] in d["notes"]
+    r = run_cli("analyze", tmp_path / "piece.csv", "--rpm", 1780, "--csv")
+    head, row = list(csv.reader(io.StringIO(r.out)))
+    assert dict(zip(head, row, strict=True))["rpm_unchecked"] == d["rpm_unchecked"]
     d = run_cli("analyze", tmp_path / "whole.csv", "--rpm", 1728, "--json").json()
     assert "rpm_unchecked" not in d and d["diagnosis"] == "inner"
 

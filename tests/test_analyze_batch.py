@@ -35,6 +35,7 @@ CSV_COLUMNS = [
     "channel_source",
     "contact_angle_deg",
     "why",
+    "rpm_unchecked",
 ]
 #: what ``rpm_source`` says of a speed taken from a CWRU file name at motor load 2 hp
 NAME_LOAD_2 = "name (CWRU nominal speed at load 2 hp)"
@@ -116,6 +117,7 @@ def test_csv_header_and_rows(run_cli, three):
         ca = d["contact_angle"]  # 132 outer, 310 outer, 107 inner: each reads its angle
         assert float(c["contact_angle_deg"]) == ca["contact_angle_deg"]
         assert c["why"] == d["why"]
+        assert c["rpm_unchecked"] == (d.get("rpm_unchecked") or "")
 
 
 def test_csv_says_why_a_refuted_speed_is_uncertain(run_cli):

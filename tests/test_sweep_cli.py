@@ -145,6 +145,15 @@ def _dataset_spec(tmp_path):
             r"scheduler = 'tcp://127.0.0.1:9' is not reachable within 1 s \(.*\); valid: the "
             r"address printed by a running 'dask scheduler'",
         ),
+        (  # a helper (twenty-seventh session): "not reachable (OSError)"
+            ["sweep", "run", "{spec}", "-o", "{out}", "--scheduler", "tcp://127.0.0.1:70000"],
+            r"scheduler = 'tcp://127.0.0.1:70000' has port 70000, out of range; valid range "
+            r"\[1, 65535\]",
+        ),
+        (  # ... and a TypeError traceback, then a TimeoutError one at exit
+            ["sweep", "run", "{spec}", "-o", "{out}", "--scheduler", "tls://127.0.0.1:9"],
+            r"scheduler = 'tls://127.0.0.1:9' needs TLS, and Dask has no TLS configuration",
+        ),
         (
             ["sweep", "run", "{spec}", "-o", "{out}", "--connect-timeout-s", "0"],
             r"connect_timeout_s = 0 s is out of range; valid range \(0, inf\) s",

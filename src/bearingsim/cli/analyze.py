@@ -114,7 +114,7 @@ def signal_unit(rec) -> str | None:
 _CSV_COLUMNS = (
     *("file", "channel", "fs_hz", "rpm", "rpm_source", "bearing", "diagnosis", "confidence"),
     *("leading", "probability", "band_lo_hz", "band_hi_hz", "error"),
-    *("channel_source", "contact_angle_deg", "why"),
+    *("channel_source", "contact_angle_deg", "why", "rpm_unchecked"),
 )
 
 

@@ -505,6 +505,17 @@ def connect(
     check_cluster_args(workers, scheduler)
     check_range("connect_timeout_s", timeout_s, 0.0, lo_open=True, unit="s")
     if scheduler is not None:
+        if scheduler.startswith(("tls://", "wss://")):
+            import dask
+
+            if not dask.config.get("distributed.comm.tls.ca-file", None):
+                # Dask's Client raised a TypeError, and its half-made client a TimeoutError
+                # at exit (a helper, twenty-seventh session)
+                raise ConfigError(
+                    f"scheduler = {scheduler!r} needs TLS, and Dask has no TLS configuration "
+                    "(distributed.comm.tls.ca-file unset); valid: a tcp:// address, or Dask's "
+                    "TLS settings (its configuration file or DASK_DISTRIBUTED__COMM__TLS__CA_FILE)"
+                )
         _wait_for_port(scheduler, timeout_s)
         try:
             client = Client(scheduler, timeout=timeout_s, set_as_default=False)
@@ -639,6 +650,11 @@ def check_cluster_args(workers: int | None, scheduler: str | None) -> None:
         if not isinstance(scheduler, str) or not _ADDRESS.match(scheduler):
             raise ConfigError(
                 f"scheduler = {scheduler!r} is invalid; valid: an address like tcp://HOST:PORT"
+            )
+        port = int(scheduler.rsplit(":", 1)[1])
+        if not 1 <= port <= 65535:  # "not reachable (OSError)" before (a helper, 27th session)
+            raise ConfigError(
+                f"scheduler = {scheduler!r} has port {port}, out of range; valid range [1, 65535]"
             )
         if workers is not None:
             raise ConfigError(
