@@ -338,10 +338,13 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
 
     own_rpm = refuted_rpm(d.why)  # the record's own speed, where it refutes the one used
     refuted = own_rpm is not None
-    if rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None:
-        from ..signal.contact_angle import hz_given_as_rpm, hz_warning
+    given = rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None
+    spec = None  # the record's padded spectrum: one for the Hz check and the unchecked note
+    if given:
+        from ..signal.contact_angle import hz_given_as_rpm, hz_warning, padded_spectrum
 
-        c = hz_given_as_rpm(rec.x, rec.fs, rec.rpm / 60.0)
+        spec = padded_spectrum(rec.x, rec.fs)
+        c = hz_given_as_rpm(None, rec.fs, rec.rpm / 60.0, spectrum=spec)
         # read as Hz only where that agrees with the record's own speed, if named (a helper,
         # twenty-seventh session: 311 at --rpm 1600 was refuted naming 1751 r/min and noted
         # "reads like the speed in Hz ... (96569 r/min)" beside it)
@@ -368,27 +371,19 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
             out["cage_revolutions"] = revs
     if in_hz is not None:
         out["rpm_warning"] = in_hz
-    elif (
-        rpm_source == "option"
-        and rec.speed_hz is None
-        and rec.info.get("rpm_file") is None
-        and not wrong_speed
-        and Path(rec.source).suffix.lower() not in _result_suffixes()
-    ):  # a measured record's only speed is the one given: could its shaft lines judge it?
+    elif given and rec.info.get("rpm_file") is None and not wrong_speed:
+        # a measured record's only speed is the one given: could its shaft lines judge it?
+        from ..io.signal import RESULT_SUFFIXES
         from ..signal.contact_angle import unchecked_speed_note
 
-        if (text := unchecked_speed_note(rec.x, rec.fs, rec.rpm / 60.0)) is not None:
+        if Path(rec.source).suffix.lower() not in RESULT_SUFFIXES and (
+            text := unchecked_speed_note(None, rec.fs, rec.rpm / 60.0, spectrum=spec)
+        ):
             out["rpm_unchecked"] = text
     extra = _result_notes(out)
     if extra:
         out["notes"] = [*out.get("notes", []), *extra]
     return to_jsonable(out)
-
-
-def _result_suffixes() -> tuple[str, ...]:
-    from ..io.signal import RESULT_SUFFIXES
-
-    return tuple(RESULT_SUFFIXES)
 
 
 def _column_in_rpm_hint(rec: Any) -> str:

@@ -636,17 +636,13 @@ def _check_steady_columns(recs: list) -> None:
     speed its shaft harmonics refute, as ``--rpm`` is refused (exploratory testing,
     twenty-seventh session: record 172, 1728 r/min, with a column of 1800 r/min wrote
     ``rpm_range = [1800, 1800]`` and tones at 1800 r/min)."""
-    import numpy as np
-
+    from ..io.signal import steady_speed_hz
     from ..signal.contact_angle import refuted_speed
 
     for r in recs:
         if r.speed_hz is None or r.rpm is not None:
             continue
-        sp = np.asarray(r.speed_hz, dtype=float)
-        lo, hi = np.percentile(sp, [1.0, 99.0])
-        med = float(np.median(sp))
-        if not (lo > 0.0 and hi / lo - 1.0 <= 0.01):
+        if (med := steady_speed_hz(r.speed_hz)) is None:
             continue
         c = refuted_speed(r.x, r.fs, med)
         if c is not None:

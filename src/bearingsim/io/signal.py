@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import ConfigError, check_positive
 from .text import read_table
@@ -25,6 +25,7 @@ __all__ = [
     "column_speed_refutes",
     "read_signal",
     "speed_span_text",
+    "steady_speed_hz",
 ]
 
 #: the sample rate the CWRU normal baselines (``normal_0_97.mat``, no rate in the name) and 48k
@@ -365,6 +366,17 @@ def column_median_rpm(rec: SignalRecord) -> float | None:
     v = 60.0 * np.asarray(rec.speed_hz, dtype=float)
     v = v[np.isfinite(v) & (v > 0.0)]
     return float(np.median(v)) if v.size else None
+
+
+def steady_speed_hz(speed_hz: ArrayLike, rel: float = RPM_OPTION_REL) -> float | None:
+    """The median [Hz] of a speed column ``speed_hz`` [Hz] whose 1st-99th percentile range is
+    positive and spans at most ``rel`` [-] (a steady speed, which a record's shaft lines can
+    judge as they judge a ``--rpm``), else None."""
+    sp = np.asarray(speed_hz, dtype=float)
+    lo, hi = np.percentile(sp, [1.0, 99.0])
+    if not (lo > 0.0 and hi / lo - 1.0 <= rel):
+        return None
+    return float(np.median(sp))
 
 
 def column_speed_refutes(rec: SignalRecord, rpm: float) -> tuple[float, float] | None:

@@ -348,40 +348,56 @@ def _comb_refutes(
     """The best comb within ±:data:`COMB_SEARCH_REL` of ``shaft_hz`` [Hz] on ``spec`` (its
     harmonics ``skip`` left out) when it refutes that speed (:func:`_refutes`), also without
     its own harmonics on supply lines (:func:`supply_harmonics`); else None."""
-    c = shaft_speed_comb(
-        None, fs, shaft_hz, spectrum=spec, rel_tol=COMB_SEARCH_REL, skip_harmonics=skip
-    )
+    c = _best_comb(spec, fs, shaft_hz, skip)
     if not _refutes(c, shaft_hz, tol_rel):
         return None
-    on_supply = supply_harmonics(c.shaft_hz)
-    if on_supply:  # it must stand out without its harmonics on the supply's lines
-        alone = shaft_speed_comb(
-            None,
-            fs,
-            shaft_hz,
-            spectrum=spec,
-            rel_tol=COMB_SEARCH_REL,
-            skip_harmonics=set(on_supply) | set(skip),
-            at_hz=c.shaft_hz,
-        )
-        if not _refutes(alone, shaft_hz, tol_rel):
-            return None
-    return c
+    # it must stand out without its harmonics on the supply's lines
+    return c if _refutes(_off_supply(spec, fs, shaft_hz, c, skip), shaft_hz, tol_rel) else None
 
 
-def unchecked_speed_note(x: ArrayLike, fs: float, shaft_hz: float) -> str | None:
+def _best_comb(
+    spec: Spectrum, fs: float, shaft_hz: float, skip: tuple[int, ...] = ()
+) -> SpeedComb | None:
+    """The best comb within ±:data:`COMB_SEARCH_REL` of ``shaft_hz`` [Hz] on ``spec``, its
+    harmonics ``skip`` left out (:func:`shaft_speed_comb`)."""
+    return shaft_speed_comb(
+        None, fs, shaft_hz, spectrum=spec, rel_tol=COMB_SEARCH_REL, skip_harmonics=skip
+    )
+
+
+def _off_supply(
+    spec: Spectrum, fs: float, shaft_hz: float, c: SpeedComb | None, skip: tuple[int, ...] = ()
+) -> SpeedComb | None:
+    """The comb ``c`` (of :func:`_best_comb` with ``skip``) scored again without its
+    harmonics on supply lines (:func:`supply_harmonics`), at its own speed; ``c`` itself when
+    none lies on them (or ``c`` is None)."""
+    on_supply = () if c is None else supply_harmonics(c.shaft_hz)
+    if not on_supply:
+        return c
+    return shaft_speed_comb(
+        None,
+        fs,
+        shaft_hz,
+        spectrum=spec,
+        rel_tol=COMB_SEARCH_REL,
+        skip_harmonics=set(on_supply) | set(skip),
+        at_hz=c.shaft_hz,
+    )
+
+
+def unchecked_speed_note(
+    x: ArrayLike | None, fs: float, shaft_hz: float, *, spectrum: Spectrum | None = None
+) -> str | None:
     """A note where a record's shaft harmonics cannot judge the speed given ``shaft_hz`` [Hz]:
     the best comb within ±:data:`COMB_SEARCH_REL` stands less than :data:`COMB_PROMINENCE_DB`
     out, so :func:`refuted_speed` neither confirms nor refutes it; else None. Exploratory
     testing, twenty-seventh session: a 2 s piece of record 172 at ``--rpm 1780`` (+3 %) read
-    "ball" at 0.76 without a word, its comb 15 dB out."""
-    spec = padded_spectrum(x, fs)
-    c = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec, rel_tol=COMB_SEARCH_REL)
-    if c is not None and (on_supply := supply_harmonics(c.shaft_hz)):
-        # a comb resting on supply lines judges nothing (exploratory testing, twenty-seventh
-        # session: 1 m/s² of 60 Hz lines took the note away from the 2 s piece of 172)
-        c = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec, rel_tol=COMB_SEARCH_REL,
-                             skip_harmonics=on_supply, at_hz=c.shaft_hz)  # fmt: skip
+    "ball" at 0.76 without a word, its comb 15 dB out. ``spectrum``: the record's
+    :func:`padded_spectrum` when the caller has it."""
+    spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
+    # a comb resting on supply lines judges nothing (exploratory testing, twenty-seventh
+    # session: 1 m/s² of 60 Hz lines took the note away from the 2 s piece of 172)
+    c = _off_supply(spec, fs, shaft_hz, _best_comb(spec, fs, shaft_hz))
     if c is not None and c.prominence_db >= COMB_PROMINENCE_DB:
         return None
     level = "no shaft comb" if c is None else f"a shaft comb only {c.prominence_db:.1f} dB out"

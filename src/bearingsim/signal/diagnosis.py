@@ -1085,9 +1085,10 @@ def analyze_record(
                 f"({what}); valid: a speed > 0 at every sample (range (0, inf) Hz), or --rpm R "
                 "to judge the record at one speed"
             )
-        med = float(np.median(sp))
-        lo, hi = np.percentile(sp, [1.0, 99.0])
-        if hi / lo - 1.0 <= rule.tol_rel:  # steady: the shaft lines can judge the column
+        from ..io.signal import steady_speed_hz
+
+        med = steady_speed_hz(sp, rule.tol_rel)
+        if med is not None:  # steady: the shaft lines can judge the column
             # (exploratory testing, twenty-seventh session: a constant column of 1800 r/min
             # on record 172, 1728 r/min, read "ball" at 0.79, where --rpm 1800 is refuted)
             from .contact_angle import refuted_speed

@@ -520,11 +520,7 @@ def connect(
         try:
             client = Client(scheduler, timeout=timeout_s, set_as_default=False)
         except (OSError, TimeoutError) as exc:
-            raise ConfigError(
-                f"scheduler = {scheduler!r} is not reachable within {timeout_s:g} s "
-                f"({type(exc).__name__}); valid: the address printed by a running "
-                "'dask scheduler'"
-            ) from None
+            raise _unreachable(scheduler, timeout_s, exc) from None
         try:
             yield client, scheduler
         finally:
@@ -584,12 +580,16 @@ def _wait_for_port(scheduler: str, timeout_s: float) -> None:
             return
         except OSError as exc:
             if time.monotonic() + 0.2 >= deadline:
-                raise ConfigError(
-                    f"scheduler = {scheduler!r} is not reachable within {timeout_s:g} s "
-                    f"({type(exc).__name__}); valid: the address printed by a running "
-                    "'dask scheduler'"
-                ) from None
+                raise _unreachable(scheduler, timeout_s, exc) from None
             time.sleep(0.2)
+
+
+def _unreachable(scheduler: str, timeout_s: float, exc: BaseException) -> ConfigError:
+    """The one-line error of a scheduler not reached within ``timeout_s`` [s]."""
+    return ConfigError(
+        f"scheduler = {scheduler!r} is not reachable within {timeout_s:g} s "
+        f"({type(exc).__name__}); valid: the address printed by a running 'dask scheduler'"
+    )
 
 
 #: candidates of a group's first probe task; when none of them starts, the next task takes
