@@ -986,6 +986,21 @@ def test_a_steady_speed_column_is_judged_by_the_records_shaft_lines(run_cli, tmp
     assert d["why"].endswith("(check the speed column)"), d["why"]
     d = run_cli("analyze", tmp_path / "c1728.csv", "--json").json()
     assert (d["diagnosis"], d["domain"]) == ("inner", "order"), (d["diagnosis"], d["why"])
+    # a --rpm the record confirms overrides a column it refutes (twenty-eighth session: it was
+    # refused as contradicting the column, so only an edit of the file got past it) ...
+    d = run_cli("analyze", tmp_path / "c1800.csv", "--rpm", 1727, "--json").json()
+    assert d["diagnosis"] == "inner" and d["speed_column_refuted"] is True, d["why"]
+    assert (d["rpm"], d["rpm_file"]) == (1727.0, 1800.0)
+    assert any(
+        n.startswith(
+            "rpm = 1727 r/min overrides the record's steady speed column "
+            "(median 1800 r/min, -4.06 %)"
+        )
+        for n in d["notes"]
+    ), d["notes"]
+    # ... not one that contradicts a column the record confirms
+    r = run_cli("analyze", tmp_path / "c1728.csv", "--rpm", 1800)
+    assert r.code == 2 and "contradicts the speed column of 'c1728.csv'" in r.err, r.err
 
 
 def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):

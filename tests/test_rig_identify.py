@@ -1033,6 +1033,27 @@ def test_identify_refuses_a_steady_speed_column_the_shaft_lines_refute(tmp_path)
         "a column with the record's speed (or --rpm R)\n"
     ), r.stderr
     assert not (tmp_path / "a.toml").exists()
+    # the way on the message gives (twenty-eighth session: --rpm 1727 was refused as
+    # contradicting the column, so only an edit of the file got past it) ...
+    r = _cli("rig", "identify", "c.csv", "--rpm", "1727", "--name", "a", "-o", "a.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert (
+        "warning: c.csv: rpm = 1727 r/min overrides the 1800 r/min steady speed column its "
+        "shaft harmonics refute (-4.06 %)" in r.stderr
+    ), r.stderr
+    assert "rpm_range = [1727.0, 1727.0]" in (tmp_path / "a.toml").read_text()
+    # ... but not a speed the record refutes too, nor one contradicting a column it confirms
+    (tmp_path / "a.toml").unlink()
+    r = _cli("rig", "identify", "c.csv", "--rpm", "1650", "--name", "a", "-o", "a.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "put its speed at 1726" in r.stderr, r.stderr
+    np.savetxt(tmp_path / "c.csv", np.c_[t, rec.x, np.full(t.size, 1727.0)], delimiter=",",
+               header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    r = _cli("rig", "identify", "c.csv", "--rpm", "1800", "--name", "a", "-o", "a.toml",
+             cwd=tmp_path)  # fmt: skip
+    assert r.returncode == 2 and "contradicts the speed column of 'c.csv'" in r.stderr, r.stderr
+    assert not (tmp_path / "a.toml").exists()
 
 
 @pytest.mark.skipif(not CWRU.is_dir(), reason="needs ../shared/data/cwru")

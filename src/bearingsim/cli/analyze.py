@@ -409,7 +409,14 @@ def _result_notes(out: dict[str, Any]) -> list[str]:
     if out.get("noise_free"):
         notes.append(NOISE_FREE_NOTE)
     own = out.get("rpm_file")  # a result's own speed, when --rpm overrode it
-    if own is not None and abs(out["rpm"] / own - 1.0) > SPEED_NOTE_REL:
+    if own is not None and out.get("speed_column_refuted"):
+        # a steady speed column its shaft lines refute, which --rpm overrode (rpm_over_column)
+        notes.append(
+            f"rpm = {out['rpm']:g} r/min overrides the record's steady speed column (median "
+            f"{own:.6g} r/min, {100.0 * (out['rpm'] / own - 1.0):+.2f} %), which its shaft "
+            "harmonics refute"
+        )
+    elif own is not None and abs(out["rpm"] / own - 1.0) > SPEED_NOTE_REL:
         from ..io.signal import RESULT_SUFFIXES
 
         simulated = Path(out["file"]).suffix.lower() in RESULT_SUFFIXES

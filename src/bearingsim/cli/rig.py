@@ -169,22 +169,22 @@ def identify_cmd(
         seen[key] = p
     ch = _channel(records, channel)
     recs = [check_samples(read_signal(p, channel=ch, rpm=rpm, fs_hz=fs_hz)) for p in records]
+    if rpm is not None:  # a speed column: --rpm would override it unseen (analyze's rule)
+        from ..signal.diagnosis import rpm_over_column
+
+        valid = "the records' speed (or no --rpm, to take each file's)"
+        recs = [rpm_over_column(r, rpm, valid=valid) for r in recs]
     speed_warnings: list[str] = []  # printed after the rig is written
     _column_hz_warnings(recs, speed_warnings)
     _check_steady_columns(recs)
     if rpm is not None:  # the shaft-order tones are placed at this speed: the record may refute it
-        from ..io.signal import RPM_OPTION_REL, column_speed_refutes, speed_span_text
+        from ..io.signal import RPM_OPTION_REL
         from ..signal.contact_angle import check_speed_given, hz_hint, hz_warning
 
         for r in recs:
-            # a speed column: --rpm would override it unseen (analyze's rule, load_signal)
-            if (span := column_speed_refutes(r, rpm)) is not None:
-                raise ConfigError(
-                    f"rpm = {rpm:.6g} r/min contradicts the speed column of "
-                    f"{Path(r.source).name!r} ({speed_span_text(span, rpm)}); valid: the records' "
-                    "speed (or no --rpm, to take each file's)"
-                )
-            stated = r.info.get("rpm_file")  # a CWRU file's X###RPM, which --rpm overrides
+            # a CWRU file's X###RPM, or a speed column its shaft lines refute, which --rpm
+            # overrides (rpm_over_column)
+            stated = r.info.get("rpm_file")
             c, in_hz = check_speed_given(
                 r.x, r.fs, rpm / 60.0, stated_hz=None if stated is None else stated / 60.0
             )
@@ -199,9 +199,14 @@ def identify_cmd(
             if stated is not None and abs(rpm / stated - 1.0) > RPM_OPTION_REL:
                 # its shaft lines neither confirm nor refute the file: said, not refused
                 # (exploratory testing, twenty-sixth session: 107 at 2000 r/min passed unsaid)
+                what = (
+                    "steady speed column its shaft harmonics refute"
+                    if r.info.get("speed_column_refuted")
+                    else "its file states"
+                )
                 speed_warnings.append(
                     f"warning: {Path(r.source).name}: rpm = {rpm:.6g} r/min overrides the "
-                    f"{stated:.6g} r/min its file states ({100.0 * (rpm / stated - 1.0):+.2f} %"
+                    f"{stated:.6g} r/min {what} ({100.0 * (rpm / stated - 1.0):+.2f} %"
                     f"{hz_hint(rpm, stated)}); the rig's shaft-order tones and rpm_range take the "
                     "speed given"
                 )

@@ -81,6 +81,7 @@ __all__ = [
     "min_band_width",
     "find_lines",
     "load_signal",
+    "rpm_over_column",
 ]
 
 FAMILIES = ("outer", "inner", "ball")
@@ -948,11 +949,9 @@ def load_signal(
     """
     rec = read_signal(path, channel=channel, fs_hz=fs_hz, rpm=rpm)
     name = Path(path).name
-    if rpm is not None and (span := column_speed_refutes(rec, rpm)) is not None:
-        raise ConfigError(
-            f"rpm = {rpm:.6g} r/min contradicts the speed column of {name!r} "
-            f"({speed_span_text(span, rpm)}); valid: a speed it holds, or no --rpm (the column "
-            "is then read)"
+    if rpm is not None:
+        rec = rpm_over_column(
+            rec, rpm, valid="a speed it holds, or no --rpm (the column is then read)"
         )
     if rec.rpm is None and rec.speed_hz is None:
         what = "no X###RPM key" if rec.source.lower().endswith(".mat") else "no rpm/speed_hz column"
@@ -964,6 +963,42 @@ def load_signal(
             f"file = {name!r} has too few rows; valid range [{MIN_SAMPLES}, inf) rows"
         )
     return rec
+
+
+def rpm_over_column(rec: SignalRecord, rpm: float, *, valid: str) -> SignalRecord:
+    """``rec`` read at a speed given ``rpm`` [r/min] (``--rpm``) against its speed column:
+    unchanged where it has none or the column holds that speed (within 1 %); where the column
+    is steady (:func:`bearingsim.io.signal.steady_speed_hz`) and the record's own shaft
+    harmonics refute it (:func:`.contact_angle.refuted_speed`), the column is set aside and its
+    median kept as the speed the file states (``info["rpm_file"]`` [r/min], with
+    ``info["speed_column_refuted"]`` True), which the speed given overrides and is judged
+    against, as a CWRU file's ``X###RPM``. Exploratory testing, twenty-seventh session: a
+    column of 1800 r/min on record 172 (1728 r/min) was refused by its shaft lines and the
+    ``--rpm 1728`` that corrects it was refused as contradicting the column, so only an edit
+    of the file got past it.
+
+    Raises
+    ------
+    ConfigError
+        One line where the speed given contradicts a column the record does not refute
+        (``valid``: the message's way on).
+    """
+    span = column_speed_refutes(rec, rpm)
+    if span is None:
+        return rec
+    from ..io.signal import steady_speed_hz
+
+    med = steady_speed_hz(rec.speed_hz)
+    if med is not None:
+        from .contact_angle import refuted_speed
+
+        if refuted_speed(rec.x, rec.fs, med) is not None:
+            info = {**rec.info, "rpm_file": 60.0 * med, "speed_column_refuted": True}
+            return replace(rec, speed_hz=None, info=info)
+    raise ConfigError(
+        f"rpm = {rpm:.6g} r/min contradicts the speed column of {Path(rec.source).name!r} "
+        f"({speed_span_text(span, rpm)}); valid: {valid}"
+    )
 
 
 def load_signal_and_speed(
