@@ -334,10 +334,10 @@ def _analyze_file(path: str, req: _Request) -> dict[str, Any]:
     if overridden is not None:
         out["bearing_file"] = overridden  # the result's own, which --bearing overrode
     in_hz = None  # a speed in Hz typed for --rpm, or a column of Hz named rpm
-    from ..signal.fused import refuted_rpm
+    from ..signal.fused import SPEED_REFUTED, refuted_rpm
 
     own_rpm = refuted_rpm(d.why)  # the record's own speed, where it refutes the one used
-    refuted = own_rpm is not None
+    refuted = SPEED_REFUTED in (d.why or "")  # also an order-tracked column's (no r/min named)
     given = rpm_source == "option" and rec.rpm is not None and rec.speed_hz is None
     spec = None  # the record's padded spectrum: one for the Hz check and the unchecked note
     if given:

@@ -1146,7 +1146,7 @@ def analyze_record(
         )
         return diagnose_fused(
             sig.value, float(samples_per_rev), bearing, 1.0, band=band_v, rule=rule,
-            domain=Domain.ORDER,
+            domain=Domain.ORDER, speed_from="the speed column",
         )  # fmt: skip
     stated = rec.info.get("rpm_file")  # the file's own speed, where --rpm overrode it
     return diagnose_fused(

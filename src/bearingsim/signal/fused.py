@@ -547,7 +547,11 @@ def diagnose_fused(
     kin_notes = _kinematic_check(
         views, spectra, _measured_speed(raw_sp, fs, shaft_hz), bearing, shaft_hz, rule
     )
-    refuted = _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz)
+    refuted = (
+        _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz)
+        if domain is Domain.HZ
+        else _order_refuted(a, fs, rule)
+    )
     cage_views = sum(v.cage for v in views)
     nv = len(views)
     fused = {}
@@ -593,12 +597,21 @@ def diagnose_fused(
             if refuted.between > 1
             else f"a comb of 10 stands {refuted.gain_db:.0f} dB over the one at the speed used"
         )
-        notes.append(
-            f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} "
-            f"r/min used is {100.0 * (shaft_hz / f_rec - 1.0):+.2f} % off it, beyond the line "
-            f"search's ±{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong "
-            f"speed (check {speed_from})"
-        )
+        off = f"{100.0 * (shaft_hz / f_rec - 1.0):+.2f} %"
+        if domain is Domain.HZ:
+            notes.append(
+                f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} "
+                f"r/min used is {off} off it, beyond the line search's ±"
+                f"{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong speed "
+                f"(check {speed_from})"
+            )
+        else:  # order tracked: the comb stands at an order of the speed tracked with
+            notes.append(
+                f"{SPEED_REFUTED} order {f_rec:.5g} of the speed tracked with ({how}); that "
+                f"speed is {off} off the record's, beyond the line search's ±"
+                f"{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong orders "
+                f"(check {speed_from})"
+            )
         return _res("uncertain", 0.0, top, p, margin)
     if not supported:
         alone = [(v.name, f) for v in views for f in v.supported]
@@ -715,6 +728,18 @@ def _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz=None):
     return refuted_speed(
         None, fs, shaft_hz, tol_rel=rule.tol_rel, spectrum=raw_sp, stated_hz=stated_hz
     )
+
+
+def _order_refuted(a, fs, rule):
+    """:func:`.contact_angle.refuted_speed` of an order-tracked record ``a`` (``fs`` samples
+    per revolution) at order 1: a shaft comb standing at another order (beyond
+    ``rule.tol_rel``) says the speed it was tracked with is off the record's own, as a
+    ``--rpm`` is judged in Hz (twenty-eighth session: a speed column 4 % high and drifting
+    over 1 % was tracked unchecked; 172 read "ball" 0.94). Supply lines sit at no fixed order
+    and are far above the comb's orders."""
+    from .contact_angle import refuted_speed
+
+    return refuted_speed(a, fs, 1.0, tol_rel=rule.tol_rel)
 
 
 def _kinematic_check(views, spectra, fr, bearing, shaft_hz, rule) -> list[str]:
