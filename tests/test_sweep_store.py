@@ -599,6 +599,13 @@ def test_stale_creation_directories_are_removed(tmp_path):
     # (exploratory testing, twenty-seventh session)
     _age(young, locks.CREATION_LOCKLESS_S + 1.0)
     assert locks.remove_stale_creations(out) == 1 and not young.exists()
+    # a dataset --force-new renamed aside, its client killed before the deletion ended
+    # (read from the code in the twenty-seventh session; twenty-eighth): removed at any age
+    aside = tmp_path / ".d.zarr.removing-0123abcd"
+    (aside / "signal").mkdir(parents=True)
+    (aside / "signal" / "0.0").write_bytes(b"x")
+    assert locks.remove_stale_creations(out) == 1 and not aside.exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".d.zarr.creating-live", "d.zarr"]
 
 
 def test_a_resume_removes_a_stale_creation_beside_the_dataset(store):

@@ -492,22 +492,28 @@ def _fs_now(directory: Path) -> float:
 
 def remove_stale_creations(dest: str | Path) -> int:
     """Delete the temporary directories (``.NAME.creating-*`` beside the dataset ``dest``) of
-    dataset creations whose client is gone; returns how many.
+    dataset creations whose client is gone, and every ``.NAME.removing-*`` (a dataset that
+    ``--force-new`` renamed aside to delete; its client was killed before the deletion ended);
+    returns how many.
 
     A creation is judged by the lock written into it (:func:`judge_lock`); one without a lock
     (its client was killed in the first milliseconds, or a Ctrl-C's cleanup was followed by
     zarr's last background writes) by the directory's age against
-    :data:`CREATION_LOCKLESS_S`.
+    :data:`CREATION_LOCKLESS_S`. A directory renamed aside is no dataset any more (no client
+    opens it), so it goes whatever its age: two clients deleting it at once both succeed.
     """
     dest = Path(dest)
     if not dest.parent.is_dir():
         return 0
+    n = 0
+    for d in dest.parent.glob(f".{dest.name}.removing-*"):
+        shutil.rmtree(d, ignore_errors=True)
+        n += not d.exists()
     found = list(dest.parent.glob(f".{dest.name}.creating-*"))
     if not found:
-        return 0
+        return n
     now = _fs_now(dest.parent)
     me = this_process()
-    n = 0
     for d in found:
         try:
             lock = d / LOCK_NAME
