@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import math
 
+import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
@@ -98,8 +99,23 @@ def test_load_json(run_cli, tmp_path):
     ):
         assert k in d
     assert len(d["ball_loads_n"]) == 9
+    assert np.abs(d["force_residual_n"]).max() < 1e-9  # free motion: both components balance
     assert_allclose(d["fr_n"], value("vsm.s2_1.radial_load"), rtol=1e-3, err_msg="seed VSM §2.1")
     assert png.stat().st_size > 1000
+
+
+def test_load_line_reports_the_force_it_leaves(run_cli):
+    """A helper's exploratory testing (twenty-eighth session): ``--motion load_line`` balances
+    the load line only; the perpendicular 2.2 N (of a 51 N load) went unreported."""
+    d = run_cli(
+        "load", "6205", "--fx-n", "10", "--fy-n", "50", "--motion", "load_line", "--json"
+    ).json()
+    assert d["residual_rel"] < 1e-12
+    rx, ry = d["force_residual_n"]
+    assert 2.0 < math.hypot(rx, ry) < 2.5, (rx, ry)
+    assert abs(rx * 10 + ry * 50) < 1e-9 * 50  # perpendicular to the load (10, 50) N
+    r = run_cli("load", "6205", "--fx-n", "10", "--fy-n", "50", "--motion", "load_line")
+    assert "unbalanced force: (2.196, -0.4392) N (x, y)" in r.out, r.out
 
 
 @pytest.mark.parametrize(

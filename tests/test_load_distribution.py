@@ -119,6 +119,53 @@ def test_stribeck_constant_large_z():
     assert_allclose(stribeck_qmax(b, 1000.0), 4.37 * 1000 / 40, rtol=1e-12)
 
 
+@pytest.mark.parametrize("alpha_deg", [25.0, 40.0])
+@pytest.mark.parametrize("clearance", [0.0, 10e-6, -5e-6])
+def test_a_contact_angle_carries_the_load_with_its_radial_share(alpha_deg, clearance):
+    """A helper's exploratory testing (twenty-eighth session): the distribution ignored the
+    nominal contact angle, so a 25 deg bearing carried 1000 N with the 0 deg bearing's
+    element loads (487.2 N) and its elements' radial components summed to 906 N. Harris &
+    Kotzalas 2007 §7.2/§7.4 (no axial displacement): ``delta = (u . e) cos alpha - P_d/2``
+    and ``sum Q cos alpha e = F``; as ``u' = u cos alpha`` turns it into the 0 deg problem
+    under ``F / cos alpha``, the element loads are the 0 deg bearing's under that load."""
+    from dataclasses import replace
+
+    b0 = replace(get_bearing("6205"), diametral_clearance=clearance)
+    b = replace(b0, contact_angle=math.radians(alpha_deg))
+    ca = math.cos(b.contact_angle)
+    k = ball_stiffness(b)  # the raceways' curvature has alpha in it: one K for both
+    for motion in ("free", "load_line"):
+        ld = radial_load_distribution(b, 0.0, 1000.0, CAGE[:9], motion=motion)
+        ref = radial_load_distribution(b0, 0.0, 1000.0 / ca, CAGE[:9], motion=motion, stiffness=k)
+        assert_allclose(ld.ball_loads, ref.ball_loads, rtol=1e-12)
+        # the radial balance, which the 0 deg loads missed by cos alpha (906 N at 25 deg)
+        fy = (ld.ball_loads * ca * np.cos(ld.ball_angles)).sum(axis=1)
+        assert_allclose(fy, 1000.0, rtol=1e-9)
+        assert np.abs(ld.force_residual).max() <= 1e-9 * 1000.0 + (motion == "load_line") * 50
+        # the ring moves 1/cos alpha further for the same contact deflections
+        assert_allclose(ld.delta_r * ca, ref.delta_r, rtol=1e-12)
+        assert_allclose(ld.delta_max, ref.delta_max, rtol=1e-12, atol=1e-18)
+        assert_allclose(ld.psi_l, ref.psi_l, rtol=1e-12)
+    # Stribeck's estimate has the same 1/cos alpha (Harris & Kotzalas 2007, eq. (7.26))
+    if clearance == 0.0:
+        z_ratio = b.n_elements * ld.ball_loads.max() * ca / 1000.0
+        assert 4.2 < z_ratio < 4.5, z_ratio
+
+
+def test_stribeck_constant_of_line_contact():
+    """Harris & Kotzalas 2007 §7.2: ``Q_max = 4.08 F_r / Z`` for line contact (rollers, load
+    exponent 10/9), which the discrete distribution approaches at zero clearance; rollers got
+    the ball bearings' 4.37 (a helper's exploratory testing, twenty-eighth session)."""
+    from dataclasses import replace
+
+    b = replace(get_bearing("NU204-ECP"), diametral_clearance=0.0)
+    assert_allclose(stribeck_qmax(b, 1000.0), 4.08 * 1000.0 / b.n_elements, rtol=1e-12)
+    ld = radial_load_distribution(b, 0.0, 1000.0, np.linspace(0, 2 * math.pi / 11, 21))
+    ratio = b.n_elements * ld.ball_loads.max() / 1000.0  # a roller on the load line: 4.072
+    assert_allclose(ratio, 4.08, rtol=0.005)
+    assert abs(ratio / 4.37 - 1.0) > 0.06  # the ball bearings' constant is 7 % off
+
+
 def test_uses_hertz_stiffness_and_override():
     b = get_bearing("6205")
     ld = radial_load_distribution(b, 0.0, 100.0)

@@ -2,13 +2,18 @@
 
 Ball ``j`` sits at azimuth ``psi_j = cage_angle + (j-1) 2 pi / Z + psi_0`` measured from the +y axis
 towards +x (seed VSM fig. 1). A rigid inner-ring displacement ``u = (u_x, u_y)`` compresses it by
-``delta_j = u_x sin psi_j + u_y cos psi_j - P_d/2`` and it carries ``Q_j = K max(delta_j, 0)^n``
-(``n = 1.5`` balls, ``10/9`` rollers; ``K`` the combined inner+outer constant, seed VSM eq. (10)).
-Writing ``delta_r = |u|`` and the displacement direction ``theta_u``, this is exactly the Harris
-form used by seed VSM eqs. (4)–(9):
+``delta_j = (u_x sin psi_j + u_y cos psi_j) cos alpha - P_d/2`` and it carries
+``Q_j = K max(delta_j, 0)^n`` (``n = 1.5`` balls, ``10/9`` rollers; ``K`` the combined
+inner+outer constant, seed VSM eq. (10); ``alpha`` the nominal contact angle, 0 for every
+catalogue bearing), whose radial component ``Q_j cos alpha`` balances the load (Harris &
+Kotzalas 2007, §7.2 and §7.4 with no axial displacement: the axial components
+``Q_j sin alpha`` go to the mounting). Writing ``delta_r = |u|`` and the displacement direction
+``theta_u``, this is exactly the Harris form used by seed VSM eqs. (4)–(9):
 ``delta_j = delta_max {1 - (1 - cos(psi_j - theta_u))/(2 eps)}`` with
-``delta_max = delta_r - P_d/2``, ``eps = (1 - P_d/(2 delta_r))/2`` and load-zone half angle
-``psi_L = arccos(P_d/(2 delta_r))``.
+``delta_max = delta_r cos alpha - P_d/2``, ``eps = (1 - P_d/(2 delta_r cos alpha))/2`` and
+load-zone half angle ``psi_L = arccos(P_d/(2 delta_r cos alpha))``. (Until the twenty-eighth
+session ``alpha`` was left out: a user's bearing with ``alpha`` = 25 deg carried its load
+with elements 1/cos alpha too light; a helper's exploratory testing.)
 
 Two ring motions are offered (:class:`RingMotion`):
 
@@ -45,6 +50,7 @@ __all__ = [
     "radial_load_distribution",
     "RingMotion",
     "STRIBECK_CONSTANT",
+    "STRIBECK_CONSTANT_LINE",
     "stribeck_qmax",
 ]
 
@@ -261,13 +267,13 @@ class LoadDistribution:
     delta_r : ndarray, shape (m,)
         ``|u|``, relative radial displacement of the rings [m].
     delta_max : ndarray, shape (m,)
-        ``delta_r - P_d/2``, deflection on the displacement line [m].
+        ``delta_r cos alpha - P_d/2``, deflection on the displacement line [m].
     epsilon : ndarray, shape (m,)
-        Load-distribution factor ``(1 - P_d/(2 delta_r))/2`` [-]; above 1 every element is
+        Load-distribution factor ``(1 - P_d/(2 delta_r cos alpha))/2`` [-]; above 1 every element is
         loaded. With a preload (``P_d < 0``) it grows without bound as the radial load goes to
         0, and is ``inf`` at zero load (JSON: ``null``).
     psi_l : ndarray, shape (m,)
-        Load-zone half angle ``arccos(P_d/(2 delta_r))`` [rad], clipped to [0, pi].
+        Load-zone half angle ``arccos(P_d/(2 delta_r cos alpha))`` [rad], clipped to [0, pi].
     n_loaded : ndarray, shape (m,)
         Number of elements with ``Q_j > 0`` [-].
     residual : ndarray, shape (m,)
@@ -281,6 +287,9 @@ class LoadDistribution:
         Diametral clearance P_d used [m].
     motion : RingMotion
         Ring degrees of freedom used.
+    contact_angle : float
+        Nominal contact angle alpha of the bearing [rad] (the elements' radial share
+        ``cos alpha``).
     """
 
     fx: float
@@ -302,14 +311,14 @@ class LoadDistribution:
     exponent: float
     clearance: float
     motion: RingMotion
+    contact_angle: float = 0.0
 
     @property
     def force_residual(self) -> NDArray[np.float64]:
-        """Vector residual ``sum Q_j e_j - F`` per cage angle, shape (m, 2) [N]."""
+        """Vector residual ``sum Q_j cos(alpha) e_j - F`` per cage angle, shape (m, 2) [N]."""
+        q = self.ball_loads * math.cos(self.contact_angle)
         sn, cs = np.sin(self.ball_angles), np.cos(self.ball_angles)
-        return np.stack(
-            [(self.ball_loads * sn).sum(1) - self.fx, (self.ball_loads * cs).sum(1) - self.fy], 1
-        )
+        return np.stack([(q * sn).sum(1) - self.fx, (q * cs).sum(1) - self.fy], 1)
 
     def plot(self, index: int = 0):
         """Polar bar plot of the element loads at cage angle ``index``; returns the Figure."""
@@ -411,9 +420,14 @@ def radial_load_distribution(
             "radial load = 0 N with positive clearance: the ring position is undetermined; "
             "valid range (0, inf) N"
         )
+    # the problem in u' = u cos(alpha): delta_j = u' . e_j - P_d/2 and sum Q_j e_j = F/cos(alpha),
+    # the contact angle's zero form (exact for alpha = 0: x / 1.0 is x)
+    ca = math.cos(bearing.contact_angle)
     u = np.empty((cage.size, 2))
     res = np.empty(cage.size)
-    _distribute(cage, psi0, Z, fac, 0.5 * Pd, K, n, fx, fy, motion is RingMotion.FREE, u, res)
+    _distribute(
+        cage, psi0, Z, fac, 0.5 * Pd, K, n, fx / ca, fy / ca, motion is RingMotion.FREE, u, res
+    )
     if not np.all(np.isfinite(u)):
         raise SolverError(
             "radial load distribution: no equilibrium found (non-finite displacement)"
@@ -421,7 +435,7 @@ def radial_load_distribution(
     psi = cage[:, None] + psi0 + 2.0 * np.pi * np.arange(Z)[None, :] / Z
     dj = u[:, :1] * np.sin(psi) + u[:, 1:] * np.cos(psi) - 0.5 * Pd
     Q = fac * K * np.maximum(dj, 0.0) ** n
-    dr = np.hypot(u[:, 0], u[:, 1])
+    dr = np.hypot(u[:, 0], u[:, 1])  # |u'| = delta_r cos(alpha)
     # P_d/(2 delta_r); at delta_r = 0 (no radial load) its limit: 0 without clearance (half
     # the elements at the edge of loading, Harris), -inf with a preload (every element
     # loaded equally: epsilon infinite, psi_l = pi; it was 0.5 and pi/2 there, while every
@@ -438,8 +452,8 @@ def radial_load_distribution(
         ball_angles=psi,
         ball_deflections=dj,
         ball_loads=Q,
-        displacement=u,
-        delta_r=dr,
+        displacement=u / ca,
+        delta_r=dr / ca,
         delta_max=dr - 0.5 * Pd,
         epsilon=0.5 * (1.0 - ratio),
         psi_l=np.arccos(np.clip(ratio, -1.0, 1.0)),
@@ -449,15 +463,28 @@ def radial_load_distribution(
         exponent=n,
         clearance=Pd,
         motion=motion,
+        contact_angle=float(bearing.contact_angle),
     )
 
 
 STRIBECK_CONSTANT = 4.37
-"""Stribeck's ``Q_max = 4.37 F_r / (Z cos alpha)`` (zero clearance, Harris & Kotzalas 2007,
-eq. (7.26); seed LIFE §2.1, seed IAS eq. (2))."""
+"""Stribeck's ``Q_max = 4.37 F_r / (Z cos alpha)`` for point contact (ball bearings, zero
+clearance; Harris & Kotzalas 2007, eq. (7.26); seed LIFE §2.1; seed IAS eq. (2) uses it for its
+roller bearing, and the IAS model keeps the seed's value)."""
+
+STRIBECK_CONSTANT_LINE = 4.08
+"""The same for line contact (roller bearings, load exponent 10/9; Harris & Kotzalas 2007,
+§7.2): ``Q_max = 4.08 F_r / (Z cos alpha)``; the discrete distribution gives 4.07 on the
+NU204-ECP's 11 rollers."""
 
 
 def stribeck_qmax(bearing: Bearing, radial_load: float) -> float:
-    """Stribeck's estimate of the most-loaded element load ``4.37 F_r / (Z cos alpha)`` [N]."""
+    """Stribeck's estimate of the most-loaded element load ``4.37 F_r / (Z cos alpha)`` [N]
+    (ball bearings; ``4.08`` for roller bearings, :data:`STRIBECK_CONSTANT_LINE`: until the
+    twenty-eighth session a roller bearing got the ball bearings' 4.37, 7 % high; a helper's
+    exploratory testing)."""
+    from .geometry import RollerBearing
+
     fr = check_range("radial_load_n", radial_load, 0.0, unit="N")
-    return STRIBECK_CONSTANT * fr / (bearing.n_elements * math.cos(bearing.contact_angle))
+    c = STRIBECK_CONSTANT_LINE if isinstance(bearing, RollerBearing) else STRIBECK_CONSTANT
+    return c * fr / (bearing.n_elements * math.cos(bearing.contact_angle))

@@ -84,7 +84,8 @@ __all__ = [
     "--load-method",
     type=click.Choice(["stribeck", "distribution"]),
     default="stribeck",
-    help="Most-loaded element: Stribeck 4.37 F_r/Z (seed) or discrete distribution.",
+    help="Most-loaded element: Stribeck 4.37 F_r/Z (seed; 4.08 for roller bearings) or "
+    "discrete distribution.",
 )
 @click.option(
     "--kappa",

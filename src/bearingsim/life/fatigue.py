@@ -67,7 +67,8 @@ __all__ = [
 class ElementLoadMethod(enum.Enum):
     """How the most loaded rolling element's load is obtained."""
 
-    #: Stribeck ``Q_max = 4.37 F_r / (Z cos alpha)`` (seed LIFE §2.1, zero clearance)
+    #: Stribeck ``Q_max = 4.37 F_r / (Z cos alpha)`` (seed LIFE §2.1, zero clearance; 4.08 for
+    #: roller bearings, :func:`bearingsim.load_distribution.stribeck_qmax`)
     STRIBECK = "stribeck"
     #: largest element load of the discrete-element distribution with the bearing's clearance,
     #: over cage angles spanning one element pitch
@@ -383,7 +384,8 @@ def contact_fatigue_life(
         Tresca shear, the seed's table-3 damage driver; see :class:`ShearMeasure` for why);
         an unknown name is refused with the valid ones.
     load_method : ElementLoadMethod
-        Most-loaded element load: Stribeck 4.37 F_r/Z (seed) or the discrete distribution.
+        Most-loaded element load: Stribeck 4.37 F_r/Z (seed; 4.08 for roller bearings) or the
+        discrete distribution.
     stop : {"spall", "initiation"}
         Stop at the first failed surface element, or at the first failed element.
     max_steps : int
