@@ -734,6 +734,20 @@ def test_a_rig_axis_samples_each_run_at_its_rigs_rate_and_stores_the_sensor(clie
     )
     assert based.channels == ("acc_x", "acc_y", "acc_sensor") and based.base["fs_hz"] is None
     assert [sc.fs_hz for sc in based.scenarios()] == [12000.0, 12000.0]
+    # channels named without acc_sensor: said (twenty-eighth session; stored silently before)
+    assert spec.unstored_sensor_note is None and plain.unstored_sensor_note is None
+    for base, axes in (({"model": "vsm", "rig": "cwru-de-12k"}, {"seed": [0, 1]}),
+                       ({"model": "vsm"}, {"rig": ["cwru-de-12k", "cwru-de-48k"]})):  # fmt: skip
+        named = SweepSpec.from_dict(
+            {"sweep": {"channels": ["acc_y"]}, "base": base, "axes": axes}, origin="n"
+        )
+        assert named.unstored_sensor_note.startswith(
+            "sweep.channels = ['acc_y'] omits 'acc_sensor' while the runs pass through a rig"
+        )
+    everything = SweepSpec.from_dict(
+        {"sweep": {"channels": "all"}, "base": {"model": "vsm", "rig": "cwru-de-12k"}}, origin="a"
+    )
+    assert everything.unstored_sensor_note is None
 
 
 def test_a_sweeps_rig_gives_its_rate_from_a_base_file_and_beside_the_sweep_file(

@@ -104,6 +104,8 @@ def plan_cmd(
     )
     d = plan.as_dict()
     d["spec"] = str(spec_file)
+    if (note := spec.unstored_sensor_note) is not None:
+        d["notes"] = [note]
     if as_json:
         emit_json(d)
         return
@@ -128,6 +130,8 @@ def plan_cmd(
         "uncompressed, plus each run's record)"
     )
     _echo_invalid(plan.invalid_runs, plan.n_runs)
+    if (note := spec.unstored_sensor_note) is not None:
+        click.echo(f"  note: {note}")
     for w, runs in plan.run_warnings.items():
         first = ", ".join(str(i) for i in runs[:5]) + (", ..." if len(runs) > 5 else "")
         click.echo(f"  {len(runs)} of {plan.n_runs} runs will warn (runs {first}): {w}")
@@ -236,6 +240,8 @@ def run_cmd(
     if p.is_dir() and not any(p.iterdir()):
         p.rmdir()  # an empty directory is taken as a new dataset
     spec = SweepSpec.from_toml(spec_file)
+    if (note := spec.unstored_sensor_note) is not None:
+        click.echo(f"note: {note}", err=True)
     stopped: list[int] = []  # SIGTERM / SIGHUP received
     try:
         # warnings raised in this process, each once, as one line; the runs' own warnings are

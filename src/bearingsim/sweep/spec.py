@@ -547,6 +547,21 @@ class SweepSpec:
         return [self._scenario(i, v) for i, v in enumerate(self.iter_values())]
 
     @property
+    def unstored_sensor_note(self) -> str | None:
+        """A note where the runs pass through a rig (``rig`` in the base or an axis) but the
+        channels named omit ``acc_sensor``, so what the sensor records is not stored
+        (exploratory testing, nineteenth session, left for planning; twenty-eighth session:
+        ``sweep plan`` and ``sweep run`` said nothing); else None."""
+        has_rig = any(a.name == "rig" for a in self.axes) or self.base.get("rig") is not None
+        if not has_rig or self.channels is None or "acc_sensor" in self.channels:
+            return None
+        return (
+            f"sweep.channels = {list(self.channels)} omits 'acc_sensor' while the runs pass "
+            "through a rig: what the sensor records is not stored (add 'acc_sensor', or leave "
+            "channels out for the default, which has it)"
+        )
+
+    @property
     def coordinate_keys(self) -> tuple[str, ...]:
         """Keys stored per run as coordinates: the axes, ``seed`` (per-run seeds) and labels."""
         keys = list(self.axis_names)
