@@ -190,3 +190,56 @@ def test_signal_functions_refuse_complex_and_text_samples(fn, extra, bad, messag
     with pytest.raises(ConfigError) as e:
         getattr(sig, fn)(bad, 12000.0, *extra)
     assert message in str(e.value) and "\n" not in str(e.value)
+
+
+def test_the_dynamic_models_refuse_a_nominal_contact_angle(tmp_path):
+    """A helper's exploratory testing (twenty-eighth session): a 25 deg user bearing ran the
+    ring models with the 0 deg bearing's loads and stiffness (their contacts at the groove
+    bottom) at its own 25 deg fault frequencies. The ring models and the rotor now refuse a
+    nominal contact angle in one line; the static load distribution projects it."""
+    import dataclasses
+    import math
+
+    from bearingsim.dynamics.ring.base import ModelInputs
+    from bearingsim.dynamics.rotor.config import BearingSupport
+
+    b = dataclasses.replace(get_bearing("6205-cwru"), contact_angle=math.radians(25.0))
+    with pytest.raises(ConfigError, match=r"^bearing = '6205-cwru' has contact_angle = 25 deg; "
+                       r"the VSM/DEM/TVSM models take"):  # fmt: skip
+        ModelInputs(b, 10.0, 50.0, 29.95)
+    with pytest.raises(ConfigError, match=r"has contact_angle = 25 deg; the rotor model's"):
+        BearingSupport(b)
+    from pathlib import Path
+
+    import bearingsim.catalog
+
+    text = (Path(bearingsim.catalog.__file__).parent / "6205-cwru.toml").read_text()
+    f = tmp_path / "ac25.toml"  # a user's file, as the helper's
+    f.write_text(
+        text.replace('id = "6205-cwru"', 'id = "ac25"').replace(
+            "contact_angle_rad = 0.0", "contact_angle_rad = 0.4363323129985824"
+        )
+    )
+    with pytest.raises(ConfigError, match=r"^bearing = 'ac25' has contact_angle = 25 deg"):
+        simulate({"model": "dem", "bearing_file": str(f), "duration_s": 0.01})
+    ld = radial_load_distribution(b, 0.0, 1000.0)
+    assert ld.contact_angle == b.contact_angle
+
+
+def test_a_load_zone_window_narrower_than_the_ball_pitch_is_refused():
+    """A helper's exploratory testing (twenty-eighth session): ``load_zone_half_angle_deg =
+    30`` on the 6205-cwru (9 balls, 40 deg apart) left one ball in the window at some cage
+    angles; it balances the load only along its own line, so 17 % of the load stayed
+    unbalanced, the ring drifted 11 clearances sideways and the file was written (RMS 19.6
+    against 0.24 m/s^2). A window of at least one pitch keeps two balls in it."""
+    base = {"model": "vsm", "bearing": "6205-cwru", "fault": "none", "duration_s": 0.02,
+            "fs_hz": 12000.0}  # fmt: skip
+    for deg in (30.0, 39.9):
+        msg = (
+            r"^load_zone_half_angle = .* deg is below the ball pitch of 6205-cwru \(40 deg\)"
+            r".*valid range \[40, 180\) deg"
+        )
+        with pytest.raises(ConfigError, match=msg):
+            simulate({**base, "load_zone_half_angle_deg": deg})
+    r = simulate({**base, "load_zone_half_angle_deg": 40.0})
+    assert r.meta["static_residual_max"] < 1e-9

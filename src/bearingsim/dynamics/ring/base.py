@@ -75,13 +75,33 @@ N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
 
 
-def check_ball_bearing(bearing) -> None:
-    """Refuse (one line) a bearing that is not a ball bearing: the ring models' contacts and
-    defects are those of balls."""
+def check_ball_bearing(bearing, models: str = "VSM/DEM/TVSM models") -> None:
+    """Refuse (one line) a bearing that is not a ball bearing, the ring models' contacts and
+    defects being those of balls; and one with a nominal contact angle
+    (:func:`check_no_contact_angle`)."""
     if not isinstance(bearing, BallBearing):
         raise ConfigError(
             f"bearing = {getattr(bearing, 'id', bearing)!r} is not a ball bearing; the "
-            "VSM/DEM/TVSM models need a ball bearing"
+            f"{models} need a ball bearing"
+        )
+    check_no_contact_angle(bearing, models)
+
+
+def check_no_contact_angle(bearing, models: str) -> None:
+    """Refuse (one line) a ball bearing with a nominal contact angle for the dynamic models
+    (``models``, for the message): they hold a deep-groove bearing's contacts at the groove
+    bottom under a radial load and take the angle an axial load gives from the geometry
+    (:func:`bearingsim.quasistatic.jones.axial_state`), so the nominal angle set the fault
+    frequencies and not the forces (a helper's exploratory testing, twenty-eighth session: a
+    25 deg bearing gave the 0 deg bearing's loads and stiffness at its own BPFO)."""
+    a = float(getattr(bearing, "contact_angle", 0.0))
+    if a != 0.0:
+        raise ConfigError(
+            f"bearing = {getattr(bearing, 'id', bearing)!r} has contact_angle = "
+            f"{math.degrees(a):.4g} deg; the {models} take a deep-groove bearing's contacts at "
+            "the groove bottom (0 deg) and the angle an axial load gives from its geometry, so "
+            "a nominal angle would set the fault frequencies and not the forces; valid: "
+            "contact_angle_rad = 0 (an axial load through axial_load_n)"
         )
 
 
@@ -246,6 +266,19 @@ class ModelInputs:
                     unit="rad",
                 ),
             )
+            # two balls must stay in the window at every cage angle: one alone carries only
+            # the load along its own line, and the ring drifted sideways without bound (a
+            # helper's exploratory testing, twenty-eighth session: 30 deg on the 6205-cwru
+            # left 17 % of the load unbalanced, the ring 11 clearances off, written silently)
+            pitch = 2.0 * math.pi / b.n_elements
+            if self.load_zone_half_angle < pitch * (1.0 - 1e-12):
+                raise ConfigError(
+                    f"load_zone_half_angle = {math.degrees(self.load_zone_half_angle):.6g} deg "
+                    f"is below the ball pitch of {b.id} ({math.degrees(pitch):.6g} deg): at some "
+                    "cage angles one ball alone would carry the load, which it balances only "
+                    f"along its own line; valid range [{math.degrees(pitch):.6g}, 180) deg, or "
+                    "none (the contact decides)"
+                )
         if self.defect is not None:
             if not isinstance(self.defect, Defect):
                 raise ConfigError(f"defect = {self.defect!r} is not a Defect or None")

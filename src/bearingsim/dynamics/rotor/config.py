@@ -132,6 +132,9 @@ class BearingSupport:
                 f"bearing = {getattr(self.bearing, 'id', self.bearing)!r} is not a ball "
                 "bearing; the rotor model needs ball bearings"
             )
+        from ..ring.base import check_no_contact_angle
+
+        check_no_contact_angle(self.bearing, "rotor model's bearings")
         check_range("contact_damping_n_s_per_m", self.contact_damping, 0.0, unit="N s/m")
         check_roughness(self.contact_roughness)
         check_range("first_ball_angle_rad", self.first_ball_angle, unit="rad")
