@@ -72,6 +72,18 @@ def test_a_pure_tone_has_kurtosis_1_5_and_crest_sqrt2():
     assert k.crest == pytest.approx(np.sqrt(2), rel=1e-3)
 
 
+@pytest.mark.parametrize("fm", [107.0, 107.25, 107.35])
+def test_the_fault_line_is_read_between_bins_too(fm):
+    """A helper's exploratory testing (twenty-eighth session): the line was the largest bin
+    within +/- 2 %, so a modulation half-way between two bins (107.25 Hz on 2 s) read 0.878 of
+    the one on a bin. A carrier in the band, amplitude-modulated at depth 0.5: its envelope's
+    line is 0.5 whatever its place against the bins."""
+    fs = 12000.0
+    t = np.arange(24000) / fs
+    x = (1.0 + 0.5 * np.cos(2 * np.pi * fm * t)) * np.sin(2 * np.pi * 3000.0 * t)
+    assert signal_metrics(x, fs, fm, band=(2000.0, 4000.0)).line == pytest.approx(0.5, rel=0.01)
+
+
 def test_bounds():
     ok = within_bounds({"rms": 1.9, "line": 0.6, "kurtosis": 1.4, "prominence_db": -5.0})
     assert all(ok.values())

@@ -48,9 +48,12 @@ not known. What can be identified from them, and how:
    held tens of impacts, so the median kept them, and its ln 2 correction inflated tonal
    content by 1.44: its power exceeded the records' own, 41 against 31 (m/s^2)^2 on record
    132, 0.68 against 0.51 on the healthy record 97.)
-5. **Tones** -- the amplitude-spectrum lines at 1, 2 and 3 times the shaft speed of each record
-   (its own rpm), kept where the line stands at least 6 dB above the background; the median
-   amplitude over the records. A kept tone is taken out of each record before its background
+5. **Tones** -- the lines at 1, 2 and 3 times the shaft speed of each record (its own rpm),
+   kept where the Hann line stands over the background at a false-alarm probability of
+   :data:`TONE_FALSE_ALARM` (6 dB over it until the twenty-eighth session, which noise
+   crossed on 44.5 % of the records); the amplitude is the least-squares sinusoid's at the
+   line's refined frequency (the Hann peak until then, up to 1.4 dB low between bins); the
+   median amplitude over the records. A kept tone is taken out of each record before its background
    (step 4) is estimated (:func:`_without_tones`: its frequency read within 1 % of the order,
    refined, and the least-squares sinusoid subtracted); until the twenty-fourth session it
    stayed in the background as well and a run through the rig carried it twice.
@@ -276,35 +279,69 @@ TONE_SEARCH_REL = 0.01
 TONE_PAD = 8
 
 
+#: false-alarm probability of a shaft tone's detection, per record and order [-]: a tone is
+#: kept in a record where its Hann line's largest of the 5 bins around the order exceeds what
+#: noise exceeds with this probability (each bin's squared amplitude of noise is exponential
+#: with mean ``2 PSD ENBW``: the threshold is ``2 PSD ENBW ln(5 / p)``, 12.3 dB over
+#: ``sqrt(PSD ENBW)``). Until the twenty-eighth session the threshold was 6 dB over
+#: ``sqrt(PSD ENBW)``, which white noise crossed on 44.5 % of the records (a helper's
+#: exploratory testing: tones "found" in 6 of 10 toneless trials).
+TONE_FALSE_ALARM = 1e-3
+
+
+def _line_at(y, t, fs, spec, fx, f0) -> float | None:
+    """The frequency [Hz] of the record's line near ``f0`` [Hz]: read off its zero-padded Hann
+    spectrum ``spec`` (frequencies ``fx``) within :data:`TONE_SEARCH_REL`, then refined to a
+    small part of the padded bin by the least-squares amplitude (``y`` at times ``t``); None
+    where ``f0`` lies outside (0, fs/2)."""
+    w = np.flatnonzero((fx >= f0 * (1.0 - TONE_SEARCH_REL)) & (fx <= f0 * (1.0 + TONE_SEARCH_REL)))
+    if not w.size or not 0.0 < f0 < 0.5 * fs:
+        return None
+    fk = float(fx[w[np.argmax(spec[w])]])
+    # the fitted amplitude over 9 frequencies across +/- one padded bin, and the vertex of a
+    # parabola through the best three (a frequency off by 0.0125 Hz over 5 s drifts 0.4 rad and
+    # leaves a fifth of the line)
+    grid = fk + (fx[1] - fx[0]) * np.linspace(-1.0, 1.0, 9)
+    amp = np.array([_line_fit(y, t, g)[0] for g in grid])
+    k = int(np.clip(np.argmax(amp), 1, grid.size - 2))
+    a0, a1, a2 = amp[k - 1 : k + 2]
+    den = a0 - 2.0 * a1 + a2
+    step = 0.5 * (a0 - a2) / den if den < 0.0 else 0.0
+    return float(grid[k] + step * (grid[1] - grid[0]))
+
+
+def _padded_hann(x, fs) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The record's zero-padded (:data:`TONE_PAD`) Hann amplitude (unscaled) and frequencies."""
+    n = x.size
+    return (
+        np.abs(np.fft.rfft(x * np.hanning(n), n=TONE_PAD * n)),
+        np.fft.rfftfreq(TONE_PAD * n, 1.0 / fs),
+    )
+
+
+def _line_amplitude(x, fs, f0) -> float:
+    """The least-squares amplitude [m/s^2] of the record's line near ``f0`` [Hz] at its refined
+    frequency (:func:`_line_at`; 0 outside (0, fs/2)): a Hann peak reads up to 1.4 dB low
+    between bins (a helper's exploratory testing, twenty-eighth session: a 0.3 m/s^2 tone at
+    29.95 Hz read 0.255)."""
+    t = np.arange(x.size) / fs
+    fk = _line_at(x, t, fs, *_padded_hann(x, fs), f0)
+    return 0.0 if fk is None else _line_fit(x, t, fk)[0]
+
+
 def _without_tones(x, fs, lines) -> NDArray[np.float64]:
     """The record ``x`` [m/s^2] at ``fs`` [Hz] without its lines near ``lines`` [Hz]: each
     line's frequency read off the record's zero-padded Hann spectrum within
-    :data:`TONE_SEARCH_REL` of the given one, then the sinusoid of that frequency fitted by
-    least squares over the whole record and subtracted (a line is stationary; its Hann leakage,
-    31 dB down three bins away, would stay in a notch)."""
-    n = x.size
-    t = np.arange(n) / fs
-    spec = np.abs(np.fft.rfft(x * np.hanning(n), n=TONE_PAD * n))
-    fx = np.fft.rfftfreq(TONE_PAD * n, 1.0 / fs)
+    :data:`TONE_SEARCH_REL` of the given one and refined (:func:`_line_at`), then the sinusoid
+    of that frequency fitted by least squares over the whole record and subtracted (a line is
+    stationary; its Hann leakage, 31 dB down three bins away, would stay in a notch)."""
+    t = np.arange(x.size) / fs
+    spec, fx = _padded_hann(x, fs)
     y = np.array(x, dtype=float)
     for f0 in lines:
-        w = np.flatnonzero(
-            (fx >= f0 * (1.0 - TONE_SEARCH_REL)) & (fx <= f0 * (1.0 + TONE_SEARCH_REL))
-        )
-        if not w.size or not 0.0 < f0 < 0.5 * fs:
-            continue
-        fk = float(fx[w[np.argmax(spec[w])]])
-        # refined to a small part of the padded bin: the fitted amplitude over 9 frequencies
-        # across +/- one padded bin, and the vertex of a parabola through the best three (a
-        # frequency off by 0.0125 Hz over 5 s drifts 0.4 rad and leaves a fifth of the line)
-        grid = fk + (fx[1] - fx[0]) * np.linspace(-1.0, 1.0, 9)
-        amp = np.array([_line_fit(y, t, g)[0] for g in grid])
-        k = int(np.clip(np.argmax(amp), 1, grid.size - 2))
-        a0, a1, a2 = amp[k - 1 : k + 2]
-        den = a0 - 2.0 * a1 + a2
-        step = 0.5 * (a0 - a2) / den if den < 0.0 else 0.0
-        fk = float(grid[k] + step * (grid[1] - grid[0]))
-        y -= _line_fit(y, t, fk)[1]
+        fk = _line_at(y, t, fs, spec, fx, f0)
+        if fk is not None:
+            y -= _line_fit(y, t, fk)[1]
     return y
 
 
@@ -550,27 +587,29 @@ def identify_rig(
 
     # (a record's speed: its rpm, or its speed column's median; a column alone placed no tone
     # until the twenty-fourth session)
-    spectra = [(r, rn, amplitude_spectrum(x, fs))
-               for r, rn, x in zip(records, rpms, xs, strict=True) if rn]  # fmt: skip
+    spectra = [(x, rn, amplitude_spectrum(x, fs))
+               for x, rn in zip(xs, rpms, strict=True) if rn]  # fmt: skip
     tones = []
     for order in (1.0, 2.0, 3.0):
         amps = []
-        for r, rn, sp in spectra:
-            spec, ff, n = sp.amplitude, sp.freq, len(r.x)
+        for x, rn, sp in spectra:
+            spec, ff, n = sp.amplitude, sp.freq, x.size
             ft = order * rn / 60.0
             k = np.argmin(np.abs(ff - ft))
             w = slice(max(k - 2, 0), k + 3)
             line = float(spec[w].max())
-            # background amplitude in the same resolution: sqrt(PSD * ENBW)
+            # noise's mean squared amplitude in a Hann bin: 2 PSD ENBW (TONE_FALSE_ALARM)
             enbw = 1.5 * fs / n
-            bgl = math.sqrt(float(np.interp(ft, f, bg_s)) * enbw)
-            amps.append(line if line > 2.0 * bgl else 0.0)
+            noise2 = 2.0 * float(np.interp(ft, f, bg_s)) * enbw
+            found = line * line > noise2 * math.log(5.0 / TONE_FALSE_ALARM)
+            amps.append(_line_amplitude(x, fs, ft) if found else 0.0)
         if amps and np.median(amps) > 0.0:
             tones.append(
                 Tone(float(np.median(amps)),
-                     f"median over {len(amps)} records of the Hann-window amplitude-spectrum line "
-                     f"at {order:g} x the record's shaft speed (kept where >= 6 dB above the "
-                     "background)", order=order)
+                     f"median over {len(amps)} records of the least-squares sinusoid at "
+                     f"{order:g} x the record's shaft speed (kept where its Hann line stands "
+                     f"over the background's at a false-alarm probability of "
+                     f"{TONE_FALSE_ALARM:g})", order=order)
             )  # fmt: skip
     # the tones kept are the rig's [[tone]]s: out of each record before its background, or
     # they count twice (exploratory testing, twenty-fourth session: a 0.3 m/s^2 line at 1 x
