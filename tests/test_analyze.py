@@ -1041,6 +1041,22 @@ def test_a_drifting_speed_column_is_judged_in_the_order_domain(run_cli, tmp_path
     assert "that speed is +4." in d["why"] and d["why"].endswith("(check the speed column)")
     r = run_cli("analyze", tmp_path / "w1.04.csv")
     assert r.code == 0 and "leading family" not in r.out, r.out
+    # a column the tracked record's comb cannot judge is said to be unchecked (a helper later
+    # in the session: 132 with a column 5 % low and 1 % noise read "inner" 0.66 without a
+    # word, its comb 19.4 dB out; a false "reads like the speed in Hz" note, three lines at
+    # 60 times the column among the structure's resonances, had taken the note's place)
+    from bearingsim.io.signal import read_signal
+
+    rec = read_signal(cwru_record("132"), channel="DE")
+    t = np.arange(rec.x.size) / rec.fs
+    col = 0.95 * rec.rpm * (1 + 0.01 * np.random.default_rng(1).standard_normal(t.size))
+    np.savetxt(tmp_path / "n.csv", np.c_[t, rec.x, col], delimiter=",",
+               header="time_s,acc_m_per_s2,rpm", comments="")  # fmt: skip
+    d = run_cli("analyze", tmp_path / "n.csv", "--json").json()
+    assert d["rpm_unchecked"].startswith(
+        "the speed column is not checked: the order-tracked record has a shaft comb only"
+    ), d
+    assert not any("reads like the speed in Hz" in n for n in d["notes"]), d["notes"]
 
 
 def test_a_speed_column_in_hz_named_rpm_is_noted(run_cli, tmp_path):

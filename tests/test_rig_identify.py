@@ -215,6 +215,15 @@ def test_no_tone_from_noise_and_a_tone_between_bins_at_its_amplitude():
         recs.append(replace(r, x=r.x + 0.1 * np.sin(2 * np.pi * 1797.0 / 60.0 * t + s)))
     (one,) = identify_rig(recs, name="t", max_modes=1).rig.tones
     assert one.order == 1.0 and one.amplitude_m_per_s2 == pytest.approx(0.1, rel=0.02)
+    # ... and on records of 1 s, where the Welch background beside the line held the line
+    # itself and the first form of the threshold missed it (the same session's helper)
+    short = []
+    for s in range(3):
+        r = replace(_impacts(seed=s, dur=1.0, noise=0.2), rpm=1797.0)
+        t = np.arange(r.x.size) / r.fs
+        short.append(replace(r, x=r.x + 0.3 * np.sin(2 * np.pi * 1797.0 / 60.0 * t + s)))
+    (one,) = identify_rig(short, name="t", max_modes=1).rig.tones
+    assert one.order == 1.0 and one.amplitude_m_per_s2 == pytest.approx(0.3, rel=0.05)
 
 
 @pytest.mark.parametrize("zeta", [0.01, 0.05, 0.12, 0.3])

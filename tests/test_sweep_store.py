@@ -606,6 +606,14 @@ def test_stale_creation_directories_are_removed(tmp_path):
     (aside / "signal" / "0.0").write_bytes(b"x")
     assert locks.remove_stale_creations(out) == 1 and not aside.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == [".d.zarr.creating-live", "d.zarr"]
+    # a name with glob characters: its own leftovers, not another dataset's (a helper,
+    # twenty-eighth session: "ds[12].zarr" removed ".ds2.zarr.removing-*" and kept its own)
+    other = tmp_path / ".ds2.zarr.removing-x"
+    own = tmp_path / ".ds[12].zarr.removing-y"
+    other.mkdir()
+    own.mkdir()
+    assert locks.remove_stale_creations(tmp_path / "ds[12].zarr") == 1
+    assert other.exists() and not own.exists()
 
 
 def test_a_resume_removes_a_stale_creation_beside_the_dataset(store):

@@ -282,11 +282,26 @@ TONE_PAD = 8
 #: false-alarm probability of a shaft tone's detection, per record and order [-]: a tone is
 #: kept in a record where its Hann line's largest of the 5 bins around the order exceeds what
 #: noise exceeds with this probability (each bin's squared amplitude of noise is exponential
-#: with mean ``2 PSD ENBW``: the threshold is ``2 PSD ENBW ln(5 / p)``, 12.3 dB over
+#: with mean ``2 PSD ENBW``, read off the record's own spectrum beside the line,
+#: :func:`_local_noise2`: the threshold is ``2 PSD ENBW ln(5 / p)``, 12.3 dB over
 #: ``sqrt(PSD ENBW)``). Until the twenty-eighth session the threshold was 6 dB over
 #: ``sqrt(PSD ENBW)``, which white noise crossed on 44.5 % of the records (a helper's
 #: exploratory testing: tones "found" in 6 of 10 toneless trials).
 TONE_FALSE_ALARM = 1e-3
+
+
+def _local_noise2(spec, k: int, ft: float, ff) -> float:
+    """Noise's mean squared amplitude [(m/s^2)^2] in the Hann amplitude spectrum ``spec``
+    (frequencies ``ff`` [Hz]) around the bin ``k`` of a line at ``ft`` [Hz]: the median of
+    the squared amplitudes within +/- 25 % of ``ft`` (at least 12 bins each side), the line's
+    own +/- 4 bins left out, over ln 2 (the median of an exponential). The record's own
+    spectrum, not the Welch background: at 4 Hz resolution and 1/6-octave smoothing that held
+    the tone itself near 30 Hz, and a 0.3 m/s^2 tone on a 1 or 2 s record was missed (a
+    helper's exploratory testing, twenty-eighth session)."""
+    half = max(12, int(np.ceil(0.25 * ft / (ff[1] - ff[0]))))
+    idx = np.arange(max(k - half, 1), min(k + half + 1, spec.size))
+    idx = idx[np.abs(idx - k) > 4]
+    return float(np.median(spec[idx] ** 2)) / math.log(2.0)
 
 
 def _line_at(y, t, fs, spec, fx, f0) -> float | None:
@@ -624,15 +639,12 @@ def identify_rig(
     for order in (1.0, 2.0, 3.0):
         amps = []
         for x, rn, sp in spectra:
-            spec, ff, n = sp.amplitude, sp.freq, x.size
+            spec, ff = sp.amplitude, sp.freq
             ft = order * rn / 60.0
             k = np.argmin(np.abs(ff - ft))
             w = slice(max(k - 2, 0), k + 3)
             line = float(spec[w].max())
-            # noise's mean squared amplitude in a Hann bin: 2 PSD ENBW (TONE_FALSE_ALARM)
-            enbw = 1.5 * fs / n
-            noise2 = 2.0 * float(np.interp(ft, f, bg_s)) * enbw
-            found = line * line > noise2 * math.log(5.0 / TONE_FALSE_ALARM)
+            found = line * line > _local_noise2(spec, k, ft, ff) * math.log(5.0 / TONE_FALSE_ALARM)
             amps.append(_line_amplitude(x, fs, ft) if found else 0.0)
         if amps and np.median(amps) > 0.0:
             tones.append(

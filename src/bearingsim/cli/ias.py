@@ -45,7 +45,15 @@ def _print_summary(d: dict[str, Any]) -> None:
     for p in d["order_peaks"]:
         click.echo(f"  peak at order {p['order']:8.4f}  amplitude {p['amplitude']:.4g} rad/s")
     est = d.get("spall_width_estimate_m")
-    click.echo("spall width       " + ("not detected" if est is None else f"{est * 1e3:.4f} mm"))
+    click.echo(
+        "spall width       "
+        + (
+            "not detected (no spall event, or its entry and impact drops not resolved apart "
+            "on the signal's angle grid: a narrow spall at a high speed)"
+            if est is None
+            else f"{est * 1e3:.4f} mm"
+        )
+    )
 
 
 def _summary_figure(summary, title: str):

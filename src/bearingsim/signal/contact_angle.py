@@ -407,6 +407,21 @@ def unchecked_speed_note(
     )
 
 
+def unchecked_order_note(spec: Spectrum, fs: float, speed_from: str = "the speed") -> str | None:
+    """:func:`unchecked_speed_note` of an order-tracked record's :func:`padded_spectrum`
+    ``spec`` (``fs`` samples per revolution): a note where no shaft comb near order 1 stands
+    :data:`COMB_PROMINENCE_DB` out, so the speed it was tracked with (``speed_from``, e.g.
+    "the speed column") is neither confirmed nor refuted; else None."""
+    c = _best_comb(spec, fs, 1.0)
+    if c is not None and c.prominence_db >= COMB_PROMINENCE_DB:
+        return None
+    level = "no shaft comb" if c is None else f"a shaft comb only {c.prominence_db:.1f} dB out"
+    return (
+        f"{speed_from} is not checked: the order-tracked record has {level} near order 1 "
+        f"({COMB_PROMINENCE_DB:.0f} dB needed); a wrong speed reads wrong lines"
+    )
+
+
 def _without_supply(spec: Spectrum, rel_tol: float, shaft_hz: float) -> Spectrum:
     """``spec`` with the lines within :data:`SUPPLY_REL` of the 50 and 60 Hz multiples that a
     comb of ten harmonics within ``rel_tol`` of ``shaft_hz`` [Hz] reaches set to the median
@@ -516,14 +531,17 @@ def hz_given_as_rpm(
     when it stands :data:`HZ_COMB_DB` out and as much over the comb at ``shaft_hz`` [Hz]
     itself, and lies within 1 % of ``60 shaft_hz``: the speed given reads like its value in
     Hz given as r/min (29.1 for 29.1 Hz, read as 0.485 Hz). Its ``gain_db`` is the difference
-    of the two combs' prominences. Else None, also where fewer than three harmonics of
-    ``60 shaft_hz`` lie below the Nyquist frequency. For a warning only (:data:`HZ_COMB_DB`).
+    of the two combs' prominences. Else None, also where fewer than five harmonics of
+    ``60 shaft_hz`` lie below the Nyquist frequency (three until the twenty-eighth session: a
+    helper's column of 1662 r/min on record 132 was said to read like Hz, its "comb" three
+    lines at 1679, 3357 and 5036 Hz among the structure's resonances, and that note took the
+    place of the column's "not checked" one). For a warning only (:data:`HZ_COMB_DB`).
     Twenty-sixth session: a ``--conditions`` row typed in Hz moved a model gain 250-fold,
     unwarned. ``factor`` 1/60: the reverse, a speed in r/min given as Hz (a ``speed_hz``
     column holding r/min)."""
     fs = check_positive("fs_hz", fs, "Hz")
     hz = factor * check_positive("shaft_hz", shaft_hz, "Hz")
-    if 3.0 * hz * 1.05 * 1.1 >= fs / 2.0:  # shaft_speed_comb would find too few harmonics
+    if 5.0 * hz * 1.05 * 1.1 >= fs / 2.0:  # half the comb of ten at least below Nyquist
         return None
     spec = spectrum if spectrum is not None else padded_spectrum(x, fs)
     given = shaft_speed_comb(None, fs, shaft_hz, spectrum=spec)

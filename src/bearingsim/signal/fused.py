@@ -335,6 +335,10 @@ class FusedDiagnosis:
     why : str
         Why the verdict is ``uncertain`` (the rule that decided it; also among ``notes``),
         empty otherwise.
+    speed_unchecked : str
+        In the order domain, a note where the tracked record's shaft comb cannot judge the
+        speed it was tracked with (no comb 20 dB out near order 1), empty otherwise
+        (``analyze``'s ``rpm_unchecked``).
     """
 
     diagnosis: str
@@ -352,6 +356,7 @@ class FusedDiagnosis:
     infogram: Infogram | None = None
     calibration: Calibration | None = None
     why: str = ""
+    speed_unchecked: str = ""
 
     @property
     def methods_agree(self) -> bool:
@@ -547,11 +552,11 @@ def diagnose_fused(
     kin_notes = _kinematic_check(
         views, spectra, _measured_speed(raw_sp, fs, shaft_hz), bearing, shaft_hz, rule
     )
-    refuted = (
-        _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz)
-        if domain is Domain.HZ
-        else _order_refuted(a, fs, rule)
-    )
+    unchecked = ""
+    if domain is Domain.HZ:
+        refuted = _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz)
+    else:
+        refuted, unchecked = _order_refuted(a, fs, rule, speed_from)
     cage_views = sum(v.cage for v in views)
     nv = len(views)
     fused = {}
@@ -582,7 +587,8 @@ def diagnose_fused(
     def _res(diag, conf, leading=None, prob=None, margin=0.0):
         why = notes[-1] if diag == "uncertain" else ""  # the deciding rule's note, last
         return FusedDiagnosis(diag, conf, leading, prob, margin, fused, views, shaft_hz,
-                              non_bearing, notes, domain, kg, ig, calibration, why)  # fmt: skip
+                              non_bearing, notes, domain, kg, ig, calibration, why,
+                              "" if diag == "uncertain" else unchecked)  # fmt: skip
 
     top = max(supported, key=lambda f: fused[f]) if supported else None
     margin = fused[top] - max(fused[f] for f in FAMILIES if f != top) if top else 0.0
@@ -730,16 +736,23 @@ def _speed_refuted(raw_sp, fs, shaft_hz, rule, stated_hz=None):
     )
 
 
-def _order_refuted(a, fs, rule):
-    """:func:`.contact_angle.refuted_speed` of an order-tracked record ``a`` (``fs`` samples
-    per revolution) at order 1: a shaft comb standing at another order (beyond
-    ``rule.tol_rel``) says the speed it was tracked with is off the record's own, as a
-    ``--rpm`` is judged in Hz (twenty-eighth session: a speed column 4 % high and drifting
-    over 1 % was tracked unchecked; 172 read "ball" 0.94). Supply lines sit at no fixed order
-    and are far above the comb's orders."""
-    from .contact_angle import refuted_speed
+def _order_refuted(a, fs, rule, speed_from: str = "the speed"):
+    """``(refuted, unchecked)`` of an order-tracked record ``a`` (``fs`` samples per
+    revolution): :func:`.contact_angle.refuted_speed` at order 1, a shaft comb standing at
+    another order (beyond ``rule.tol_rel``) saying the speed it was tracked with is off the
+    record's own, as a ``--rpm`` is judged in Hz (twenty-eighth session: a speed column 4 %
+    high and drifting over 1 % was tracked unchecked; 172 read "ball" 0.94); and where that
+    does not refute it, a note when no comb near order 1 stands out enough to judge it
+    (:func:`.contact_angle.unchecked_speed_note`; a later helper of the session: columns 5-10
+    % off read "ball" 0.6-0.9 with their comb 9-19.6 dB out, without a word), else ``""``.
+    Supply lines sit at no fixed order and are far above the comb's orders."""
+    from .contact_angle import padded_spectrum, refuted_speed, unchecked_order_note
 
-    return refuted_speed(a, fs, 1.0, tol_rel=rule.tol_rel)
+    spec = padded_spectrum(a, fs)
+    c = refuted_speed(None, fs, 1.0, tol_rel=rule.tol_rel, spectrum=spec)
+    if c is not None:
+        return c, ""
+    return None, unchecked_order_note(spec, fs, speed_from) or ""
 
 
 def _kinematic_check(views, spectra, fr, bearing, shaft_hz, rule) -> list[str]:

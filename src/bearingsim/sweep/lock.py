@@ -43,6 +43,7 @@ computed twice).
 from __future__ import annotations
 
 import contextlib
+import glob
 import json
 import os
 import shutil
@@ -506,10 +507,13 @@ def remove_stale_creations(dest: str | Path) -> int:
     if not dest.parent.is_dir():
         return 0
     n = 0
-    for d in dest.parent.glob(f".{dest.name}.removing-*"):
+    # the name escaped: "ds[12].zarr" is a glob class, and removed another dataset's leftovers
+    # (a helper's exploratory testing, twenty-eighth session)
+    name = glob.escape(dest.name)
+    for d in dest.parent.glob(f".{name}.removing-*"):
         shutil.rmtree(d, ignore_errors=True)
         n += not d.exists()
-    found = list(dest.parent.glob(f".{dest.name}.creating-*"))
+    found = list(dest.parent.glob(f".{name}.creating-*"))
     if not found:
         return n
     now = _fs_now(dest.parent)
