@@ -398,13 +398,7 @@ def unchecked_speed_note(
     # a comb resting on supply lines judges nothing (exploratory testing, twenty-seventh
     # session: 1 m/s² of 60 Hz lines took the note away from the 2 s piece of 172)
     c = _off_supply(spec, fs, shaft_hz, _best_comb(spec, fs, shaft_hz))
-    if c is not None and c.prominence_db >= COMB_PROMINENCE_DB:
-        return None
-    level = "no shaft comb" if c is None else f"a shaft comb only {c.prominence_db:.1f} dB out"
-    return (
-        f"the speed given ({60.0 * shaft_hz:.6g} r/min) is not checked: the record has {level} "
-        f"near it ({COMB_PROMINENCE_DB:.0f} dB needed); a wrong speed reads wrong lines"
-    )
+    return _unchecked(c, f"the speed given ({60.0 * shaft_hz:.6g} r/min)", "the record", "it")
 
 
 def unchecked_order_note(spec: Spectrum, fs: float, speed_from: str = "the speed") -> str | None:
@@ -413,11 +407,17 @@ def unchecked_order_note(spec: Spectrum, fs: float, speed_from: str = "the speed
     :data:`COMB_PROMINENCE_DB` out, so the speed it was tracked with (``speed_from``, e.g.
     "the speed column") is neither confirmed nor refuted; else None."""
     c = _best_comb(spec, fs, 1.0)
+    return _unchecked(c, speed_from, "the order-tracked record", "order 1")
+
+
+def _unchecked(c: SpeedComb | None, what: str, record: str, near: str) -> str | None:
+    """The "not checked" note of :func:`unchecked_speed_note` and :func:`unchecked_order_note`
+    for the best comb ``c``; None where it stands :data:`COMB_PROMINENCE_DB` out."""
     if c is not None and c.prominence_db >= COMB_PROMINENCE_DB:
         return None
     level = "no shaft comb" if c is None else f"a shaft comb only {c.prominence_db:.1f} dB out"
     return (
-        f"{speed_from} is not checked: the order-tracked record has {level} near order 1 "
+        f"{what} is not checked: {record} has {level} near {near} "
         f"({COMB_PROMINENCE_DB:.0f} dB needed); a wrong speed reads wrong lines"
     )
 
