@@ -588,7 +588,7 @@ def diagnose_fused(
         why = notes[-1] if diag == "uncertain" else ""  # the deciding rule's note, last
         return FusedDiagnosis(diag, conf, leading, prob, margin, fused, views, shaft_hz,
                               non_bearing, notes, domain, kg, ig, calibration, why,
-                              "" if diag == "uncertain" else unchecked)  # fmt: skip
+                              unchecked)  # fmt: skip
 
     top = max(supported, key=lambda f: fused[f]) if supported else None
     margin = fused[top] - max(fused[f] for f in FAMILIES if f != top) if top else 0.0
