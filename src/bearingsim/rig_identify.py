@@ -334,13 +334,13 @@ def _padded_hann(x, fs) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     )
 
 
-def _line_amplitude(x, fs, f0) -> float:
+def _line_amplitude(x, fs, f0, padded) -> float:
     """The least-squares amplitude [m/s^2] of the record's line near ``f0`` [Hz] at its refined
-    frequency (:func:`_line_at`; 0 outside (0, fs/2)): a Hann peak reads up to 1.4 dB low
-    between bins (a helper's exploratory testing, twenty-eighth session: a 0.3 m/s^2 tone at
-    29.95 Hz read 0.255)."""
+    frequency (:func:`_line_at` on ``padded``, the record's :func:`_padded_hann`; 0 outside
+    (0, fs/2)): a Hann peak reads up to 1.4 dB low between bins (a helper's exploratory
+    testing, twenty-eighth session: a 0.3 m/s^2 tone at 29.95 Hz read 0.255)."""
     t = np.arange(x.size) / fs
-    fk = _line_at(x, t, fs, *_padded_hann(x, fs), f0)
+    fk = _line_at(x, t, fs, *padded, f0)
     return 0.0 if fk is None else _line_fit(x, t, fk)[0]
 
 
@@ -635,17 +635,23 @@ def identify_rig(
     # until the twenty-fourth session)
     spectra = [(x, rn, amplitude_spectrum(x, fs))
                for x, rn in zip(xs, rpms, strict=True) if rn]  # fmt: skip
-    tones = []
-    for order in (1.0, 2.0, 3.0):
-        amps = []
-        for x, rn, sp in spectra:
-            spec, ff = sp.amplitude, sp.freq
+    orders = (1.0, 2.0, 3.0)
+    found_amps: dict[float, list[float]] = {o: [] for o in orders}
+    for x, rn, sp in spectra:
+        spec, ff = sp.amplitude, sp.freq
+        padded = None  # the record's padded Hann spectrum, once for its orders' amplitudes
+        for order in orders:
             ft = order * rn / 60.0
             k = np.argmin(np.abs(ff - ft))
             w = slice(max(k - 2, 0), k + 3)
             line = float(spec[w].max())
             found = line * line > _local_noise2(spec, k, ft, ff) * math.log(5.0 / TONE_FALSE_ALARM)
-            amps.append(_line_amplitude(x, fs, ft) if found else 0.0)
+            if found and padded is None:
+                padded = _padded_hann(x, fs)
+            found_amps[order].append(_line_amplitude(x, fs, ft, padded) if found else 0.0)
+    tones = []
+    for order in orders:
+        amps = found_amps[order]
         if amps and np.median(amps) > 0.0:
             tones.append(
                 Tone(float(np.median(amps)),
