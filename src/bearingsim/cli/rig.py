@@ -641,16 +641,13 @@ def _check_steady_columns(recs: list) -> None:
     speed its shaft harmonics refute, as ``--rpm`` is refused (exploratory testing,
     twenty-seventh session: record 172, 1728 r/min, with a column of 1800 r/min wrote
     ``rpm_range = [1800, 1800]`` and tones at 1800 r/min)."""
-    from ..io.signal import steady_speed_hz
-    from ..signal.contact_angle import refuted_speed
+    from ..signal.diagnosis import refuted_column
 
     for r in recs:
-        if r.speed_hz is None or r.rpm is not None:
+        if r.rpm is not None:
             continue
-        if (med := steady_speed_hz(r.speed_hz)) is None:
-            continue
-        c = refuted_speed(r.x, r.fs, med)
-        if c is not None:
+        if (refuted := refuted_column(r)) is not None:
+            med, c = refuted
             off = 100.0 * (med / c.shaft_hz - 1.0)
             raise ConfigError(
                 f"the speed column of {Path(r.source).name!r} (median {60.0 * med:.6g} r/min) "

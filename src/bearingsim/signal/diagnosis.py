@@ -81,6 +81,7 @@ __all__ = [
     "min_band_width",
     "find_lines",
     "load_signal",
+    "refuted_column",
     "rpm_over_column",
 ]
 
@@ -965,6 +966,25 @@ def load_signal(
     return rec
 
 
+def refuted_column(rec: SignalRecord, tol_rel: float = 0.01) -> tuple[float, Any] | None:
+    """``(median [Hz], comb)`` where ``rec``'s speed column is steady within ``tol_rel``
+    (:func:`bearingsim.io.signal.steady_speed_hz`) and its shaft harmonics refute that median
+    (:func:`.contact_angle.refuted_speed`, ``comb`` the record's own speed's
+    :class:`~.contact_angle.SpeedComb`), else None (also without a speed column): the one rule
+    of ``analyze`` and ``rig identify`` for a speed column, judged as a ``--rpm`` is."""
+    if rec.speed_hz is None:
+        return None
+    from ..io.signal import steady_speed_hz
+
+    med = steady_speed_hz(rec.speed_hz, tol_rel)
+    if med is None:
+        return None
+    from .contact_angle import refuted_speed
+
+    c = refuted_speed(rec.x, rec.fs, med, tol_rel=tol_rel)
+    return None if c is None else (med, c)
+
+
 def rpm_over_column(rec: SignalRecord, rpm: float, *, valid: str) -> SignalRecord:
     """``rec`` read at a speed given ``rpm`` [r/min] (``--rpm``) against its speed column:
     unchanged where it has none or the column holds that speed (within 1 %); where the column
@@ -986,15 +1006,10 @@ def rpm_over_column(rec: SignalRecord, rpm: float, *, valid: str) -> SignalRecor
     span = column_speed_refutes(rec, rpm)
     if span is None:
         return rec
-    from ..io.signal import steady_speed_hz
-
-    med = steady_speed_hz(rec.speed_hz)
-    if med is not None:
-        from .contact_angle import refuted_speed
-
-        if refuted_speed(rec.x, rec.fs, med) is not None:
-            info = {**rec.info, "rpm_file": 60.0 * med, "speed_column_refuted": True}
-            return replace(rec, speed_hz=None, info=info)
+    if (refuted := refuted_column(rec)) is not None:
+        med = refuted[0]
+        info = {**rec.info, "rpm_file": 60.0 * med, "speed_column_refuted": True}
+        return replace(rec, speed_hz=None, info=info)
     raise ConfigError(
         f"rpm = {rpm:.6g} r/min contradicts the speed column of {Path(rec.source).name!r} "
         f"({speed_span_text(span, rpm)}); valid: {valid}"
@@ -1120,20 +1135,16 @@ def analyze_record(
                 f"({what}); valid: a speed > 0 at every sample (range (0, inf) Hz), or --rpm R "
                 "to judge the record at one speed"
             )
-        from ..io.signal import steady_speed_hz
-
-        med = steady_speed_hz(sp, rule.tol_rel)
-        if med is not None:  # steady: the shaft lines can judge the column
-            # (exploratory testing, twenty-seventh session: a constant column of 1800 r/min
-            # on record 172, 1728 r/min, read "ball" at 0.79, where --rpm 1800 is refuted)
-            from .contact_angle import refuted_speed
-
-            if refuted_speed(rec.x, rec.fs, med, tol_rel=rule.tol_rel) is not None:
-                b = None if band_v is None else (band_v[0] * med, band_v[1] * med)
-                return diagnose_fused(
-                    rec.x, rec.fs, bearing, med, band=b, rule=rule, **_supply(rec),
-                    speed_from="the speed column",
-                )  # fmt: skip
+        # a steady column the shaft lines refute is judged at its median in Hz (exploratory
+        # testing, twenty-seventh session: a constant column of 1800 r/min on record 172,
+        # 1728 r/min, read "ball" at 0.79, where --rpm 1800 is refuted)
+        if (refuted := refuted_column(rec, rule.tol_rel)) is not None:
+            med = refuted[0]
+            b = None if band_v is None else (band_v[0] * med, band_v[1] * med)
+            return diagnose_fused(
+                rec.x, rec.fs, bearing, med, band=b, rule=rule, **_supply(rec),
+                speed_from="the speed column",
+            )  # fmt: skip
         t = np.arange(rec.x.size) / rec.fs
         if samples_per_rev is None:
             samples_per_rev = max(2 * int(rec.fs / float(sp.max()) / 2.0), MIN_SAMPLES_PER_REV)
