@@ -605,19 +605,20 @@ def diagnose_fused(
         )
         off = f"{100.0 * (shaft_hz / f_rec - 1.0):+.2f} %"
         if domain is Domain.HZ:
-            notes.append(
-                f"{SPEED_REFUTED} {60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} "
-                f"r/min used is {off} off it, beyond the line search's ±"
-                f"{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong speed "
-                f"(check {speed_from})"
+            named = (
+                f"{60.0 * f_rec:.6g} r/min ({how}); the {60.0 * shaft_hz:.6g} r/min used is "
+                f"{off} off it"
             )
         else:  # order tracked: the comb stands at an order of the speed tracked with
-            notes.append(
-                f"{SPEED_REFUTED} order {f_rec:.5g} of the speed tracked with ({how}); that "
-                f"speed is {off} off the record's, beyond the line search's ±"
-                f"{100.0 * rule.tol_rel:g} %: the fault lines were searched at the wrong orders "
-                f"(check {speed_from})"
+            named = (
+                f"order {f_rec:.5g} of the speed tracked with ({how}); that speed is {off} off "
+                "the record's"
             )
+        wrong = "speed" if domain is Domain.HZ else "orders"
+        notes.append(
+            f"{SPEED_REFUTED} {named}, beyond the line search's ±{100.0 * rule.tol_rel:g} %: the "
+            f"fault lines were searched at the wrong {wrong} (check {speed_from})"
+        )
         return _res("uncertain", 0.0, top, p, margin)
     if not supported:
         alone = [(v.name, f) for v in views for f in v.supported]

@@ -75,16 +75,16 @@ N_AUX_FIXED = 7
 AUX_NAMES = ("acc_x", "acc_y", "k_xx", "k_xy", "k_yy", "k_load", "n_loaded")
 
 
-def check_ball_bearing(bearing, models: str = "VSM/DEM/TVSM models") -> None:
+def check_ball_bearing(bearing) -> None:
     """Refuse (one line) a bearing that is not a ball bearing, the ring models' contacts and
     defects being those of balls; and one with a nominal contact angle
     (:func:`check_no_contact_angle`)."""
     if not isinstance(bearing, BallBearing):
         raise ConfigError(
             f"bearing = {getattr(bearing, 'id', bearing)!r} is not a ball bearing; the "
-            f"{models} need a ball bearing"
+            "VSM/DEM/TVSM models need a ball bearing"
         )
-    check_no_contact_angle(bearing, models)
+    check_no_contact_angle(bearing, "VSM/DEM/TVSM models")
 
 
 def check_no_contact_angle(bearing, models: str) -> None:
